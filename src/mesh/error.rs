@@ -1,0 +1,75 @@
+use thiserror::Error;
+
+/// Why a mesh was refused. Every variant names the face or vertex (0-based) at fault, so a
+/// designer can find it in Rhino or in the OBJ file.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum MeshError {
+    /// The mesh has no faces or no vertices.
+    #[error("the mesh is empty ({vertices} vertices, {faces} faces): give at least one face")]
+    Empty {
+        /// Number of vertices given.
+        vertices: usize,
+        /// Number of faces given.
+        faces: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a NaN or infinite coordinate")]
+    NonFiniteCoordinate {
+        /// The vertex at fault.
+        vertex: usize,
+    },
+    /// A face has fewer than three vertices.
+    #[error("face {face} has {count} vertices; a face needs at least 3")]
+    TooFewVertices {
+        /// The face at fault.
+        face: usize,
+        /// How many vertices it has.
+        count: usize,
+    },
+    /// A face refers to a vertex that does not exist.
+    #[error("face {face} refers to vertex {index}, but the mesh has only {vertex_count} vertices (valid: 0..{vertex_count})")]
+    IndexOutOfRange {
+        /// The face at fault.
+        face: usize,
+        /// The bad index.
+        index: usize,
+        /// Number of vertices in the mesh.
+        vertex_count: usize,
+    },
+    /// A face lists the same vertex twice.
+    #[error("face {face} uses vertex {vertex} more than once")]
+    RepeatedIndex {
+        /// The face at fault.
+        face: usize,
+        /// The repeated vertex.
+        vertex: usize,
+    },
+    /// An edge is shared by more than two faces.
+    #[error("edge {a}-{b} is shared by {face_count} faces (faces {faces:?}); a surface edge may border at most 2 faces")]
+    NonManifoldEdge {
+        /// First vertex of the edge.
+        a: usize,
+        /// Second vertex of the edge.
+        b: usize,
+        /// How many faces share it.
+        face_count: usize,
+        /// The first three faces found on it.
+        faces: Vec<usize>,
+    },
+    /// The OBJ text could not be read.
+    #[error("OBJ line {line}: {message}")]
+    ObjSyntax {
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file could not be read or written.
+    #[error("{path}: {message}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+}

@@ -1,0 +1,71 @@
+//! Quad meshes made in code: regular grids for tests and the built-in example shell.
+
+use nalgebra::Point3;
+
+use super::PolyMesh;
+
+/// A flat `nx` x `ny` grid of unit-spaced square quads in the xy plane.
+///
+/// Face `i + nx * j` is the square `[i, i+1] x [j, j+1]`; vertex `i + (nx + 1) * j` sits at
+/// `(i, j, 0)`. Faces are counter-clockwise seen from +z.
+///
+/// # Panics
+/// If `nx` or `ny` is zero.
+pub fn grid(nx: usize, ny: usize) -> PolyMesh {
+    assert!(nx > 0 && ny > 0, "a grid needs at least one face in each direction");
+    let xs: Vec<f64> = (0..=nx).map(|i| i as f64).collect();
+    let ys: Vec<f64> = (0..=ny).map(|j| j as f64).collect();
+    lattice(&xs, &ys, |_, _| 0.0)
+}
+
+/// The paper's benchmark shell (section 4.2, Figure 9): a square-plan shell of side `span`,
+/// supported at its four corners, meshed with quads whose edges are about `edge` long.
+///
+/// The surface is the translational surface `z = g(x) + g(y)` with the parabolic arch
+/// `g(s) = rise / 2 * (1 - (2 s / span)^2)`: corners at `z = 0`, edge arches rising to
+/// `rise / 2`, the crown at `rise` (a quarter of the span). Translational surfaces have
+/// planar parallelogram faces, and spacing the grid lines at equal arc length along `g`
+/// makes every face edge the same length along each family.
+///
+/// # Panics
+/// If `span` or `edge` is not positive and finite.
+pub fn corner_supported_shell(span: f64, edge: f64) -> PolyMesh {
+    assert!(span > 0.0 && edge > 0.0 && span.is_finite() && edge.is_finite(), "span and edge must be positive");
+    let rise = span / 4.0;
+    let g = |s: f64| rise / 2.0 * (1.0 - (2.0 * s / span).powi(2));
+    let stations = equal_arc_stations(span, edge, g);
+    lattice(&stations, &stations, |x, y| g(x) + g(y))
+}
+
+/// Parameters `s` in `[-span/2, span/2]` splitting the arch `(s, g(s))` into pieces of equal
+/// arc length, as many as make each piece closest to `edge`.
+fn equal_arc_stations(span: f64, edge: f64, g: impl Fn(f64) -> f64) -> Vec<f64> {
+    const SAMPLES: usize = 4096;
+    let s_at = |k: usize| -span / 2.0 + span * k as f64 / SAMPLES as f64;
+    let mut arc = vec![0.0; SAMPLES + 1];
+    for k in 1..=SAMPLES {
+        let (s0, s1) = (s_at(k - 1), s_at(k));
+        arc[k] = arc[k - 1] + (s1 - s0).hypot(g(s1) - g(s0));
+    }
+    let total = arc[SAMPLES];
+    let pieces = ((total / edge).round() as usize).max(1);
+    (0..=pieces)
+        .map(|i| {
+            let target = total * i as f64 / pieces as f64;
+            let k = arc.partition_point(|&a| a < target).clamp(1, SAMPLES);
+            let t = (target - arc[k - 1]) / (arc[k] - arc[k - 1]);
+            s_at(k - 1) + t * (s_at(k) - s_at(k - 1))
+        })
+        .collect()
+}
+
+/// A quad lattice over the parameter lines `xs` x `ys` lifted by `z(x, y)`.
+fn lattice(xs: &[f64], ys: &[f64], z: impl Fn(f64, f64) -> f64) -> PolyMesh {
+    let (nx, ny) = (xs.len() - 1, ys.len() - 1);
+    let positions = ys.iter().flat_map(|&y| xs.iter().map(move |&x| (x, y))).map(|(x, y)| Point3::new(x, y, z(x, y))).collect();
+    let vertex = |i: usize, j: usize| i + (nx + 1) * j;
+    let faces = (0..ny)
+        .flat_map(|j| (0..nx).map(move |i| vec![vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)]))
+        .collect();
+    PolyMesh::new(positions, faces).expect("a lattice is a valid mesh")
+}

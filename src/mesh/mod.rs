@@ -1,0 +1,122 @@
+//! Polygon meshes: the data every stage reads.
+//!
+//! A [`PolyMesh`] keeps vertex positions and faces exactly in the order they were given, so
+//! face indices in results (pairs, unpaired faces, tiles) refer to the caller's own numbering
+//! (OBJ order for files). [`PolyMesh::new`] validates everything the later stages rely on and
+//! names the offending face or vertex when it refuses a mesh.
+
+mod error;
+pub mod generate;
+pub mod obj;
+mod topology;
+
+pub use error::MeshError;
+pub use topology::{Edge, Topology};
+
+use nalgebra::{Point3, Vector3};
+
+/// A validated polygon surface mesh: positions (f64) and faces as lists of vertex indices.
+///
+/// Invariants established by [`PolyMesh::new`]: at least one face; finite coordinates; every
+/// face has at least three distinct, in-range vertex indices; no edge is shared by more than
+/// two faces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolyMesh {
+    positions: Vec<Point3<f64>>,
+    faces: Vec<Vec<usize>>,
+}
+
+impl PolyMesh {
+    /// Validates and builds a mesh.
+    ///
+    /// # Errors
+    /// The first problem found, in this order: empty mesh, non-finite coordinate, face with
+    /// fewer than three vertices, index out of range, repeated index in a face, non-manifold
+    /// edge.
+    pub fn new(positions: Vec<Point3<f64>>, faces: Vec<Vec<usize>>) -> Result<Self, MeshError> {
+        if faces.is_empty() || positions.is_empty() {
+            return Err(MeshError::Empty {
+                vertices: positions.len(),
+                faces: faces.len(),
+            });
+        }
+        if let Some(vertex) = positions.iter().position(|p| !p.coords.iter().all(|c| c.is_finite())) {
+            return Err(MeshError::NonFiniteCoordinate { vertex });
+        }
+        for (face, indices) in faces.iter().enumerate() {
+            if indices.len() < 3 {
+                return Err(MeshError::TooFewVertices { face, count: indices.len() });
+            }
+            if let Some(&index) = indices.iter().find(|&&i| i >= positions.len()) {
+                return Err(MeshError::IndexOutOfRange { face, index, vertex_count: positions.len() });
+            }
+            for (k, &vertex) in indices.iter().enumerate() {
+                if indices[k + 1..].contains(&vertex) {
+                    return Err(MeshError::RepeatedIndex { face, vertex });
+                }
+            }
+        }
+        let mesh = Self { positions, faces };
+        Topology::new(&mesh)?;
+        Ok(mesh)
+    }
+
+    /// Vertex positions in input order.
+    pub fn positions(&self) -> &[Point3<f64>] {
+        &self.positions
+    }
+
+    /// Faces in input order, each a list of vertex indices.
+    pub fn faces(&self) -> &[Vec<usize>] {
+        &self.faces
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// True when face `f` has four vertices; only quads can take part in a tile.
+    pub fn is_quad(&self, f: usize) -> bool {
+        self.faces[f].len() == 4
+    }
+
+    /// Positions of the corners of face `f`, in face order.
+    pub fn face_points(&self, f: usize) -> impl Iterator<Item = Point3<f64>> + '_ {
+        self.faces[f].iter().map(|&v| self.positions[v])
+    }
+
+    /// Vertex centroid of face `f` (the paper's face centroid, section 3.5).
+    pub fn face_centroid(&self, f: usize) -> Point3<f64> {
+        let sum = self.face_points(f).fold(Vector3::zeros(), |acc, p| acc + p.coords);
+        Point3::from(sum / self.faces[f].len() as f64)
+    }
+
+    /// Area-weighted normal of face `f` (Newell's method): its length is the area of a planar
+    /// face, and its direction follows the face's vertex order.
+    pub fn face_area_vector(&self, f: usize) -> Vector3<f64> {
+        let points: Vec<_> = self.face_points(f).collect();
+        let mut n = Vector3::zeros();
+        for (i, p) in points.iter().enumerate() {
+            let q = points[(i + 1) % points.len()];
+            n += p.coords.cross(&q.coords);
+        }
+        n * 0.5
+    }
+
+    /// Axis-aligned bounding box `(min, max)`.
+    pub fn bounding_box(&self) -> (Point3<f64>, Point3<f64>) {
+        let mut min = self.positions[0];
+        let mut max = self.positions[0];
+        for p in &self.positions {
+            min = min.inf(p);
+            max = max.sup(p);
+        }
+        (min, max)
+    }
+
+    /// Total face area.
+    pub fn area(&self) -> f64 {
+        (0..self.faces.len()).map(|f| self.face_area_vector(f).norm()).sum()
+    }
+}

@@ -1,0 +1,94 @@
+//! Wavefront OBJ in and out.
+//!
+//! Only geometry is read: `v` lines and `f` lines (`v`, `v/vt`, `v//vn`, `v/vt/vn`, negative
+//! relative indices). Vertex and face order are kept exactly as in the file, which is why
+//! this is not `tobj`: it renumbers vertices by first use and splits groups into separate
+//! meshes, and face indices in our results must refer to the file's own numbering.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use nalgebra::Point3;
+
+use super::{MeshError, PolyMesh};
+
+/// Parses OBJ text into a validated mesh.
+///
+/// # Errors
+/// [`MeshError::ObjSyntax`] with the line number for malformed lines, then any validation
+/// error of [`PolyMesh::new`].
+pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    for (number, raw) in text.lines().enumerate() {
+        let line = number + 1;
+        let syntax = |message: String| MeshError::ObjSyntax { line, message };
+        let content = raw.split('#').next().unwrap_or("");
+        let mut words = content.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let mut xyz = [0.0; 3];
+                for c in &mut xyz {
+                    let word = words.next().ok_or_else(|| syntax("a vertex needs x, y and z".into()))?;
+                    *c = word.parse().map_err(|_| syntax(format!("'{word}' is not a number")))?;
+                }
+                positions.push(Point3::from(xyz));
+            }
+            Some("f") => {
+                let mut face = Vec::new();
+                for word in words {
+                    let first = word.split('/').next().unwrap_or("");
+                    let index: i64 = first.parse().map_err(|_| syntax(format!("'{word}' is not a vertex reference")))?;
+                    let resolved = match index {
+                        i if i > 0 => i - 1,
+                        i if i < 0 => positions.len() as i64 + i,
+                        _ => return Err(syntax("vertex index 0 is not valid in OBJ (indices start at 1)".into())),
+                    };
+                    let resolved = usize::try_from(resolved)
+                        .map_err(|_| syntax(format!("relative index {index} reaches before the first vertex")))?;
+                    face.push(resolved);
+                }
+                faces.push(face);
+            }
+            _ => {}
+        }
+    }
+    PolyMesh::new(positions, faces)
+}
+
+/// Reads and validates an OBJ file.
+///
+/// # Errors
+/// [`MeshError::Io`] if the file cannot be read, otherwise as [`parse`].
+pub fn read(path: &Path) -> Result<PolyMesh, MeshError> {
+    let text = std::fs::read_to_string(path).map_err(|e| io_error(path, &e))?;
+    parse(&text)
+}
+
+/// Formats a mesh as OBJ text (1-based indices, full precision so a round trip is exact).
+pub fn to_string(mesh: &PolyMesh) -> String {
+    let mut out = String::new();
+    for p in mesh.positions() {
+        let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
+    }
+    for face in mesh.faces() {
+        out.push('f');
+        for v in face {
+            let _ = write!(out, " {}", v + 1);
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// Writes a mesh as an OBJ file.
+///
+/// # Errors
+/// [`MeshError::Io`] if the file cannot be written.
+pub fn write(mesh: &PolyMesh, path: &Path) -> Result<(), MeshError> {
+    std::fs::write(path, to_string(mesh)).map_err(|e| io_error(path, &e))
+}
+
+fn io_error(path: &Path, e: &std::io::Error) -> MeshError {
+    MeshError::Io { path: path.display().to_string(), message: e.to_string() }
+}

@@ -1,0 +1,120 @@
+//! Edge adjacency of a polygon mesh: which faces meet at each edge and which edges meet at
+//! each vertex. Built in face order, so edge numbering is deterministic.
+
+use std::collections::HashMap;
+
+use super::{MeshError, PolyMesh};
+
+/// An undirected mesh edge with its (at most two) faces.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Edge {
+    /// End points, smaller index first.
+    pub vertices: [usize; 2],
+    /// The faces on either side, in order of first appearance; one for a boundary edge.
+    pub faces: Vec<usize>,
+}
+
+impl Edge {
+    /// True when only one face borders the edge.
+    pub fn is_boundary(&self) -> bool {
+        self.faces.len() == 1
+    }
+
+    /// The face across this edge from `f`, if there is one.
+    pub fn other_face(&self, f: usize) -> Option<usize> {
+        match self.faces.as_slice() {
+            [a, b] if *a == f => Some(*b),
+            [a, b] if *b == f => Some(*a),
+            _ => None,
+        }
+    }
+}
+
+/// Edges of a mesh and their incidences.
+#[derive(Debug, Clone)]
+pub struct Topology {
+    edges: Vec<Edge>,
+    /// `face_edges[f][i]` is the edge from corner `i` to corner `i + 1` of face `f`.
+    face_edges: Vec<Vec<usize>>,
+    vertex_edges: Vec<Vec<usize>>,
+}
+
+impl Topology {
+    /// Builds the adjacency of `mesh`.
+    ///
+    /// # Errors
+    /// [`MeshError::NonManifoldEdge`] when an edge borders more than two faces.
+    pub fn new(mesh: &PolyMesh) -> Result<Self, MeshError> {
+        let mut index: HashMap<[usize; 2], usize> = HashMap::new();
+        let mut edges: Vec<Edge> = Vec::new();
+        let mut vertex_edges = vec![Vec::new(); mesh.positions().len()];
+        let mut face_edges = Vec::with_capacity(mesh.face_count());
+        for (f, face) in mesh.faces().iter().enumerate() {
+            let mut own = Vec::with_capacity(face.len());
+            for (i, &a) in face.iter().enumerate() {
+                let b = face[(i + 1) % face.len()];
+                let key = [a.min(b), a.max(b)];
+                let e = *index.entry(key).or_insert_with(|| {
+                    edges.push(Edge { vertices: key, faces: Vec::with_capacity(2) });
+                    vertex_edges[key[0]].push(edges.len() - 1);
+                    vertex_edges[key[1]].push(edges.len() - 1);
+                    edges.len() - 1
+                });
+                edges[e].faces.push(f);
+                if edges[e].faces.len() > 2 {
+                    let faces = edges[e].faces.clone();
+                    return Err(MeshError::NonManifoldEdge { a: key[0], b: key[1], face_count: faces.len(), faces });
+                }
+                own.push(e);
+            }
+            face_edges.push(own);
+        }
+        Ok(Self { edges, face_edges, vertex_edges })
+    }
+
+    /// All edges.
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
+    /// Edges of face `f` in face order: entry `i` joins corners `i` and `i + 1`.
+    pub fn face_edges(&self, f: usize) -> &[usize] {
+        &self.face_edges[f]
+    }
+
+    /// Edges incident to vertex `v`.
+    pub fn vertex_edges(&self, v: usize) -> &[usize] {
+        &self.vertex_edges[v]
+    }
+
+    /// True when `v` touches a boundary edge or no edge at all.
+    pub fn is_boundary_vertex(&self, v: usize) -> bool {
+        self.vertex_edges[v].is_empty() || self.vertex_edges[v].iter().any(|&e| self.edges[e].is_boundary())
+    }
+
+    /// The edge of face `f` that meets edge `e` at vertex `v` (the neighbour of `e` around `f`
+    /// on `v`'s side), or `None` if `e` is not an edge of `f` touching `v`.
+    pub fn face_edge_at(&self, f: usize, e: usize, v: usize) -> Option<usize> {
+        let own = &self.face_edges[f];
+        let i = own.iter().position(|&x| x == e)?;
+        let n = own.len();
+        [own[(i + n - 1) % n], own[(i + 1) % n]]
+            .into_iter()
+            .find(|&other| other != e && self.edges[other].vertices.contains(&v))
+    }
+
+    /// For an interior vertex with exactly four edges and four faces (a regular vertex of a
+    /// quad mesh), the edge opposite `e` at `v`: the one sharing no face with `e`.
+    pub fn opposite_edge(&self, v: usize, e: usize) -> Option<usize> {
+        let around = &self.vertex_edges[v];
+        if around.len() != 4 || self.is_boundary_vertex(v) {
+            return None;
+        }
+        let neighbours: Vec<usize> = self.edges[e].faces.iter().filter_map(|&f| self.face_edge_at(f, e, v)).collect();
+        let mut rest = around.iter().copied().filter(|&x| x != e && !neighbours.contains(&x));
+        match (rest.next(), rest.next()) {
+            (Some(o), None) if neighbours.len() == 2 => Some(o),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,57 @@
+use thiserror::Error;
+
+/// Why the pattern stage could not run.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum PatternError {
+    /// A bond weight is negative, NaN or infinite.
+    #[error("bond weight {weight} is not a finite number >= 0")]
+    InvalidWeight {
+        /// The weight given.
+        weight: f64,
+    },
+    /// A face index in the options does not exist.
+    #[error("face {face} does not exist (the mesh has {face_count} faces, valid: 0..{face_count})")]
+    FaceOutOfRange {
+        /// The index given.
+        face: usize,
+        /// Number of faces in the mesh.
+        face_count: usize,
+    },
+    /// A forced pair names two faces that do not share an edge.
+    #[error("forced pair [{a}, {b}]: the faces do not share an edge, so they cannot form one tile")]
+    ForcedNotAdjacent {
+        /// First face.
+        a: usize,
+        /// Second face.
+        b: usize,
+    },
+    /// A face appears in two forced pairs.
+    #[error("face {face} appears in more than one forced pair")]
+    ForcedTwice {
+        /// The face at fault.
+        face: usize,
+    },
+    /// A forced pair uses an excluded face.
+    #[error("face {face} is both excluded and in a forced pair")]
+    ForcedExcluded {
+        /// The face at fault.
+        face: usize,
+    },
+    /// A forced pair uses a face that is not a quad.
+    #[error("face {face} has {corners} corners; only quads can be paired into a tile")]
+    ForcedNonQuad {
+        /// The face at fault.
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+    },
+    /// The time limit is negative or not finite.
+    #[error("time limit {seconds} s is not a finite number >= 0")]
+    InvalidTimeLimit {
+        /// The limit given.
+        seconds: f64,
+    },
+    /// CBC failed.
+    #[error("the MIP solver failed: {0}")]
+    Solver(String),
+}

@@ -1,0 +1,229 @@
+//! Stage 2 (paper sections 3.2-3.4): match adjacent quads into tiles.
+//!
+//! [`solve`] builds the [`DualGraph`] of a quad mesh and solves one of the paper's binary
+//! integer programs with CBC (through `good_lp`):
+//!
+//! * [`Bond::Stack`]: maximum matching, eq. (1);
+//! * [`Bond::Staggered`]: eq. (2), each continuous joint costs `weight`;
+//! * [`Bond::RunningBond`]: eq. (3), each shifted pair earns `weight`.
+//!
+//! The answer says honestly how good it is: the objective of the returned pattern, the
+//! solver's proven bound, and [`SolveStatus::Optimal`] only when the two meet.
+
+mod dual;
+mod error;
+mod mip;
+mod score;
+
+pub use dual::{CandidateTile, DualGraph};
+pub use error::PatternError;
+pub use score::{Score, score};
+
+use std::time::{Duration, Instant};
+
+use serde::{Deserialize, Serialize};
+
+use crate::mesh::{PolyMesh, Topology};
+
+/// Which laying pattern the objective asks for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Bond {
+    /// Eq. (1): as many tiles as possible, nothing else.
+    Stack,
+    /// Eq. (2): as many tiles as possible, minus `weight` per continuous joint.
+    Staggered {
+        /// The paper's w (default 0.5): above 1 a continuous joint is worse than two half tiles.
+        weight: f64,
+    },
+    /// Eq. (3): as many tiles as possible, plus `weight` per pair shifted by one face.
+    RunningBond {
+        /// The paper's w_R (default 0.5).
+        weight: f64,
+    },
+}
+
+impl Bond {
+    /// The paper's default weight for the staggered and running-bond objectives.
+    pub const DEFAULT_WEIGHT: f64 = 0.5;
+}
+
+/// How the integer program is written for the solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Formulation {
+    /// The constraints exactly as printed in the paper.
+    Paper,
+    /// The paper's program plus valid inequalities that cut off fractional points but no
+    /// integer solution, so the optimum is the same: for eq. (2), one "star" row per regular
+    /// interior vertex, `x_a + x_b + x_c + x_d - y_ac - y_bd <= 1` (two opposite tiles fit
+    /// only together with their continuous joint). Proves optimality far sooner.
+    #[default]
+    Strengthened,
+}
+
+/// Options of the pattern stage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatternOptions {
+    /// The objective.
+    pub bond: Bond,
+    /// Wall-clock limit for the solver. Zero skips the solver and returns the greedy start.
+    pub time_limit: Duration,
+    /// Face pairs that must become tiles (0-based face indices).
+    pub forced_pairs: Vec<[usize; 2]>,
+    /// Faces that take part in no tile, e.g. openings.
+    pub excluded_faces: Vec<usize>,
+    /// How the program is written; both give the same optimum.
+    pub formulation: Formulation,
+}
+
+impl Default for PatternOptions {
+    fn default() -> Self {
+        Self {
+            bond: Bond::Staggered { weight: Bond::DEFAULT_WEIGHT },
+            time_limit: Duration::from_secs(60),
+            forced_pairs: Vec::new(),
+            excluded_faces: Vec::new(),
+            formulation: Formulation::default(),
+        }
+    }
+}
+
+impl PatternOptions {
+    /// Converts seconds (as typed on a command line or passed through the C ABI) into a time
+    /// limit.
+    ///
+    /// # Errors
+    /// [`PatternError::InvalidTimeLimit`] for negative, NaN or overflowing values.
+    pub fn time_limit_from_secs(seconds: f64) -> Result<Duration, PatternError> {
+        Duration::try_from_secs_f64(seconds).map_err(|_| PatternError::InvalidTimeLimit { seconds })
+    }
+}
+
+/// How far the solver got.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SolveStatus {
+    /// The objective equals the proven bound.
+    Optimal,
+    /// The time limit stopped the search; the pattern is valid, the gap is open.
+    TimeLimit,
+    /// The solver stopped for another reason with a valid pattern and an open gap.
+    Feasible,
+}
+
+/// A matching of faces into tiles, with its quality and proof status. Serialised, it is the
+/// JSON that `tilepattern match` writes and `tilepattern tiles` reads.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Pattern {
+    /// Number of faces in the mesh.
+    pub faces: usize,
+    /// Matched face pairs `[a, b]` with `a < b`, sorted.
+    pub pairs: Vec<[usize; 2]>,
+    /// Quads in no pair: each becomes a half tile that needs a cut.
+    pub unpaired: Vec<usize>,
+    /// Faces excluded by the caller.
+    #[serde(default)]
+    pub excluded: Vec<usize>,
+    /// Faces that are not quads: never paired, reported for manual treatment.
+    #[serde(default)]
+    pub non_quad: Vec<usize>,
+    /// Continuous joints in the pattern (pairs of chosen tiles counted by eq. 2's y).
+    pub continuous_joints: usize,
+    /// Shifted pairs in the pattern (pairs of chosen tiles counted by eq. 3's z).
+    pub shifted_pairs: usize,
+    /// Objective value of this pattern under the chosen bond.
+    pub objective: f64,
+    /// Proven upper bound on the objective.
+    pub bound: f64,
+    /// Relative gap `(bound - objective) / max(|bound|, 1)`.
+    pub gap: f64,
+    /// Whether optimality was proven.
+    pub status: SolveStatus,
+    /// Wall-clock seconds spent in this stage.
+    pub seconds: f64,
+}
+
+/// Matches the faces of `mesh` into tiles under `options`.
+///
+/// # Errors
+/// Invalid options (weights, excluded faces, forced pairs) or a solver failure.
+pub fn solve(mesh: &PolyMesh, options: &PatternOptions) -> Result<Pattern, PatternError> {
+    let started = Instant::now();
+    validate_weights(options.bond)?;
+    let mut excluded = vec![false; mesh.face_count()];
+    for &f in &options.excluded_faces {
+        *excluded.get_mut(f).ok_or(PatternError::FaceOutOfRange { face: f, face_count: mesh.face_count() })? = true;
+    }
+    let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
+    let graph = DualGraph::new(mesh, &topology, &excluded);
+    let forced = forced_tiles(mesh, &graph, &excluded, &options.forced_pairs)?;
+
+    let outcome = mip::solve(&graph, options.bond, options.formulation, &forced, options.time_limit)?;
+    let chosen = &outcome.chosen;
+    let s = score(&graph, chosen, options.bond);
+    let bound = outcome.bound.max(s.objective);
+    let gap = (bound - s.objective) / bound.abs().max(1.0);
+    let status = match outcome.proven {
+        _ if gap > 1e-9 && outcome.timed_out => SolveStatus::TimeLimit,
+        true if gap <= 1e-9 => SolveStatus::Optimal,
+        _ => SolveStatus::Feasible,
+    };
+
+    let mut paired = vec![false; mesh.face_count()];
+    let mut pairs: Vec<[usize; 2]> = Vec::new();
+    for (t, _) in chosen.iter().enumerate().filter(|(_, c)| **c) {
+        let faces = graph.tiles()[t].faces;
+        faces.iter().for_each(|&f| paired[f] = true);
+        pairs.push(faces);
+    }
+    pairs.sort_unstable();
+    let unpaired = (0..mesh.face_count()).filter(|&f| mesh.is_quad(f) && !excluded[f] && !paired[f]).collect();
+    let non_quad = (0..mesh.face_count()).filter(|&f| !mesh.is_quad(f)).collect();
+    let excluded = (0..mesh.face_count()).filter(|&f| excluded[f]).collect();
+    Ok(Pattern {
+        faces: mesh.face_count(),
+        pairs,
+        unpaired,
+        excluded,
+        non_quad,
+        continuous_joints: s.continuous_joints,
+        shifted_pairs: s.shifted_pairs,
+        objective: s.objective,
+        bound,
+        gap,
+        status,
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+fn validate_weights(bond: Bond) -> Result<(), PatternError> {
+    match bond {
+        Bond::Staggered { weight } | Bond::RunningBond { weight } if !(weight.is_finite() && weight >= 0.0) => {
+            Err(PatternError::InvalidWeight { weight })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Candidate-tile indices of the forced pairs, checked against the mesh.
+fn forced_tiles(mesh: &PolyMesh, graph: &DualGraph, excluded: &[bool], pairs: &[[usize; 2]]) -> Result<Vec<usize>, PatternError> {
+    let mut used = vec![false; mesh.face_count()];
+    let mut tiles = Vec::with_capacity(pairs.len());
+    for &[a, b] in pairs {
+        for f in [a, b] {
+            if f >= mesh.face_count() {
+                return Err(PatternError::FaceOutOfRange { face: f, face_count: mesh.face_count() });
+            }
+            if excluded[f] {
+                return Err(PatternError::ForcedExcluded { face: f });
+            }
+            if !mesh.is_quad(f) {
+                return Err(PatternError::ForcedNonQuad { face: f, corners: mesh.faces()[f].len() });
+            }
+            if std::mem::replace(&mut used[f], true) {
+                return Err(PatternError::ForcedTwice { face: f });
+            }
+        }
+        tiles.push(graph.tile_between(a, b).ok_or(PatternError::ForcedNotAdjacent { a, b })?);
+    }
+    Ok(tiles)
+}

@@ -1,0 +1,30 @@
+//! Objective values of a chosen set of tiles, counted directly from the dual graph.
+
+use super::{Bond, DualGraph};
+
+/// What a pattern scores under eq. (1)-(3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Score {
+    /// Chosen tiles (sum of x).
+    pub tiles: usize,
+    /// Continuous joints among chosen tiles (sum of y at optimum).
+    pub continuous_joints: usize,
+    /// Shifted pairs among chosen tiles (sum of z at optimum).
+    pub shifted_pairs: usize,
+    /// The bond's objective value.
+    pub objective: f64,
+}
+
+/// Scores the tiles marked in `chosen` (indexed like [`DualGraph::tiles`]).
+pub fn score(graph: &DualGraph, chosen: &[bool], bond: Bond) -> Score {
+    let both = |pairs: &[[usize; 2]]| pairs.iter().filter(|[a, b]| chosen[*a] && chosen[*b]).count();
+    let tiles = chosen.iter().filter(|&&c| c).count();
+    let continuous_joints = both(graph.continuous_joints());
+    let shifted_pairs = both(graph.shifted_pairs());
+    let objective = match bond {
+        Bond::Stack => tiles as f64,
+        Bond::Staggered { weight } => tiles as f64 - weight * continuous_joints as f64,
+        Bond::RunningBond { weight } => tiles as f64 + weight * shifted_pairs as f64,
+    };
+    Score { tiles, continuous_joints, shifted_pairs, objective }
+}
