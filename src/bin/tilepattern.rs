@@ -8,7 +8,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use serde::Serialize;
 use tilepattern::mesh::{self, PolyMesh};
-use tilepattern::pattern::{self, Bond, Formulation, Pattern, PatternOptions};
+use tilepattern::pattern::{self, Bond, Formulation, Method, Pattern, PatternOptions};
 use tilepattern::pipeline::{self, Tiling};
 use tilepattern::report::{Report, svg};
 use tilepattern::tiles::{self, TileSpec};
@@ -80,6 +80,10 @@ struct PatternArgs {
     /// How the integer program is written; both reach the same optimum.
     #[arg(long, value_enum, default_value_t = FormulationArg::Strengthened)]
     formulation: FormulationArg,
+    /// Search route: auto = bound, running-bond start, window search, whole model when small;
+    /// mip = the paper's whole program on CBC.
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
+    method: MethodArg,
     /// A pair of faces that must form a tile, as A,B (repeatable).
     #[arg(long = "force", value_parser = parse_pair)]
     forced: Vec<[usize; 2]>,
@@ -93,6 +97,12 @@ enum BondArg {
     Stack,
     Staggered,
     RunningBond,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum MethodArg {
+    Auto,
+    Mip,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -202,6 +212,10 @@ impl PatternArgs {
             forced_pairs: self.forced.clone(),
             excluded_faces: self.exclude.clone(),
             formulation,
+            method: match self.method {
+                MethodArg::Auto => Method::Auto,
+                MethodArg::Mip => Method::Mip,
+            },
         })
     }
 }

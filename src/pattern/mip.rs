@@ -1,151 +1,153 @@
-//! The paper's binary integer programs (eqs. 1-3) solved with CBC through `good_lp`.
+//! The paper's binary integer programs (eqs. 1-3) solved with CBC through `good_lp`, on the
+//! whole dual graph or on a window of it with the rest of the pattern held fixed.
 
 use std::collections::HashMap;
+use std::sync::mpsc;
 use std::time::Duration;
 
 use good_lp::solvers::coin_cbc::coin_cbc;
 use good_lp::{
-    Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel, Variable, WithInitialSolution,
-    constraint, variable,
+    Expression, ProblemVariables, ResolutionError, Solution, SolverModel, Variable, constraint, variable,
 };
 
-use super::{Bond, DualGraph, Formulation, PatternError};
+use super::{Bond, DualGraph, Formulation, PatternError, score};
 
-/// What the solver returned, before it is turned into a [`super::Pattern`].
-pub(super) struct Outcome {
-    /// Chosen candidate tiles (a valid matching containing every forced tile).
-    pub chosen: Vec<bool>,
-    /// Proven upper bound on the objective.
-    pub bound: f64,
-    /// CBC finished its search.
-    pub proven: bool,
-    /// CBC stopped on the time limit.
-    pub timed_out: bool,
+/// CBC gets this share of the time limit, so that it can stop and hand over its incumbent
+/// before the caller's deadline.
+const CBC_SHARE_OF_LIMIT: f64 = 0.9;
+
+/// Which tiles a solve may change.
+pub(super) struct Restriction<'a> {
+    /// Tiles the solver may choose or not.
+    pub free: &'a [bool],
+    /// Tiles chosen and held fixed; they block their faces and enter the bond terms as
+    /// constants.
+    pub fixed: &'a [bool],
 }
 
-/// Solves the bond's program on `graph`, every tile in `forced` fixed to 1.
+/// What CBC returned.
+pub(super) struct Outcome {
+    /// `free` tiles chosen by the best solution found, or `None` when CBC returned none.
+    pub chosen: Option<Vec<bool>>,
+    /// Proven upper bound on the objective of the whole pattern (fixed tiles included); the
+    /// optimum itself when CBC finished its search.
+    pub bound: f64,
+}
+
+/// Solves the bond's program over the free tiles of `restriction`.
 pub(super) fn solve(
     graph: &DualGraph,
     bond: Bond,
     formulation: Formulation,
-    forced: &[usize],
+    restriction: &Restriction<'_>,
     time_limit: Duration,
 ) -> Result<Outcome, PatternError> {
-    let start = greedy_matching(graph, forced);
-    if graph.tiles().is_empty() || time_limit.is_zero() {
-        return Ok(Outcome { bound: trivial_bound(graph, bond), proven: graph.tiles().is_empty(), timed_out: true, chosen: start });
+    let tiles = graph.tiles();
+    let mut blocked = vec![false; graph.face_count()];
+    for (t, _) in restriction.fixed.iter().enumerate().filter(|(_, on)| **on) {
+        tiles[t].faces.iter().for_each(|&f| blocked[f] = true);
     }
+    let usable: Vec<bool> = (0..tiles.len()).map(|t| restriction.free[t] && !tiles[t].faces.iter().any(|&f| blocked[f])).collect();
+    let constant = score(graph, restriction.fixed, bond).objective;
 
     let mut vars = ProblemVariables::new();
-    let x: Vec<Variable> = graph.tiles().iter().map(|_| vars.add(variable().binary())).collect();
-    let mut objective: Expression = x.iter().sum();
+    let x: Vec<Option<Variable>> = usable.iter().map(|&u| u.then(|| vars.add(variable().binary()))).collect();
+    let mut objective: Expression = x.iter().flatten().sum();
     let mut rows = Vec::new();
-    let mut initial: Vec<(Variable, f64)> = x.iter().zip(&start).map(|(&v, &on)| (v, f64::from(u8::from(on)))).collect();
-    let both_on = |[a, b]: [usize; 2]| f64::from(u8::from(start[a] && start[b]));
 
     // Eq. (1): each face in at most one tile.
     for f in 0..graph.face_count() {
-        let around = graph.face_tiles(f);
-        if !around.is_empty() {
-            rows.push(constraint!(around.iter().map(|&t| x[t]).sum::<Expression>() <= 1));
+        let around: Vec<Variable> = graph.face_tiles(f).iter().filter_map(|&t| x[t]).collect();
+        if around.len() > 1 {
+            rows.push(constraint!(around.into_iter().sum::<Expression>() <= 1));
         }
     }
+    // A bond pair between a free and a fixed tile is linear in the free tile's x.
+    let linear_partner = |[a, b]: [usize; 2]| match (x[a], x[b]) {
+        (Some(v), None) if restriction.fixed[b] => Some(v),
+        (None, Some(v)) if restriction.fixed[a] => Some(v),
+        _ => None,
+    };
     match bond {
         Bond::Stack => {}
         Bond::Staggered { weight } => {
             // Eq. (2): y >= x1 + x2 - 1 and a penalty w per continuous joint.
             let mut y_of = HashMap::new();
             for &pair in graph.continuous_joints() {
-                let y = vars.add(variable().binary());
-                objective -= weight * y;
-                rows.push(constraint!(x[pair[0]] + x[pair[1]] - y <= 1));
-                initial.push((y, both_on(pair)));
-                y_of.insert(pair, y);
+                if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
+                    let y = vars.add(variable().binary());
+                    objective -= weight * y;
+                    rows.push(constraint!(a + b - y <= 1));
+                    y_of.insert(pair, y);
+                } else if let Some(v) = linear_partner(pair) {
+                    objective -= weight * v;
+                }
             }
             if formulation == Formulation::Strengthened {
-                let key = |a: usize, b: usize| y_of[&[a.min(b), a.max(b)]];
+                let y = |a: usize, b: usize| y_of.get(&[a.min(b), a.max(b)]).copied();
                 for &[a, b, c, d] in graph.regular_vertex_stars() {
-                    rows.push(constraint!(x[a] + x[b] + x[c] + x[d] - key(a, c) - key(b, d) <= 1));
+                    if let (Some(xa), Some(xb), Some(xc), Some(xd), Some(yac), Some(ybd)) = (x[a], x[b], x[c], x[d], y(a, c), y(b, d)) {
+                        rows.push(constraint!(xa + xb + xc + xd - yac - ybd <= 1));
+                    }
                 }
             }
         }
         Bond::RunningBond { weight } => {
             // Eq. (3): z <= x1, z <= x2 and a reward w_R per shifted pair.
             for &pair in graph.shifted_pairs() {
-                let z = vars.add(variable().binary());
-                objective += weight * z;
-                rows.push(constraint!(z <= x[pair[0]]));
-                rows.push(constraint!(z <= x[pair[1]]));
-                initial.push((z, both_on(pair)));
+                if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
+                    let z = vars.add(variable().binary());
+                    objective += weight * z;
+                    rows.push(constraint!(z <= a));
+                    rows.push(constraint!(z <= b));
+                } else if let Some(v) = linear_partner(pair) {
+                    objective += weight * v;
+                }
             }
         }
     }
-    for &t in forced {
-        rows.push(constraint!(x[t] == 1));
+    let columns: Vec<(usize, Variable)> = x.iter().enumerate().filter_map(|(t, v)| v.map(|v| (t, v))).collect();
+    if columns.is_empty() {
+        return Ok(Outcome { chosen: Some(vec![false; tiles.len()]), bound: constant });
     }
 
     let mut problem = vars.maximise(objective).using(coin_cbc);
     problem.set_parameter("log", "0");
     problem.set_parameter("slog", "0");
-    problem.set_parameter("threads", "1");
     problem.set_parameter("timeMode", "elapsed");
-    problem.set_parameter("sec", &format!("{:.3}", time_limit.as_secs_f64()));
+    problem.set_parameter("sec", &format!("{:.3}", (time_limit.as_secs_f64() * CBC_SHARE_OF_LIMIT).max(0.001)));
     for row in rows {
         problem.add_constraint(row);
     }
-    let solution = problem.with_initial_solution(initial).solve().map_err(|e| match e {
+
+    // CBC checks its clock in branch-and-bound but not while Clp solves the root LP, which
+    // can take minutes on a large staggered model. It therefore runs on a worker thread and
+    // the caller gets what is known at the deadline; a worker that outlives it stops at CBC's
+    // own limit right after its LP and is discarded. The engine keeps windows small so this
+    // only happens when a caller asks for the whole model on a large mesh.
+    let (sender, receiver) = mpsc::channel();
+    let worker = move || {
+        let result = problem.solve().map(|solution| {
+            let values: Vec<(usize, f64)> = columns.iter().map(|&(t, v)| (t, solution.value(v))).collect();
+            (values, solution.model().best_possible_value())
+        });
+        let _ = sender.send(result);
+    };
+    std::thread::Builder::new()
+        .name("tilepattern-cbc".into())
+        .spawn(worker)
+        .map_err(|e| PatternError::Solver(format!("cannot start the solver thread: {e}")))?;
+    let Ok(result) = receiver.recv_timeout(time_limit) else {
+        return Ok(Outcome { chosen: None, bound: f64::INFINITY });
+    };
+    let (values, bound) = result.map_err(|e| match e {
         ResolutionError::Other(message) => PatternError::Solver(message.to_string()),
         other => PatternError::Solver(other.to_string()),
     })?;
-
-    let chosen: Vec<bool> = x.iter().map(|&v| solution.value(v) > 0.5).collect();
-    let status = solution.status();
-    let bound = solution.model().best_possible_value();
-    // On a time limit without an incumbent CBC still hands back values: keep them only if
-    // they form a matching that honours the forced tiles.
-    let chosen = if is_matching(graph, &chosen) && forced.iter().all(|&t| chosen[t]) { chosen } else { start };
-    let bound = if bound.is_finite() { bound } else { trivial_bound(graph, bond) };
-    Ok(Outcome {
-        chosen,
-        bound: bound.min(trivial_bound(graph, bond)),
-        proven: matches!(status, SolutionStatus::Optimal),
-        timed_out: matches!(status, SolutionStatus::TimeLimit),
-    })
-}
-
-/// A maximal matching that starts from the forced tiles and adds tiles in index order.
-fn greedy_matching(graph: &DualGraph, forced: &[usize]) -> Vec<bool> {
-    let mut chosen = vec![false; graph.tiles().len()];
-    let mut used = vec![false; graph.face_count()];
-    for t in forced.iter().copied().chain(0..graph.tiles().len()) {
-        let [a, b] = graph.tiles()[t].faces;
-        if !used[a] && !used[b] {
-            used[a] = true;
-            used[b] = true;
-            chosen[t] = true;
-        }
+    let mut chosen = vec![false; tiles.len()];
+    for (t, value) in values {
+        chosen[t] = value > 0.5;
     }
-    chosen
-}
-
-/// True when no face is in two chosen tiles.
-fn is_matching(graph: &DualGraph, chosen: &[bool]) -> bool {
-    let mut used = vec![false; graph.face_count()];
-    graph
-        .tiles()
-        .iter()
-        .zip(chosen)
-        .filter(|(_, c)| **c)
-        .all(|(tile, _)| tile.faces.iter().all(|&f| !std::mem::replace(&mut used[f], true)))
-}
-
-/// A bound that needs no solver: half the faces that have a candidate tile (plus every
-/// shifted pair's reward for the running bond).
-fn trivial_bound(graph: &DualGraph, bond: Bond) -> f64 {
-    let pairable = (0..graph.face_count()).filter(|&f| !graph.face_tiles(f).is_empty()).count();
-    let tiles = (pairable / 2) as f64;
-    match bond {
-        Bond::RunningBond { weight } => tiles + weight * graph.shifted_pairs().len() as f64,
-        Bond::Stack | Bond::Staggered { .. } => tiles,
-    }
+    let bound = if bound.is_finite() { bound + constant } else { f64::INFINITY };
+    Ok(Outcome { chosen: Some(chosen), bound })
 }

@@ -10,10 +10,13 @@
 //! The answer says honestly how good it is: the objective of the returned pattern, the
 //! solver's proven bound, and [`SolveStatus::Optimal`] only when the two meet.
 
+mod bound;
+mod construct;
 mod dual;
 mod error;
 mod mip;
 mod score;
+mod search;
 
 pub use dual::{CandidateTile, DualGraph};
 pub use error::PatternError;
@@ -55,7 +58,8 @@ pub enum Formulation {
     /// The paper's program plus valid inequalities that cut off fractional points but no
     /// integer solution, so the optimum is the same: for eq. (2), one "star" row per regular
     /// interior vertex, `x_a + x_b + x_c + x_d - y_ac - y_bd <= 1` (two opposite tiles fit
-    /// only together with their continuous joint). Proves optimality far sooner.
+    /// only together with their continuous joint). Proves optimality far sooner. Eq. (1) and
+    /// (3) are passed as printed.
     #[default]
     Strengthened,
 }
@@ -73,7 +77,25 @@ pub struct PatternOptions {
     pub excluded_faces: Vec<usize>,
     /// How the program is written; both give the same optimum.
     pub formulation: Formulation,
+    /// Which route to the optimum.
+    pub method: Method,
 }
+
+/// How the pattern stage searches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// The fastest route to a proven optimum: a maximum-matching bound, a running bond laid
+    /// along quad strips, exact re-solves of small windows around its defects, and the whole
+    /// program on CBC only for meshes small enough to prove quickly.
+    #[default]
+    Auto,
+    /// The whole program on CBC, as in the paper (slow on large meshes; a reference).
+    Mip,
+}
+
+/// Meshes up to this many faces also get the whole program on CBC in [`Method::Auto`], to
+/// prove optimality when the matching bound is not reached.
+const WHOLE_MODEL_FACES: usize = 600;
 
 impl Default for PatternOptions {
     fn default() -> Self {
@@ -83,6 +105,7 @@ impl Default for PatternOptions {
             forced_pairs: Vec::new(),
             excluded_faces: Vec::new(),
             formulation: Formulation::default(),
+            method: Method::default(),
         }
     }
 }
@@ -157,15 +180,18 @@ pub fn solve(mesh: &PolyMesh, options: &PatternOptions) -> Result<Pattern, Patte
     let graph = DualGraph::new(mesh, &topology, &excluded);
     let forced = forced_tiles(mesh, &graph, &excluded, &options.forced_pairs)?;
 
-    let outcome = mip::solve(&graph, options.bond, options.formulation, &forced, options.time_limit)?;
-    let chosen = &outcome.chosen;
+    let deadline = started + options.time_limit;
+    let found = search_pattern(&graph, &topology, options, &forced, deadline)?;
+    let chosen = &found.chosen;
     let s = score(&graph, chosen, options.bond);
-    let bound = outcome.bound.max(s.objective);
+    let bound = found.bound.max(s.objective);
     let gap = (bound - s.objective) / bound.abs().max(1.0);
-    let status = match outcome.proven {
-        _ if gap > 1e-9 && outcome.timed_out => SolveStatus::TimeLimit,
-        true if gap <= 1e-9 => SolveStatus::Optimal,
-        _ => SolveStatus::Feasible,
+    let status = if gap <= 1e-9 {
+        SolveStatus::Optimal
+    } else if Instant::now() >= deadline {
+        SolveStatus::TimeLimit
+    } else {
+        SolveStatus::Feasible
     };
 
     let mut paired = vec![false; mesh.face_count()];
@@ -193,6 +219,57 @@ pub fn solve(mesh: &PolyMesh, options: &PatternOptions) -> Result<Pattern, Patte
         status,
         seconds: started.elapsed().as_secs_f64(),
     })
+}
+
+/// A valid pattern and a proven bound on its objective.
+struct Found {
+    chosen: Vec<bool>,
+    bound: f64,
+}
+
+/// Runs the chosen [`Method`] until the pattern meets its bound or the deadline passes.
+fn search_pattern(graph: &DualGraph, topology: &Topology, options: &PatternOptions, forced: &[usize], deadline: Instant) -> Result<Found, PatternError> {
+    let bond = options.bond;
+    let mut fixed = vec![false; graph.tiles().len()];
+    forced.iter().for_each(|&t| fixed[t] = true);
+    let free: Vec<bool> = fixed.iter().map(|f| !f).collect();
+    let union = |a: &[bool], b: &[bool]| -> Vec<bool> { a.iter().zip(b).map(|(x, y)| *x || *y).collect() };
+    let value = |chosen: &[bool]| score(graph, chosen, bond).objective;
+
+    let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
+    let mut bound = bound::from_tile_count(graph, bond, matching.iter().filter(|&&c| c).count());
+    let mut best = if options.method == Method::Mip {
+        let mut start = fixed.clone();
+        construct::complete_greedily(graph, bond, &fixed, &mut start);
+        start
+    } else if bond == Bond::Stack {
+        matching
+    } else {
+        // The running bond is right almost everywhere but leaves half tiles at its seams;
+        // the maximum matching has the fewest half tiles but many joints. Each is improved
+        // with half of the remaining time (the second gets what the first leaves).
+        let mut laid = union(&construct::running_bond(graph, topology, bond, &fixed), &fixed);
+        let mut matched = matching;
+        let halfway = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
+        search::improve(graph, bond, &fixed, &mut laid, halfway)?;
+        if bound - value(&laid) > 1e-9 {
+            search::improve(graph, bond, &fixed, &mut matched, deadline)?;
+        }
+        if value(&matched) > value(&laid) { matched } else { laid }
+    };
+    let proven = |best: &[bool], bound: f64| bound - value(best) <= 1e-9;
+    let whole_model = options.method == Method::Mip || graph.face_count() <= WHOLE_MODEL_FACES;
+    let remaining = deadline.saturating_duration_since(Instant::now());
+    if whole_model && !proven(&best, bound) && !remaining.is_zero() {
+        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed }, remaining)?;
+        if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
+            if search::is_matching(graph, &found) && value(&found) > value(&best) {
+                best = found;
+            }
+        }
+        bound = bound.min(outcome.bound);
+    }
+    Ok(Found { chosen: best, bound })
 }
 
 fn validate_weights(bond: Bond) -> Result<(), PatternError> {

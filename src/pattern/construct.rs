@@ -1,0 +1,114 @@
+//! A constructive start: a running bond laid along the quad strips of the mesh.
+//!
+//! In a regular region a running bond is the checkerboard colouring of the faces plus a
+//! consistent "forward" direction: every face of colour 0 pairs with its forward neighbour.
+//! It has no continuous joint at all, so it is also an optimal stagger away from boundaries
+//! and singularities (the "lay the bond along quad strips"). Both are propagated
+//! breadth-first over the dual graph; where a singularity makes the transport inconsistent,
+//! the first visit wins and the window search repairs the seam.
+
+use std::collections::VecDeque;
+
+use crate::mesh::Topology;
+
+use super::{Bond, DualGraph, score};
+
+/// The better of the two running bonds (rows along either edge family of the seed face),
+/// completed greedily, never touching faces of `fixed` tiles.
+pub(super) fn running_bond(graph: &DualGraph, topology: &Topology, bond: Bond, fixed: &[bool]) -> Vec<bool> {
+    (0..2)
+        .map(|seed_slot| {
+            let mut chosen = strip_pairs(graph, topology, fixed, seed_slot);
+            complete_greedily(graph, bond, fixed, &mut chosen);
+            chosen
+        })
+        .max_by(|a, b| score(graph, a, bond).objective.total_cmp(&score(graph, b, bond).objective).then(std::cmp::Ordering::Greater))
+        .expect("two candidates")
+}
+
+/// Pairs each colour-0 face with its forward neighbour, after propagating colour and
+/// forward edge slot from the lowest-index face of each connected part.
+fn strip_pairs(graph: &DualGraph, topology: &Topology, fixed: &[bool], seed_slot: usize) -> Vec<bool> {
+    let faces = graph.face_count();
+    let mut used = faces_of(graph, fixed);
+    let mut state: Vec<Option<(u8, usize)>> = vec![None; faces];
+    let mut queue = VecDeque::new();
+    for seed in 0..faces {
+        if state[seed].is_some() || graph.face_tiles(seed).is_empty() {
+            continue;
+        }
+        state[seed] = Some((0, seed_slot));
+        queue.push_back(seed);
+        while let Some(f) = queue.pop_front() {
+            let (colour, forward) = state[f].expect("queued faces have a state");
+            for (k, &e) in topology.face_edges(f).iter().enumerate() {
+                let Some(g) = topology.edges()[e].other_face(f) else { continue };
+                if state[g].is_some() || graph.tile_between(f, g).is_none() {
+                    continue;
+                }
+                let k_in_g = topology.face_edges(g).iter().position(|&x| x == e).expect("shared edge");
+                // Forward slot transported across the shared edge; see the module notes.
+                let turn = (k + 4 - forward) % 4;
+                state[g] = Some((1 - colour, (k_in_g + 6 - turn) % 4));
+                queue.push_back(g);
+            }
+        }
+    }
+    let mut chosen = vec![false; graph.tiles().len()];
+    for f in 0..faces {
+        let Some((0, forward)) = state[f] else { continue };
+        let e = topology.face_edges(f)[forward];
+        let Some(g) = topology.edges()[e].other_face(f) else { continue };
+        let (Some(t), Some((1, _))) = (graph.tile_between(f, g), state[g]) else { continue };
+        if !used[f] && !used[g] {
+            used[f] = true;
+            used[g] = true;
+            chosen[t] = true;
+        }
+    }
+    chosen
+}
+
+/// Adds free tiles, in index order, whenever they raise the objective.
+pub(super) fn complete_greedily(graph: &DualGraph, bond: Bond, fixed: &[bool], chosen: &mut [bool]) {
+    let mut used = faces_of(graph, fixed);
+    for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
+        graph.tiles()[t].faces.iter().for_each(|&f| used[f] = true);
+    }
+    let mut partners: Vec<Vec<usize>> = vec![Vec::new(); graph.tiles().len()];
+    let relation = match bond {
+        Bond::Stack => &[][..],
+        Bond::Staggered { .. } => graph.continuous_joints(),
+        Bond::RunningBond { .. } => graph.shifted_pairs(),
+    };
+    for &[a, b] in relation {
+        partners[a].push(b);
+        partners[b].push(a);
+    }
+    for t in 0..graph.tiles().len() {
+        let [a, b] = graph.tiles()[t].faces;
+        if used[a] || used[b] {
+            continue;
+        }
+        let on = partners[t].iter().filter(|&&u| chosen[u] || fixed[u]).count() as f64;
+        let gain = match bond {
+            Bond::Stack => 1.0,
+            Bond::Staggered { weight } => 1.0 - weight * on,
+            Bond::RunningBond { weight } => 1.0 + weight * on,
+        };
+        if gain > 0.0 {
+            used[a] = true;
+            used[b] = true;
+            chosen[t] = true;
+        }
+    }
+}
+
+/// Faces covered by the tiles marked in `tiles`.
+fn faces_of(graph: &DualGraph, tiles: &[bool]) -> Vec<bool> {
+    let mut used = vec![false; graph.face_count()];
+    for (t, _) in tiles.iter().enumerate().filter(|(_, on)| **on) {
+        graph.tiles()[t].faces.iter().for_each(|&f| used[f] = true);
+    }
+    used
+}

@@ -1,0 +1,134 @@
+//! Large-neighbourhood search: re-solve small windows of the pattern exactly with CBC while
+//! the rest stays fixed, centred on the pattern's defects (half tiles, continuous joints,
+//! tiles without shifted neighbours). Small windows keep every CBC call short, so the time
+//! limit is checked often.
+
+use std::collections::VecDeque;
+use std::time::{Duration, Instant};
+
+use super::mip::{self, Restriction};
+use super::{Bond, DualGraph, Formulation, PatternError, score};
+
+/// Faces per window in the first sweep; doubled after a sweep without improvement.
+const FIRST_WINDOW: usize = 48;
+/// Largest window tried.
+const LAST_WINDOW: usize = 384;
+/// Longest single window solve.
+const WINDOW_TIME: Duration = Duration::from_secs(2);
+
+/// Improves `chosen` (which includes the `fixed` tiles) in place until a sweep with the
+/// largest window finds nothing better or `deadline` passes.
+pub(super) fn improve(
+    graph: &DualGraph,
+    bond: Bond,
+    fixed: &[bool],
+    chosen: &mut [bool],
+    deadline: Instant,
+) -> Result<(), PatternError> {
+    let mut size = FIRST_WINDOW;
+    let mut current = score(graph, chosen, bond).objective;
+    while size <= LAST_WINDOW {
+        let mut improved = false;
+        let mut covered = vec![false; graph.face_count()];
+        for seed in defects(graph, bond, chosen) {
+            if covered[seed] {
+                continue;
+            }
+            let now = Instant::now();
+            if now >= deadline {
+                return Ok(());
+            }
+            let window = ball(graph, seed, size);
+            window.iter().for_each(|&f| covered[f] = true);
+            let mut inside = vec![false; graph.face_count()];
+            window.iter().for_each(|&f| inside[f] = true);
+            let free: Vec<bool> = graph.tiles().iter().enumerate().map(|(t, tile)| !fixed[t] && tile.faces.iter().all(|&f| inside[f])).collect();
+            let held: Vec<bool> = chosen.iter().zip(&free).map(|(&on, &f)| on && !f).collect();
+            let restriction = Restriction { free: &free, fixed: &held };
+            let limit = (deadline - now).min(WINDOW_TIME);
+            let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, limit)?;
+            let Some(window_choice) = outcome.chosen else { continue };
+            let candidate: Vec<bool> = held.iter().zip(&window_choice).zip(&free).map(|((&h, &w), &f)| h || (w && f)).collect();
+            let value = score(graph, &candidate, bond).objective;
+            if value > current + 1e-9 && is_matching(graph, &candidate) {
+                chosen.copy_from_slice(&candidate);
+                current = value;
+                improved = true;
+            }
+        }
+        if !improved {
+            size *= 2;
+        }
+    }
+    Ok(())
+}
+
+/// Faces where the pattern may be improved, in index order.
+fn defects(graph: &DualGraph, bond: Bond, chosen: &[bool]) -> Vec<usize> {
+    let mut flagged = vec![false; graph.face_count()];
+    let mut covered = vec![false; graph.face_count()];
+    for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
+        graph.tiles()[t].faces.iter().for_each(|&f| covered[f] = true);
+    }
+    for f in 0..graph.face_count() {
+        flagged[f] = !covered[f] && !graph.face_tiles(f).is_empty();
+    }
+    let mut flag_tile = |t: usize| graph.tiles()[t].faces.iter().for_each(|&f| flagged[f] = true);
+    match bond {
+        Bond::Stack => {}
+        Bond::Staggered { .. } => {
+            for &[a, b] in graph.continuous_joints() {
+                if chosen[a] && chosen[b] {
+                    flag_tile(a);
+                    flag_tile(b);
+                }
+            }
+        }
+        Bond::RunningBond { .. } => {
+            let mut partners = vec![0usize; chosen.len()];
+            for &[a, b] in graph.shifted_pairs() {
+                if chosen[a] && chosen[b] {
+                    partners[a] += 1;
+                    partners[b] += 1;
+                }
+            }
+            for t in (0..chosen.len()).filter(|&t| chosen[t] && partners[t] < 2) {
+                flag_tile(t);
+            }
+        }
+    }
+    (0..graph.face_count()).filter(|&f| flagged[f]).collect()
+}
+
+/// Up to `size` faces closest to `seed` (breadth-first over candidate tiles, index order).
+fn ball(graph: &DualGraph, seed: usize, size: usize) -> Vec<usize> {
+    let mut seen = vec![false; graph.face_count()];
+    let mut order = Vec::with_capacity(size);
+    let mut queue = VecDeque::from([seed]);
+    seen[seed] = true;
+    while let Some(f) = queue.pop_front() {
+        order.push(f);
+        if order.len() == size {
+            break;
+        }
+        for &t in graph.face_tiles(f) {
+            let [a, b] = graph.tiles()[t].faces;
+            let g = if a == f { b } else { a };
+            if !std::mem::replace(&mut seen[g], true) {
+                queue.push_back(g);
+            }
+        }
+    }
+    order
+}
+
+/// True when no face is in two chosen tiles.
+pub(super) fn is_matching(graph: &DualGraph, chosen: &[bool]) -> bool {
+    let mut used = vec![false; graph.face_count()];
+    graph
+        .tiles()
+        .iter()
+        .zip(chosen)
+        .filter(|(_, c)| **c)
+        .all(|(tile, _)| tile.faces.iter().all(|&f| !std::mem::replace(&mut used[f], true)))
+}

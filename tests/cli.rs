@@ -1,0 +1,104 @@
+//! The `tilepattern` command line: files written, JSON contract, errors a designer can act on.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn tilepattern(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tilepattern")).args(args).output().expect("the binary runs")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("tp-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn s(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
+
+#[test]
+fn demo_writes_the_four_files() {
+    let dir = scratch("demo");
+    let out = tilepattern(&["demo", "--out", s(&dir), "--span", "1.5"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for file in ["quads.obj", "tiles.obj", "report.json", "pattern.svg"] {
+        assert!(dir.join(file).is_file(), "{file} missing");
+    }
+    let report = json(&dir.join("report.json"));
+    assert_eq!(report["status"], "optimal");
+    assert_eq!(report["units"], "m");
+    assert!(report["full_tiles"].as_u64().unwrap() > 0);
+    assert!(std::fs::read_to_string(dir.join("pattern.svg")).unwrap().starts_with("<svg"));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("full tiles"));
+}
+
+#[test]
+fn match_then_tiles_round_trip_with_stable_fields() {
+    let dir = scratch("match");
+    assert!(tilepattern(&["demo", "--out", s(&dir), "--span", "1.5"]).status.success());
+    let quads = dir.join("quads.obj");
+    let pairs = dir.join("pairs.json");
+    let out = tilepattern(&["match", s(&quads), "--pattern", "staggered", "--weight", "2", "--time-limit", "30", "--json", s(&pairs)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let found = json(&pairs);
+    for field in ["faces", "pairs", "unpaired", "continuous_joints", "shifted_pairs", "objective", "bound", "status", "seconds"] {
+        assert!(found.get(field).is_some(), "field {field} missing");
+    }
+    assert_eq!(found["continuous_joints"], 0);
+
+    let tiles = dir.join("tiles.obj");
+    let report = dir.join("report.json");
+    let svg = dir.join("p.svg");
+    let out = tilepattern(&["tiles", s(&quads), "--pairs", s(&pairs), "--tile", "280x140x15", "--joint", "10", "-o", s(&tiles), "--json", s(&report), "--svg", s(&svg)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let report = json(&report);
+    let paired = found["pairs"].as_array().unwrap().len() as u64;
+    assert_eq!(report["full_tiles"].as_u64().unwrap(), paired);
+    assert_eq!(report["tile"]["length"], 0.28);
+    assert!(svg.is_file() && tiles.is_file());
+}
+
+#[test]
+fn same_input_gives_byte_identical_json_apart_from_timings() {
+    let dir = scratch("determinism");
+    assert!(tilepattern(&["demo", "--out", s(&dir), "--span", "0.7"]).status.success());
+    let quads = dir.join("quads.obj");
+    let run = |name: &str| {
+        let path = dir.join(name);
+        for pattern in ["stack", "staggered", "running-bond"] {
+            assert!(tilepattern(&["match", s(&quads), "--pattern", pattern, "--json", s(&path)]).status.success());
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        text.lines().filter(|l| !l.contains("\"seconds\"")).collect::<Vec<_>>().join("\n")
+    };
+    assert_eq!(run("a.json"), run("b.json"));
+}
+
+#[test]
+fn errors_say_what_is_wrong_and_exit_non_zero() {
+    let dir = scratch("errors");
+    let missing = tilepattern(&["match", "/nonexistent/shell.obj"]);
+    assert!(!missing.status.success());
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("/nonexistent/shell.obj"));
+
+    let bad = dir.join("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf 1 2 9\n").unwrap();
+    let out = tilepattern(&["match", s(&bad)]);
+    assert!(!out.status.success());
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert!(message.contains("face 1 refers to vertex 8"), "{message}");
+
+    let out = tilepattern(&["tiles", s(&bad), "--pairs", "x.json", "--tile", "280x140", "-o", "t.obj"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("length x width x thickness"));
+
+    let out = tilepattern(&["demo", "--out", s(&dir), "--weight=-1"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("bond weight -1"));
+}

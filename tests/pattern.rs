@@ -1,0 +1,261 @@
+//! The pattern stage: the dual graph's relations and the paper's integer models.
+
+mod common;
+
+use std::time::Duration;
+
+use nalgebra::Point3;
+use tilepattern::mesh::{PolyMesh, Topology, generate};
+use tilepattern::pattern::{self, Bond, DualGraph, Formulation, PatternError, PatternOptions, SolveStatus, score};
+
+fn options(bond: Bond) -> PatternOptions {
+    PatternOptions { bond, ..PatternOptions::default() }
+}
+
+fn graph_of(mesh: &PolyMesh) -> DualGraph {
+    DualGraph::new(mesh, &Topology::new(mesh).unwrap(), &[])
+}
+
+const BONDS: [Bond; 5] = [
+    Bond::Stack,
+    Bond::Staggered { weight: 0.5 },
+    Bond::Staggered { weight: 2.0 },
+    Bond::RunningBond { weight: 0.5 },
+    Bond::RunningBond { weight: 0.3 },
+];
+
+#[test]
+fn stack_pairs_every_face_of_an_even_grid() {
+    for n in [2, 4, 6, 10] {
+        let found = pattern::solve(&generate::grid(n, n), &options(Bond::Stack)).unwrap();
+        assert_eq!(found.pairs.len(), n * n / 2, "{n} x {n}");
+        assert!(found.unpaired.is_empty());
+        assert_eq!(found.status, SolveStatus::Optimal);
+    }
+}
+
+#[test]
+fn stack_leaves_exactly_one_face_of_11_by_11() {
+    // Paper, Figure 4 right.
+    let found = pattern::solve(&generate::grid(11, 11), &options(Bond::Stack)).unwrap();
+    assert_eq!((found.pairs.len(), found.unpaired.len()), (60, 1));
+    assert_eq!(found.status, SolveStatus::Optimal);
+}
+
+#[test]
+fn staggered_weight_decides_between_a_joint_and_two_half_tiles() {
+    // Paper, Figure 5: no perfect matching of 10 x 10 avoids every continuous joint.
+    let grid = generate::grid(10, 10);
+    for formulation in [Formulation::Paper, Formulation::Strengthened] {
+        let heavy = PatternOptions { bond: Bond::Staggered { weight: 2.0 }, formulation, ..PatternOptions::default() };
+        let found = pattern::solve(&grid, &heavy).unwrap();
+        assert_eq!((found.pairs.len(), found.continuous_joints, found.objective), (49, 0, 49.0), "{formulation:?}");
+        assert_eq!(found.status, SolveStatus::Optimal);
+        assert_eq!(found.bound, 49.0);
+
+        let light = PatternOptions { bond: Bond::Staggered { weight: 0.5 }, formulation, ..PatternOptions::default() };
+        let found = pattern::solve(&grid, &light).unwrap();
+        assert_eq!((found.pairs.len(), found.continuous_joints, found.objective), (50, 1, 49.5), "{formulation:?}");
+        assert_eq!(found.status, SolveStatus::Optimal);
+    }
+}
+
+/// On a grid, classify two candidate tiles by geometry alone: `(aligned, shifted)`.
+fn grid_relation(nx: usize, a: [usize; 2], b: [usize; 2]) -> (bool, bool) {
+    let cell = |f: usize| ((f % nx) as i64, (f / nx) as i64);
+    let (a0, a1, b0, b1) = (cell(a[0]), cell(a[1]), cell(b[0]), cell(b[1]));
+    let horizontal = |p: (i64, i64), q: (i64, i64)| p.1 == q.1;
+    if horizontal(a0, a1) != horizontal(b0, b1) {
+        return (false, false);
+    }
+    // Work in (along, across) coordinates of the tiles' direction.
+    let key = |p: (i64, i64)| if horizontal(a0, a1) { p } else { (p.1, p.0) };
+    let (a_start, b_start) = (key(a0).0.min(key(a1).0), key(b0).0.min(key(b1).0));
+    let (a_row, b_row) = (key(a0).1, key(b0).1);
+    if (a_row - b_row).abs() != 1 {
+        return (false, false);
+    }
+    (a_start == b_start, (a_start - b_start).abs() == 1)
+}
+
+#[test]
+fn joint_and_shift_relations_match_a_geometric_brute_force_on_grids() {
+    for (nx, ny) in [(4, 5), (6, 3), (5, 5)] {
+        let graph = graph_of(&generate::grid(nx, ny));
+        let mut aligned = Vec::new();
+        let mut shifted = Vec::new();
+        for (i, a) in graph.tiles().iter().enumerate() {
+            for (j, b) in graph.tiles().iter().enumerate().skip(i + 1) {
+                if a.faces.iter().any(|f| b.faces.contains(f)) {
+                    continue;
+                }
+                let (is_aligned, is_shifted) = grid_relation(nx, a.faces, b.faces);
+                if is_aligned {
+                    aligned.push([i, j]);
+                }
+                if is_shifted {
+                    shifted.push([i, j]);
+                }
+            }
+        }
+        let mut joints = graph.continuous_joints().to_vec();
+        joints.sort_unstable();
+        assert_eq!(joints, aligned, "{nx} x {ny} continuous joints");
+        assert_eq!(graph.shifted_pairs(), &shifted[..], "{nx} x {ny} shifted pairs");
+        // Interior vertices: (nx-1)(ny-1), each with one horizontal and one vertical joint.
+        assert_eq!(graph.continuous_joints().len(), 2 * (nx - 1) * (ny - 1));
+        assert_eq!(graph.regular_vertex_stars().len(), (nx - 1) * (ny - 1));
+    }
+}
+
+#[test]
+fn singular_vertices_carry_no_continuous_joint() {
+    for n in [3, 5, 6] {
+        // An n-gon split into n quads: the centre is an interior vertex of valence n.
+        let mesh = common::split_into_quads(&common::polygon(n));
+        let graph = graph_of(&mesh);
+        assert_eq!(graph.tiles().len(), n);
+        assert!(graph.continuous_joints().is_empty(), "valence {n}");
+        assert!(graph.shifted_pairs().is_empty(), "valence {n}: only {n} faces, every pair shares one");
+    }
+}
+
+fn tiny_meshes() -> Vec<(&'static str, PolyMesh)> {
+    let tri = common::split_into_quads(&common::polygon(3));
+    vec![
+        ("grid 3x3", generate::grid(3, 3)),
+        ("grid 2x5", generate::grid(2, 5)),
+        ("grid 3x4", generate::grid(3, 4)),
+        ("grid 4x4", generate::grid(4, 4)),
+        ("valence 3", common::split_into_quads(&tri)),
+        ("valence 5", common::split_into_quads(&common::polygon(5))),
+        ("valence 6", common::split_into_quads(&common::polygon(6))),
+    ]
+}
+
+#[test]
+fn solver_equals_exhaustive_search_on_tiny_meshes() {
+    for (name, mesh) in tiny_meshes() {
+        let graph = graph_of(&mesh);
+        let tiles: Vec<[usize; 2]> = graph.tiles().iter().map(|t| t.faces).collect();
+        let matchings = common::all_matchings(mesh.face_count(), &tiles);
+        for bond in BONDS {
+            let best = matchings.iter().map(|m| score(&graph, m, bond).objective).fold(f64::NEG_INFINITY, f64::max);
+            for formulation in [Formulation::Paper, Formulation::Strengthened] {
+                let found = pattern::solve(&mesh, &PatternOptions { bond, formulation, ..PatternOptions::default() }).unwrap();
+                assert!((found.objective - best).abs() < 1e-9, "{name} {bond:?} {formulation:?}: {} vs {best}", found.objective);
+                assert_eq!(found.status, SolveStatus::Optimal, "{name} {bond:?}");
+                assert!(common::is_valid_matching(&mesh, &found.pairs));
+            }
+        }
+    }
+}
+
+#[test]
+fn score_counts_agree_with_the_pattern_it_reports() {
+    let grid = generate::grid(6, 6);
+    let found = pattern::solve(&grid, &options(Bond::RunningBond { weight: 0.5 })).unwrap();
+    let graph = graph_of(&grid);
+    let chosen: Vec<bool> = graph.tiles().iter().map(|t| found.pairs.contains(&t.faces)).collect();
+    let s = score(&graph, &chosen, Bond::RunningBond { weight: 0.5 });
+    assert_eq!((s.tiles, s.shifted_pairs, s.continuous_joints), (found.pairs.len(), found.shifted_pairs, found.continuous_joints));
+    assert_eq!(found.objective, s.objective);
+    assert_eq!(found.status, SolveStatus::Optimal);
+    assert!(found.shifted_pairs > 0);
+}
+
+#[test]
+fn forced_pairs_are_kept_and_excluded_faces_left_out() {
+    let grid = generate::grid(4, 4);
+    let opts = PatternOptions { forced_pairs: vec![[5, 6]], excluded_faces: vec![0, 15], ..options(Bond::Staggered { weight: 0.5 }) };
+    let found = pattern::solve(&grid, &opts).unwrap();
+    assert!(found.pairs.contains(&[5, 6]));
+    assert_eq!(found.excluded, vec![0, 15]);
+    assert!(found.pairs.iter().all(|p| !p.contains(&0) && !p.contains(&15)));
+    assert!(!found.unpaired.contains(&0));
+    assert_eq!(found.pairs.len() * 2 + found.unpaired.len() + 2, 16);
+}
+
+#[test]
+fn non_quad_faces_are_reported_and_never_paired() {
+    // A 2 x 1 grid with a triangle on its right side.
+    let mut positions = generate::grid(2, 1).positions().to_vec();
+    positions.push(Point3::new(3.0, 0.5, 0.0));
+    let faces = vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4], vec![2, 6, 5]];
+    let mesh = PolyMesh::new(positions, faces).unwrap();
+    let found = pattern::solve(&mesh, &options(Bond::Stack)).unwrap();
+    assert_eq!(found.pairs, vec![[0, 1]]);
+    assert_eq!(found.non_quad, vec![2]);
+    assert!(found.unpaired.is_empty());
+}
+
+#[test]
+fn bad_options_get_specific_errors() {
+    let grid = generate::grid(3, 3);
+    let run = |opts: PatternOptions| pattern::solve(&grid, &opts).unwrap_err();
+    let base = PatternOptions::default();
+    assert_eq!(run(PatternOptions { bond: Bond::Staggered { weight: f64::NAN }, ..base.clone() }).to_string(), "bond weight NaN is not a finite number >= 0");
+    assert!(matches!(run(PatternOptions { bond: Bond::RunningBond { weight: -1.0 }, ..base.clone() }), PatternError::InvalidWeight { .. }));
+    assert_eq!(run(PatternOptions { excluded_faces: vec![9], ..base.clone() }), PatternError::FaceOutOfRange { face: 9, face_count: 9 });
+    assert_eq!(run(PatternOptions { forced_pairs: vec![[0, 4]], ..base.clone() }), PatternError::ForcedNotAdjacent { a: 0, b: 4 });
+    assert_eq!(run(PatternOptions { forced_pairs: vec![[0, 1], [1, 2]], ..base.clone() }), PatternError::ForcedTwice { face: 1 });
+    assert_eq!(
+        run(PatternOptions { forced_pairs: vec![[0, 1]], excluded_faces: vec![1], ..base.clone() }),
+        PatternError::ForcedExcluded { face: 1 }
+    );
+    assert_eq!(run(PatternOptions { forced_pairs: vec![[0, 99]], ..base }), PatternError::FaceOutOfRange { face: 99, face_count: 9 });
+    assert!(matches!(PatternOptions::time_limit_from_secs(-1.0), Err(PatternError::InvalidTimeLimit { .. })));
+    assert!(matches!(PatternOptions::time_limit_from_secs(f64::NAN), Err(PatternError::InvalidTimeLimit { .. })));
+}
+
+#[test]
+fn time_limit_returns_a_valid_unproven_pattern() {
+    // The paper's plain model cannot prove a 60 x 60 staggered grid in a second.
+    let grid = generate::grid(60, 60);
+    let opts = PatternOptions {
+        bond: Bond::Staggered { weight: 0.5 },
+        formulation: Formulation::Paper,
+        time_limit: Duration::from_secs(1),
+        ..PatternOptions::default()
+    };
+    let found = pattern::solve(&grid, &opts).unwrap();
+    assert_eq!(found.status, SolveStatus::TimeLimit);
+    assert!(common::is_valid_matching(&grid, &found.pairs));
+    assert!(found.bound >= found.objective && found.gap > 0.0);
+
+    let instant = pattern::solve(&grid, &PatternOptions { time_limit: Duration::ZERO, ..opts }).unwrap();
+    assert_eq!(instant.status, SolveStatus::TimeLimit);
+    assert!(common::is_valid_matching(&grid, &instant.pairs) && !instant.pairs.is_empty());
+    assert_eq!(instant.bound, 1800.0);
+}
+
+#[test]
+fn same_input_gives_identical_output() {
+    let shell = generate::corner_supported_shell(2.0, 0.145);
+    let json = || {
+        let mut found = pattern::solve(&shell, &options(Bond::Staggered { weight: 0.5 })).unwrap();
+        found.seconds = 0.0;
+        serde_json::to_string(&found).unwrap()
+    };
+    assert_eq!(json(), json());
+}
+
+#[test]
+fn shared_quadriflow_meshes_get_valid_matchings() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/surfaces/quads");
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        eprintln!("skipped: {} not found", dir.display());
+        return;
+    };
+    let mut paths: Vec<_> = entries.map(|e| e.unwrap().path()).filter(|p| p.extension().is_some_and(|x| x == "obj")).collect();
+    paths.sort();
+    assert!(!paths.is_empty());
+    for path in paths {
+        let mesh = tilepattern::mesh::obj::read(&path).unwrap();
+        let opts = PatternOptions { time_limit: Duration::from_secs(3), ..PatternOptions::default() };
+        let found = pattern::solve(&mesh, &opts).unwrap();
+        assert!(common::is_valid_matching(&mesh, &found.pairs), "{}", path.display());
+        assert!(found.bound >= found.objective, "{}", path.display());
+        assert_eq!(found.pairs.len() * 2 + found.unpaired.len() + found.non_quad.len(), mesh.face_count());
+    }
+}
