@@ -7,7 +7,7 @@ use std::time::Duration;
 
 use good_lp::solvers::coin_cbc::coin_cbc;
 use good_lp::{
-    Expression, ProblemVariables, ResolutionError, Solution, SolverModel, Variable, constraint, variable,
+    Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel, Variable, constraint, variable,
 };
 
 use super::{Bond, DualGraph, Formulation, PatternError, score};
@@ -32,6 +32,8 @@ pub(super) struct Outcome {
     /// Proven upper bound on the objective of the whole pattern (fixed tiles included); the
     /// optimum itself when CBC finished its search.
     pub bound: f64,
+    /// The search stopped on the time limit.
+    pub timed_out: bool,
 }
 
 /// Solves the bond's program over the free tiles of `restriction`.
@@ -108,7 +110,7 @@ pub(super) fn solve(
     }
     let columns: Vec<(usize, Variable)> = x.iter().enumerate().filter_map(|(t, v)| v.map(|v| (t, v))).collect();
     if columns.is_empty() {
-        return Ok(Outcome { chosen: Some(vec![false; tiles.len()]), bound: constant });
+        return Ok(Outcome { chosen: Some(vec![false; tiles.len()]), bound: constant, timed_out: false });
     }
 
     let mut problem = vars.maximise(objective).using(coin_cbc);
@@ -129,7 +131,8 @@ pub(super) fn solve(
     let worker = move || {
         let result = problem.solve().map(|solution| {
             let values: Vec<(usize, f64)> = columns.iter().map(|&(t, v)| (t, solution.value(v))).collect();
-            (values, solution.model().best_possible_value())
+            let timed_out = matches!(solution.status(), SolutionStatus::TimeLimit);
+            (values, solution.model().best_possible_value(), timed_out)
         });
         let _ = sender.send(result);
     };
@@ -138,9 +141,9 @@ pub(super) fn solve(
         .spawn(worker)
         .map_err(|e| PatternError::Solver(format!("cannot start the solver thread: {e}")))?;
     let Ok(result) = receiver.recv_timeout(time_limit) else {
-        return Ok(Outcome { chosen: None, bound: f64::INFINITY });
+        return Ok(Outcome { chosen: None, bound: f64::INFINITY, timed_out: true });
     };
-    let (values, bound) = result.map_err(|e| match e {
+    let (values, bound, timed_out) = result.map_err(|e| match e {
         ResolutionError::Other(message) => PatternError::Solver(message.to_string()),
         other => PatternError::Solver(other.to_string()),
     })?;
@@ -149,5 +152,5 @@ pub(super) fn solve(
         chosen[t] = value > 0.5;
     }
     let bound = if bound.is_finite() { bound + constant } else { f64::INFINITY };
-    Ok(Outcome { chosen: Some(chosen), bound })
+    Ok(Outcome { chosen: Some(chosen), bound, timed_out })
 }

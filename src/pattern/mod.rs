@@ -84,18 +84,18 @@ pub struct PatternOptions {
 /// How the pattern stage searches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
-    /// The fastest route to a proven optimum: a maximum-matching bound, a running bond laid
-    /// along quad strips, exact re-solves of small windows around its defects, and the whole
-    /// program on CBC only for meshes small enough to prove quickly.
+    /// The fastest route to a proven optimum: the whole program on CBC for small meshes;
+    /// otherwise a maximum-matching bound, a running bond laid along quad strips and exact
+    /// re-solves of small windows around its defects.
     #[default]
     Auto,
     /// The whole program on CBC, as in the paper (slow on large meshes; a reference).
     Mip,
 }
 
-/// Meshes up to this many faces also get the whole program on CBC in [`Method::Auto`], to
-/// prove optimality when the matching bound is not reached.
-const WHOLE_MODEL_FACES: usize = 600;
+/// Meshes up to this many faces get the whole program on CBC in [`Method::Auto`]: small
+/// enough for CBC to prove optimality quickly, where the window search cannot.
+const WHOLE_MODEL_FACES: usize = 2000;
 
 impl Default for PatternOptions {
     fn default() -> Self {
@@ -188,7 +188,7 @@ pub fn solve(mesh: &PolyMesh, options: &PatternOptions) -> Result<Pattern, Patte
     let gap = (bound - s.objective) / bound.abs().max(1.0);
     let status = if gap <= 1e-9 {
         SolveStatus::Optimal
-    } else if Instant::now() >= deadline {
+    } else if found.timed_out || Instant::now() >= deadline {
         SolveStatus::TimeLimit
     } else {
         SolveStatus::Feasible
@@ -225,6 +225,8 @@ pub fn solve(mesh: &PolyMesh, options: &PatternOptions) -> Result<Pattern, Patte
 struct Found {
     chosen: Vec<bool>,
     bound: f64,
+    /// A solver stopped on the time limit (CBC stops a little before the caller's deadline).
+    timed_out: bool,
 }
 
 /// Runs the chosen [`Method`] until the pattern meets its bound or the deadline passes.
@@ -238,10 +240,11 @@ fn search_pattern(graph: &DualGraph, topology: &Topology, options: &PatternOptio
 
     let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
     let mut bound = bound::from_tile_count(graph, bond, matching.iter().filter(|&&c| c).count());
-    let mut best = if options.method == Method::Mip {
-        let mut start = fixed.clone();
-        construct::complete_greedily(graph, bond, &fixed, &mut start);
-        start
+    let whole_model = options.method == Method::Mip || graph.face_count() <= WHOLE_MODEL_FACES;
+    let mut best = if whole_model {
+        let mut greedy = fixed.clone();
+        construct::complete_greedily(graph, bond, &fixed, &mut greedy);
+        if value(&matching) >= value(&greedy) { matching } else { greedy }
     } else if bond == Bond::Stack {
         matching
     } else {
@@ -258,8 +261,8 @@ fn search_pattern(graph: &DualGraph, topology: &Topology, options: &PatternOptio
         if value(&matched) > value(&laid) { matched } else { laid }
     };
     let proven = |best: &[bool], bound: f64| bound - value(best) <= 1e-9;
-    let whole_model = options.method == Method::Mip || graph.face_count() <= WHOLE_MODEL_FACES;
     let remaining = deadline.saturating_duration_since(Instant::now());
+    let mut timed_out = false;
     if whole_model && !proven(&best, bound) && !remaining.is_zero() {
         let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed }, remaining)?;
         if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
@@ -268,8 +271,9 @@ fn search_pattern(graph: &DualGraph, topology: &Topology, options: &PatternOptio
             }
         }
         bound = bound.min(outcome.bound);
+        timed_out = outcome.timed_out;
     }
-    Ok(Found { chosen: best, bound })
+    Ok(Found { chosen: best, bound, timed_out })
 }
 
 fn validate_weights(bond: Bond) -> Result<(), PatternError> {
