@@ -1,7 +1,12 @@
 # TilePattern: the two quick-start commands are `make demo` and `make test`.
 CARGO ?= cargo
+CC ?= cc
+CXX ?= c++
+LIB_DIR := target/release
+C_FLAGS := -Wall -Wextra -Werror -DTP_TEST_PANIC -Iinclude
+C_LINK := -L$(LIB_DIR) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(LIB_DIR)
 
-.PHONY: demo test setup build bench
+.PHONY: demo test setup build bench header header-check rust-test c-test
 
 setup:
 	@scripts/setup.sh
@@ -12,8 +17,26 @@ build: setup
 demo: build
 	./target/release/tilepattern demo --out demo
 
+# Every test: the header matches the code, the Rust tests, the C tests under valgrind.
 test: setup
+	scripts/check-header.sh
+	$(MAKE) rust-test c-test
+
+rust-test:
 	$(CARGO) test --release
+
+# The C tests link the cdylib built with the test-panic feature (tp_test_panic).
+c-test:
+	$(CARGO) build --release --lib --features test-panic
+	mkdir -p target/c
+	$(CC) -std=c11 $(C_FLAGS) tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_c
+	$(CXX) -std=c++17 $(C_FLAGS) -x c++ tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_cpp
+	RUST_BACKTRACE=0 target/c/test_cpp
+	RUST_BACKTRACE=0 valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
+		--show-leak-kinds=definite,indirect,possible --suppressions=tests/c/valgrind.supp target/c/test_c
+
+header:
+	cbindgen --quiet --config cbindgen.toml --crate tilepattern --output include/tilepattern.h
 
 bench: setup
 	$(CARGO) bench --bench matching

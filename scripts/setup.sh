@@ -1,35 +1,39 @@
 #!/usr/bin/env bash
 # Installs what TilePattern needs on a fresh Debian/Ubuntu machine: the CBC solver library
-# (and pkg-config, through which the build finds it). Run as root, or with sudo available;
-# otherwise it prints the command to run.
+# and pkg-config (to build), a C/C++ compiler and valgrind (C tests), and cbindgen 0.29.2
+# (header check). System packages need root or sudo; otherwise it prints the command to run.
 set -euo pipefail
-
-packages=(coinor-libcbc-dev pkg-config)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
-done
 
 if ! command -v cargo >/dev/null 2>&1; then
   echo "TilePattern needs a Rust toolchain (cargo): install it with rustup (https://rustup.rs) and run this again." >&2
   exit 1
 fi
 
-if [ ${#missing[@]} -eq 0 ]; then
-  exit 0
+packages=(coinor-libcbc-dev pkg-config g++ valgrind)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  if ! command -v apt-get >/dev/null 2>&1; then
+    echo "Please install: the CBC MILP solver library (C interface), pkg-config, a C++ compiler, valgrind." >&2
+    exit 1
+  fi
+  if [ "$(id -u)" -eq 0 ]; then
+    sudo=()
+  elif command -v sudo >/dev/null 2>&1; then
+    sudo=(sudo)
+  else
+    echo "Missing packages: ${missing[*]}. Run as root: apt-get update && apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+  echo "installing ${missing[*]} ..."
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
-if ! command -v apt-get >/dev/null 2>&1; then
-  echo "Please install the CBC MILP solver library (C interface, e.g. 'coinor-cbc' from your package manager) and pkg-config." >&2
-  exit 1
+
+cbindgen_version="0.29.2"
+if [ "$(cbindgen --version 2>/dev/null || true)" != "cbindgen $cbindgen_version" ]; then
+  echo "installing cbindgen $cbindgen_version ..."
+  cargo install --quiet --locked cbindgen --version "$cbindgen_version"
 fi
-if [ "$(id -u)" -eq 0 ]; then
-  sudo=()
-elif command -v sudo >/dev/null 2>&1; then
-  sudo=(sudo)
-else
-  echo "Missing packages: ${missing[*]}. Run as root: apt-get update && apt-get install -y ${missing[*]}" >&2
-  exit 1
-fi
-echo "installing ${missing[*]} ..."
-"${sudo[@]}" apt-get update -qq
-DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}"

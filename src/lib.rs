@@ -25,6 +25,8 @@
 #![deny(missing_docs)]
 #![deny(unsafe_code)]
 
+pub mod control;
+pub mod ffi;
 pub mod mesh;
 pub mod pattern;
 pub mod pipeline;

@@ -72,7 +72,7 @@ struct PatternArgs {
     pattern: BondArg,
     /// Weight of the bond term: penalty per continuous joint (staggered) or reward per shifted
     /// pair (running-bond).
-    #[arg(long, default_value_t = Bond::DEFAULT_WEIGHT)]
+    #[arg(long, default_value_t = pattern::DEFAULT_WEIGHT)]
     weight: f64,
     /// Solver time limit in seconds (wall clock). 0 returns the greedy start without solving.
     #[arg(long, default_value_t = 60.0)]

@@ -51,6 +51,9 @@ pub enum PatternError {
         /// The limit given.
         seconds: f64,
     },
+    /// The caller cancelled the stage through its [`crate::control::Control`].
+    #[error("cancelled by the caller")]
+    Cancelled,
     /// CBC failed.
     #[error("the MIP solver failed: {0}")]
     Solver(String),

@@ -2,8 +2,8 @@
 //! whole dual graph or on a window of it with the rest of the pattern held fixed.
 
 use std::collections::HashMap;
-use std::sync::mpsc;
-use std::time::Duration;
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::time::{Duration, Instant};
 
 use good_lp::solvers::coin_cbc::coin_cbc;
 use good_lp::{
@@ -11,6 +11,7 @@ use good_lp::{
 };
 
 use super::{Bond, DualGraph, Formulation, PatternError, score};
+use crate::control::Control;
 
 /// CBC gets this share of the time limit, so that it can stop and hand over its incumbent
 /// before the caller's deadline.
@@ -36,6 +37,12 @@ pub(super) struct Outcome {
     pub timed_out: bool,
 }
 
+/// How often the calling thread asks its [`Control`] whether to go on while CBC works.
+const POLL: Duration = Duration::from_millis(50);
+/// After a cancel, how long to wait for CBC to finish its current solve (window solves take
+/// milliseconds), so that nothing is left running in the common case.
+const CANCEL_GRACE: Duration = Duration::from_secs(1);
+
 /// Solves the bond's program over the free tiles of `restriction`.
 pub(super) fn solve(
     graph: &DualGraph,
@@ -43,6 +50,8 @@ pub(super) fn solve(
     formulation: Formulation,
     restriction: &Restriction<'_>,
     time_limit: Duration,
+    control: &mut Control<'_>,
+    progress: impl Fn() -> f64,
 ) -> Result<Outcome, PatternError> {
     let tiles = graph.tiles();
     let mut blocked = vec![false; graph.face_count()];
@@ -140,8 +149,20 @@ pub(super) fn solve(
         .name("tilepattern-cbc".into())
         .spawn(worker)
         .map_err(|e| PatternError::Solver(format!("cannot start the solver thread: {e}")))?;
-    let Ok(result) = receiver.recv_timeout(time_limit) else {
-        return Ok(Outcome { chosen: None, bound: f64::INFINITY, timed_out: true });
+    let deadline = Instant::now() + time_limit;
+    let result = loop {
+        let wait = deadline.saturating_duration_since(Instant::now()).min(POLL);
+        match receiver.recv_timeout(wait) {
+            Ok(result) => break result,
+            Err(RecvTimeoutError::Timeout) if Instant::now() < deadline => {
+                if !control.keep_going(progress()) {
+                    let _ = receiver.recv_timeout(CANCEL_GRACE);
+                    return Err(PatternError::Cancelled);
+                }
+            }
+            Err(RecvTimeoutError::Timeout) => return Ok(Outcome { chosen: None, bound: f64::INFINITY, timed_out: true }),
+            Err(RecvTimeoutError::Disconnected) => return Err(PatternError::Solver("the solver thread stopped unexpectedly".into())),
+        }
     };
     let (values, bound, timed_out) = result.map_err(|e| match e {
         ResolutionError::Other(message) => PatternError::Solver(message.to_string()),

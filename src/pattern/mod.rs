@@ -26,6 +26,7 @@ use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
+use crate::control::Control;
 use crate::mesh::{PolyMesh, Topology};
 
 /// Which laying pattern the objective asks for.
@@ -45,10 +46,8 @@ pub enum Bond {
     },
 }
 
-impl Bond {
-    /// The paper's default weight for the staggered and running-bond objectives.
-    pub const DEFAULT_WEIGHT: f64 = 0.5;
-}
+/// The paper's default weight for the staggered and running-bond objectives.
+pub const DEFAULT_WEIGHT: f64 = 0.5;
 
 /// How the integer program is written for the solver.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -100,7 +99,7 @@ const WHOLE_MODEL_FACES: usize = 2000;
 impl Default for PatternOptions {
     fn default() -> Self {
         Self {
-            bond: Bond::Staggered { weight: Bond::DEFAULT_WEIGHT },
+            bond: Bond::Staggered { weight: DEFAULT_WEIGHT },
             time_limit: Duration::from_secs(60),
             forced_pairs: Vec::new(),
             excluded_faces: Vec::new(),
@@ -170,6 +169,15 @@ pub struct Pattern {
 /// # Errors
 /// Invalid options (weights, excluded faces, forced pairs) or a solver failure.
 pub fn solve(mesh: &PolyMesh, options: &PatternOptions) -> Result<Pattern, PatternError> {
+    solve_with(mesh, options, &mut Control::none())
+}
+
+/// [`solve`], reporting progress (the share of the time limit used) to `control`, which can
+/// cancel the search.
+///
+/// # Errors
+/// As [`solve`], and [`PatternError::Cancelled`] when `control` asked to stop.
+pub fn solve_with(mesh: &PolyMesh, options: &PatternOptions, control: &mut Control<'_>) -> Result<Pattern, PatternError> {
     let started = Instant::now();
     validate_weights(options.bond)?;
     let mut excluded = vec![false; mesh.face_count()];
@@ -181,7 +189,13 @@ pub fn solve(mesh: &PolyMesh, options: &PatternOptions) -> Result<Pattern, Patte
     let forced = forced_tiles(mesh, &graph, &excluded, &options.forced_pairs)?;
 
     let deadline = started + options.time_limit;
-    let found = search_pattern(&graph, &topology, options, &forced, deadline)?;
+    let limit = options.time_limit.as_secs_f64().max(1e-9);
+    let progress = move || started.elapsed().as_secs_f64() / limit;
+    if !control.keep_going(0.0) {
+        return Err(PatternError::Cancelled);
+    }
+    let found = search_pattern(&graph, &topology, options, &forced, deadline, control, &progress)?;
+    control.keep_going(1.0);
     let chosen = &found.chosen;
     let s = score(&graph, chosen, options.bond);
     let bound = found.bound.max(s.objective);
@@ -230,7 +244,15 @@ struct Found {
 }
 
 /// Runs the chosen [`Method`] until the pattern meets its bound or the deadline passes.
-fn search_pattern(graph: &DualGraph, topology: &Topology, options: &PatternOptions, forced: &[usize], deadline: Instant) -> Result<Found, PatternError> {
+fn search_pattern(
+    graph: &DualGraph,
+    topology: &Topology,
+    options: &PatternOptions,
+    forced: &[usize],
+    deadline: Instant,
+    control: &mut Control<'_>,
+    progress: &impl Fn() -> f64,
+) -> Result<Found, PatternError> {
     let bond = options.bond;
     let mut fixed = vec![false; graph.tiles().len()];
     forced.iter().for_each(|&t| fixed[t] = true);
@@ -254,9 +276,9 @@ fn search_pattern(graph: &DualGraph, topology: &Topology, options: &PatternOptio
         let mut laid = union(&construct::running_bond(graph, topology, bond, &fixed), &fixed);
         let mut matched = matching;
         let halfway = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
-        search::improve(graph, bond, &fixed, &mut laid, halfway)?;
+        search::improve(graph, bond, &fixed, &mut laid, halfway, control, progress)?;
         if bound - value(&laid) > 1e-9 {
-            search::improve(graph, bond, &fixed, &mut matched, deadline)?;
+            search::improve(graph, bond, &fixed, &mut matched, deadline, control, progress)?;
         }
         if value(&matched) > value(&laid) { matched } else { laid }
     };
@@ -264,7 +286,7 @@ fn search_pattern(graph: &DualGraph, topology: &Topology, options: &PatternOptio
     let remaining = deadline.saturating_duration_since(Instant::now());
     let mut timed_out = false;
     if whole_model && !proven(&best, bound) && !remaining.is_zero() {
-        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed }, remaining)?;
+        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed }, remaining, control, progress)?;
         if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
             if search::is_matching(graph, &found) && value(&found) > value(&best) {
                 best = found;

@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 
 use super::mip::{self, Restriction};
 use super::{Bond, DualGraph, Formulation, PatternError, score};
+use crate::control::Control;
 
 /// Faces per window in the first sweep; doubled after a sweep without improvement.
 const FIRST_WINDOW: usize = 48;
@@ -24,6 +25,8 @@ pub(super) fn improve(
     fixed: &[bool],
     chosen: &mut [bool],
     deadline: Instant,
+    control: &mut Control<'_>,
+    progress: &impl Fn() -> f64,
 ) -> Result<(), PatternError> {
     let mut size = FIRST_WINDOW;
     let mut current = score(graph, chosen, bond).objective;
@@ -38,6 +41,9 @@ pub(super) fn improve(
             if now >= deadline {
                 return Ok(());
             }
+            if !control.keep_going(progress()) {
+                return Err(PatternError::Cancelled);
+            }
             let window = ball(graph, seed, size);
             window.iter().for_each(|&f| covered[f] = true);
             let mut inside = vec![false; graph.face_count()];
@@ -46,7 +52,7 @@ pub(super) fn improve(
             let held: Vec<bool> = chosen.iter().zip(&free).map(|(&on, &f)| on && !f).collect();
             let restriction = Restriction { free: &free, fixed: &held };
             let limit = (deadline - now).min(WINDOW_TIME);
-            let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, limit)?;
+            let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, limit, control, progress)?;
             let Some(window_choice) = outcome.chosen else { continue };
             let candidate: Vec<bool> = held.iter().zip(&window_choice).zip(&free).map(|((&h, &w), &f)| h || (w && f)).collect();
             let value = score(graph, &candidate, bond).objective;

@@ -1,0 +1,248 @@
+//! Stage 2 through the C ABI: options, the solve, and the pattern's accessors.
+
+use std::ffi::c_void;
+
+use super::status::{Failure, TpStatus, TpStatus::*, guard};
+use super::{TP_STAGE_PATTERN, TpMesh, TpProgressCallback, borrow, hand_over, input, output, progress_reporter, read_options, release, write_out};
+use crate::control::Control;
+use crate::pattern::{self, Bond, Formulation, Method, Pattern, PatternOptions, SolveStatus};
+
+/// `bond`: maximum matching, the paper's eq. (1).
+pub const TP_BOND_STACK: i32 = 0;
+/// `bond`: staggered, eq. (2); `weight` is the penalty per continuous joint.
+pub const TP_BOND_STAGGERED: i32 = 1;
+/// `bond`: running bond, eq. (3); `weight` is the reward per shifted pair.
+pub const TP_BOND_RUNNING: i32 = 2;
+/// `method`: the fastest route to a proven optimum.
+pub const TP_METHOD_AUTO: i32 = 0;
+/// `method`: the paper's whole program on CBC.
+pub const TP_METHOD_MIP: i32 = 1;
+/// `formulation`: the paper's program plus valid rows (same optimum, faster proofs).
+pub const TP_FORMULATION_STRENGTHENED: i32 = 0;
+/// `formulation`: the program exactly as printed in the paper.
+pub const TP_FORMULATION_PAPER: i32 = 1;
+/// Summary `status`: the objective equals the proven bound.
+pub const TP_SOLVE_OPTIMAL: i32 = 0;
+/// Summary `status`: the time limit stopped the search; the pattern is valid, a gap remains.
+pub const TP_SOLVE_TIME_LIMIT: i32 = 1;
+/// Summary `status`: the search ended with a valid pattern and a gap.
+pub const TP_SOLVE_FEASIBLE: i32 = 2;
+
+/// Options of [`tp_pattern_solve`]. Initialise with [`tp_pattern_options_default`].
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct TpPatternOptions {
+    /// `sizeof(TpPatternOptions)` as compiled by the caller; set by the default initialiser.
+    pub struct_size: u32,
+    /// `TP_BOND_*`; default staggered.
+    pub bond: i32,
+    /// Weight of the bond term (w or w_R); default 0.5.
+    pub weight: f64,
+    /// Wall-clock limit in seconds; default 60. Zero returns the greedy start.
+    pub time_limit_seconds: f64,
+    /// `TP_METHOD_*`; default auto.
+    pub method: i32,
+    /// `TP_FORMULATION_*`; default strengthened.
+    pub formulation: i32,
+    /// `forced_pair_count` pairs of face indices (2 per pair) that must become tiles.
+    pub forced_pairs: *const u32,
+    /// Number of forced pairs.
+    pub forced_pair_count: usize,
+    /// `excluded_face_count` faces that take part in no tile.
+    pub excluded_faces: *const u32,
+    /// Number of excluded faces.
+    pub excluded_face_count: usize,
+}
+
+/// Numbers describing a solved pattern.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct TpPatternSummary {
+    /// Faces of the mesh.
+    pub faces: usize,
+    /// Matched pairs (full tiles).
+    pub pairs: usize,
+    /// Unpaired quads (half tiles).
+    pub unpaired: usize,
+    /// Excluded faces.
+    pub excluded: usize,
+    /// Faces that are not quads.
+    pub non_quad: usize,
+    /// Continuous joints in the pattern.
+    pub continuous_joints: usize,
+    /// Shifted pairs in the pattern.
+    pub shifted_pairs: usize,
+    /// Objective of the pattern.
+    pub objective: f64,
+    /// Proven upper bound on the objective.
+    pub bound: f64,
+    /// Relative gap between bound and objective.
+    pub gap: f64,
+    /// Wall-clock seconds of the solve.
+    pub seconds: f64,
+    /// `TP_SOLVE_*`.
+    pub status: i32,
+}
+
+/// A solved pattern (opaque).
+pub struct TpPattern {
+    pub(super) pattern: Pattern,
+}
+
+/// The default pattern options.
+#[unsafe(no_mangle)]
+pub extern "C" fn tp_pattern_options_default() -> TpPatternOptions {
+    TpPatternOptions {
+        struct_size: size_of::<TpPatternOptions>() as u32,
+        bond: TP_BOND_STAGGERED,
+        weight: pattern::DEFAULT_WEIGHT,
+        time_limit_seconds: 60.0,
+        method: TP_METHOD_AUTO,
+        formulation: TP_FORMULATION_STRENGTHENED,
+        forced_pairs: std::ptr::null(),
+        forced_pair_count: 0,
+        excluded_faces: std::ptr::null(),
+        excluded_face_count: 0,
+    }
+}
+
+/// Matches the faces of `mesh` into tiles. `progress` (may be NULL) is called with
+/// `TP_STAGE_PATTERN` and the share of the time limit used; a non-zero return cancels the
+/// solve within about a second and returns `TP_CANCELLED`. A solve stopped by the time
+/// limit still succeeds: read its status with [`tp_pattern_summary`].
+///
+/// # Safety
+/// `mesh` must be a live mesh, `options` a valid options struct whose arrays hold their
+/// stated counts, `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_pattern_solve(
+    mesh: *const TpMesh,
+    options: *const TpPatternOptions,
+    progress: TpProgressCallback,
+    user: *mut c_void,
+    out: *mut *mut TpPattern,
+) -> TpStatus {
+    guard(|| {
+        if out.is_null() {
+            return Err(Failure::null("out"));
+        }
+        // SAFETY: live handle and valid options by the caller's promise.
+        let (mesh, raw) = unsafe { (&borrow(mesh, "mesh")?.mesh, read_options(options, tp_pattern_options_default(), "options")?) };
+        let options = pattern_options(&raw)?;
+        let mut report = progress_reporter(progress, user, TP_STAGE_PATTERN);
+        let pattern = pattern::solve_with(mesh, &options, &mut Control::with_progress(&mut report))?;
+        // SAFETY: checked non-null above.
+        unsafe { hand_over(out, TpPattern { pattern }, "out") }
+    })
+}
+
+/// Converts C options into the library's, checking every value.
+fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
+    let invalid = |what: String| Failure::new(TP_INVALID_ARGUMENT, what);
+    let bond = match raw.bond {
+        TP_BOND_STACK => Bond::Stack,
+        TP_BOND_STAGGERED => Bond::Staggered { weight: raw.weight },
+        TP_BOND_RUNNING => Bond::RunningBond { weight: raw.weight },
+        other => return Err(invalid(format!("bond {other} is not one of TP_BOND_STACK, TP_BOND_STAGGERED, TP_BOND_RUNNING"))),
+    };
+    let method = match raw.method {
+        TP_METHOD_AUTO => Method::Auto,
+        TP_METHOD_MIP => Method::Mip,
+        other => return Err(invalid(format!("method {other} is not one of TP_METHOD_AUTO, TP_METHOD_MIP"))),
+    };
+    let formulation = match raw.formulation {
+        TP_FORMULATION_STRENGTHENED => Formulation::Strengthened,
+        TP_FORMULATION_PAPER => Formulation::Paper,
+        other => return Err(invalid(format!("formulation {other} is not one of TP_FORMULATION_STRENGTHENED, TP_FORMULATION_PAPER"))),
+    };
+    let pair_values = raw
+        .forced_pair_count
+        .checked_mul(2)
+        .ok_or_else(|| invalid(format!("forced_pair_count {} is too large", raw.forced_pair_count)))?;
+    // SAFETY: the arrays hold their stated counts by the caller's promise.
+    let (forced, excluded) =
+        unsafe { (input(raw.forced_pairs, pair_values, "options->forced_pairs")?, input(raw.excluded_faces, raw.excluded_face_count, "options->excluded_faces")?) };
+    Ok(PatternOptions {
+        bond,
+        time_limit: PatternOptions::time_limit_from_secs(raw.time_limit_seconds)?,
+        forced_pairs: forced.chunks_exact(2).map(|p| [p[0] as usize, p[1] as usize]).collect(),
+        excluded_faces: excluded.iter().map(|&f| f as usize).collect(),
+        formulation,
+        method,
+    })
+}
+
+/// Releases a pattern. NULL is accepted.
+///
+/// # Safety
+/// `pattern` must be NULL or a live pattern, not used afterwards.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_pattern_free(pattern: *mut TpPattern) {
+    // SAFETY: forwarded.
+    unsafe { release(pattern) }
+}
+
+/// Writes the pattern's numbers into `*out`.
+///
+/// # Safety
+/// `pattern` must be a live pattern and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_pattern_summary(pattern: *const TpPattern, out: *mut TpPatternSummary) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let p = &unsafe { borrow(pattern, "pattern") }?.pattern;
+        let status = match p.status {
+            SolveStatus::Optimal => TP_SOLVE_OPTIMAL,
+            SolveStatus::TimeLimit => TP_SOLVE_TIME_LIMIT,
+            SolveStatus::Feasible => TP_SOLVE_FEASIBLE,
+        };
+        let summary = TpPatternSummary {
+            faces: p.faces,
+            pairs: p.pairs.len(),
+            unpaired: p.unpaired.len(),
+            excluded: p.excluded.len(),
+            non_quad: p.non_quad.len(),
+            continuous_joints: p.continuous_joints,
+            shifted_pairs: p.shifted_pairs,
+            objective: p.objective,
+            bound: p.bound,
+            gap: p.gap,
+            seconds: p.seconds,
+            status,
+        };
+        // SAFETY: writable by the caller's promise.
+        unsafe { write_out(out, summary, "out") }
+    })
+}
+
+/// Copies the matched pairs as face-index pairs into `out` (capacity in `uint32_t`: 2 per
+/// pair; the number of pairs is in the summary).
+///
+/// # Safety
+/// `pattern` must be a live pattern and `out` hold `capacity` items.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_pattern_copy_pairs(pattern: *const TpPattern, out: *mut u32, capacity: usize) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let p = &unsafe { borrow(pattern, "pattern") }?.pattern;
+        let flat: Vec<u32> = p.pairs.iter().flatten().map(|&f| f as u32).collect();
+        // SAFETY: capacity as promised.
+        unsafe { output(&flat, out, capacity, "out") }
+    })
+}
+
+/// Copies the unpaired quads (future half tiles) into `out` (capacity: the summary's
+/// `unpaired`).
+///
+/// # Safety
+/// `pattern` must be a live pattern and `out` hold `capacity` items.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_pattern_copy_unpaired(pattern: *const TpPattern, out: *mut u32, capacity: usize) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let p = &unsafe { borrow(pattern, "pattern") }?.pattern;
+        let faces: Vec<u32> = p.unpaired.iter().map(|&f| f as u32).collect();
+        // SAFETY: capacity as promised.
+        unsafe { output(&faces, out, capacity, "out") }
+    })
+}

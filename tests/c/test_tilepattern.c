@@ -1,0 +1,336 @@
+/* C tests of the TilePattern ABI: every export, every error path. Compiled as C11 and as
+ * C++17 with warnings as errors, run under valgrind memcheck. Prints "N passed, N failed". */
+#define _POSIX_C_SOURCE 199309L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <stddef.h>
+#include <string.h>
+#include <time.h>
+
+#include "tilepattern.h"
+
+static int passed, failed;
+
+#define CHECK(cond)                                                                     \
+  do {                                                                                  \
+    if (cond) {                                                                         \
+      passed++;                                                                         \
+    } else {                                                                            \
+      failed++;                                                                         \
+      char why_[512];                                                                   \
+      tp_last_error_message(why_, sizeof why_);                                         \
+      fprintf(stderr, "FAIL %s:%d: %s (last error: %s)\n", __FILE__, __LINE__, #cond, why_); \
+    }                                                                                   \
+  } while (0)
+
+static int last_error_contains(const char *needle) {
+  char buf[512];
+  tp_last_error_message(buf, sizeof buf);
+  return strstr(buf, needle) != NULL;
+}
+
+static double now_seconds(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* An nx x ny grid of unit squares; caller frees the three arrays. */
+static void grid(uint32_t nx, uint32_t ny, double **vertices, size_t *vertex_count, uint32_t **indices,
+                 uint32_t **sizes, size_t *face_count) {
+  *vertex_count = (size_t)(nx + 1) * (ny + 1);
+  *face_count = (size_t)nx * ny;
+  *vertices = (double *)malloc(*vertex_count * 3 * sizeof(double));
+  *indices = (uint32_t *)malloc(*face_count * 4 * sizeof(uint32_t));
+  *sizes = (uint32_t *)malloc(*face_count * sizeof(uint32_t));
+  for (uint32_t j = 0; j <= ny; j++)
+    for (uint32_t i = 0; i <= nx; i++) {
+      double *v = *vertices + 3 * (i + (nx + 1) * j);
+      v[0] = i;
+      v[1] = j;
+      v[2] = 0.0;
+    }
+  for (uint32_t j = 0; j < ny; j++)
+    for (uint32_t i = 0; i < nx; i++) {
+      uint32_t f = i + nx * j, *q = *indices + 4 * f;
+      q[0] = i + (nx + 1) * j;
+      q[1] = q[0] + 1;
+      q[2] = q[1] + nx + 1;
+      q[3] = q[0] + nx + 1;
+      (*sizes)[f] = 4;
+    }
+}
+
+static TpMesh *grid_mesh(uint32_t nx, uint32_t ny) {
+  double *v;
+  uint32_t *idx, *sz;
+  size_t nv, nf;
+  TpMesh *mesh = NULL;
+  grid(nx, ny, &v, &nv, &idx, &sz, &nf);
+  TpStatus s = tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &mesh);
+  free(v);
+  free(idx);
+  free(sz);
+  return s == TP_OK ? mesh : NULL;
+}
+
+static void test_version(void) {
+  CHECK(tp_abi_version() == TP_ABI_VERSION);
+  CHECK(strlen(tp_version()) > 0);
+  CHECK(tp_last_error_message(NULL, 0) == 0 || 1);
+}
+
+static void test_mesh(void) {
+  double *v;
+  uint32_t *idx, *sz;
+  size_t nv, nf, counts[3];
+  TpMesh *mesh = NULL;
+  grid(3, 2, &v, &nv, &idx, &sz, &nf);
+
+  CHECK(tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &mesh) == TP_OK && mesh != NULL);
+  CHECK(tp_last_error_message(NULL, 0) == 0);
+  CHECK(tp_mesh_counts(mesh, &counts[0], &counts[1], &counts[2]) == TP_OK);
+  CHECK(counts[0] == 12 && counts[1] == 6 && counts[2] == 24);
+  CHECK(tp_mesh_counts(mesh, NULL, &counts[1], NULL) == TP_OK);
+
+  double back[36];
+  uint32_t back_idx[24], back_sz[6];
+  CHECK(tp_mesh_copy_vertices(mesh, back, 36) == TP_OK && memcmp(back, v, sizeof back) == 0);
+  CHECK(tp_mesh_copy_vertices(mesh, back, 35) == TP_BUFFER_TOO_SMALL);
+  CHECK(last_error_contains("35"));
+  CHECK(tp_mesh_copy_vertices(mesh, NULL, 36) == TP_NULL_POINTER);
+  CHECK(tp_mesh_copy_faces(mesh, back_idx, 24, back_sz, 6) == TP_OK);
+  CHECK(memcmp(back_idx, idx, sizeof back_idx) == 0 && back_sz[5] == 4);
+  CHECK(tp_mesh_copy_faces(mesh, back_idx, 24, back_sz, 5) == TP_BUFFER_TOO_SMALL);
+  CHECK(tp_mesh_counts(NULL, &counts[0], NULL, NULL) == TP_NULL_POINTER);
+  tp_mesh_free(mesh);
+
+  /* Error paths: each names its culprit, and never writes *out. */
+  TpMesh *none = NULL;
+  CHECK(tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, NULL) == TP_NULL_POINTER);
+  CHECK(tp_mesh_new(NULL, nv, idx, 4 * nf, sz, nf, &none) == TP_NULL_POINTER && none == NULL);
+  CHECK(last_error_contains("vertices"));
+  CHECK(tp_mesh_new(v, nv, idx, 4 * nf - 1, sz, nf, &none) == TP_INVALID_ARGUMENT && none == NULL);
+  CHECK(tp_mesh_new(v, 0, idx, 0, sz, 0, &none) == TP_INVALID_MESH && last_error_contains("empty"));
+  CHECK(tp_mesh_new(v, (size_t)-1, idx, 4 * nf, sz, nf, &none) == TP_INVALID_ARGUMENT);
+
+  v[3 * 5 + 1] = NAN;
+  CHECK(tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &none) == TP_INVALID_MESH && last_error_contains("vertex 5"));
+  v[3 * 5 + 1] = INFINITY;
+  CHECK(tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &none) == TP_INVALID_MESH);
+  v[3 * 5 + 1] = 1.0;
+
+  idx[4 * 2 + 1] = 99;
+  CHECK(tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &none) == TP_INVALID_MESH && last_error_contains("face 2"));
+  idx[4 * 2 + 1] = idx[4 * 2];
+  CHECK(tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &none) == TP_INVALID_MESH && last_error_contains("more than once"));
+  free(v);
+  free(idx);
+  free(sz);
+
+  /* Three triangles on one edge: non-manifold. */
+  double tv[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1};
+  uint32_t ti[] = {0, 1, 2, 1, 0, 3, 0, 1, 4}, ts[] = {3, 3, 3};
+  CHECK(tp_mesh_new(tv, 5, ti, 9, ts, 3, &none) == TP_INVALID_MESH && last_error_contains("shared by 3"));
+  uint32_t two[] = {2};
+  CHECK(tp_mesh_new(tv, 5, ti, 2, two, 1, &none) == TP_INVALID_MESH && last_error_contains("at least 3"));
+  CHECK(none == NULL);
+  tp_mesh_free(NULL);
+}
+
+static void test_pattern_and_tiles(void) {
+  TpMesh *mesh = grid_mesh(10, 10);
+  CHECK(mesh != NULL);
+  TpPatternOptions options = tp_pattern_options_default();
+  CHECK(options.struct_size == sizeof(TpPatternOptions) && options.bond == TP_BOND_STAGGERED);
+  options.weight = 2.0;
+  TpPattern *pattern = NULL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &pattern) == TP_OK);
+  TpPatternSummary summary;
+  CHECK(tp_pattern_summary(pattern, &summary) == TP_OK);
+  /* Paper, Figure 5: 49 tiles, no continuous joint, proven. */
+  CHECK(summary.pairs == 49 && summary.unpaired == 2 && summary.continuous_joints == 0);
+  CHECK(summary.status == TP_SOLVE_OPTIMAL && summary.objective == 49.0 && summary.bound == 49.0);
+  uint32_t pairs[98], unpaired[2];
+  CHECK(tp_pattern_copy_pairs(pattern, pairs, 98) == TP_OK);
+  CHECK(tp_pattern_copy_pairs(pattern, pairs, 97) == TP_BUFFER_TOO_SMALL);
+  CHECK(tp_pattern_copy_unpaired(pattern, unpaired, 2) == TP_OK && unpaired[0] < 100);
+  int adjacent = 1;
+  for (int k = 0; k < 49; k++) {
+    uint32_t a = pairs[2 * k], b = pairs[2 * k + 1];
+    adjacent &= (b == a + 1 && a % 10 != 9) || b == a + 10;
+  }
+  CHECK(adjacent);
+
+  /* Tiles: 1.9 x 0.95 x 0.1 on unit quads. */
+  TpTileOptions tile = tp_tile_options_default();
+  CHECK(tile.length == 0.28);
+  tile.length = 1.9;
+  tile.width = 0.95;
+  tile.thickness = 0.1;
+  tile.joint = 0.1;
+  TpTiles *tiles = NULL;
+  CHECK(tp_tiles_build(mesh, pattern, &tile, &tiles) == TP_OK);
+  size_t count = 0;
+  CHECK(tp_tiles_count(tiles, &count) == TP_OK && count == 51);
+  int32_t kinds[51];
+  double corners[51 * 24], frames[51 * 12], sizes[51 * 3];
+  uint32_t faces[51 * 2];
+  CHECK(tp_tiles_copy_kinds(tiles, kinds, 51) == TP_OK && kinds[0] == TP_TILE_FULL && kinds[50] == TP_TILE_HALF);
+  CHECK(tp_tiles_copy_corners(tiles, corners, 51 * 24) == TP_OK);
+  CHECK(tp_tiles_copy_corners(tiles, corners, 51 * 24 - 1) == TP_BUFFER_TOO_SMALL);
+  CHECK(tp_tiles_copy_frames(tiles, frames, 51 * 12) == TP_OK && fabs(frames[11] - 1.0) < 1e-12);
+  CHECK(tp_tiles_copy_sizes(tiles, sizes, 51 * 3) == TP_OK && sizes[0] == 1.9 && sizes[50 * 3] == 0.95);
+  CHECK(tp_tiles_copy_faces(tiles, faces, 51 * 2) == TP_OK && faces[101] == TP_NO_FACE);
+  CHECK(corners[2] == 0.0 && corners[4 * 3 + 2] == 0.1);
+
+  size_t needed = 0;
+  CHECK(tp_tiles_report_json(tiles, NULL, 0, &needed) == TP_BUFFER_TOO_SMALL && needed > 100);
+  char *json = (char *)malloc(needed + 1);
+  CHECK(tp_tiles_report_json(tiles, json, needed + 1, NULL) == TP_OK);
+  CHECK(strlen(json) == needed && strstr(json, "\"full_tiles\": 49") != NULL);
+  free(json);
+  tp_tiles_free(tiles);
+
+  /* Tile errors. */
+  TpTiles *none = NULL;
+  tile.length = 0.0;
+  CHECK(tp_tiles_build(mesh, pattern, &tile, &none) == TP_INVALID_ARGUMENT && last_error_contains("length"));
+  tile = tp_tile_options_default();
+  tile.struct_size = 0;
+  CHECK(tp_tiles_build(mesh, pattern, &tile, &none) == TP_INVALID_ARGUMENT && last_error_contains("struct_size"));
+  TpMesh *small = grid_mesh(3, 3);
+  tile = tp_tile_options_default();
+  CHECK(tp_tiles_build(small, pattern, &tile, &none) == TP_INVALID_PATTERN);
+  CHECK(tp_tiles_build(NULL, pattern, &tile, &none) == TP_NULL_POINTER && none == NULL);
+  tp_mesh_free(small);
+  tp_tiles_free(NULL);
+
+  /* Pattern errors. */
+  TpPattern *bad = NULL;
+  options = tp_pattern_options_default();
+  options.bond = 7;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &bad) == TP_INVALID_ARGUMENT && last_error_contains("bond 7"));
+  options = tp_pattern_options_default();
+  options.weight = NAN;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &bad) == TP_INVALID_ARGUMENT);
+  options = tp_pattern_options_default();
+  options.time_limit_seconds = -1.0;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &bad) == TP_INVALID_ARGUMENT && last_error_contains("time limit"));
+  options = tp_pattern_options_default();
+  uint32_t far_pair[] = {0, 55};
+  options.forced_pairs = far_pair;
+  options.forced_pair_count = 1;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &bad) == TP_INVALID_ARGUMENT && last_error_contains("[0, 55]"));
+  options.forced_pairs = NULL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &bad) == TP_NULL_POINTER);
+  options = tp_pattern_options_default();
+  uint32_t hole[] = {100};
+  options.excluded_faces = hole;
+  options.excluded_face_count = 1;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &bad) == TP_INVALID_ARGUMENT && last_error_contains("face 100"));
+  CHECK(tp_pattern_solve(mesh, NULL, NULL, NULL, &bad) == TP_NULL_POINTER && bad == NULL);
+  CHECK(tp_pattern_summary(NULL, &summary) == TP_NULL_POINTER);
+  CHECK(tp_pattern_summary(pattern, NULL) == TP_NULL_POINTER);
+
+  /* Forced pairs and exclusions work; a caller with an older, shorter struct gets defaults. */
+  options = tp_pattern_options_default();
+  uint32_t forced[] = {0, 10};
+  uint32_t excluded[] = {99};
+  options.forced_pairs = forced;
+  options.forced_pair_count = 1;
+  options.excluded_faces = excluded;
+  options.excluded_face_count = 1;
+  TpPattern *constrained = NULL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &constrained) == TP_OK);
+  CHECK(tp_pattern_summary(constrained, &summary) == TP_OK && summary.excluded == 1);
+  CHECK(tp_pattern_copy_pairs(constrained, pairs, 98) == TP_OK);
+  int has_forced = 0;
+  for (size_t k = 0; k < summary.pairs; k++) has_forced |= pairs[2 * k] == 0 && pairs[2 * k + 1] == 10;
+  CHECK(has_forced);
+  tp_pattern_free(constrained);
+
+  options = tp_pattern_options_default();
+  options.struct_size = (uint32_t)offsetof(TpPatternOptions, time_limit_seconds);
+  options.bond = TP_BOND_STACK;
+  options.time_limit_seconds = -5.0; /* beyond the old struct: ignored, default used */
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &constrained) == TP_OK);
+  CHECK(tp_pattern_summary(constrained, &summary) == TP_OK && summary.pairs == 50);
+  tp_pattern_free(constrained);
+
+  tp_pattern_free(pattern);
+  tp_pattern_free(NULL);
+  tp_mesh_free(mesh);
+}
+
+static void test_remesh_not_available(void) {
+  TpMesh *mesh = grid_mesh(2, 2), *quads = NULL;
+  TpRemeshOptions options = tp_remesh_options_default();
+  CHECK(options.target_edge > 0.0);
+  CHECK(tp_remesh(mesh, &options, NULL, NULL, &quads) == TP_NOT_AVAILABLE && quads == NULL);
+  CHECK(last_error_contains("not in this build"));
+  CHECK(tp_remesh(NULL, &options, NULL, NULL, &quads) == TP_NULL_POINTER);
+  tp_mesh_free(mesh);
+}
+
+struct cancel_state {
+  double start, cancel_after, cancelled_at;
+  int calls, last_stage;
+};
+
+static int32_t cancel_later(void *user, uint32_t stage, double fraction) {
+  struct cancel_state *s = (struct cancel_state *)user;
+  s->calls++;
+  s->last_stage = (int)stage;
+  (void)fraction;
+  if (now_seconds() - s->start < s->cancel_after) return 0;
+  if (s->cancelled_at == 0.0) s->cancelled_at = now_seconds();
+  return 1;
+}
+
+static void test_cancel_and_time_limit(void) {
+  TpMesh *mesh = grid_mesh(100, 100);
+  TpPatternOptions options = tp_pattern_options_default();
+  struct cancel_state state = {now_seconds(), 0.5, 0.0, 0, 0};
+  TpPattern *pattern = NULL;
+  TpStatus s = tp_pattern_solve(mesh, &options, cancel_later, &state, &pattern);
+  double returned = now_seconds();
+  CHECK(s == TP_CANCELLED && pattern == NULL && last_error_contains("cancelled"));
+  CHECK(state.calls > 1 && state.last_stage == TP_STAGE_PATTERN);
+  printf("cancel: returned %.3f s after the callback asked (%d callbacks)\n", returned - state.cancelled_at, state.calls);
+  CHECK(state.cancelled_at > 0.0 && returned - state.cancelled_at < 1.0);
+
+  /* A time limit returns a valid pattern with an honest status. */
+  options.time_limit_seconds = 0.5;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &pattern) == TP_OK);
+  TpPatternSummary summary;
+  CHECK(tp_pattern_summary(pattern, &summary) == TP_OK);
+  CHECK(summary.status == TP_SOLVE_TIME_LIMIT && summary.bound >= summary.objective && summary.pairs > 4000);
+  tp_pattern_free(pattern);
+  tp_mesh_free(mesh);
+}
+
+static void test_panic_boundary(void) {
+#if defined(TP_TEST_PANIC)
+  CHECK(tp_test_panic() == TP_PANIC);
+  CHECK(last_error_contains("tp_test_panic was called"));
+  /* The process lives on and the library still works. */
+  TpMesh *mesh = grid_mesh(2, 2);
+  CHECK(mesh != NULL);
+  tp_mesh_free(mesh);
+#else
+  printf("panic boundary: not tested (build with the test-panic feature and -DTP_TEST_PANIC)\n");
+#endif
+}
+
+int main(void) {
+  test_version();
+  test_mesh();
+  test_pattern_and_tiles();
+  test_remesh_not_available();
+  test_cancel_and_time_limit();
+  test_panic_boundary();
+  printf("%d passed, %d failed\n", passed, failed);
+  return failed == 0 ? 0 : 1;
+}
