@@ -1,4 +1,5 @@
-//! A constructive start: a running bond laid along the quad strips of the mesh.
+//! Constructive starts: a running bond laid along the quad strips of the mesh, and courses
+//! laid along rings parallel to the boundary.
 //!
 //! In a regular region a running bond is the checkerboard colouring of the faces plus a
 //! consistent "forward" direction: every face of colour 0 pairs with its forward neighbour.
@@ -66,6 +67,72 @@ fn strip_pairs(graph: &DualGraph, topology: &Topology, fixed: &[bool], seed_slot
             chosen[t] = true;
         }
     }
+    chosen
+}
+
+/// Courses parallel to the boundary, as masons lay a vault from its supports and as the
+/// paper's optimal staggered grids look (Fig. 5): faces are grouped in rings by their
+/// distance to the boundary, each ring is walked face to face and paired along the walk, and
+/// of the two phases of each walk the one scoring better against the rings already laid is
+/// kept, which staggers neighbouring courses. Closed meshes start from their first face.
+pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bond, fixed: &[bool]) -> Vec<bool> {
+    let faces = graph.face_count();
+    let neighbours = |f: usize| graph.face_tiles(f).iter().map(move |&t| graph.tiles()[t].faces).map(move |[a, b]| if a == f { b } else { a });
+    let mut ring = vec![usize::MAX; faces];
+    let mut queue = VecDeque::new();
+    for f in 0..faces {
+        let on_boundary = topology.face_edges(f).iter().any(|&e| topology.edges()[e].is_boundary());
+        if on_boundary && !graph.face_tiles(f).is_empty() {
+            ring[f] = 0;
+            queue.push_back(f);
+        }
+    }
+    if queue.is_empty() {
+        if let Some(seed) = (0..faces).find(|&f| !graph.face_tiles(f).is_empty()) {
+            ring[seed] = 0;
+            queue.push_back(seed);
+        }
+    }
+    while let Some(f) = queue.pop_front() {
+        for g in neighbours(f) {
+            if ring[g] == usize::MAX {
+                ring[g] = ring[f] + 1;
+                queue.push_back(g);
+            }
+        }
+    }
+
+    let mut chosen = fixed.to_vec();
+    let mut used = faces_of(graph, fixed);
+    let mut walked = vec![false; faces];
+    let mut order: Vec<usize> = (0..faces).filter(|&f| ring[f] != usize::MAX).collect();
+    order.sort_by_key(|&f| (ring[f], f));
+    for start in order {
+        if walked[start] || used[start] {
+            continue;
+        }
+        let mut walk = vec![start];
+        walked[start] = true;
+        while let Some(next) = neighbours(*walk.last().expect("non-empty")).filter(|&g| ring[g] == ring[start] && !walked[g] && !used[g]).min() {
+            walked[next] = true;
+            walk.push(next);
+        }
+        let phase = |offset: usize| -> Vec<usize> {
+            walk.windows(2).skip(offset).step_by(2).filter_map(|w| graph.tile_between(w[0], w[1])).collect()
+        };
+        let (even, odd) = (phase(0), phase(1));
+        let gain = |tiles: &[usize]| {
+            let mut trial = chosen.clone();
+            tiles.iter().for_each(|&t| trial[t] = true);
+            score(graph, &trial, bond).objective
+        };
+        let best = if gain(&odd) > gain(&even) { odd } else { even };
+        for t in best {
+            chosen[t] = true;
+            graph.tiles()[t].faces.iter().for_each(|&f| used[f] = true);
+        }
+    }
+    complete_greedily(graph, bond, fixed, &mut chosen);
     chosen
 }
 

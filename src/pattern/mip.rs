@@ -145,18 +145,27 @@ pub(super) fn solve(
         });
         let _ = sender.send(result);
     };
-    std::thread::Builder::new()
+    let handle = std::thread::Builder::new()
         .name("tilepattern-cbc".into())
         .spawn(worker)
         .map_err(|e| PatternError::Solver(format!("cannot start the solver thread: {e}")))?;
+    // A worker that has sent its result is finished: join it so its resources go at once.
+    let finished = |handle: std::thread::JoinHandle<()>| {
+        let _ = handle.join();
+    };
     let deadline = Instant::now() + time_limit;
     let result = loop {
         let wait = deadline.saturating_duration_since(Instant::now()).min(POLL);
         match receiver.recv_timeout(wait) {
-            Ok(result) => break result,
+            Ok(result) => {
+                finished(handle);
+                break result;
+            }
             Err(RecvTimeoutError::Timeout) if Instant::now() < deadline => {
                 if !control.keep_going(progress()) {
-                    let _ = receiver.recv_timeout(CANCEL_GRACE);
+                    if receiver.recv_timeout(CANCEL_GRACE).is_ok() {
+                        finished(handle);
+                    }
                     return Err(PatternError::Cancelled);
                 }
             }

@@ -262,38 +262,60 @@ fn search_pattern(
 
     let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
     let mut bound = bound::from_tile_count(graph, bond, matching.iter().filter(|&&c| c).count());
-    let whole_model = options.method == Method::Mip || graph.face_count() <= WHOLE_MODEL_FACES;
-    let mut best = if whole_model {
-        let mut greedy = fixed.clone();
-        construct::complete_greedily(graph, bond, &fixed, &mut greedy);
-        if value(&matching) >= value(&greedy) { matching } else { greedy }
-    } else if bond == Bond::Stack {
-        matching
-    } else {
-        // The running bond is right almost everywhere but leaves half tiles at its seams;
-        // the maximum matching has the fewest half tiles but many joints. Each is improved
-        // with half of the remaining time (the second gets what the first leaves).
-        let mut laid = union(&construct::running_bond(graph, topology, bond, &fixed), &fixed);
-        let mut matched = matching;
-        let halfway = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
-        search::improve(graph, bond, &fixed, &mut laid, halfway, control, progress)?;
-        if bound - value(&laid) > 1e-9 {
-            search::improve(graph, bond, &fixed, &mut matched, deadline, control, progress)?;
-        }
-        if value(&matched) > value(&laid) { matched } else { laid }
-    };
     let proven = |best: &[bool], bound: f64| bound - value(best) <= 1e-9;
-    let remaining = deadline.saturating_duration_since(Instant::now());
     let mut timed_out = false;
-    if whole_model && !proven(&best, bound) && !remaining.is_zero() {
-        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed }, remaining, control, progress)?;
+
+    // The whole program on CBC for `limit`: keeps CBC's pattern if it beats `best`, and
+    // returns CBC's bound and whether it stopped on time.
+    let whole_model = |best: &mut Vec<bool>, limit: Duration, control: &mut Control<'_>| -> Result<(f64, bool), PatternError> {
+        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed }, limit, control, progress)?;
         if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
-            if search::is_matching(graph, &found) && value(&found) > value(&best) {
-                best = found;
+            if search::is_matching(graph, &found) && value(&found) > value(best) {
+                *best = found;
             }
         }
-        bound = bound.min(outcome.bound);
-        timed_out = outcome.timed_out;
+        Ok((outcome.bound, outcome.timed_out))
+    };
+
+    if options.method == Method::Mip {
+        // The paper's route: the whole program, from a greedy start kept as a fallback.
+        let mut best = fixed.clone();
+        construct::complete_greedily(graph, bond, &fixed, &mut best);
+        let (cbc_bound, timed_out) = whole_model(&mut best, deadline.saturating_duration_since(Instant::now()), control)?;
+        return Ok(Found { chosen: best, bound: bound.min(cbc_bound), timed_out });
+    }
+
+    // Three cheap starts, each strong where the others are weak: courses parallel to the
+    // boundary (the optimal stagger of regular patches), the running bond along quad strips
+    // (no joints in the interior), the maximum matching (fewest half tiles).
+    let mut starts = if bond == Bond::Stack {
+        vec![matching]
+    } else {
+        let courses = construct::boundary_courses(graph, topology, bond, &fixed);
+        let laid = union(&construct::running_bond(graph, topology, bond, &fixed), &fixed);
+        vec![courses, laid, matching]
+    };
+    starts.sort_by(|a, b| value(b).total_cmp(&value(a)));
+    let mut best = starts[0].clone();
+
+    // Small meshes: the whole strengthened program gets half the time to prove optimality.
+    if graph.face_count() <= WHOLE_MODEL_FACES && !proven(&best, bound) {
+        let share = deadline.saturating_duration_since(Instant::now()) / 2;
+        let (cbc_bound, cbc_timed_out) = whole_model(&mut best, share, control)?;
+        bound = bound.min(cbc_bound);
+        timed_out = cbc_timed_out;
+    }
+    // Then windows around the defects: the best pattern first, the next start if time is left.
+    if !proven(&best, bound) {
+        search::improve(graph, bond, &fixed, &mut best, deadline, control, progress)?;
+        if let Some(second) = starts.get_mut(1) {
+            if !proven(&best, bound) && Instant::now() < deadline {
+                search::improve(graph, bond, &fixed, second, deadline, control, progress)?;
+                if value(second) > value(&best) {
+                    best = second.clone();
+                }
+            }
+        }
     }
     Ok(Found { chosen: best, bound, timed_out })
 }
