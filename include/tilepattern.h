@@ -79,6 +79,21 @@
 #define TP_SOLVE_FEASIBLE 2
 
 /**
+ * `direction`: follow the principal curvature (the paper's choice).
+ */
+#define TP_DIRECTION_CURVATURE 0
+
+/**
+ * `direction`: follow `direction_vector`, projected onto the surface.
+ */
+#define TP_DIRECTION_VECTOR 1
+
+/**
+ * `direction`: the curvature field rotated by `angle_degrees`.
+ */
+#define TP_DIRECTION_ANGLE 2
+
+/**
  * Tile kind: a standard tile over two faces.
  */
 #define TP_TILE_FULL 0
@@ -285,6 +300,22 @@ typedef struct TpRemeshOptions {
    * Target quad edge in model units; default 0.145 ((280 + 10) / 2 mm in metres).
    */
   double target_edge;
+  /**
+   * `TP_DIRECTION_*`; default curvature.
+   */
+  int32_t direction;
+  /**
+   * The direction for `TP_DIRECTION_VECTOR`, as xyz.
+   */
+  double direction_vector[3];
+  /**
+   * The rotation for `TP_DIRECTION_ANGLE`, in degrees.
+   */
+  double angle_degrees;
+  /**
+   * Non-zero: pull faces towards squares (shape-up) without leaving the surface.
+   */
+  int32_t shapeup;
 } TpRemeshOptions;
 
 /**
@@ -452,16 +483,17 @@ TpStatus tp_pattern_copy_unpaired(const struct TpPattern *pattern, uint32_t *out
 struct TpRemeshOptions tp_remesh_options_default(void);
 
 /**
- * Quadrangulates `mesh` into near-square quads (stage 1). Not available in this build:
- * returns `TP_NOT_AVAILABLE` after checking its arguments.
+ * Quadrangulates `mesh` (a triangle or polygon surface) into near-square quads (stage 1);
+ * `*out` gets the quad mesh, read it with the `tp_mesh_*` functions. `progress` (may be NULL)
+ * is told the start and the end of the stage; a non-zero return at the start cancels.
  *
  * # Safety
  * `mesh` must be a live mesh, `options` valid, `out` writable.
  */
 TpStatus tp_remesh(const struct TpMesh *mesh,
                    const struct TpRemeshOptions *options,
-                   TpProgressCallback _progress,
-                   void *_user,
+                   TpProgressCallback progress,
+                   void *user,
                    struct TpMesh **out);
 
 /**

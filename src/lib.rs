@@ -30,5 +30,7 @@ pub mod ffi;
 pub mod mesh;
 pub mod pattern;
 pub mod pipeline;
+/// Stage 1 (paper section 3.1): quadrangulate a free-form surface into near-square quads of edge t.
+pub mod remesh;
 pub mod report;
 pub mod tiles;

@@ -5,8 +5,10 @@ use std::time::Instant;
 
 use thiserror::Error;
 
+use crate::control::Control;
 use crate::mesh::{MeshError, PolyMesh};
 use crate::pattern::{self, Pattern, PatternError, PatternOptions};
+use crate::remesh::{self, RemeshError, RemeshOptions, Remeshed};
 use crate::report::Report;
 use crate::tiles::{self, Tile, TileError, TileSpec};
 
@@ -22,6 +24,9 @@ pub enum Error {
     /// The tile stage failed.
     #[error(transparent)]
     Tiles(#[from] TileError),
+    /// The remesh stage failed.
+    #[error(transparent)]
+    Remesh(#[from] RemeshError),
 }
 
 /// The result of the whole pipeline.
@@ -35,13 +40,31 @@ pub struct Tiling {
     pub report: Report,
 }
 
+/// All three stages: quadrangulates `surface` with quads of edge `remesh.target_edge`, then
+/// matches and tiles them.
+///
+/// # Errors
+/// The first stage error.
+pub fn tile_surface(
+    surface: &PolyMesh,
+    remesh: &RemeshOptions,
+    options: &PatternOptions,
+    spec: &TileSpec,
+    control: &mut Control<'_>,
+) -> Result<(Remeshed, Tiling), Error> {
+    spec.validate()?;
+    let remeshed = remesh::remesh(surface, remesh)?;
+    let tiling = tile_quad_mesh(&remeshed.quads, options, spec, control)?;
+    Ok((remeshed, tiling))
+}
+
 /// Matches `quads` into tiles and builds the boxes.
 ///
 /// # Errors
 /// The first stage error.
-pub fn tile_quad_mesh(quads: &PolyMesh, options: &PatternOptions, spec: &TileSpec) -> Result<Tiling, Error> {
+pub fn tile_quad_mesh(quads: &PolyMesh, options: &PatternOptions, spec: &TileSpec, control: &mut Control<'_>) -> Result<Tiling, Error> {
     spec.validate()?;
-    let pattern = pattern::solve(quads, options)?;
+    let pattern = pattern::solve_with(quads, options, control)?;
     tiles_for_pattern(quads, pattern, spec)
 }
 

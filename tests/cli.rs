@@ -102,3 +102,65 @@ fn errors_say_what_is_wrong_and_exit_non_zero() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("bond weight -1"));
 }
+
+/// A triangulated saddle z = (x^2 - y^2) / 4 over [-1, 1]^2, as OBJ text.
+fn saddle_obj() -> String {
+    let n = 24;
+    let mut text = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (-1.0 + 2.0 * i as f64 / n as f64, -1.0 + 2.0 * j as f64 / n as f64);
+            text += &format!("v {x} {y} {}\n", (x * x - y * y) / 4.0);
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let v = |i: usize, j: usize| i + (n + 1) * j + 1;
+            text += &format!("f {} {} {}\nf {} {} {}\n", v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j), v(i + 1, j + 1), v(i, j + 1));
+        }
+    }
+    text
+}
+
+#[test]
+fn remesh_and_run_go_from_triangles_to_tiles() {
+    let dir = scratch("run");
+    let surface = dir.join("saddle.obj");
+    std::fs::write(&surface, saddle_obj()).unwrap();
+
+    let quads = dir.join("quads.obj");
+    let metrics = dir.join("metrics.json");
+    let out = tilepattern(&["remesh", s(&surface), "--edge", "0.145", "-o", s(&quads), "--json", s(&metrics)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let m = json(&metrics);
+    assert_eq!(m["pure_quad"], true);
+    for field in [
+        "faces",
+        "interior_irregular_vertices",
+        "boundary_vertices_off_input",
+        "mean_edge_ratio",
+        "edges_within_20pct",
+        "faces_area_within_20pct",
+        "p95_corner_angle_deviation_deg",
+        "max_distance_to_input_ratio",
+        "area_covered_ratio",
+        "seconds",
+    ] {
+        assert!(m.get(field).is_some(), "metrics field {field} missing");
+    }
+
+    let run_dir = dir.join("out");
+    let out = tilepattern(&["run", s(&surface), "--tile", "280x140x15", "--joint", "10", "--pattern", "staggered", "--time-limit", "20", "--out", s(&run_dir)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for file in ["quads.obj", "tiles.obj", "report.json", "pattern.svg"] {
+        assert!(run_dir.join(file).is_file(), "{file} missing");
+    }
+    let report = json(&run_dir.join("report.json"));
+    assert_eq!(report["units"], "m");
+    assert!(report["remesh"]["faces"].as_u64().unwrap() > 100);
+    assert!(report["full_tiles"].as_u64().unwrap() > 50);
+
+    let bad = tilepattern(&["remesh", s(&surface), "--edge", "0", "-o", s(&quads)]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("target edge 0"));
+}

@@ -9,7 +9,9 @@ use clap::{Parser, Subcommand, ValueEnum};
 use serde::Serialize;
 use tilepattern::mesh::{self, PolyMesh};
 use tilepattern::pattern::{self, Bond, Formulation, Method, Pattern, PatternOptions};
+use tilepattern::control::Control;
 use tilepattern::pipeline::{self, Tiling};
+use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
 use tilepattern::report::{Report, svg};
 use tilepattern::tiles::{self, TileSpec};
 
@@ -51,6 +53,36 @@ enum Command {
         #[arg(long)]
         svg: Option<PathBuf>,
     },
+    /// Quadrangulate a triangle (or polygon) mesh into near-square quads of edge T (stage 1).
+    Remesh {
+        /// Input surface (OBJ).
+        input: PathBuf,
+        /// Target quad edge in model units.
+        #[arg(long)]
+        edge: f64,
+        #[command(flatten)]
+        field: FieldArgs,
+        /// Quad mesh (OBJ).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Quality metrics (JSON).
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
+    /// All three stages on a surface: remesh with quads of (L + joint) / 2, match, tile.
+    Run {
+        /// Input surface (OBJ).
+        input: PathBuf,
+        #[command(flatten)]
+        tile: TileArgs,
+        #[command(flatten)]
+        field: FieldArgs,
+        #[command(flatten)]
+        pattern: PatternArgs,
+        /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Run the whole pipeline on a built-in example: a shell supported at its four corners
     /// (the paper's Figure 9), tiled with 280 x 140 x 15 mm tiles.
     Demo {
@@ -63,6 +95,31 @@ enum Command {
         #[command(flatten)]
         pattern: PatternArgs,
     },
+}
+
+#[derive(clap::Args)]
+struct FieldArgs {
+    /// Align quads with this direction x,y,z (projected onto the surface) instead of the
+    /// principal curvature.
+    #[arg(long, value_parser = parse_vector, conflicts_with = "angle")]
+    direction: Option<[f64; 3]>,
+    /// Rotate the curvature-aligned field by this many degrees (e.g. 45).
+    #[arg(long)]
+    angle: Option<f64>,
+    /// Pull faces towards squares (shape-up) without leaving the surface.
+    #[arg(long)]
+    shapeup: bool,
+}
+
+impl FieldArgs {
+    fn options(&self, target_edge: f64) -> RemeshOptions {
+        let direction = match (self.direction, self.angle) {
+            (Some(v), _) => FieldDirection::Vector(v),
+            (None, Some(a)) => FieldDirection::Angle(a),
+            (None, None) => FieldDirection::Curvature,
+        };
+        RemeshOptions { target_edge, direction, shapeup: self.shapeup, ..RemeshOptions::default() }
+    }
 }
 
 #[derive(clap::Args)]
@@ -163,7 +220,24 @@ fn run(cli: Cli) -> Result<()> {
                 write_text(&svg_path, &svg::pattern_svg(&mesh, &tiling.tiles))?;
             }
             eprintln!("{}", tiling_summary(&tiling, units));
-            json.map_or(Ok(()), |path| write_json(Some(&path), &ReportFile { units: units.name(), report: &tiling.report }))
+            json.map_or(Ok(()), |path| write_json(Some(&path), &ReportFile { units: units.name(), remesh: None, report: &tiling.report }))
+        }
+        Command::Remesh { input, edge, field, output, json } => {
+            let surface = read_mesh(&input)?;
+            let remeshed = tilepattern::remesh::remesh(&surface, &field.options(edge))?;
+            mesh::obj::write(&remeshed.quads, &output)?;
+            eprintln!("{}", remesh_summary(&remeshed.metrics));
+            json.map_or(Ok(()), |path| write_json(Some(&path), &remeshed.metrics))
+        }
+        Command::Run { input, tile, field, pattern, out } => {
+            let surface = read_mesh(&input)?;
+            let (spec, units) = tile.spec(&surface);
+            let (remeshed, tiling) =
+                pipeline::tile_surface(&surface, &field.options(spec.target_edge()), &pattern.options()?, &spec, &mut Control::none())?;
+            write_outputs(&out, &remeshed.quads, &tiling, units, Some(&remeshed.metrics))?;
+            println!("{}", remesh_summary(&remeshed.metrics));
+            println!("{}", tiling_summary(&tiling, units));
+            Ok(())
         }
         Command::Demo { out, span, pattern } => demo(&out, span, &pattern),
     }
@@ -174,23 +248,34 @@ fn demo(out: &Path, span: f64, args: &PatternArgs) -> Result<()> {
         bail!("--span {span} m: give a shell size between 0.5 and 100 metres");
     }
     let spec = TileSpec { length: 0.280, width: 0.140, thickness: 0.015, joint: 0.010 };
-    let quads = mesh::generate::corner_supported_shell(span, spec.target_edge());
-    let tiling = pipeline::tile_quad_mesh(&quads, &args.options()?, &spec)?;
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-    mesh::obj::write(&quads, &out.join("quads.obj"))?;
-    write_text(&out.join("tiles.obj"), &tiles::to_obj(&tiling.tiles))?;
-    write_text(&out.join("pattern.svg"), &svg::pattern_svg(&quads, &tiling.tiles))?;
-    write_json(Some(&out.join("report.json")), &ReportFile { units: Units::M.name(), report: &tiling.report })?;
-    println!("demo: {span} m corner-supported shell, {} quads", quads.face_count());
+    // The surface a designer would export: the shell as a fine triangle mesh.
+    let surface = mesh::generate::triangulate_quads(&mesh::generate::corner_supported_shell(span, spec.target_edge() / 3.0));
+    let remesh = RemeshOptions { target_edge: spec.target_edge(), ..RemeshOptions::default() };
+    let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &args.options()?, &spec, &mut Control::none())?;
+    write_outputs(out, &remeshed.quads, &tiling, Units::M, Some(&remeshed.metrics))?;
+    println!("demo: {span} m corner-supported shell, {} triangles", surface.face_count());
+    println!("{}", remesh_summary(&remeshed.metrics));
     println!("{}", tiling_summary(&tiling, Units::M));
     println!("wrote {}/{{quads.obj, tiles.obj, report.json, pattern.svg}}", out.display());
     Ok(())
 }
 
-/// `report.json`: the library's report plus the units the CLI assumed.
+/// Writes quads.obj, tiles.obj, pattern.svg and report.json into `out`.
+fn write_outputs(out: &Path, quads: &PolyMesh, tiling: &Tiling, units: Units, remesh: Option<&Metrics>) -> Result<()> {
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    mesh::obj::write(quads, &out.join("quads.obj"))?;
+    write_text(&out.join("tiles.obj"), &tiles::to_obj(&tiling.tiles))?;
+    write_text(&out.join("pattern.svg"), &svg::pattern_svg(quads, &tiling.tiles))?;
+    write_json(Some(&out.join("report.json")), &ReportFile { units: units.name(), remesh, report: &tiling.report })
+}
+
+/// `report.json`: the library's report plus the units the CLI assumed and, after `run`, the
+/// remesh metrics.
 #[derive(Serialize)]
 struct ReportFile<'a> {
     units: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    remesh: Option<&'a Metrics>,
     #[serde(flatten)]
     report: &'a Report,
 }
@@ -260,6 +345,14 @@ fn parse_tile(text: &str) -> Result<[f64; 3], String> {
     }
 }
 
+fn parse_vector(text: &str) -> Result<[f64; 3], String> {
+    let numbers: Option<Vec<f64>> = text.split(',').map(|p| p.trim().parse().ok()).collect();
+    match numbers.as_deref() {
+        Some(&[x, y, z]) => Ok([x, y, z]),
+        _ => Err(format!("'{text}' is not a direction; write x,y,z, e.g. 1,0,0")),
+    }
+}
+
 fn parse_pair(text: &str) -> Result<[usize; 2], String> {
     let parts: Vec<&str> = text.split(',').collect();
     match parts[..] {
@@ -302,6 +395,20 @@ fn pattern_summary(p: &Pattern) -> String {
         p.bound,
         p.status,
         p.seconds
+    )
+}
+
+fn remesh_summary(m: &Metrics) -> String {
+    format!(
+        "{} quads (pure quad: {}), {} interior irregular vertices, mean edge {:.3} t, {:.0} % of edges within 20 %, area covered {:.3}, max distance {:.3} t ({:.2} s)",
+        m.faces,
+        m.pure_quad,
+        m.interior_irregular_vertices,
+        m.mean_edge_ratio,
+        100.0 * m.edges_within_20pct,
+        m.area_covered_ratio,
+        m.max_distance_to_input_ratio,
+        m.seconds
     )
 }
 

@@ -1,10 +1,17 @@
-//! Stage 1 through the C ABI. The remesher is not in this build yet: the entry point exists
-//! so callers can be written against it, and it says so instead of returning a fake mesh.
+//! Stage 1 through the C ABI.
 
 use std::ffi::c_void;
 
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
-use super::{TpMesh, TpProgressCallback, read_options};
+use super::{TP_STAGE_REMESH, TpMesh, TpProgressCallback, borrow, hand_over, progress_reporter, read_options};
+use crate::remesh::{self, FieldDirection, RemeshOptions};
+
+/// `direction`: follow the principal curvature (the paper's choice).
+pub const TP_DIRECTION_CURVATURE: i32 = 0;
+/// `direction`: follow `direction_vector`, projected onto the surface.
+pub const TP_DIRECTION_VECTOR: i32 = 1;
+/// `direction`: the curvature field rotated by `angle_degrees`.
+pub const TP_DIRECTION_ANGLE: i32 = 2;
 
 /// Options of [`tp_remesh`]. Initialise with [`tp_remesh_options_default`].
 #[repr(C)]
@@ -14,16 +21,32 @@ pub struct TpRemeshOptions {
     pub struct_size: u32,
     /// Target quad edge in model units; default 0.145 ((280 + 10) / 2 mm in metres).
     pub target_edge: f64,
+    /// `TP_DIRECTION_*`; default curvature.
+    pub direction: i32,
+    /// The direction for `TP_DIRECTION_VECTOR`, as xyz.
+    pub direction_vector: [f64; 3],
+    /// The rotation for `TP_DIRECTION_ANGLE`, in degrees.
+    pub angle_degrees: f64,
+    /// Non-zero: pull faces towards squares (shape-up) without leaving the surface.
+    pub shapeup: i32,
 }
 
 /// The default remesh options.
 #[unsafe(no_mangle)]
 pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
-    TpRemeshOptions { struct_size: size_of::<TpRemeshOptions>() as u32, target_edge: 0.145 }
+    TpRemeshOptions {
+        struct_size: size_of::<TpRemeshOptions>() as u32,
+        target_edge: 0.145,
+        direction: TP_DIRECTION_CURVATURE,
+        direction_vector: [1.0, 0.0, 0.0],
+        angle_degrees: 0.0,
+        shapeup: 0,
+    }
 }
 
-/// Quadrangulates `mesh` into near-square quads (stage 1). Not available in this build:
-/// returns `TP_NOT_AVAILABLE` after checking its arguments.
+/// Quadrangulates `mesh` (a triangle or polygon surface) into near-square quads (stage 1);
+/// `*out` gets the quad mesh, read it with the `tp_mesh_*` functions. `progress` (may be NULL)
+/// is told the start and the end of the stage; a non-zero return at the start cancels.
 ///
 /// # Safety
 /// `mesh` must be a live mesh, `options` valid, `out` writable.
@@ -31,16 +54,30 @@ pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
 pub unsafe extern "C" fn tp_remesh(
     mesh: *const TpMesh,
     options: *const TpRemeshOptions,
-    _progress: TpProgressCallback,
-    _user: *mut c_void,
+    progress: TpProgressCallback,
+    user: *mut c_void,
     out: *mut *mut TpMesh,
 ) -> TpStatus {
     guard(|| {
-        if mesh.is_null() || out.is_null() {
-            return Err(Failure::null(if mesh.is_null() { "mesh" } else { "out" }));
+        if out.is_null() {
+            return Err(Failure::null("out"));
         }
-        // SAFETY: valid options by the caller's promise.
-        unsafe { read_options(options, tp_remesh_options_default(), "options") }?;
-        Err(Failure::new(TP_NOT_AVAILABLE, "the quad remesher (stage 1) is not in this build yet; pass a quad mesh to tp_pattern_solve"))
+        // SAFETY: live handle and valid options by the caller's promise.
+        let (surface, raw) = unsafe { (&borrow(mesh, "mesh")?.mesh, read_options(options, tp_remesh_options_default(), "options")?) };
+        let direction = match raw.direction {
+            TP_DIRECTION_CURVATURE => FieldDirection::Curvature,
+            TP_DIRECTION_VECTOR => FieldDirection::Vector(raw.direction_vector),
+            TP_DIRECTION_ANGLE => FieldDirection::Angle(raw.angle_degrees),
+            other => return Err(Failure::new(TP_INVALID_ARGUMENT, format!("direction {other} is not one of TP_DIRECTION_CURVATURE, TP_DIRECTION_VECTOR, TP_DIRECTION_ANGLE"))),
+        };
+        let options = RemeshOptions { target_edge: raw.target_edge, direction, shapeup: raw.shapeup != 0, ..RemeshOptions::default() };
+        let mut report = progress_reporter(progress, user, TP_STAGE_REMESH);
+        if !report(0.0) {
+            return Err(Failure::new(TP_CANCELLED, "cancelled by the caller"));
+        }
+        let remeshed = remesh::remesh(surface, &options)?;
+        report(1.0);
+        // SAFETY: checked non-null above.
+        unsafe { hand_over(out, TpMesh { mesh: remeshed.quads }, "out") }
     })
 }

@@ -7,6 +7,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use crate::mesh::MeshError;
 use crate::pattern::PatternError;
 use crate::pipeline::Error;
+use crate::remesh::RemeshError;
 use crate::tiles::TileError;
 
 /// What a call did. The numbers are stable: new codes get new numbers, none is reused.
@@ -90,12 +91,23 @@ impl From<TileError> for Failure {
     }
 }
 
+impl From<RemeshError> for Failure {
+    fn from(e: RemeshError) -> Self {
+        let status = match e {
+            RemeshError::Mesh(_) | RemeshError::UnsupportedInput(_) | RemeshError::NothingExtracted(_) => TpStatus::TP_INVALID_MESH,
+            _ => TpStatus::TP_INVALID_ARGUMENT,
+        };
+        Self::new(status, e.to_string())
+    }
+}
+
 impl From<Error> for Failure {
     fn from(e: Error) -> Self {
         match e {
             Error::Mesh(e) => e.into(),
             Error::Pattern(e) => e.into(),
             Error::Tiles(e) => e.into(),
+            Error::Remesh(e) => e.into(),
         }
     }
 }

@@ -59,6 +59,20 @@ fn equal_arc_stations(span: f64, edge: f64, g: impl Fn(f64) -> f64) -> Vec<f64> 
         .collect()
 }
 
+/// Splits every quad along its diagonal 0-2 into two triangles (other faces are kept), e.g.
+/// to feed a generated surface to the remesher as the triangle mesh a designer would export.
+pub fn triangulate_quads(mesh: &PolyMesh) -> PolyMesh {
+    let faces = mesh
+        .faces()
+        .iter()
+        .flat_map(|f| match f[..] {
+            [a, b, c, d] => vec![vec![a, b, c], vec![a, c, d]],
+            _ => vec![f.clone()],
+        })
+        .collect();
+    PolyMesh::new(mesh.positions().to_vec(), faces).expect("splitting quads keeps a mesh valid")
+}
+
 /// A quad lattice over the parameter lines `xs` x `ys` lifted by `z(x, y)`.
 fn lattice(xs: &[f64], ys: &[f64], z: impl Fn(f64, f64) -> f64) -> PolyMesh {
     let (nx, ny) = (xs.len() - 1, ys.len() - 1);

@@ -264,14 +264,44 @@ static void test_pattern_and_tiles(void) {
   tp_mesh_free(mesh);
 }
 
-static void test_remesh_not_available(void) {
-  TpMesh *mesh = grid_mesh(2, 2), *quads = NULL;
+static void test_remesh(void) {
+  /* A flat 2 x 2 square split into 800 triangles, remeshed with quads of edge 0.2. */
+  double *v;
+  uint32_t *quad_idx, *quad_sz;
+  size_t nv, nf;
+  grid(20, 20, &v, &nv, &quad_idx, &quad_sz, &nf);
+  for (size_t k = 0; k < 3 * nv; k++) v[k] *= 0.1;
+  uint32_t *tri = (uint32_t *)malloc(nf * 6 * sizeof(uint32_t)), *tri_sz = (uint32_t *)malloc(nf * 2 * sizeof(uint32_t));
+  for (size_t f = 0; f < nf; f++) {
+    uint32_t *q = quad_idx + 4 * f, *t = tri + 6 * f;
+    t[0] = q[0]; t[1] = q[1]; t[2] = q[2];
+    t[3] = q[0]; t[4] = q[2]; t[5] = q[3];
+    tri_sz[2 * f] = tri_sz[2 * f + 1] = 3;
+  }
+  TpMesh *surface = NULL, *quads = NULL;
+  CHECK(tp_mesh_new(v, nv, tri, 6 * nf, tri_sz, 2 * nf, &surface) == TP_OK);
   TpRemeshOptions options = tp_remesh_options_default();
-  CHECK(options.target_edge > 0.0);
-  CHECK(tp_remesh(mesh, &options, NULL, NULL, &quads) == TP_NOT_AVAILABLE && quads == NULL);
-  CHECK(last_error_contains("not in this build"));
+  options.target_edge = 0.2;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_OK && quads != NULL);
+  size_t counts[3] = {0, 0, 0};
+  CHECK(tp_mesh_counts(quads, &counts[0], &counts[1], &counts[2]) == TP_OK);
+  CHECK(counts[1] > 50 && counts[1] < 200 && counts[2] == 4 * counts[1]);
+  tp_mesh_free(quads);
+
+  quads = NULL;
+  options.target_edge = 0.0;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_INVALID_ARGUMENT && quads == NULL);
+  options = tp_remesh_options_default();
+  options.direction = 9;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_INVALID_ARGUMENT && last_error_contains("direction 9"));
   CHECK(tp_remesh(NULL, &options, NULL, NULL, &quads) == TP_NULL_POINTER);
-  tp_mesh_free(mesh);
+  CHECK(tp_remesh(surface, &options, NULL, NULL, NULL) == TP_NULL_POINTER);
+  tp_mesh_free(surface);
+  free(v);
+  free(quad_idx);
+  free(quad_sz);
+  free(tri);
+  free(tri_sz);
 }
 
 struct cancel_state {
@@ -328,7 +358,7 @@ int main(void) {
   test_version();
   test_mesh();
   test_pattern_and_tiles();
-  test_remesh_not_available();
+  test_remesh();
   test_cancel_and_time_limit();
   test_panic_boundary();
   printf("%d passed, %d failed\n", passed, failed);

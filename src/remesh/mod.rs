@@ -1,0 +1,241 @@
+//! Stage 1 (paper section 3.1): turn a free-form triangle (or polygon) surface into a pure
+//! quad mesh whose faces are near-squares of edge `t` (half a tile plus joint).
+//!
+//! The route is the field-guided one the paper describes, after Instant Meshes (Jakob,
+//! Tarini, Panozzo, Sorkine-Hornung, "Instant field-aligned meshes", SIGGRAPH Asia 2015) and
+//! QuadriFlow (Huang, Zhou, Niessner, Guibas, "QuadriFlow: a scalable and robust method for
+//! quadrangulation", SGP 2018):
+//!
+//! 1. [`field`]: a 4-RoSy orientation field, the globally smoothest one (Knöppel et al. 2013
+//!    style complex representation, solved by conjugate gradients) that follows principal
+//!    curvature where the surface is anisotropic, and is pinned to the boundary tangents so
+//!    quads line up with the shell's edges;
+//! 2. [`position`]: an isotropic lattice (position) field of spacing `t`, solved globally by
+//!    least squares with integer lattice jumps that are re-rounded between solves (the
+//!    Instant Meshes energy, with QuadriFlow's idea of fixing integer offsets globally), with
+//!    boundary lattice lines pinned onto the boundary;
+//! 3. [`extract`]: vertices sharing a lattice point are collapsed, unit lattice offsets become
+//!    quad edges, faces are traced in the tangent plane;
+//! 4. [`cleanup`]: holes are filled, non-quads paired and split so that the result is a pure,
+//!    manifold quad mesh; boundary vertices are snapped onto the input boundary and every
+//!    vertex onto the surface;
+//! 5. [`shapeup`] (optional): local-global iterations towards squares of side `t`
+//!    (Bouaziz et al., "Shape-Up", SGP 2012, as used in the paper via libigl), projected back
+//!    onto the input after every step;
+//! 6. [`metrics`]: the acceptance numbers, usable on any quad mesh.
+//!
+//! Everything is deterministic: iteration is in index order, no hash-map order reaches a
+//! result and no threads are used.
+
+mod cleanup;
+mod extract;
+mod field;
+mod flow;
+mod linalg;
+mod metrics;
+mod position;
+mod shapeup;
+mod surface;
+
+use std::time::Instant;
+
+use thiserror::Error;
+
+use crate::mesh::{MeshError, PolyMesh};
+
+pub use metrics::{Metrics, metrics};
+
+/// How the quads are oriented on the surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FieldDirection {
+    /// Follow the principal curvature directions where the surface is anisotropic (hypar,
+    /// barrel vaults) and stay smooth elsewhere: the paper's choice, quads then bend least.
+    Curvature,
+    /// Follow a user direction (for example the span of a vault), projected into each tangent
+    /// plane; where it is nearly normal to the surface the field just stays smooth.
+    Vector([f64; 3]),
+    /// The curvature directions rotated by an angle in degrees (45 gives a diagonal pattern).
+    Angle(f64),
+}
+
+/// Whether quad rows follow the boundary.
+///
+/// A cross field aligned to a closed boundary loop turns once around it; where the loop has
+/// corners (a rectangular vault, a hypar) the corners absorb that turning, but a smooth loop
+/// (a dome's circular rim, a round opening) forces four +1/4 (or -1/4) cones into the
+/// interior and, with them, rings of rows that must lose quads towards the centre (Bommes et
+/// al., "Mixed-integer quadrangulation", 2009, on the index theorem with boundaries).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BoundaryAlignment {
+    /// Align boundary loops that have corners (turning by more than 50 degrees); leave smooth
+    /// loops free, their boundary quads are then trimmed to the loop.
+    Auto,
+    /// Align every boundary loop (quad rings along a dome's rim, at the price of cones).
+    Always,
+    /// Align no loop: the field follows curvature and smoothness only.
+    Never,
+}
+
+/// Options of [`remesh`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RemeshOptions {
+    /// Target quad edge `t` in model units: half a tile length plus a joint (0.145 m for a
+    /// 280 x 140 mm tile with a 5 mm joint).
+    pub target_edge: f64,
+    /// What the orientation field follows.
+    pub direction: FieldDirection,
+    /// Which boundary loops the quads follow (field pinned to the boundary tangents and a
+    /// lattice line pinned onto the boundary, so no ragged strip is left along the edge).
+    pub boundary: BoundaryAlignment,
+    /// Run the shape-up step that pulls faces towards squares of side `t`.
+    pub shapeup: bool,
+    /// Largest distance, as a fraction of `t`, that shape-up may move the surface away from
+    /// the input (points are projected back onto the input surface after every iteration, so
+    /// this is a safety check on the final result).
+    pub shapeup_tolerance: f64,
+    /// Number of shape-up iterations.
+    pub shapeup_iterations: usize,
+}
+
+impl Default for RemeshOptions {
+    fn default() -> Self {
+        Self {
+            target_edge: 0.145,
+            direction: FieldDirection::Curvature,
+            boundary: BoundaryAlignment::Auto,
+            shapeup: false,
+            shapeup_tolerance: 0.1,
+            shapeup_iterations: 20,
+        }
+    }
+}
+
+/// The result of [`remesh`]: the quad mesh and its quality numbers.
+#[derive(Debug, Clone)]
+pub struct Remeshed {
+    /// The pure quad mesh, on the input surface.
+    pub quads: PolyMesh,
+    /// Its acceptance metrics against the input (with the run time in `seconds`).
+    pub metrics: Metrics,
+}
+
+/// Why [`remesh`] refused or failed.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum RemeshError {
+    /// The target edge is zero, negative, NaN or infinite.
+    #[error("target edge {0} is not a positive finite length")]
+    BadTargetEdge(f64),
+    /// The target edge is so large that the surface would get almost no quad.
+    #[error("target edge {target} is too large for a surface of area {area:.4} (at most {max:.4} for a few quads)")]
+    TargetEdgeTooLarge {
+        /// The target edge given.
+        target: f64,
+        /// The surface area.
+        area: f64,
+        /// The largest target edge accepted.
+        max: f64,
+    },
+    /// The target edge is so small that the quad mesh would be unreasonably large.
+    #[error("target edge {target} would give about {quads:.0} quads on this surface (limit {limit}); use a larger edge")]
+    TargetEdgeTooSmall {
+        /// The target edge given.
+        target: f64,
+        /// Estimated number of quads.
+        quads: f64,
+        /// The largest number of quads accepted.
+        limit: usize,
+    },
+    /// A user direction vector is zero or not finite.
+    #[error("field direction vector {0:?} must be finite and non-zero")]
+    BadDirection([f64; 3]),
+    /// A rotation angle is not finite.
+    #[error("field rotation angle {0} is not finite")]
+    BadAngle(f64),
+    /// A shape-up tolerance or iteration count is unusable.
+    #[error("shape-up tolerance {0} must be a positive finite fraction of the target edge")]
+    BadShapeupTolerance(f64),
+    /// The input has degenerate faces only, or a vertex where the surface pinches.
+    #[error("unsupported input surface: {0}")]
+    UnsupportedInput(String),
+    /// The quad mesh could not be assembled into a valid mesh (a bug or an extreme input).
+    #[error("the quad mesh could not be built: {0}")]
+    Mesh(#[from] MeshError),
+    /// Extraction found no quad at all.
+    #[error("no quad could be extracted; the target edge {0} is probably too large for this surface")]
+    NothingExtracted(f64),
+}
+
+/// Most quads [`remesh`] will produce, so a wrong unit (mm for m) fails fast instead of
+/// exhausting memory.
+pub const MAX_QUADS: usize = 2_000_000;
+
+/// Quadrangulates `input` into near-squares of edge `options.target_edge` (paper section 3.1).
+///
+/// # Errors
+/// [`RemeshError`] for bad options (target edge not positive, far too large or small, bad
+/// direction), unsupported input (no area, pinched vertices), or an extraction failure.
+pub fn remesh(input: &PolyMesh, options: &RemeshOptions) -> Result<Remeshed, RemeshError> {
+    let start = Instant::now();
+    check_options(input, options)?;
+    let t = options.target_edge;
+    let mut base = surface::Surface::from_polymesh(input)?;
+    base.set_boundary_scale(t * 0.5);
+    let frames = field::solve(&base, options);
+    let (work, mut work_frames) = surface::refine(&base, &frames, t);
+    let rotation = match options.direction {
+        FieldDirection::Angle(deg) => deg,
+        _ => 0.0,
+    };
+    let aligned = work.aligned_boundary(options.boundary);
+    field::snap_boundary(&work, &aligned, &mut work_frames, rotation);
+    // Lattice lines can lie on the boundary only when the crosses follow it.
+    let pin = (rotation / 90.0 - (rotation / 90.0).round()).abs() < 1e-9;
+    let pinned: Vec<bool> = aligned.iter().map(|&a| a && pin).collect();
+    let lattice = position::solve(&work, &work_frames, t, &pinned);
+    let raw = extract::extract(&work, &lattice);
+    if raw.faces.is_empty() {
+        return Err(RemeshError::NothingExtracted(t));
+    }
+    let locator = surface::Locator::new(&base, t);
+    let mut quads = cleanup::pure_quads(raw, &locator, t)?;
+    if options.shapeup {
+        quads = shapeup::shapeup(&quads, &locator, t, options.shapeup_iterations, options.shapeup_tolerance);
+    }
+    let quads = PolyMesh::new(quads.positions, quads.faces)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let mut found = metrics::metrics_with(&locator, input, &quads, t);
+    found.seconds = seconds;
+    Ok(Remeshed { quads, metrics: found })
+}
+
+fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), RemeshError> {
+    let t = options.target_edge;
+    if !(t.is_finite() && t > 0.0) {
+        return Err(RemeshError::BadTargetEdge(t));
+    }
+    match options.direction {
+        FieldDirection::Vector(v) if !v.iter().all(|c| c.is_finite()) || v.iter().all(|&c| c == 0.0) => {
+            return Err(RemeshError::BadDirection(v));
+        }
+        FieldDirection::Angle(a) if !a.is_finite() => return Err(RemeshError::BadAngle(a)),
+        _ => {}
+    }
+    if options.shapeup && !(options.shapeup_tolerance.is_finite() && options.shapeup_tolerance > 0.0) {
+        return Err(RemeshError::BadShapeupTolerance(options.shapeup_tolerance));
+    }
+    let area = input.area();
+    if !(area.is_finite() && area > 0.0) {
+        return Err(RemeshError::UnsupportedInput(format!("the surface has no area ({area})")));
+    }
+    // A handful of quads is the least that makes a pattern; below that the lattice
+    // cannot resolve the surface.
+    let max = (area / 4.0).sqrt();
+    if t > max {
+        return Err(RemeshError::TargetEdgeTooLarge { target: t, area, max });
+    }
+    let quads = area / (t * t);
+    if quads > MAX_QUADS as f64 {
+        return Err(RemeshError::TargetEdgeTooSmall { target: t, quads, limit: MAX_QUADS });
+    }
+    Ok(())
+}

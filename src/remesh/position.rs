@@ -1,0 +1,267 @@
+//! The isotropic position (lattice) field (Instant Meshes section 5; the paper's step 2).
+//!
+//! Every vertex `i` carries a lattice origin `q_i = p_i + F_i u_i`, with `F_i` its cross
+//! frame and `u_i` a 2D offset: the lattice `q_i + t Z o_i + t Z o'_i` is the local grid of
+//! quad corners. Neighbouring lattices should agree up to a whole lattice step `m_ab` (an
+//! integer vector), which gives the least-squares energy
+//!
+//! `sum_edges | F_a^T (p_b - p_a) + F_a^T F_b u_b - u_a - t m_ab |^2`.
+//!
+//! Instant Meshes minimises it by local rounding sweeps over a hierarchy; here, as in
+//! QuadriFlow's global treatment of the integer offsets, the jumps `m_ab` are held fixed
+//! while one conjugate-gradient solve relaxes all offsets at once, then offsets are rounded
+//! back into their cells and the jumps re-read; a few rounds settle it. On the boundary the
+//! offset across the boundary is pinned to zero (a lattice line runs along the boundary),
+//! and at corners both offsets are, which is what lets extraction put quad vertices exactly
+//! on the boundary.
+
+use nalgebra::{Matrix2, Matrix3x2, Vector2, Vector3};
+
+use super::flow::Jumps;
+use super::linalg::conjugate_gradient;
+use super::surface::Surface;
+
+
+/// The solved lattice: origins and per-edge integer offsets.
+#[derive(Debug, Clone)]
+pub(crate) struct Lattice {
+    /// Lattice origin (a quad corner) nearest to each vertex, in 3D.
+    pub origin: Vec<Vector3<f64>>,
+    /// Per edge `[a, b]` (a < b): the lattice step from a's corner to b's, in a's frame.
+    pub offset: Vec<[i64; 2]>,
+    /// Per vertex: 0 interior, 1 on a boundary lattice line, 2 a pinned corner.
+    pub pinned: Vec<u8>,
+}
+
+/// Solve-round-cancel rounds; the boundary is pinned from round [`PIN_FROM`] on, so the
+/// lattice first finds its own structure.
+const ROUNDS: usize = 4;
+
+/// First round with the boundary pinned.
+const PIN_FROM: usize = 2;
+
+/// Conjugate-gradient iterations per round; each round starts from the previous solution.
+const ITERATIONS: usize = 150;
+
+/// Conjugate-gradient iterations of the last round.
+const LAST_ITERATIONS: usize = 300;
+
+/// Longest dual path (in triangles) for dislocation cancellation, boundary exits included.
+const CANCEL_DEPTH: usize = 150;
+
+/// Cross frames `(o, n x o)` per vertex.
+fn bases(s: &Surface, frames: &[Vector3<f64>]) -> Vec<Matrix3x2<f64>> {
+    (0..s.len()).map(|v| Matrix3x2::from_columns(&[frames[v], s.normals[v].cross(&frames[v])])).collect()
+}
+
+/// Solves the lattice of spacing `t` for the cross field `frames` on `s`.
+pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool]) -> Lattice {
+    let n = s.len();
+    let basis = bases(s, frames);
+    let transfer: Vec<Matrix2<f64>> = s.edges.iter().map(|&[a, b]| basis[a].transpose() * basis[b]).collect();
+    // Edge vectors in the first end point's tangent frame, at full length (projection alone
+    // would shorten edges on curved surfaces and shrink the lattice).
+    let delta: Vec<Vector2<f64>> = s
+        .edges
+        .iter()
+        .map(|&[a, b]| {
+            let d = s.edge_vec(a, b);
+            let p = basis[a].transpose() * d;
+            p.try_normalize(1e-300).map_or(p, |dir| dir * d.norm())
+        })
+        .collect();
+
+    let mut pinned = vec![0u8; n];
+    let mut fixed = vec![false; 2 * n];
+    for v in (0..n).filter(|&v| pin[v] && s.boundary[v].is_some()) {
+        fixed[2 * v + 1] = true;
+        pinned[v] = 1;
+        if s.is_corner(v) {
+            fixed[2 * v] = true;
+            pinned[v] = 2;
+        }
+    }
+
+    let mut u = integrate(s, &basis, t);
+    let read = |u: &[f64], v: usize| Vector2::new(u[2 * v], u[2 * v + 1]);
+    let jumps = |u: &[f64]| -> Vec<[i64; 2]> {
+        s.edges
+            .iter()
+            .enumerate()
+            .map(|(e, &[a, b])| {
+                let r = (delta[e] + transfer[e] * read(u, b) - read(u, a)) / t;
+                [r.x.round() as i64, r.y.round() as i64]
+            })
+            .collect()
+    };
+    let mut m = jumps(&u);
+    let mut active = vec![false; 2 * n];
+    let flow = Jumps::new(s, &transfer);
+    let mut pinned_normal = vec![false; n];
+    let system = System { s, transfer: &transfer, delta: &delta, t };
+    // Jumps as read before the last cancellation, to fall back on when cancelling strains
+    // the lattice too much (a shell whose rows must really end somewhere, like a dome with
+    // rows along its rim).
+    let mut uncancelled: Option<Vec<[i64; 2]>> = None;
+    let mut cancelling = true;
+    let cancel = |m: &mut Vec<[i64; 2]>, cancelling: bool, pinned_normal: &[bool]| -> Option<Vec<[i64; 2]>> {
+        if !cancelling {
+            return None;
+        }
+        let before = m.clone();
+        flow.cancel(m, CANCEL_DEPTH, CANCEL_DEPTH, pinned_normal);
+        Some(before)
+    };
+    for round in 0..ROUNDS {
+        if round == PIN_FROM {
+            // From here on the boundary lattice lines sit on the boundary.
+            active.copy_from_slice(&fixed);
+            for v in 0..n {
+                pinned_normal[v] = fixed[2 * v + 1];
+            }
+            for k in 0..2 * n {
+                if active[k] {
+                    u[k] = 0.0;
+                }
+            }
+            m = jumps(&u);
+            uncancelled = cancel(&mut m, cancelling, &pinned_normal);
+        }
+        let last = round + 1 == ROUNDS;
+        let iterations = if last { LAST_ITERATIONS } else { ITERATIONS };
+        let u_before = u.clone();
+        system.solve(&active, &m, &mut u, iterations);
+        if let Some(before) = uncancelled.take() {
+            if system.strained(&m, &u) {
+                cancelling = false;
+                m = before;
+                u = u_before;
+                system.solve(&active, &m, &mut u, iterations);
+            }
+        }
+        if last {
+            break;
+        }
+        for k in 0..u.len() {
+            if active[k] {
+                u[k] = 0.0;
+            } else {
+                u[k] -= t * (u[k] / t).round();
+            }
+        }
+        m = jumps(&u);
+        uncancelled = cancel(&mut m, cancelling, &pinned_normal);
+    }
+    let origin = (0..n).map(|v| s.pos[v] + basis[v] * read(&u, v)).collect();
+    Lattice { origin, offset: m, pinned }
+}
+
+/// Relative edge misfit counted as strain.
+const STRAIN: f64 = 0.5;
+
+/// Fraction of strained edges above which a cancellation round is undone.
+const STRAINED_FRACTION: f64 = 0.05;
+
+/// The least-squares lattice energy of one level.
+struct System<'a> {
+    s: &'a Surface,
+    transfer: &'a [Matrix2<f64>],
+    delta: &'a [Vector2<f64>],
+    t: f64,
+}
+
+impl System<'_> {
+    /// True when more than [`STRAINED_FRACTION`] of the edges disagree with their lattice
+    /// step by over [`STRAIN`] of their length.
+    fn strained(&self, m: &[[i64; 2]], u: &[f64]) -> bool {
+        let count = self
+            .s
+            .edges
+            .iter()
+            .enumerate()
+            .filter(|&(e, &[a, b])| {
+                let ua = Vector2::new(u[2 * a], u[2 * a + 1]);
+                let ub = Vector2::new(u[2 * b], u[2 * b + 1]);
+                let r = self.delta[e] + self.transfer[e] * ub - ua - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t;
+                r.norm() > STRAIN * self.delta[e].norm()
+            })
+            .count();
+        count as f64 > STRAINED_FRACTION * self.s.edges.len() as f64
+    }
+
+    /// Minimises the energy over the offsets `u` for fixed jumps `m`, with the components
+    /// flagged in `active` held at zero.
+    fn solve(&self, active: &[bool], m: &[[i64; 2]], u: &mut [f64], iterations: usize) {
+        // Branch-free inner loop: held components are multiplied by zero.
+        let keep: Vec<f64> = active.iter().map(|&a| if a { 0.0 } else { 1.0 }).collect();
+        let matrices: Vec<[f64; 4]> =
+            self.transfer.iter().map(|t| [t[(0, 0)], t[(0, 1)], t[(1, 0)], t[(1, 1)]]).collect();
+        let apply = |x: &[f64], out: &mut [f64]| {
+            out.iter_mut().zip(x).for_each(|(o, x)| *o = 1e-6 * x);
+            for (&[a, b], t) in self.s.edges.iter().zip(&matrices) {
+                let (xa0, xa1) = (x[2 * a] * keep[2 * a], x[2 * a + 1] * keep[2 * a + 1]);
+                let (xb0, xb1) = (x[2 * b] * keep[2 * b], x[2 * b + 1] * keep[2 * b + 1]);
+                let l0 = t[0] * xb0 + t[1] * xb1 - xa0;
+                let l1 = t[2] * xb0 + t[3] * xb1 - xa1;
+                out[2 * a] -= l0;
+                out[2 * a + 1] -= l1;
+                out[2 * b] += t[0] * l0 + t[2] * l1;
+                out[2 * b + 1] += t[1] * l0 + t[3] * l1;
+            }
+            for k in 0..out.len() {
+                if active[k] {
+                    out[k] = x[k];
+                }
+            }
+        };
+        let mut rhs: Vec<f64> = u.iter().map(|x| 1e-6 * x).collect();
+        for (e, &[a, b]) in self.s.edges.iter().enumerate() {
+            let c = self.delta[e] - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t;
+            let cb = self.transfer[e].transpose() * c;
+            rhs[2 * a] += c.x;
+            rhs[2 * a + 1] += c.y;
+            rhs[2 * b] -= cb.x;
+            rhs[2 * b + 1] -= cb.y;
+        }
+        for k in 0..rhs.len() {
+            if active[k] {
+                rhs[k] = 0.0;
+            }
+        }
+        conjugate_gradient(apply, &rhs, u, iterations, 1e-6);
+    }
+}
+
+/// Initial lattice by integration along a breadth-first tree from vertex 0: each vertex takes
+/// the corner of its parent's lattice nearest to it. This fixes the integer structure
+/// everywhere at once (a least-squares solve from zero would collapse every lattice onto one
+/// point); the solves then relax it.
+fn integrate(s: &Surface, basis: &[Matrix3x2<f64>], t: f64) -> Vec<f64> {
+    let n = s.len();
+    let mut u = vec![0.0; 2 * n];
+    let mut origin: Vec<Option<Vector3<f64>>> = vec![None; n];
+    for seed in 0..n {
+        if origin[seed].is_some() {
+            continue;
+        }
+        origin[seed] = Some(s.pos[seed]);
+        let mut queue = std::collections::VecDeque::from([seed]);
+        while let Some(a) = queue.pop_front() {
+            let Some(qa) = origin[a] else { continue };
+            for &(b, _) in &s.adj[a] {
+                if origin[b].is_some() {
+                    continue;
+                }
+                let local = basis[a].transpose() * (s.pos[b] - qa) / t;
+                let step = Vector2::new(local.x.round(), local.y.round()) * t;
+                let corner = qa + basis[a] * step;
+                let ub = basis[b].transpose() * (corner - s.pos[b]);
+                u[2 * b] = ub.x;
+                u[2 * b + 1] = ub.y;
+                origin[b] = Some(s.pos[b] + basis[b] * ub);
+                queue.push_back(b);
+            }
+        }
+    }
+    u
+}

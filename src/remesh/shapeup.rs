@@ -1,0 +1,58 @@
+//! Optional shape-up (paper section 3.1, figure 3 right; Bouaziz, Deuss, Schwartzburg, Weise,
+//! Pauly, "Shape-Up: shaping discrete geometry with projections", SGP 2012).
+//!
+//! Local step: every quad is replaced by the best-fitting square of side `t` (Kabsch rigid
+//! fit of a reference square). Global step: every vertex moves to the mean of its corners'
+//! targets. Unlike the paper's libigl run, every vertex is then projected back onto the input
+//! surface (boundary vertices onto the input boundary, corners stay put), so the shell's
+//! shape never changes; the tolerance is checked at the end and the step is undone if it
+//! was ever exceeded.
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::cleanup::{Anchors, Quads};
+use super::surface::{Locator, point};
+
+/// Runs `iterations` local-global rounds on `quads`; returns the input unchanged if the
+/// result would leave the surface by more than `tolerance * t`.
+pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usize, tolerance: f64) -> Quads {
+    let mut pos: Vec<Vector3<f64>> = quads.positions.iter().map(|p| p.coords).collect();
+    let faces = &quads.faces;
+    let anchors = Anchors::new(&mut pos, faces, locator, t);
+    let h = t * 0.5;
+    let square = [Vector3::new(-h, -h, 0.0), Vector3::new(h, -h, 0.0), Vector3::new(h, h, 0.0), Vector3::new(-h, h, 0.0)];
+    for _ in 0..iterations {
+        let mut sum = vec![Vector3::zeros(); pos.len()];
+        let mut count = vec![0.0; pos.len()];
+        for f in faces.iter().filter(|f| f.len() == 4) {
+            let p: Vec<Vector3<f64>> = f.iter().map(|&v| pos[v]).collect();
+            let c = p.iter().sum::<Vector3<f64>>() / 4.0;
+            let mut cov = Matrix3::zeros();
+            for k in 0..4 {
+                cov += (p[k] - c) * square[k].transpose();
+            }
+            let svd = cov.svd(true, true);
+            let (Some(u), Some(vt)) = (svd.u, svd.v_t) else { continue };
+            let mut d = Matrix3::identity();
+            if (u * vt).determinant() < 0.0 {
+                d[(2, 2)] = -1.0;
+            }
+            let r = u * d * vt;
+            for k in 0..4 {
+                sum[f[k]] += c + r * square[k];
+                count[f[k]] += 1.0;
+            }
+        }
+        for v in 0..pos.len() {
+            if anchors.pinned[v] || count[v] == 0.0 {
+                continue;
+            }
+            pos[v] = anchors.project(locator, v, &(sum[v] / count[v]));
+        }
+    }
+    let worst = pos.iter().map(|p| locator.distance(p)).fold(0.0, f64::max);
+    if worst > tolerance * t {
+        return quads.clone();
+    }
+    Quads { positions: pos.iter().map(point).collect(), faces: faces.clone() }
+}
