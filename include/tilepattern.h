@@ -104,6 +104,12 @@
 #define TP_TILE_HALF 1
 
 /**
+ * Tile kind: a full or half tile cut to the surface's boundary (see
+ * [`tp_tiles_copy_loop_points`]).
+ */
+#define TP_TILE_BOUNDARY 2
+
+/**
  * Face slot of a half tile's missing second face in [`tp_tiles_copy_faces`].
  */
 #define TP_NO_FACE UINT32_MAX
@@ -342,6 +348,25 @@ typedef struct TpTileOptions {
    * Mortar joint; default 0.01.
    */
   double joint;
+  /**
+   * Cutting tolerance: tiles the boundary enters by no more than this stay whole, cut
+   * shapes this close share a cut-list label. Negative (default): 1 % of the width.
+   */
+  double cut_tolerance;
+  /**
+   * Boundary pieces narrower than this are slivers: reported, not emitted. Negative
+   * (default): a fifth of the width.
+   */
+  double min_kept_width;
+  /**
+   * Up direction for the laying order, xyz; default (0, 0, 1).
+   */
+  double up[3];
+  /**
+   * Tiles with a boundary edge within this height of the lowest boundary point stand on
+   * the supports. Negative (default): one tile width.
+   */
+  double support_band;
 } TpTileOptions;
 
 #ifdef __cplusplus
@@ -510,7 +535,9 @@ struct TpTileOptions tp_tile_options_default(void);
 
 /**
  * Builds the tiles of `pattern` on `mesh` (the mesh the pattern was solved on): full tiles in
- * pair order, then half tiles in face order, and their report.
+ * pair order, then half tiles in face order, cut to the mesh's own boundary, labelled and
+ * numbered in laying order, and their report. Same as [`tp_tiles_build_on_surface`] without
+ * a surface.
  *
  * # Safety
  * `mesh` and `pattern` must be live handles, `options` valid, `out` writable.
@@ -519,6 +546,22 @@ TpStatus tp_tiles_build(const struct TpMesh *mesh,
                         const struct TpPattern *pattern,
                         const struct TpTileOptions *options,
                         struct TpTiles **out);
+
+/**
+ * Builds the tiles of `pattern` on the quad mesh `mesh` and cuts them to the boundary of
+ * `surface`, the input surface the quads were made from (outer edge and openings; NULL: the
+ * quad mesh's own boundary). Tiles off the surface and slivers are left out and counted in
+ * the report.
+ *
+ * # Safety
+ * `mesh` and `pattern` must be live handles, `surface` NULL or a live handle, `options`
+ * valid, `out` writable.
+ */
+TpStatus tp_tiles_build_on_surface(const struct TpMesh *mesh,
+                                   const struct TpPattern *pattern,
+                                   const struct TpMesh *surface,
+                                   const struct TpTileOptions *options,
+                                   struct TpTiles **out);
 
 /**
  * Releases tiles. NULL is accepted.
@@ -588,6 +631,77 @@ TpStatus tp_tiles_copy_faces(const struct TpTiles *tiles, uint32_t *out, size_t 
  * `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
  */
 TpStatus tp_tiles_report_json(const struct TpTiles *tiles, char *buf, size_t len, size_t *needed);
+
+/**
+ * Copies each tile's step in the laying order, from 0 (capacity: tile count).
+ *
+ * # Safety
+ * `tiles` must be a live handle and `out` hold `capacity` items.
+ */
+TpStatus tp_tiles_copy_steps(const struct TpTiles *tiles, uint32_t *out, size_t capacity);
+
+/**
+ * Copies each tile's kept area over its face area: 1 for uncut tiles (capacity: tile count).
+ *
+ * # Safety
+ * `tiles` must be a live handle and `out` hold `capacity` items.
+ */
+TpStatus tp_tiles_copy_kept_fractions(const struct TpTiles *tiles, double *out, size_t capacity);
+
+/**
+ * Writes the total number of outline loops and of their points over all boundary tiles: the
+ * capacities for [`tp_tiles_copy_loop_sizes`] and (times 2) [`tp_tiles_copy_loop_points`].
+ *
+ * # Safety
+ * `tiles` must be a live handle, `loops` and `points` writable.
+ */
+TpStatus tp_tiles_outline_counts(const struct TpTiles *tiles, size_t *loops, size_t *points);
+
+/**
+ * Copies each tile's number of outline loops: 0 for an uncut tile (capacity: tile count).
+ *
+ * # Safety
+ * `tiles` must be a live handle and `out` hold `capacity` items.
+ */
+TpStatus tp_tiles_copy_loop_counts(const struct TpTiles *tiles, uint32_t *out, size_t capacity);
+
+/**
+ * Copies the number of points of every outline loop, tile by tile (capacity: the loop
+ * count of [`tp_tiles_outline_counts`]).
+ *
+ * # Safety
+ * `tiles` must be a live handle and `out` hold `capacity` items.
+ */
+TpStatus tp_tiles_copy_loop_sizes(const struct TpTiles *tiles, uint32_t *out, size_t capacity);
+
+/**
+ * Copies the points of every outline loop as (x, y) in the tile's frame (2 doubles per
+ * point), tile by tile and loop by loop: the part of the tile's face to keep, outer loops
+ * counter-clockwise, holes clockwise, seen from the frame's +z.
+ *
+ * # Safety
+ * `tiles` must be a live handle and `out` hold `capacity` doubles.
+ */
+TpStatus tp_tiles_copy_loop_points(const struct TpTiles *tiles, double *out, size_t capacity);
+
+/**
+ * Copies the tiles' cut-list labels (`F`, `H`, `B1`, ...), one per tile, each followed by a
+ * newline, as a NUL-terminated string; `*needed` (if not NULL) gets its length without the
+ * NUL. Call with `len = 0` to ask for the size.
+ *
+ * # Safety
+ * `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
+ */
+TpStatus tp_tiles_labels(const struct TpTiles *tiles, char *buf, size_t len, size_t *needed);
+
+/**
+ * Copies the cut list (the same JSON as `cutlist.json` of `tilepattern run`) into `buf` as
+ * a NUL-terminated string; `*needed` (if not NULL) gets its length without the NUL.
+ *
+ * # Safety
+ * `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
+ */
+TpStatus tp_tiles_cutlist_json(const struct TpTiles *tiles, char *buf, size_t len, size_t *needed);
 
 #ifdef __cplusplus
 }  // extern "C"

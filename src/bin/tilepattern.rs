@@ -12,8 +12,8 @@ use tilepattern::pattern::{self, Bond, Formulation, Method, Pattern, PatternOpti
 use tilepattern::control::Control;
 use tilepattern::pipeline::{self, Tiling};
 use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
-use tilepattern::report::{Report, svg};
-use tilepattern::tiles::{self, TileSpec};
+use tilepattern::report::{self, Report, svg};
+use tilepattern::tiles::{self, CutGroup, FinishOptions, Sequence, SequenceOptions, Tile, TileSpec};
 
 #[derive(Parser)]
 #[command(name = "tilepattern", version, about = "Tile laying patterns for free-form shells that need little cutting")]
@@ -52,6 +52,14 @@ enum Command {
         /// Picture of the pattern (SVG).
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// The input surface the quads were made from (OBJ): tiles are cut to its boundary
+        /// (default: the quad mesh's own boundary).
+        #[arg(long)]
+        surface: Option<PathBuf>,
+        /// Folder for the fabrication output: cutlist.csv, cutlist.json, sequence.json,
+        /// gaps.svg.
+        #[arg(long)]
+        fabrication: Option<PathBuf>,
     },
     /// Quadrangulate a triangle (or polygon) mesh into near-square quads of edge T (stage 1).
     Remesh {
@@ -79,14 +87,16 @@ enum Command {
         field: FieldArgs,
         #[command(flatten)]
         pattern: PatternArgs,
-        /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg.
+        /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv,
+        /// cutlist.json, sequence.json, gaps.svg.
         #[arg(long)]
         out: PathBuf,
     },
     /// Run the whole pipeline on a built-in example: a shell supported at its four corners
     /// (the paper's Figure 9), tiled with 280 x 140 x 15 mm tiles.
     Demo {
-        /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg.
+        /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv,
+        /// cutlist.json, sequence.json, gaps.svg.
         #[arg(long, default_value = "demo")]
         out: PathBuf,
         /// Plan size of the shell in metres.
@@ -180,6 +190,21 @@ struct TileArgs {
     /// is 1000 or more, metres otherwise.
     #[arg(long, value_enum, default_value_t = Units::Auto)]
     units: Units,
+    /// Cutting tolerance in millimetres: tiles the boundary enters by no more than this stay
+    /// whole, cut shapes this close share a label (default: 1 % of the tile width).
+    #[arg(long)]
+    cut_tolerance: Option<f64>,
+    /// Boundary pieces narrower than this (millimetres) are reported as slivers, not emitted
+    /// (default: a fifth of the tile width).
+    #[arg(long)]
+    min_kept_width: Option<f64>,
+    /// Up direction x,y,z for the laying order.
+    #[arg(long, value_parser = parse_vector, default_value = "0,0,1")]
+    up: [f64; 3],
+    /// Tiles with a boundary edge within this height (millimetres) of the lowest boundary
+    /// point stand on the supports (default: one tile width).
+    #[arg(long)]
+    support_band: Option<f64>,
 }
 
 #[derive(Clone, Copy, PartialEq, ValueEnum)]
@@ -208,16 +233,20 @@ fn run(cli: Cli) -> Result<()> {
             eprintln!("{}", pattern_summary(&found));
             write_json(json.as_deref(), &found)
         }
-        Command::Tiles { quads, pairs, tile, output, json, svg } => {
+        Command::Tiles { quads, pairs, tile, output, json, svg, surface, fabrication } => {
             let mesh = read_mesh(&quads)?;
+            let surface = surface.map(|path| read_mesh(&path)).transpose()?;
             let text = std::fs::read_to_string(&pairs).with_context(|| format!("cannot read {}", pairs.display()))?;
             let found: Pattern = serde_json::from_str(&text)
                 .with_context(|| format!("{} is not the JSON written by `tilepattern match`", pairs.display()))?;
             let (spec, units) = tile.spec(&mesh);
-            let tiling = pipeline::tiles_for_pattern(&mesh, found, &spec)?;
+            let tiling = pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &tile.finish(&spec, units))?;
             write_text(&output, &tiles::to_obj(&tiling.tiles))?;
             if let Some(svg_path) = svg {
                 write_text(&svg_path, &svg::pattern_svg(&mesh, &tiling.tiles))?;
+            }
+            if let Some(dir) = fabrication {
+                write_fabrication(&dir, &mesh, &tiling)?;
             }
             eprintln!("{}", tiling_summary(&tiling, units));
             json.map_or(Ok(()), |path| write_json(Some(&path), &ReportFile { units: units.name(), remesh: None, report: &tiling.report }))
@@ -232,8 +261,9 @@ fn run(cli: Cli) -> Result<()> {
         Command::Run { input, tile, field, pattern, out } => {
             let surface = read_mesh(&input)?;
             let (spec, units) = tile.spec(&surface);
+            let finish = tile.finish(&spec, units);
             let (remeshed, tiling) =
-                pipeline::tile_surface(&surface, &field.options(spec.target_edge()), &pattern.options()?, &spec, &mut Control::none())?;
+                pipeline::tile_surface(&surface, &field.options(spec.target_edge()), &pattern.options()?, &spec, &finish, &mut Control::none())?;
             write_outputs(&out, &remeshed.quads, &tiling, units, Some(&remeshed.metrics))?;
             println!("{}", remesh_summary(&remeshed.metrics));
             println!("{}", tiling_summary(&tiling, units));
@@ -251,22 +281,67 @@ fn demo(out: &Path, span: f64, args: &PatternArgs) -> Result<()> {
     // The surface a designer would export: the shell as a fine triangle mesh.
     let surface = mesh::generate::triangulate_quads(&mesh::generate::corner_supported_shell(span, spec.target_edge() / 3.0));
     let remesh = RemeshOptions { target_edge: spec.target_edge(), ..RemeshOptions::default() };
-    let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &args.options()?, &spec, &mut Control::none())?;
+    let finish = FinishOptions::for_spec(&spec);
+    let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &args.options()?, &spec, &finish, &mut Control::none())?;
     write_outputs(out, &remeshed.quads, &tiling, Units::M, Some(&remeshed.metrics))?;
     println!("demo: {span} m corner-supported shell, {} triangles", surface.face_count());
     println!("{}", remesh_summary(&remeshed.metrics));
     println!("{}", tiling_summary(&tiling, Units::M));
-    println!("wrote {}/{{quads.obj, tiles.obj, report.json, pattern.svg}}", out.display());
+    println!("wrote {}/{{quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv, cutlist.json, sequence.json, gaps.svg}}", out.display());
     Ok(())
 }
 
-/// Writes quads.obj, tiles.obj, pattern.svg and report.json into `out`.
+/// Writes quads.obj, tiles.obj, pattern.svg, report.json and the fabrication output into
+/// `out`.
 fn write_outputs(out: &Path, quads: &PolyMesh, tiling: &Tiling, units: Units, remesh: Option<&Metrics>) -> Result<()> {
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     mesh::obj::write(quads, &out.join("quads.obj"))?;
     write_text(&out.join("tiles.obj"), &tiles::to_obj(&tiling.tiles))?;
     write_text(&out.join("pattern.svg"), &svg::pattern_svg(quads, &tiling.tiles))?;
-    write_json(Some(&out.join("report.json")), &ReportFile { units: units.name(), remesh, report: &tiling.report })
+    write_json(Some(&out.join("report.json")), &ReportFile { units: units.name(), remesh, report: &tiling.report })?;
+    write_fabrication(out, quads, tiling)
+}
+
+/// Writes cutlist.csv, cutlist.json, sequence.json and gaps.svg into `dir`.
+fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    write_text(&dir.join("cutlist.csv"), &cutlist_csv(&tiling.cut_list))?;
+    write_json(Some(&dir.join("cutlist.json")), &tiling.cut_list)?;
+    let mut order: Vec<&Tile> = tiling.tiles.iter().collect();
+    order.sort_by_key(|t| t.step);
+    let steps: Vec<SequenceStep> = order.iter().map(|t| SequenceStep { step: t.step, label: &t.label, faces: &t.faces, origin: t.frame.origin.into() }).collect();
+    let summary = tiling.report.sequence.as_ref();
+    write_json(Some(&dir.join("sequence.json")), &SequenceFile { summary, steps })?;
+    let contacts = report::gaps::contacts(quads, &tiling.tiles);
+    write_text(&dir.join("gaps.svg"), &svg::gaps_svg(quads, &tiling.tiles, &contacts, tiling.report.tile.joint))
+}
+
+/// `cutlist.csv`: one row per cut shape; outlines (boundary shapes) as loops separated by
+/// `|`, points `x y` separated by `;`, in the blank's frame and model units.
+fn cutlist_csv(groups: &[CutGroup]) -> String {
+    let mut csv = String::from("label,kind,count,blank_length,blank_width,area,outline\n");
+    for g in groups {
+        let outline: Vec<String> = g.outline.iter().map(|l| l.iter().map(|p| format!("{:.6} {:.6}", p[0], p[1])).collect::<Vec<_>>().join(";")).collect();
+        let kind = serde_json::to_value(g.kind).ok().and_then(|v| v.as_str().map(str::to_owned)).unwrap_or_default();
+        csv.push_str(&format!("{},{},{},{},{},{:.6},{}\n", g.label, kind, g.count, g.blank[0], g.blank[1], g.area, outline.join("|")));
+    }
+    csv
+}
+
+/// `sequence.json`: the laying order's summary and the tiles step by step.
+#[derive(Serialize)]
+struct SequenceFile<'a> {
+    summary: Option<&'a Sequence>,
+    steps: Vec<SequenceStep<'a>>,
+}
+
+/// One step of the laying order.
+#[derive(Serialize)]
+struct SequenceStep<'a> {
+    step: usize,
+    label: &'a str,
+    faces: &'a [usize],
+    origin: [f64; 3],
 }
 
 /// `report.json`: the library's report plus the units the CLI assumed and, after `run`, the
@@ -306,6 +381,20 @@ impl PatternArgs {
 }
 
 impl TileArgs {
+    /// The finishing options in model units.
+    fn finish(&self, spec: &TileSpec, units: Units) -> FinishOptions {
+        let scale = units.per_mm();
+        let auto = FinishOptions::for_spec(spec);
+        FinishOptions {
+            tolerance: self.cut_tolerance.map_or(auto.tolerance, |v| v * scale),
+            min_kept_width: self.min_kept_width.map_or(auto.min_kept_width, |v| v * scale),
+            sequence: SequenceOptions {
+                up: nalgebra::Vector3::from(self.up),
+                support_band: self.support_band.map_or(auto.sequence.support_band, |v| v * scale),
+            },
+        }
+    }
+
     /// The tile in model units, and the units chosen.
     fn spec(&self, mesh: &PolyMesh) -> (TileSpec, Units) {
         let units = match self.units {
@@ -315,17 +404,22 @@ impl TileArgs {
             }
             chosen => chosen,
         };
-        let mm = match units {
-            Units::M => 0.001,
-            Units::Cm => 0.1,
-            Units::Mm | Units::Auto => 1.0,
-        };
+        let mm = units.per_mm();
         let [length, width, thickness] = self.tile.map(|d| d * mm);
         (TileSpec { length, width, thickness, joint: self.joint * mm }, units)
     }
 }
 
 impl Units {
+    /// Model units per millimetre.
+    fn per_mm(self) -> f64 {
+        match self {
+            Units::M => 0.001,
+            Units::Cm => 0.1,
+            Units::Mm | Units::Auto => 1.0,
+        }
+    }
+
     fn name(self) -> &'static str {
         match self {
             Units::Auto => "auto",
@@ -414,11 +508,22 @@ fn remesh_summary(m: &Metrics) -> String {
 
 fn tiling_summary(t: &Tiling, units: Units) -> String {
     let j = &t.report.joints;
+    let cutting = t.report.cutting.as_ref().map_or(String::new(), |c| {
+        format!(
+            "; {} cut shapes, {} slivers and {} tiles off the surface left out, coverage {:.3}",
+            c.boundary_shapes,
+            c.slivers.len(),
+            c.outside_tiles,
+            c.coverage
+        )
+    });
+    let laying = t.report.sequence.as_ref().map_or(String::new(), |s| format!("\nlaying order: {} tiles on the supports, {} need a prop", s.support_tiles, s.unsupported));
     format!(
-        "{}\n{} full tiles, {} half tiles; joints ({}): nominal {}, gap {:.4}..{:.4}, p95 deviation {:.4}, {} overlaps",
+        "{}\n{} full tiles, {} half tiles ({} of them cut to the boundary){cutting}{laying}\njoints ({}): nominal {}, gap {:.4}..{:.4}, p95 deviation {:.4}, {} overlaps",
         pattern_summary(&t.pattern),
         t.report.full_tiles,
         t.report.half_tiles,
+        t.report.boundary_tiles,
         units.name(),
         j.joint,
         j.min_gap,

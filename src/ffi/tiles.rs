@@ -5,12 +5,15 @@ use std::ffi::c_char;
 use super::status::{Failure, TpStatus, guard};
 use super::{TpMesh, TpPattern, borrow, hand_over, output, output_text, read_options, release, write_out};
 use crate::pipeline::{self, Tiling};
-use crate::tiles::{TileKind, TileSpec};
+use crate::tiles::{FinishOptions, SequenceOptions, Tile, TileKind, TileSpec};
 
 /// Tile kind: a standard tile over two faces.
 pub const TP_TILE_FULL: i32 = 0;
 /// Tile kind: a half tile over one unmatched quad (needs a cut).
 pub const TP_TILE_HALF: i32 = 1;
+/// Tile kind: a full or half tile cut to the surface's boundary (see
+/// [`tp_tiles_copy_loop_points`]).
+pub const TP_TILE_BOUNDARY: i32 = 2;
 /// Face slot of a half tile's missing second face in [`tp_tiles_copy_faces`].
 pub const TP_NO_FACE: u32 = u32::MAX;
 
@@ -28,6 +31,37 @@ pub struct TpTileOptions {
     pub thickness: f64,
     /// Mortar joint; default 0.01.
     pub joint: f64,
+    /// Cutting tolerance: tiles the boundary enters by no more than this stay whole, cut
+    /// shapes this close share a cut-list label. Negative (default): 1 % of the width.
+    pub cut_tolerance: f64,
+    /// Boundary pieces narrower than this are slivers: reported, not emitted. Negative
+    /// (default): a fifth of the width.
+    pub min_kept_width: f64,
+    /// Up direction for the laying order, xyz; default (0, 0, 1).
+    pub up: [f64; 3],
+    /// Tiles with a boundary edge within this height of the lowest boundary point stand on
+    /// the supports. Negative (default): one tile width.
+    pub support_band: f64,
+}
+
+impl TpTileOptions {
+    fn spec(&self) -> TileSpec {
+        TileSpec { length: self.length, width: self.width, thickness: self.thickness, joint: self.joint }
+    }
+
+    /// The finishing options, negative values replaced by their defaults for the tile.
+    fn finish(&self) -> FinishOptions {
+        let auto = FinishOptions::for_spec(&self.spec());
+        let or_auto = |value: f64, default: f64| if value < 0.0 { default } else { value };
+        FinishOptions {
+            tolerance: or_auto(self.cut_tolerance, auto.tolerance),
+            min_kept_width: or_auto(self.min_kept_width, auto.min_kept_width),
+            sequence: SequenceOptions {
+                up: nalgebra::Vector3::from(self.up),
+                support_band: or_auto(self.support_band, auto.sequence.support_band),
+            },
+        }
+    }
 }
 
 /// Placed tiles and their report (opaque).
@@ -38,16 +72,48 @@ pub struct TpTiles {
 /// The default tile options (280 x 140 x 15 mm tiles, 10 mm joint, in metres).
 #[unsafe(no_mangle)]
 pub extern "C" fn tp_tile_options_default() -> TpTileOptions {
-    TpTileOptions { struct_size: size_of::<TpTileOptions>() as u32, length: 0.28, width: 0.14, thickness: 0.015, joint: 0.01 }
+    TpTileOptions {
+        struct_size: size_of::<TpTileOptions>() as u32,
+        length: 0.28,
+        width: 0.14,
+        thickness: 0.015,
+        joint: 0.01,
+        cut_tolerance: -1.0,
+        min_kept_width: -1.0,
+        up: [0.0, 0.0, 1.0],
+        support_band: -1.0,
+    }
 }
 
 /// Builds the tiles of `pattern` on `mesh` (the mesh the pattern was solved on): full tiles in
-/// pair order, then half tiles in face order, and their report.
+/// pair order, then half tiles in face order, cut to the mesh's own boundary, labelled and
+/// numbered in laying order, and their report. Same as [`tp_tiles_build_on_surface`] without
+/// a surface.
 ///
 /// # Safety
 /// `mesh` and `pattern` must be live handles, `options` valid, `out` writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tp_tiles_build(mesh: *const TpMesh, pattern: *const TpPattern, options: *const TpTileOptions, out: *mut *mut TpTiles) -> TpStatus {
+    // SAFETY: forwarded.
+    unsafe { tp_tiles_build_on_surface(mesh, pattern, std::ptr::null(), options, out) }
+}
+
+/// Builds the tiles of `pattern` on the quad mesh `mesh` and cuts them to the boundary of
+/// `surface`, the input surface the quads were made from (outer edge and openings; NULL: the
+/// quad mesh's own boundary). Tiles off the surface and slivers are left out and counted in
+/// the report.
+///
+/// # Safety
+/// `mesh` and `pattern` must be live handles, `surface` NULL or a live handle, `options`
+/// valid, `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_build_on_surface(
+    mesh: *const TpMesh,
+    pattern: *const TpPattern,
+    surface: *const TpMesh,
+    options: *const TpTileOptions,
+    out: *mut *mut TpTiles,
+) -> TpStatus {
     guard(|| {
         if out.is_null() {
             return Err(Failure::null("out"));
@@ -55,8 +121,9 @@ pub unsafe extern "C" fn tp_tiles_build(mesh: *const TpMesh, pattern: *const TpP
         // SAFETY: live handles and valid options by the caller's promise.
         let (mesh, pattern, raw) =
             unsafe { (&borrow(mesh, "mesh")?.mesh, &borrow(pattern, "pattern")?.pattern, read_options(options, tp_tile_options_default(), "options")?) };
-        let spec = TileSpec { length: raw.length, width: raw.width, thickness: raw.thickness, joint: raw.joint };
-        let tiling = pipeline::tiles_for_pattern(mesh, pattern.clone(), &spec)?;
+        // SAFETY: NULL or a live handle by the caller's promise.
+        let surface = if surface.is_null() { None } else { Some(&unsafe { borrow(surface, "surface") }?.mesh) };
+        let tiling = pipeline::tiles_for_pattern(mesh, surface, pattern.clone(), &raw.spec(), &raw.finish())?;
         // SAFETY: checked non-null above.
         unsafe { hand_over(out, TpTiles { tiling }, "out") }
     })
@@ -88,7 +155,7 @@ pub unsafe extern "C" fn tp_tiles_count(tiles: *const TpTiles, out: *mut usize) 
 ///
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
-unsafe fn copy_per_tile<T: Copy>(tiles: *const TpTiles, out: *mut T, capacity: usize, values: impl Fn(&crate::tiles::Tile) -> Vec<T>) -> TpStatus {
+unsafe fn copy_per_tile<T: Copy>(tiles: *const TpTiles, out: *mut T, capacity: usize, values: impl Fn(&Tile) -> Vec<T>) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
@@ -104,7 +171,13 @@ unsafe fn copy_per_tile<T: Copy>(tiles: *const TpTiles, out: *mut T, capacity: u
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tp_tiles_copy_kinds(tiles: *const TpTiles, out: *mut i32, capacity: usize) -> TpStatus {
-    let kind = |t: &crate::tiles::Tile| vec![if t.kind == TileKind::Full { TP_TILE_FULL } else { TP_TILE_HALF }];
+    let kind = |t: &Tile| {
+        vec![match t.kind {
+            TileKind::Full => TP_TILE_FULL,
+            TileKind::Half => TP_TILE_HALF,
+            TileKind::Boundary => TP_TILE_BOUNDARY,
+        }]
+    };
     // SAFETY: forwarded.
     unsafe { copy_per_tile(tiles, out, capacity, kind) }
 }
@@ -127,7 +200,7 @@ pub unsafe extern "C" fn tp_tiles_copy_corners(tiles: *const TpTiles, out: *mut 
 /// `tiles` must be a live handle and `out` hold `capacity` doubles.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tp_tiles_copy_frames(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
-    let frame = |t: &crate::tiles::Tile| {
+    let frame = |t: &Tile| {
         let f = &t.frame;
         [f.origin.coords, f.x, f.y, f.z].iter().flat_map(|v| [v.x, v.y, v.z]).collect()
     };
@@ -152,7 +225,7 @@ pub unsafe extern "C" fn tp_tiles_copy_sizes(tiles: *const TpTiles, out: *mut f6
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tp_tiles_copy_faces(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
-    let faces = |t: &crate::tiles::Tile| vec![t.faces[0] as u32, t.faces.get(1).map_or(TP_NO_FACE, |&f| f as u32)];
+    let faces = |t: &Tile| vec![t.faces[0] as u32, t.faces.get(1).map_or(TP_NO_FACE, |&f| f as u32)];
     // SAFETY: forwarded.
     unsafe { copy_per_tile(tiles, out, capacity, faces) }
 }
@@ -169,6 +242,112 @@ pub unsafe extern "C" fn tp_tiles_report_json(tiles: *const TpTiles, buf: *mut c
         // SAFETY: live handle by the caller's promise.
         let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
         let json = serde_json::to_string_pretty(&tiling.report).map_err(|e| Failure::new(TpStatus::TP_PANIC, e.to_string()))?;
+        // SAFETY: forwarded.
+        unsafe { output_text(&json, buf, len, needed) }
+    })
+}
+
+/// Copies each tile's step in the laying order, from 0 (capacity: tile count).
+///
+/// # Safety
+/// `tiles` must be a live handle and `out` hold `capacity` items.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_copy_steps(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
+    // SAFETY: forwarded.
+    unsafe { copy_per_tile(tiles, out, capacity, |t| vec![t.step as u32]) }
+}
+
+/// Copies each tile's kept area over its face area: 1 for uncut tiles (capacity: tile count).
+///
+/// # Safety
+/// `tiles` must be a live handle and `out` hold `capacity` items.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_copy_kept_fractions(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
+    // SAFETY: forwarded.
+    unsafe { copy_per_tile(tiles, out, capacity, |t| vec![t.cut.as_ref().map_or(1.0, |c| c.kept_fraction)]) }
+}
+
+/// Writes the total number of outline loops and of their points over all boundary tiles: the
+/// capacities for [`tp_tiles_copy_loop_sizes`] and (times 2) [`tp_tiles_copy_loop_points`].
+///
+/// # Safety
+/// `tiles` must be a live handle, `loops` and `points` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_outline_counts(tiles: *const TpTiles, loops: *mut usize, points: *mut usize) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
+        let all = || tiling.tiles.iter().flat_map(|t| t.cut.iter().flat_map(|c| &c.loops));
+        // SAFETY: writable by the caller's promise.
+        unsafe {
+            write_out(loops, all().count(), "loops")?;
+            write_out(points, all().map(Vec::len).sum(), "points")
+        }
+    })
+}
+
+/// Copies each tile's number of outline loops: 0 for an uncut tile (capacity: tile count).
+///
+/// # Safety
+/// `tiles` must be a live handle and `out` hold `capacity` items.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_copy_loop_counts(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
+    // SAFETY: forwarded.
+    unsafe { copy_per_tile(tiles, out, capacity, |t| vec![t.cut.as_ref().map_or(0, |c| c.loops.len() as u32)]) }
+}
+
+/// Copies the number of points of every outline loop, tile by tile (capacity: the loop
+/// count of [`tp_tiles_outline_counts`]).
+///
+/// # Safety
+/// `tiles` must be a live handle and `out` hold `capacity` items.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_copy_loop_sizes(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
+    // SAFETY: forwarded.
+    unsafe { copy_per_tile(tiles, out, capacity, |t| t.cut.iter().flat_map(|c| &c.loops).map(|l| l.len() as u32).collect()) }
+}
+
+/// Copies the points of every outline loop as (x, y) in the tile's frame (2 doubles per
+/// point), tile by tile and loop by loop: the part of the tile's face to keep, outer loops
+/// counter-clockwise, holes clockwise, seen from the frame's +z.
+///
+/// # Safety
+/// `tiles` must be a live handle and `out` hold `capacity` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_copy_loop_points(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
+    let points = |t: &Tile| t.cut.iter().flat_map(|c| &c.loops).flatten().flat_map(|p| *p).collect();
+    // SAFETY: forwarded.
+    unsafe { copy_per_tile(tiles, out, capacity, points) }
+}
+
+/// Copies the tiles' cut-list labels (`F`, `H`, `B1`, ...), one per tile, each followed by a
+/// newline, as a NUL-terminated string; `*needed` (if not NULL) gets its length without the
+/// NUL. Call with `len = 0` to ask for the size.
+///
+/// # Safety
+/// `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_labels(tiles: *const TpTiles, buf: *mut c_char, len: usize, needed: *mut usize) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
+        let text: String = tiling.tiles.iter().map(|t| format!("{}\n", t.label)).collect();
+        // SAFETY: forwarded.
+        unsafe { output_text(&text, buf, len, needed) }
+    })
+}
+
+/// Copies the cut list (the same JSON as `cutlist.json` of `tilepattern run`) into `buf` as
+/// a NUL-terminated string; `*needed` (if not NULL) gets its length without the NUL.
+///
+/// # Safety
+/// `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_cutlist_json(tiles: *const TpTiles, buf: *mut c_char, len: usize, needed: *mut usize) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
+        let json = serde_json::to_string_pretty(&tiling.cut_list).map_err(|e| Failure::new(TpStatus::TP_PANIC, e.to_string()))?;
         // SAFETY: forwarded.
         unsafe { output_text(&json, buf, len, needed) }
     })

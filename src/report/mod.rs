@@ -2,13 +2,17 @@
 //! between neighbouring tiles is from the nominal mortar width (paper section 4.1 / Figure 8:
 //! gaps grow with curvature).
 
+pub mod coverage;
+pub mod gaps;
 pub mod svg;
+
+pub use gaps::{Contact, JointSummary};
 
 use serde::Serialize;
 
-use crate::mesh::{PolyMesh, Topology};
+use crate::mesh::PolyMesh;
 use crate::pattern::{Pattern, SolveStatus};
-use crate::tiles::{Tile, TileKind, TileSpec};
+use crate::tiles::{DropReason, DroppedTile, Finished, Sequence, Tile, TileKind, TileSpec};
 
 /// Wall-clock seconds per stage.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
@@ -19,40 +23,17 @@ pub struct StageSeconds {
     pub tiles: f64,
 }
 
-/// Gaps between neighbouring tiles, measured across each mesh edge that separates two
-/// different tiles.
-///
-/// At the edge's two ends and its midpoint, the gap is the distance from the edge point to
-/// the facing side plane of one tile plus the same for the other (positive outside a tile),
-/// so two tiles laid exactly with the nominal joint show `gap = joint`, and a negative gap
-/// is an overlap.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct JointSummary {
-    /// Mesh edges between two different tiles.
-    pub contacts: usize,
-    /// Nominal joint width.
-    pub joint: f64,
-    /// Smallest gap at any sample point (negative: overlap).
-    pub min_gap: f64,
-    /// Largest gap at any sample point.
-    pub max_gap: f64,
-    /// Mean gap at the edge midpoints.
-    pub mean_gap: f64,
-    /// 95th percentile of `|gap - joint|` over all sample points.
-    pub p95_deviation: f64,
-    /// Contacts where the tiles overlap somewhere.
-    pub overlaps: usize,
-}
-
 /// Everything a designer wants to know about a tiling, serialised as `report.json`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
     /// Faces of the quad mesh.
     pub faces: usize,
-    /// Standard tiles (matched pairs).
+    /// Tiles over matched pairs (full blanks), whether cut to the boundary or not.
     pub full_tiles: usize,
-    /// Half tiles (unmatched quads), each needs a cut.
+    /// Half tiles over unmatched quads, each needs a cut.
     pub half_tiles: usize,
+    /// Of the tiles above, those cut to the surface's boundary.
+    pub boundary_tiles: usize,
     /// Faces that are not quads: no tile was placed on them.
     pub non_quad_faces: usize,
     /// Faces excluded by the caller.
@@ -73,18 +54,48 @@ pub struct Report {
     pub tile: TileSpec,
     /// Joint gaps and overlaps.
     pub joints: JointSummary,
+    /// Cutting to the boundary and coverage of the surface, once the tiles are finished.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cutting: Option<CuttingSummary>,
+    /// The laying order's summary, once the tiles are finished.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sequence: Option<Sequence>,
     /// Seconds per stage.
     pub seconds: StageSeconds,
+}
+
+/// How much cutting the boundary needs and how well the tiles cover the surface.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CuttingSummary {
+    /// Tiles cut to the boundary.
+    pub boundary_tiles: usize,
+    /// Tiles dropped because no part of them lies on the surface.
+    pub outside_tiles: usize,
+    /// Pieces too thin to cut or lay, left out: the gap they leave is filled with mortar or a
+    /// piece cut on site.
+    pub slivers: Vec<DroppedTile>,
+    /// Distinct cut shapes of boundary tiles.
+    pub boundary_shapes: usize,
+    /// Area of the surface the tiles were cut to.
+    pub surface_area: f64,
+    /// Area of the kept tile faces, each with half a joint around it: more than the surface
+    /// where tiles overlap.
+    pub tile_area: f64,
+    /// Share of the surface's area under a kept tile face or its half joint (see
+    /// [`coverage`]).
+    pub coverage: f64,
 }
 
 impl Report {
     /// Summarises a tiling built from `pattern` on `mesh`.
     pub fn new(mesh: &PolyMesh, pattern: &Pattern, tiles: &[Tile], spec: &TileSpec) -> Self {
         let count = |kind| tiles.iter().filter(|t| t.kind == kind).count();
+        let blanks = |faces: usize| tiles.iter().filter(|t| t.faces.len() == faces).count();
         Self {
             faces: mesh.face_count(),
-            full_tiles: count(TileKind::Full),
-            half_tiles: count(TileKind::Half),
+            full_tiles: blanks(2),
+            half_tiles: blanks(1),
+            boundary_tiles: count(TileKind::Boundary),
             non_quad_faces: pattern.non_quad.len(),
             excluded_faces: pattern.excluded.len(),
             continuous_joints: pattern.continuous_joints,
@@ -94,51 +105,33 @@ impl Report {
             gap: pattern.gap,
             status: pattern.status,
             tile: *spec,
-            joints: joint_summary(mesh, tiles, spec.joint),
+            joints: JointSummary::of(&gaps::contacts(mesh, tiles), spec.joint),
+            cutting: None,
+            sequence: None,
             seconds: StageSeconds { pattern: pattern.seconds, tiles: 0.0 },
         }
     }
-}
 
-/// Measures every tile-to-tile contact (see [`JointSummary`]).
-fn joint_summary(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> JointSummary {
-    let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
-    let mut tile_of = vec![None; mesh.face_count()];
-    for (t, tile) in tiles.iter().enumerate() {
-        tile.faces.iter().for_each(|&f| tile_of[f] = Some(t));
+    /// Adds what [`crate::tiles::finish`] found on `surface`, the surface the tiles were cut
+    /// to.
+    pub fn add_finish(&mut self, tiles: &[Tile], finished: &Finished, surface: &PolyMesh) {
+        let joint = self.tile.joint;
+        let tile_area: f64 = tiles
+            .iter()
+            .map(|t| {
+                let nominal = t.size[0] * t.size[1];
+                t.kept_area() * (t.size[0] + joint) * (t.size[1] + joint) / nominal
+            })
+            .sum();
+        self.cutting = Some(CuttingSummary {
+            boundary_tiles: self.boundary_tiles,
+            outside_tiles: finished.dropped.iter().filter(|d| d.reason == DropReason::Outside).count(),
+            slivers: finished.dropped.iter().filter(|d| d.reason == DropReason::Sliver).cloned().collect(),
+            boundary_shapes: finished.cut_list.iter().filter(|g| g.kind == TileKind::Boundary).count(),
+            surface_area: surface.area(),
+            tile_area,
+            coverage: coverage::covered_share(surface, tiles, joint),
+        });
+        self.sequence = Some(finished.sequence.clone());
     }
-    let (mut contacts, mut overlaps) = (0, 0);
-    let (mut min_gap, mut max_gap, mut mid_sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
-    let mut deviations = Vec::new();
-    for edge in topology.edges() {
-        let [f, g] = edge.faces[..] else { continue };
-        let (Some(a), Some(b)) = (tile_of[f], tile_of[g]) else { continue };
-        if a == b {
-            continue;
-        }
-        let [p, q] = edge.vertices.map(|v| mesh.positions()[v]);
-        let samples = [p, nalgebra::center(&p, &q), q];
-        let gaps = samples.map(|s| outside_distance(&tiles[a], &s) + outside_distance(&tiles[b], &s));
-        contacts += 1;
-        mid_sum += gaps[1];
-        let lowest = gaps.iter().copied().fold(f64::INFINITY, f64::min);
-        overlaps += usize::from(lowest < 0.0);
-        min_gap = min_gap.min(lowest);
-        max_gap = gaps.iter().copied().fold(max_gap, f64::max);
-        deviations.extend(gaps.iter().map(|g| (g - joint).abs()));
-    }
-    deviations.sort_by(f64::total_cmp);
-    let p95_deviation = deviations.get((deviations.len() * 95).div_ceil(100).saturating_sub(1)).copied().unwrap_or(0.0);
-    if contacts == 0 {
-        (min_gap, max_gap) = (0.0, 0.0);
-    }
-    JointSummary { contacts, joint, min_gap, max_gap, mean_gap: mid_sum / contacts.max(1) as f64, p95_deviation, overlaps }
-}
-
-/// Signed distance from `point` to the side plane of `tile` that faces it (positive outside).
-/// The facing side is the one the point lies furthest beyond, relative to the half-extents.
-fn outside_distance(tile: &Tile, point: &nalgebra::Point3<f64>) -> f64 {
-    let local = tile.frame.to_local(point);
-    let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
-    if local.x.abs() / hx >= local.y.abs() / hy { local.x.abs() - hx } else { local.y.abs() - hy }
 }

@@ -1,13 +1,18 @@
-//! `pattern.svg`: the tiling seen along the shell's mean normal (a top view for a vault).
-//! Full tiles, half tiles and faces without a tile get different fills; joints between tiles
-//! are drawn, joints inside a tile are not; continuous joints are red, irregular vertices are
-//! blue dots.
+//! Pictures of a tiling seen along the shell's mean normal (a top view for a vault).
+//!
+//! `pattern.svg`: full, half and boundary tiles and faces without a tile get different fills;
+//! joints between tiles are drawn, joints inside a tile are not; the kept outline of each
+//! boundary tile is dashed; continuous joints are red, irregular vertices are blue dots.
+//!
+//! `gaps.svg`: every tile-to-tile contact coloured by its gap against the nominal joint
+//! (paper Figure 8), blue where tiles press together or overlap, red where the joint opens.
 
 use std::fmt::Write as _;
 
 use nalgebra::{Point3, Vector3};
 
 use crate::mesh::{PolyMesh, Topology};
+use super::gaps::Contact;
 use crate::pattern::DualGraph;
 use crate::tiles::{Tile, TileKind};
 
@@ -15,6 +20,8 @@ const WIDTH: f64 = 1000.0;
 const MARGIN: f64 = 20.0;
 const FULL_FILL: &str = "#e8c9a0";
 const HALF_FILL: &str = "#f08a5d";
+const BOUNDARY_FILL: &str = "#a6cee3";
+const CUT_COLOUR: &str = "#1f4e79";
 const NO_TILE_FILL: &str = "#c8c8c8";
 const JOINT_COLOUR: &str = "#5a4632";
 const CONTINUOUS_COLOUR: &str = "#d7191c";
@@ -24,21 +31,8 @@ const SINGULAR_COLOUR: &str = "#2c7bb6";
 pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let view = View::fit(mesh);
-    let mut tile_of = vec![None; mesh.face_count()];
-    for (t, tile) in tiles.iter().enumerate() {
-        tile.faces.iter().for_each(|&f| tile_of[f] = Some(t));
-    }
-
-    let mut body = String::new();
-    for (f, face) in mesh.faces().iter().enumerate() {
-        let fill = match tile_of[f].map(|t| tiles[t].kind) {
-            Some(TileKind::Full) => FULL_FILL,
-            Some(TileKind::Half) => HALF_FILL,
-            None => NO_TILE_FILL,
-        };
-        let points: Vec<String> = face.iter().map(|&v| view.xy(&mesh.positions()[v])).collect();
-        let _ = writeln!(body, r#"<polygon points="{}" fill="{fill}" stroke="{fill}" stroke-width="0.5"/>"#, points.join(" "));
-    }
+    let tile_of = tile_of_face(mesh, tiles);
+    let mut body = faces_by_kind(mesh, &view, tiles, &tile_of);
     for edge in topology.edges() {
         let inside_one_tile = match edge.faces[..] {
             [f, g] => tile_of[f].is_some() && tile_of[f] == tile_of[g],
@@ -46,6 +40,12 @@ pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
         };
         if !inside_one_tile {
             body.push_str(&view.line(mesh, edge.vertices, JOINT_COLOUR, 1.0));
+        }
+    }
+    for tile in tiles {
+        for outline in tile.cut.iter().flat_map(|c| &c.loops) {
+            let points: Vec<String> = outline.iter().map(|p| view.xy(&tile.to_world(Vector3::new(p[0], p[1], 0.0)))).collect();
+            let _ = writeln!(body, r#"<polygon points="{}" fill="none" stroke="{CUT_COLOUR}" stroke-width="1" stroke-dasharray="3,2"/>"#, points.join(" "));
         }
     }
     for [a, b] in continuous_joints(mesh, &topology, tiles) {
@@ -61,29 +61,101 @@ pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
             let _ = writeln!(body, r#"<circle cx="{x:.2}" cy="{y:.2}" r="4" fill="{SINGULAR_COLOUR}"/>"#);
         }
     }
-    let height = view.height + 2.0 * MARGIN + 30.0;
+    let legend = [
+        Legend::Swatch(FULL_FILL.into(), "full tile".into()),
+        Legend::Swatch(HALF_FILL.into(), "half tile (cut)".into()),
+        Legend::Swatch(BOUNDARY_FILL.into(), "boundary tile (cut)".into()),
+        Legend::Line(CONTINUOUS_COLOUR.into(), "continuous joint".into()),
+        Legend::Dot(SINGULAR_COLOUR.into(), "irregular vertex".into()),
+    ];
+    document(&view, &body, &legend)
+}
+
+/// Draws every contact of `contacts` coloured by its gap against the nominal `joint`; the
+/// colour saturates at the 95th percentile of the deviation so one outlier does not wash out
+/// the picture.
+pub fn gaps_svg(mesh: &PolyMesh, tiles: &[Tile], contacts: &[Contact], joint: f64) -> String {
+    let view = View::fit(mesh);
+    let tile_of = tile_of_face(mesh, tiles);
+    let mut body = faces_by_kind(mesh, &view, tiles, &tile_of).replace("fill-opacity=\"1\"", "fill-opacity=\"0.35\"");
+    let mut deviations: Vec<f64> = contacts.iter().flat_map(|c| c.gaps.map(|g| (g - joint).abs())).collect();
+    deviations.sort_by(f64::total_cmp);
+    let p95 = deviations.get((deviations.len() * 95).div_ceil(100).saturating_sub(1)).copied().unwrap_or(0.0);
+    let scale = p95.max(joint * 0.1).max(1e-12);
+    for contact in contacts {
+        let worst = contact.gaps.iter().copied().max_by(|a, b| (a - joint).abs().total_cmp(&(b - joint).abs())).unwrap_or(joint);
+        body.push_str(&view.line(mesh, contact.edge, &gap_colour((worst - joint) / scale), 2.5));
+    }
+    let legend = [
+        Legend::Line(gap_colour(-1.0), format!("gap {:.1} mm or less", (joint - scale) * 1000.0)),
+        Legend::Line(gap_colour(0.0), format!("nominal joint {:.1} mm", joint * 1000.0)),
+        Legend::Line(gap_colour(1.0), format!("gap {:.1} mm or more", (joint + scale) * 1000.0)),
+    ];
+    document(&view, &body, &legend)
+}
+
+/// Blue (tighter than the joint) through grey (nominal) to red (wider), for `s` in `[-1, 1]`.
+fn gap_colour(s: f64) -> String {
+    let s = s.clamp(-1.0, 1.0);
+    let (grey, blue, red) = ([160.0, 160.0, 160.0], [33.0, 102.0, 172.0], [202.0, 0.0, 32.0]);
+    let target = if s < 0.0 { blue } else { red };
+    let c: Vec<u8> = (0..3).map(|k| (grey[k] + (target[k] - grey[k]) * s.abs()).round() as u8).collect();
+    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
+}
+
+/// Which tile covers each face.
+fn tile_of_face(mesh: &PolyMesh, tiles: &[Tile]) -> Vec<Option<usize>> {
+    let mut tile_of = vec![None; mesh.face_count()];
+    for (t, tile) in tiles.iter().enumerate() {
+        tile.faces.iter().for_each(|&f| tile_of[f] = Some(t));
+    }
+    tile_of
+}
+
+/// Every face filled by the kind of tile on it.
+fn faces_by_kind(mesh: &PolyMesh, view: &View, tiles: &[Tile], tile_of: &[Option<usize>]) -> String {
+    let mut body = String::new();
+    for (f, face) in mesh.faces().iter().enumerate() {
+        let fill = match tile_of[f].map(|t| tiles[t].kind) {
+            Some(TileKind::Full) => FULL_FILL,
+            Some(TileKind::Half) => HALF_FILL,
+            Some(TileKind::Boundary) => BOUNDARY_FILL,
+            None => NO_TILE_FILL,
+        };
+        let points: Vec<String> = face.iter().map(|&v| view.xy(&mesh.positions()[v])).collect();
+        let _ = writeln!(body, r#"<polygon points="{}" fill="{fill}" fill-opacity="1" stroke="{fill}" stroke-width="0.5"/>"#, points.join(" "));
+    }
+    body
+}
+
+/// One entry of a picture's legend.
+enum Legend {
+    Swatch(String, String),
+    Line(String, String),
+    Dot(String, String),
+}
+
+/// The page around a drawing, with a one-line legend below it.
+fn document(view: &View, body: &str, legend: &[Legend]) -> String {
     let legend_y = view.height + 2.0 * MARGIN + 15.0;
+    let mut x = 20.0;
+    let mut items = String::new();
+    for entry in legend {
+        let (colour, text) = match entry {
+            Legend::Swatch(c, t) | Legend::Line(c, t) | Legend::Dot(c, t) => (c, t),
+        };
+        let _ = match entry {
+            Legend::Swatch(..) => write!(items, r#"<rect x="{x:.0}" y="{:.0}" width="14" height="14" fill="{colour}"/>"#, legend_y - 12.0),
+            Legend::Line(..) => write!(items, r#"<line x1="{x:.0}" y1="{y:.0}" x2="{:.0}" y2="{y:.0}" stroke="{colour}" stroke-width="3"/>"#, x + 14.0, y = legend_y - 5.0),
+            Legend::Dot(..) => write!(items, r#"<circle cx="{:.0}" cy="{:.0}" r="4" fill="{colour}"/>"#, x + 7.0, legend_y - 5.0),
+        };
+        let _ = write!(items, r#"<text x="{:.0}" y="{legend_y:.0}">{text}</text>"#, x + 20.0);
+        x += 30.0 + 7.5 * text.len() as f64;
+    }
+    let height = view.height + 2.0 * MARGIN + 30.0;
     format!(
-        concat!(
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h:.0}" viewBox="0 0 {w} {h:.0}">"#,
-            "\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n{body}",
-            r#"<g font-family="sans-serif" font-size="14">"#,
-            r#"<rect x="20" y="{ly0:.0}" width="14" height="14" fill="{full}"/><text x="40" y="{ly:.0}">full tile</text>"#,
-            r#"<rect x="130" y="{ly0:.0}" width="14" height="14" fill="{half}"/><text x="150" y="{ly:.0}">half tile (cut)</text>"#,
-            r#"<line x1="280" y1="{lym:.0}" x2="300" y2="{lym:.0}" stroke="{cont}" stroke-width="3"/><text x="306" y="{ly:.0}">continuous joint</text>"#,
-            r#"<circle cx="447" cy="{lym:.0}" r="4" fill="{sing}"/><text x="456" y="{ly:.0}">irregular vertex</text>"#,
-            "</g>\n</svg>\n"
-        ),
-        w = WIDTH,
-        h = height,
-        body = body,
-        ly0 = legend_y - 12.0,
-        ly = legend_y,
-        lym = legend_y - 5.0,
-        full = FULL_FILL,
-        half = HALF_FILL,
-        cont = CONTINUOUS_COLOUR,
-        sing = SINGULAR_COLOUR,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{height:.0}\" viewBox=\"0 0 {WIDTH} {height:.0}\">\n\
+         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n{body}<g font-family=\"sans-serif\" font-size=\"14\">{items}</g>\n</svg>\n"
     )
 }
 

@@ -10,10 +10,20 @@
 //! extends along `+z`, the side the faces' normals point to (counter-clockwise vertex order
 //! seen from there). For a shell modelled with normals pointing up and out, tiles sit on top
 //! of the surface, as when laid on formwork; flip the mesh to lay them underneath.
+//!
+//! Beyond the paper, [`finish`] makes the tiles buildable: it cuts tiles that cross the
+//! input surface's boundary ([`clip`]), groups the cut shapes into a cut list ([`cutlist`])
+//! and numbers the tiles in laying order ([`sequence`]).
 
+pub mod clip;
+pub mod cutlist;
 mod frame;
+pub mod sequence;
 
+pub use clip::{Cut, SurfaceBoundary};
+pub use cutlist::CutGroup;
 pub use frame::Frame;
+pub use sequence::{Sequence, SequenceOptions};
 
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
@@ -67,6 +77,8 @@ pub enum TileKind {
     Full,
     /// Half a tile over one unmatched quad: needs a cut.
     Half,
+    /// A full or half tile cut to the surface's boundary (its [`Tile::cut`] says how).
+    Boundary,
 }
 
 /// One placed tile.
@@ -83,13 +95,126 @@ pub struct Tile {
     /// Box corners: bottom face (`z = 0`) counter-clockwise from `(-x, -y)`, then the top face
     /// (`z = thickness`) in the same order.
     pub corners: [[f64; 3]; 8],
+    /// For a boundary tile, the part kept after cutting; `None` for an uncut tile.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cut: Option<Cut>,
+    /// Its cut-list label (`F`, `H`, `B1`, ...); empty until [`finish`] runs.
+    pub label: String,
+    /// Its place in the laying order, from 0; set by [`finish`].
+    pub step: usize,
+}
+
+/// How tiles are made buildable: cutting, grouping and ordering.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FinishOptions {
+    /// Cutting tolerance in model units: tiles the boundary enters by no more than this stay
+    /// whole, and cut shapes this close count as the same shape.
+    pub tolerance: f64,
+    /// Pieces narrower than this ([`Cut::kept_width`]) are slivers: reported, not emitted.
+    pub min_kept_width: f64,
+    /// Where the vault stands, for the laying order.
+    pub sequence: SequenceOptions,
+}
+
+impl FinishOptions {
+    /// Defaults for a tile: tolerance 1 % of its width, slivers below a fifth of its width,
+    /// `+z` up, supports within one tile width of the lowest boundary point.
+    pub fn for_spec(spec: &TileSpec) -> Self {
+        Self {
+            tolerance: spec.width / 100.0,
+            min_kept_width: spec.width / 5.0,
+            sequence: SequenceOptions { up: Vector3::z(), support_band: spec.width },
+        }
+    }
+
+    /// Checks that the tolerances are finite and not negative and `up` is a direction.
+    ///
+    /// # Errors
+    /// [`TileError::InvalidSpec`] naming the first bad value.
+    pub fn validate(&self) -> Result<(), TileError> {
+        let values = [("tolerance", self.tolerance), ("min_kept_width", self.min_kept_width), ("support_band", self.sequence.support_band)];
+        for (name, value) in values {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(TileError::InvalidSpec { name, value });
+            }
+        }
+        let up = self.sequence.up;
+        if !(up.iter().all(|c| c.is_finite()) && up.norm() > 0.0) {
+            return Err(TileError::InvalidSpec { name: "up", value: up.norm() });
+        }
+        Ok(())
+    }
+}
+
+/// Why a tile was left out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DropReason {
+    /// No part of it lies on the surface.
+    Outside,
+    /// What lies on the surface is narrower than the minimum kept width.
+    Sliver,
+}
+
+/// A tile that [`finish`] did not emit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DroppedTile {
+    /// Faces it would have covered.
+    pub faces: Vec<usize>,
+    /// Why it was dropped.
+    pub reason: DropReason,
+    /// Area that lay on the surface.
+    pub kept_area: f64,
+    /// Width of that area ([`Cut::kept_width`]).
+    pub kept_width: f64,
+}
+
+/// What [`finish`] found besides the tiles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Finished {
+    /// Tiles left out: off the surface, or slivers.
+    pub dropped: Vec<DroppedTile>,
+    /// Cut shapes with counts.
+    pub cut_list: Vec<CutGroup>,
+    /// Summary of the laying order.
+    pub sequence: Sequence,
+}
+
+/// Makes tiles buildable: cuts them to the boundary of `surface` (the input surface; the quad
+/// mesh itself when `None`), drops tiles off the surface and slivers, groups the cut shapes
+/// into a cut list and labels each tile, and numbers the tiles in laying order.
+pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, options: &FinishOptions) -> (Vec<Tile>, Finished) {
+    let reference = surface.unwrap_or(quads);
+    let cell = tiles.first().map_or(1.0, |t| t.size[0].max(t.size[1]));
+    let boundary = SurfaceBoundary::new(reference, cell);
+    let mut kept = Vec::with_capacity(tiles.len());
+    let mut dropped = Vec::new();
+    for mut tile in tiles {
+        let drop = |tile: &Tile, reason, kept_area, kept_width| DroppedTile { faces: tile.faces.clone(), reason, kept_area, kept_width };
+        match boundary.clip(&tile, options.tolerance) {
+            clip::Clipped::Whole => kept.push(tile),
+            clip::Clipped::Outside => dropped.push(drop(&tile, DropReason::Outside, 0.0, 0.0)),
+            clip::Clipped::Cut(cut) => {
+                if cut.kept_width() < options.min_kept_width {
+                    dropped.push(drop(&tile, DropReason::Sliver, cut.area(), cut.kept_width()));
+                } else {
+                    tile.kind = TileKind::Boundary;
+                    tile.cut = Some(cut);
+                    kept.push(tile);
+                }
+            }
+        }
+    }
+    let cut_list = cutlist::cut_list(&mut kept, options.tolerance);
+    let sequence = sequence::laying_order(quads, &mut kept, &options.sequence);
+    (kept, Finished { dropped, cut_list, sequence })
 }
 
 /// Why tiles could not be built.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum TileError {
-    /// A tile dimension is zero, negative or not finite.
-    #[error("tile {name} {value} must be a finite number > 0 (joint >= 0)")]
+    /// A tile dimension or finishing option is out of range.
+    #[error("tile {name} {value} must be a finite number > 0 (joint, tolerances >= 0; up a non-zero direction)")]
     InvalidSpec {
         /// Which dimension.
         name: &'static str,
@@ -194,7 +319,12 @@ impl Tile {
             corners[k] = corner(*sx, *sy, 0.0);
             corners[k + 4] = corner(*sx, *sy, t);
         }
-        Self { kind, faces, frame, size, corners }
+        Self { kind, faces, frame, size, corners, cut: None, label: String::new(), step: 0 }
+    }
+
+    /// Area of the tile's face that is kept: all of it unless it was cut.
+    pub fn kept_area(&self) -> f64 {
+        self.cut.as_ref().map_or(self.size[0] * self.size[1], Cut::area)
     }
 
     /// Position of a point given in the tile's frame.
@@ -213,6 +343,7 @@ pub fn to_obj(tiles: &[Tile]) -> String {
         let kind = match tile.kind {
             TileKind::Full => "full",
             TileKind::Half => "half",
+            TileKind::Boundary => "boundary",
         };
         let _ = writeln!(out, "o {kind}_{i}");
         for c in &tile.corners {

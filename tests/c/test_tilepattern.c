@@ -193,6 +193,73 @@ static void test_pattern_and_tiles(void) {
   free(json);
   tp_tiles_free(tiles);
 
+  /* Boundary tiles: cut to a surface that ends at x = 6.5 (the quads reach x = 10). */
+  {
+    double *sv;
+    uint32_t *sidx, *ssz;
+    size_t snv, snf;
+    grid(13, 20, &sv, &snv, &sidx, &ssz, &snf);
+    for (size_t k = 0; k < snv; k++) {
+      sv[3 * k] *= 0.5;
+      sv[3 * k + 1] *= 0.5;
+    }
+    TpMesh *surface = NULL;
+    CHECK(tp_mesh_new(sv, snv, sidx, 4 * snf, ssz, snf, &surface) == TP_OK);
+    free(sv);
+    free(sidx);
+    free(ssz);
+    TpTiles *cut = NULL;
+    CHECK(tp_tiles_build_on_surface(mesh, pattern, surface, &tile, &cut) == TP_OK);
+    size_t n = 0, loops = 0, points = 0;
+    CHECK(tp_tiles_count(cut, &n) == TP_OK && n > 20 && n < 51);
+    int32_t *k = (int32_t *)malloc(n * sizeof(int32_t));
+    uint32_t *steps = (uint32_t *)malloc(n * sizeof(uint32_t)), *loop_counts = (uint32_t *)malloc(n * sizeof(uint32_t));
+    double *kept = (double *)malloc(n * sizeof(double));
+    CHECK(tp_tiles_copy_kinds(cut, k, n) == TP_OK);
+    CHECK(tp_tiles_copy_steps(cut, steps, n) == TP_OK);
+    CHECK(tp_tiles_copy_kept_fractions(cut, kept, n) == TP_OK);
+    CHECK(tp_tiles_copy_loop_counts(cut, loop_counts, n) == TP_OK);
+    CHECK(tp_tiles_outline_counts(cut, &loops, &points) == TP_OK && loops > 0 && points >= 3 * loops);
+    size_t boundary = 0, loop_sum = 0, step_sum = 0;
+    int fractions_ok = 1;
+    for (size_t t = 0; t < n; t++) {
+      boundary += k[t] == TP_TILE_BOUNDARY;
+      loop_sum += loop_counts[t];
+      step_sum += steps[t];
+      fractions_ok &= kept[t] > 0.0 && kept[t] <= 1.0 && (k[t] == TP_TILE_BOUNDARY) == (kept[t] < 1.0);
+    }
+    CHECK(boundary > 0 && loop_sum == loops && fractions_ok);
+    CHECK(step_sum == n * (n - 1) / 2);
+    uint32_t *sizes_of_loops = (uint32_t *)malloc(loops * sizeof(uint32_t));
+    double *xy = (double *)malloc(2 * points * sizeof(double));
+    CHECK(tp_tiles_copy_loop_sizes(cut, sizes_of_loops, loops) == TP_OK);
+    CHECK(tp_tiles_copy_loop_points(cut, xy, 2 * points) == TP_OK);
+    CHECK(tp_tiles_copy_loop_points(cut, xy, 2 * points - 1) == TP_BUFFER_TOO_SMALL);
+    size_t point_sum = 0;
+    for (size_t l = 0; l < loops; l++) point_sum += sizes_of_loops[l];
+    CHECK(point_sum == points);
+    size_t text = 0;
+    CHECK(tp_tiles_labels(cut, NULL, 0, &text) == TP_BUFFER_TOO_SMALL && text >= 2 * n);
+    char *labels = (char *)malloc(text + 1);
+    CHECK(tp_tiles_labels(cut, labels, text + 1, NULL) == TP_OK && strstr(labels, "B1\n") != NULL);
+    CHECK(tp_tiles_cutlist_json(cut, NULL, 0, &text) == TP_BUFFER_TOO_SMALL);
+    char *cutlist = (char *)malloc(text + 1);
+    CHECK(tp_tiles_cutlist_json(cut, cutlist, text + 1, NULL) == TP_OK && strstr(cutlist, "\"label\": \"B1\"") != NULL);
+    free(k);
+    free(steps);
+    free(loop_counts);
+    free(kept);
+    free(sizes_of_loops);
+    free(xy);
+    free(labels);
+    free(cutlist);
+    tp_tiles_free(cut);
+    CHECK(tp_tiles_build_on_surface(mesh, pattern, NULL, &tile, &cut) == TP_OK);
+    CHECK(tp_tiles_count(cut, &n) == TP_OK && n == 51);
+    tp_tiles_free(cut);
+    tp_mesh_free(surface);
+  }
+
   /* Tile errors. */
   TpTiles *none = NULL;
   tile.length = 0.0;

@@ -1,0 +1,491 @@
+//! Boundary tiles: a tile that crosses the input surface's boundary (its outer edge or an
+//! opening) is cut to it.
+//!
+//! The paper ends with "irregular tiles at the boundary" (Figures 7-8) but does not say which
+//! part of each tile to keep. Here the cut is made on the tile's own face: the boundary edges
+//! of the surface near the tile are projected into the tile's frame, and the tile's rectangle
+//! `[-L/2, L/2] x [-W/2, W/2]` is clipped to the side of them where the surface is. The kept
+//! part is a set of loops in the tile's frame (outer loops counter-clockwise, holes
+//! clockwise), in model units: the outline a mason marks on the tile before cutting it.
+
+use std::collections::HashMap;
+
+use nalgebra::{Point3, Vector3};
+
+use super::Tile;
+use crate::mesh::{PolyMesh, Topology};
+
+/// A point in a tile's frame (`x` along its length, `y` across it).
+pub type Point2 = [f64; 2];
+
+/// The part of a tile kept after cutting.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Cut {
+    /// Loops of the kept region in the tile's frame: outer loops counter-clockwise, holes
+    /// clockwise.
+    pub loops: Vec<Vec<Point2>>,
+    /// Kept area over the tile's face area.
+    pub kept_fraction: f64,
+}
+
+impl Cut {
+    /// Kept area in model units squared (holes subtract).
+    pub fn area(&self) -> f64 {
+        self.loops.iter().map(|l| signed_area(l)).sum()
+    }
+
+    /// Length of all loops.
+    pub fn perimeter(&self) -> f64 {
+        self.loops.iter().map(|l| (0..l.len()).map(|i| dist(l[i], l[(i + 1) % l.len()])).sum::<f64>()).sum()
+    }
+
+    /// A width of the kept region, `2 area / perimeter`: the width of a long strip, half the
+    /// side of a square. Below a minimum the piece is a sliver nobody can cut or lay.
+    pub fn kept_width(&self) -> f64 {
+        let perimeter = self.perimeter();
+        if perimeter > 0.0 { 2.0 * self.area() / perimeter } else { 0.0 }
+    }
+}
+
+/// What clipping did to one tile.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Clipped {
+    /// The tile lies on the surface (it loses less than the tolerance).
+    Whole,
+    /// The tile crosses the boundary and keeps this part.
+    Cut(Cut),
+    /// Nothing of the tile lies on the surface.
+    Outside,
+}
+
+/// One boundary edge of the reference surface, directed so that the surface lies on its left
+/// when seen along the normal of its face.
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    a: Point3<f64>,
+    b: Point3<f64>,
+    /// Unit normal of the face the edge belongs to.
+    normal: Vector3<f64>,
+    /// Vertex indices of its start and end.
+    from: usize,
+    to: usize,
+}
+
+/// The boundary of a reference surface, indexed for queries near a point, and its faces, to
+/// tell a tile far from the boundary on the surface from one far from the surface.
+#[derive(Debug, Clone)]
+pub struct SurfaceBoundary {
+    segments: Vec<Segment>,
+    cell: f64,
+    grid: HashMap<[i64; 3], Vec<usize>>,
+    /// Each face as its corners and unit normal.
+    faces: Vec<(Vec<Point3<f64>>, Vector3<f64>)>,
+    face_grid: HashMap<[i64; 3], Vec<usize>>,
+}
+
+impl SurfaceBoundary {
+    /// Collects the boundary edges of `surface` (outer edge and openings) in a grid of cells of
+    /// side `cell` (about a tile's size).
+    pub fn new(surface: &PolyMesh, cell: f64) -> Self {
+        let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
+        let mut segments = Vec::new();
+        for (f, face) in surface.faces().iter().enumerate() {
+            let normal = surface.face_area_vector(f).try_normalize(0.0).unwrap_or_else(Vector3::z);
+            for (i, &e) in topology.face_edges(f).iter().enumerate() {
+                if topology.edges()[e].is_boundary() {
+                    let (from, to) = (face[i], face[(i + 1) % face.len()]);
+                    let [a, b] = [from, to].map(|k| surface.positions()[k]);
+                    segments.push(Segment { a, b, normal, from, to });
+                }
+            }
+        }
+        let cell = if cell.is_finite() && cell > 0.0 { cell } else { 1.0 };
+        let grid = bucket(segments.iter().map(|s| [s.a, s.b]), cell);
+        let faces: Vec<(Vec<Point3<f64>>, Vector3<f64>)> = (0..surface.face_count())
+            .map(|f| (surface.face_points(f).collect(), surface.face_area_vector(f).try_normalize(0.0).unwrap_or_else(Vector3::z)))
+            .collect();
+        let face_grid = bucket(faces.iter().map(|(corners, _)| corners.clone()), cell);
+        Self { segments, cell, grid, faces, face_grid }
+    }
+
+    /// Items of `grid` whose cells meet the box of half-side `radius` around `p`.
+    fn candidates(&self, grid: &HashMap<[i64; 3], Vec<usize>>, p: &Point3<f64>, radius: f64) -> Vec<usize> {
+        let r = Vector3::repeat(radius);
+        let (lo, hi) = (cell_of(&(p - r), self.cell), cell_of(&(p + r), self.cell));
+        let mut found = Vec::new();
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    found.extend(grid.get(&[x, y, z]).into_iter().flatten().copied());
+                }
+            }
+        }
+        found.sort_unstable();
+        found.dedup();
+        found
+    }
+
+    /// Boundary edges within `radius` of `p`, in index order.
+    fn near(&self, p: &Point3<f64>, radius: f64) -> Vec<usize> {
+        let mut found = self.candidates(&self.grid, p, radius);
+        found.retain(|&s| segment_distance(p, &self.segments[s].a, &self.segments[s].b) <= radius);
+        found
+    }
+
+    /// Whether some face of the surface passes within `radius` of `p`.
+    fn touches(&self, p: &Point3<f64>, radius: f64) -> bool {
+        self.candidates(&self.face_grid, p, radius).into_iter().any(|f| {
+            let (corners, normal) = &self.faces[f];
+            let n = corners.len();
+            // Over the face (inside every edge's side plane): the distance along the normal;
+            // beside it: the distance to its nearest edge.
+            let over = (0..n).all(|i| (corners[(i + 1) % n] - corners[i]).cross(&(p - corners[i])).dot(normal) >= 0.0);
+            let distance = if over {
+                (p - corners[0]).dot(normal).abs()
+            } else {
+                (0..n).map(|i| segment_distance(p, &corners[i], &corners[(i + 1) % n])).fold(f64::INFINITY, f64::min)
+            };
+            distance <= radius
+        })
+    }
+
+    /// Cuts `tile` to the surface. A tile the boundary enters by no more than `tolerance`
+    /// from its edges stays whole.
+    pub fn clip(&self, tile: &Tile, tolerance: f64) -> Clipped {
+        let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
+        let rect = Rect { hx, hy };
+        // Far enough that a boundary chain leaving this ball cannot come back over the tile,
+        // close enough not to pick up another part of the shell above or below it.
+        let reach = hx.hypot(hy) + hy;
+        let mut near = self.near(&tile.frame.origin, reach);
+        near.retain(|&s| [self.segments[s].a, self.segments[s].b].iter().any(|p| tile.frame.to_local(p).z.abs() <= hx));
+        if near.is_empty() {
+            return if self.touches(&tile.frame.origin, hy) { Clipped::Whole } else { Clipped::Outside };
+        }
+        let chains = self.chains(&near, tile);
+        let mut loops: Vec<Vec<Point2>> = Vec::new();
+        let mut pieces: Vec<Vec<Point2>> = Vec::new();
+        for chain in &chains {
+            if chain.closed {
+                // Start the ring outside the rectangle so that no piece wraps around its start.
+                match chain.points.iter().position(|p| !rect.contains(*p)) {
+                    None => loops.push(chain.points.clone()),
+                    Some(outside) => {
+                        let mut ring = chain.points[outside..].to_vec();
+                        ring.extend_from_slice(&chain.points[..=outside]);
+                        pieces.extend(rect.clip_polyline(&ring));
+                    }
+                }
+            } else {
+                pieces.extend(rect.clip_polyline(&chain.points));
+            }
+        }
+        pieces.retain(|p| p.len() >= 2 && rect.on_border(p[0]) && rect.on_border(p[p.len() - 1]));
+        let shallow = loops.is_empty() && pieces.iter().all(|p| rect.depth(p) <= tolerance);
+        if pieces.is_empty() {
+            if inside(&chains, rect.corners()[0]) {
+                loops.insert(0, rect.corners().to_vec());
+            }
+        } else {
+            loops.splice(0..0, rect.join(pieces));
+        }
+        let full = 4.0 * hx * hy;
+        let area: f64 = loops.iter().map(|l| signed_area(l)).sum();
+        if area <= full * 1e-9 {
+            Clipped::Outside
+        } else if shallow && area >= full / 2.0 {
+            // The boundary only grazes the tile, and the surface is on the tile's side of it.
+            Clipped::Whole
+        } else {
+            Clipped::Cut(Cut { loops, kept_fraction: (area / full).min(1.0) })
+        }
+    }
+
+    /// The near boundary edges as chains of points in the tile's frame, oriented so that
+    /// the surface lies on their left seen from the tile's `+z`.
+    fn chains(&self, near: &[usize], tile: &Tile) -> Vec<Chain> {
+        let local = |p: &Point3<f64>| {
+            let v = tile.frame.to_local(p);
+            [v.x, v.y]
+        };
+        // Near edges leaving each vertex, and vertices some near edge enters. A vertex where
+        // two openings touch has two of each; any pairing of them traces the same region.
+        let mut leaving: HashMap<usize, Vec<usize>> = HashMap::new();
+        let mut entered: HashMap<usize, usize> = HashMap::new();
+        for (i, &s) in near.iter().enumerate() {
+            leaving.entry(self.segments[s].from).or_default().push(i);
+            *entered.entry(self.segments[s].to).or_default() += 1;
+        }
+        // The surface's orientation against the tile's: the boundary keeps the surface on
+        // its left seen along the surface's own normals.
+        let facing: f64 = near.iter().map(|&s| self.segments[s].normal.dot(&tile.frame.z) * (self.segments[s].b - self.segments[s].a).norm()).sum();
+        let mut seen = vec![false; near.len()];
+        let mut chains = Vec::new();
+        // Open chains first (from where no near edge arrives), then the closed ones.
+        let starts = (0..near.len()).filter(|&i| !entered.contains_key(&self.segments[near[i]].from)).chain(0..near.len());
+        for first in starts {
+            if seen[first] {
+                continue;
+            }
+            let mut points = vec![local(&self.segments[near[first]].a)];
+            let mut at = first;
+            let closed = loop {
+                seen[at] = true;
+                let seg = &self.segments[near[at]];
+                points.push(local(&seg.b));
+                match leaving.get(&seg.to).and_then(|out| out.iter().copied().find(|&n| !seen[n])) {
+                    Some(n) => at = n,
+                    None => break seg.to == self.segments[near[first]].from,
+                }
+            };
+            if closed {
+                points.pop();
+            }
+            if facing < 0.0 {
+                points.reverse();
+            }
+            chains.push(Chain { points, closed });
+        }
+        chains
+    }
+}
+
+/// Boundary edges joined end to end, in a tile's frame.
+struct Chain {
+    points: Vec<Point2>,
+    closed: bool,
+}
+
+/// Whether `q` lies on the surface's side of the nearest chain (the side test of the closest
+/// feature: an edge's left side, or at a vertex the wedge between its two edges).
+fn inside(chains: &[Chain], q: Point2) -> bool {
+    let mut best = (f64::INFINITY, false);
+    for chain in chains {
+        let n = chain.points.len();
+        let edges = if chain.closed { n } else { n - 1 };
+        for i in 0..edges {
+            let (a, b) = (chain.points[i], chain.points[(i + 1) % n]);
+            let (d, at_end) = point_segment(q, a, b);
+            if d >= best.0 {
+                continue;
+            }
+            let left = cross(sub(b, a), sub(q, a)) > 0.0;
+            let side = match at_end {
+                // At a shared vertex the wedge of the two edges decides: inside a convex
+                // corner means left of both edges, at a reflex corner left of either.
+                Some(end) => {
+                    let (prev, next) = if end == 0 {
+                        (if i > 0 || chain.closed { Some(chain.points[(i + n - 1) % n]) } else { None }, Some(b))
+                    } else {
+                        (Some(a), if i + 1 < edges || chain.closed { Some(chain.points[(i + 2) % n]) } else { None })
+                    };
+                    let v = if end == 0 { a } else { b };
+                    match (prev, next) {
+                        (Some(p), Some(nx)) => {
+                            let (d1, d2) = (sub(v, p), sub(nx, v));
+                            let (l1, l2) = (cross(d1, sub(q, v)) > 0.0, cross(d2, sub(q, v)) > 0.0);
+                            if cross(d1, d2) >= 0.0 { l1 && l2 } else { l1 || l2 }
+                        }
+                        _ => left,
+                    }
+                }
+                None => left,
+            };
+            best = (d, side);
+        }
+    }
+    best.1
+}
+
+/// A tile's face in its own frame: `[-hx, hx] x [-hy, hy]`.
+#[derive(Debug, Clone, Copy)]
+struct Rect {
+    hx: f64,
+    hy: f64,
+}
+
+impl Rect {
+    fn eps(&self) -> f64 {
+        1e-9 * (self.hx + self.hy)
+    }
+
+    fn corners(&self) -> [Point2; 4] {
+        let (x, y) = (self.hx, self.hy);
+        [[-x, -y], [x, -y], [x, y], [-x, y]]
+    }
+
+    fn contains(&self, p: Point2) -> bool {
+        p[0].abs() <= self.hx && p[1].abs() <= self.hy
+    }
+
+    fn on_border(&self, p: Point2) -> bool {
+        let e = self.eps();
+        self.contains([p[0].abs().min(self.hx), p[1].abs().min(self.hy)])
+            && ((p[0].abs() - self.hx).abs() <= e || (p[1].abs() - self.hy).abs() <= e)
+    }
+
+    /// Position of a border point along the border, counter-clockwise from `(-hx, -hy)`.
+    fn border_position(&self, p: Point2) -> f64 {
+        let (x, y, e) = (self.hx, self.hy, self.eps());
+        if (p[1] + y).abs() <= e && p[0] < x - e {
+            p[0] + x
+        } else if (p[0] - x).abs() <= e && p[1] < y - e {
+            2.0 * x + (p[1] + y)
+        } else if (p[1] - y).abs() <= e && p[0] > -x + e {
+            2.0 * x + 2.0 * y + (x - p[0])
+        } else {
+            4.0 * x + 2.0 * y + (y - p[1])
+        }
+    }
+
+    /// How far a polyline inside the rectangle reaches in from the border (sampled: the
+    /// distance to the border is not linear along a segment that cuts a corner).
+    fn depth(&self, points: &[Point2]) -> f64 {
+        const SAMPLES: usize = 8;
+        let inward = |p: Point2| (self.hx - p[0].abs()).min(self.hy - p[1].abs());
+        points
+            .windows(2)
+            .flat_map(|w| (0..=SAMPLES).map(move |k| {
+                let t = k as f64 / SAMPLES as f64;
+                [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])]
+            }))
+            .map(inward)
+            .fold(0.0, f64::max)
+    }
+
+    fn border_length(&self) -> f64 {
+        4.0 * (self.hx + self.hy)
+    }
+
+    /// The parts of a polyline inside the rectangle (Liang-Barsky on each segment).
+    fn clip_polyline(&self, points: &[Point2]) -> Vec<Vec<Point2>> {
+        let mut pieces: Vec<Vec<Point2>> = Vec::new();
+        let mut open = false;
+        for w in points.windows(2) {
+            let Some((t0, t1)) = self.clip_segment(w[0], w[1]) else {
+                open = false;
+                continue;
+            };
+            let at = |t: f64| [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])];
+            if !(open && t0 == 0.0) {
+                pieces.push(vec![at(t0)]);
+            }
+            let piece = pieces.last_mut().expect("pushed above");
+            piece.push(at(t1));
+            open = t1 == 1.0;
+        }
+        pieces
+    }
+
+    fn clip_segment(&self, a: Point2, b: Point2) -> Option<(f64, f64)> {
+        let d = sub(b, a);
+        let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+        for (p, q) in [(-d[0], a[0] + self.hx), (d[0], self.hx - a[0]), (-d[1], a[1] + self.hy), (d[1], self.hy - a[1])] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else if p < 0.0 {
+                t0 = t0.max(q / p);
+            } else {
+                t1 = t1.min(q / p);
+            }
+        }
+        (t0 < t1).then_some((t0, t1))
+    }
+
+    /// Closes the pieces of boundary that cross the rectangle into loops: after a piece
+    /// leaves the rectangle, the kept region follows the border counter-clockwise to where the
+    /// next piece enters.
+    fn join(&self, pieces: Vec<Vec<Point2>>) -> Vec<Vec<Point2>> {
+        let length = self.border_length();
+        let entry: Vec<f64> = pieces.iter().map(|p| self.border_position(p[0])).collect();
+        let exit: Vec<f64> = pieces.iter().map(|p| self.border_position(p[p.len() - 1])).collect();
+        let corner_positions: Vec<(f64, Point2)> = self.corners().iter().map(|&c| (self.border_position(c), c)).collect();
+        let mut used = vec![false; pieces.len()];
+        let mut loops = Vec::new();
+        for start in 0..pieces.len() {
+            if used[start] {
+                continue;
+            }
+            let mut outline: Vec<Point2> = Vec::new();
+            let mut at = start;
+            for _ in 0..pieces.len() {
+                used[at] = true;
+                outline.extend(&pieces[at]);
+                let from = exit[at];
+                let ahead = |s: f64| (s - from).rem_euclid(length);
+                let next = (0..pieces.len()).min_by(|&i, &j| ahead(entry[i]).total_cmp(&ahead(entry[j])).then(i.cmp(&j))).expect("not empty");
+                let mut corners: Vec<&(f64, Point2)> = corner_positions.iter().filter(|(s, _)| ahead(*s) > 0.0 && ahead(*s) < ahead(entry[next])).collect();
+                corners.sort_by(|a, b| ahead(a.0).total_cmp(&ahead(b.0)));
+                outline.extend(corners.iter().map(|(_, c)| *c));
+                if next == start || used[next] {
+                    break;
+                }
+                at = next;
+            }
+            loops.push(outline);
+        }
+        loops
+    }
+}
+
+/// A grid of cells of side `cell` listing the items whose points' bounding box meets them.
+fn bucket(items: impl Iterator<Item = impl AsRef<[Point3<f64>]>>, cell: f64) -> HashMap<[i64; 3], Vec<usize>> {
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for (k, points) in items.enumerate() {
+        let points = points.as_ref();
+        let (lo, hi) = points.iter().fold((points[0], points[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+        let (lo, hi) = (cell_of(&lo, cell), cell_of(&hi, cell));
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    grid.entry([x, y, z]).or_default().push(k);
+                }
+            }
+        }
+    }
+    grid
+}
+
+fn cell_of(p: &Point3<f64>, cell: f64) -> [i64; 3] {
+    [p.x, p.y, p.z].map(|c| (c / cell).floor() as i64)
+}
+
+fn segment_distance(p: &Point3<f64>, a: &Point3<f64>, b: &Point3<f64>) -> f64 {
+    let ab = b - a;
+    let t = if ab.norm_squared() > 0.0 { ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
+    (p - (a + ab * t)).norm()
+}
+
+/// Distance from `q` to segment `ab`, and which end is closest when it is an end (0 or 1).
+fn point_segment(q: Point2, a: Point2, b: Point2) -> (f64, Option<usize>) {
+    let ab = sub(b, a);
+    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let t = if len2 > 0.0 { ((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / len2 } else { 0.0 };
+    let (t, end) = if t <= 0.0 {
+        (0.0, Some(0))
+    } else if t >= 1.0 {
+        (1.0, Some(1))
+    } else {
+        (t, None)
+    };
+    (dist(q, [a[0] + t * ab[0], a[1] + t * ab[1]]), end)
+}
+
+fn sub(a: Point2, b: Point2) -> Point2 {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn cross(a: Point2, b: Point2) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+fn dist(a: Point2, b: Point2) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// Shoelace area, positive for counter-clockwise loops.
+pub fn signed_area(points: &[Point2]) -> f64 {
+    (0..points.len()).map(|i| cross(points[i], points[(i + 1) % points.len()])).sum::<f64>() / 2.0
+}

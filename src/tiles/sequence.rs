@@ -1,0 +1,105 @@
+//! Laying order: the sequence in which a mason (or a robot) places the tiles of a vault.
+//!
+//! Thin-tile vaults are built without full formwork, course by course from the supports,
+//! each tile held by the mortar of tiles already laid. The order here grows from the support
+//! tiles and always lays next the lowest tile that touches one already laid, so courses rise
+//! evenly from every support.
+
+use std::cmp::Reverse;
+use std::collections::{BTreeSet, BinaryHeap};
+
+use nalgebra::Vector3;
+use serde::Serialize;
+
+use super::Tile;
+use crate::mesh::{PolyMesh, Topology};
+
+/// Where the vault stands.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SequenceOptions {
+    /// The up direction (gravity points the other way); default `+z`.
+    pub up: Vector3<f64>,
+    /// Tiles with a boundary edge within this height of the lowest boundary point stand on
+    /// the supports; model units.
+    pub support_band: f64,
+}
+
+/// The laying order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sequence {
+    /// Tiles that stand on a support.
+    pub support_tiles: usize,
+    /// Tiles that, at their step, touch no laid tile lower than themselves and stand on no
+    /// support: they need a prop.
+    pub unsupported: usize,
+}
+
+/// Numbers every tile's `step` (0 first) and summarises the order. Tiles touch when their
+/// faces share a mesh edge.
+pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], options: &SequenceOptions) -> Sequence {
+    let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
+    let up = options.up.try_normalize(0.0).unwrap_or_else(Vector3::z);
+    let height = |p: &nalgebra::Point3<f64>| p.coords.dot(&up);
+    let mut tile_of = vec![None; mesh.face_count()];
+    for (t, tile) in tiles.iter().enumerate() {
+        tile.faces.iter().for_each(|&f| tile_of[f] = Some(t));
+    }
+    let mut neighbours: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); tiles.len()];
+    let mut boundary_low = vec![f64::INFINITY; tiles.len()];
+    for edge in topology.edges() {
+        match edge.faces[..] {
+            [f, g] => {
+                if let (Some(a), Some(b)) = (tile_of[f], tile_of[g])
+                    && a != b
+                {
+                    neighbours[a].insert(b);
+                    neighbours[b].insert(a);
+                }
+            }
+            [f] => {
+                if let Some(a) = tile_of[f] {
+                    let low = edge.vertices.iter().map(|&v| height(&mesh.positions()[v])).fold(f64::INFINITY, f64::min);
+                    boundary_low[a] = boundary_low[a].min(low);
+                }
+            }
+            _ => {}
+        }
+    }
+    let lowest = boundary_low.iter().copied().fold(f64::INFINITY, f64::min);
+    let on_support: Vec<bool> = boundary_low.iter().map(|&h| h <= lowest + options.support_band).collect();
+    // Rank of each tile by height, lowest first (ties by index): the frontier's key.
+    let mut by_height: Vec<usize> = (0..tiles.len()).collect();
+    by_height.sort_by(|&a, &b| height(&tiles[a].frame.origin).total_cmp(&height(&tiles[b].frame.origin)).then(a.cmp(&b)));
+    let mut level = vec![0; tiles.len()];
+    by_height.iter().enumerate().for_each(|(rank, &t)| level[t] = rank);
+
+    let mut laid = vec![false; tiles.len()];
+    let mut queued = vec![false; tiles.len()];
+    let mut frontier = BinaryHeap::new();
+    for t in (0..tiles.len()).filter(|&t| on_support[t]) {
+        queued[t] = true;
+        frontier.push(Reverse((level[t], t)));
+    }
+    let (mut step, mut unsupported) = (0, 0);
+    while step < tiles.len() {
+        let Some(Reverse((_, t))) = frontier.pop() else {
+            // A part that touches neither support nor laid tiles: start it at its lowest tile.
+            let t = by_height.iter().copied().find(|&t| !laid[t]).expect("tiles remain");
+            queued[t] = true;
+            frontier.push(Reverse((level[t], t)));
+            continue;
+        };
+        let rests = on_support[t] || neighbours[t].iter().any(|&n| laid[n] && level[n] < level[t]);
+        unsupported += usize::from(!rests);
+        laid[t] = true;
+        tiles[t].step = step;
+        step += 1;
+        for &n in &neighbours[t] {
+            if !queued[n] {
+                queued[n] = true;
+                frontier.push(Reverse((level[n], n)));
+            }
+        }
+    }
+    Sequence { support_tiles: on_support.iter().filter(|&&s| s).count(), unsupported }
+}
