@@ -615,7 +615,7 @@ TpStatus tp_tiles_copy_sizes(const struct TpTiles *tiles, double *out, size_t ca
 
 /**
  * Copies the faces each tile covers (2 per tile; `TP_NO_FACE` in the second slot of a half
- * tile).
+ * tile, in both slots of a filler piece beyond the quad mesh's boundary).
  *
  * # Safety
  * `tiles` must be a live handle and `out` hold `capacity` items.

@@ -93,7 +93,7 @@ pub fn tiles_for_pattern(quads: &PolyMesh, surface: Option<&PolyMesh>, pattern: 
     let started = Instant::now();
     finish.validate()?;
     let boxes = tiles::build(quads, &pattern, spec)?;
-    let (tiles, finished) = tiles::finish(quads, surface, boxes, finish);
+    let (tiles, finished) = tiles::finish(quads, surface, boxes, spec, finish);
     let mut report = Report::new(quads, &pattern, &tiles, spec);
     report.add_finish(&tiles, &finished, surface.unwrap_or(quads));
     report.seconds.tiles = started.elapsed().as_secs_f64();

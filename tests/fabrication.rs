@@ -43,6 +43,11 @@ fn pattern_of(mesh: &PolyMesh, pairs: &[[usize; 2]]) -> Pattern {
     found
 }
 
+/// The tiles on the quad mesh's faces (not the filler pieces beyond it).
+fn on_quads(tiling: &Tiling) -> Vec<&Tile> {
+    tiling.tiles.iter().filter(|t| !t.faces.is_empty()).collect()
+}
+
 const SQUARE: TileSpec = TileSpec { length: 2.0, width: 1.0, thickness: 0.1, joint: 0.0 };
 
 /// One 2 x 1 tile over two unit quads of `[0, 2] x [0, 1]`, cut to `surface`.
@@ -56,8 +61,9 @@ fn one_tile_on(surface: &PolyMesh) -> Tiling {
 fn a_tile_over_the_edge_keeps_the_part_on_the_surface() {
     let (p, f) = lattice([0.0, 1.5], [-1.0, 2.0], [3, 6], |_, _| 0.0);
     let tiling = one_tile_on(&PolyMesh::new(p, f).unwrap());
-    assert_eq!(tiling.tiles.len(), 1);
-    let tile = &tiling.tiles[0];
+    let on_quads = on_quads(&tiling);
+    assert_eq!(on_quads.len(), 1);
+    let tile = on_quads[0];
     assert_eq!(tile.kind, TileKind::Boundary);
     let cut = tile.cut.as_ref().unwrap();
     assert!((cut.kept_fraction - 0.75).abs() < 1e-9, "{cut:?}");
@@ -73,7 +79,7 @@ fn an_opening_inside_a_tile_becomes_a_hole_in_its_outline() {
     let (p, f) = lattice([-1.0, 3.0], [-1.0, 2.0], [20, 15], |_, _| 0.0);
     let surface = keep_faces(p, f, |c| !((0.8..1.2).contains(&c.x) && (0.4..0.6).contains(&c.y)));
     let tiling = one_tile_on(&surface);
-    let cut = tiling.tiles[0].cut.as_ref().unwrap();
+    let cut = on_quads(&tiling)[0].cut.as_ref().unwrap();
     assert_eq!(cut.loops.len(), 2, "{cut:?}");
     assert!((cut.area() - (2.0 - 0.4 * 0.2)).abs() < 1e-9, "{}", cut.area());
     assert!(cut.loops.iter().any(|l| tiles::clip::signed_area(l) < 0.0), "the hole runs clockwise");
@@ -82,16 +88,16 @@ fn an_opening_inside_a_tile_becomes_a_hole_in_its_outline() {
 #[test]
 fn a_tile_off_the_surface_is_dropped_and_a_thin_strip_is_a_sliver() {
     let (p, f) = lattice([5.0, 6.0], [0.0, 1.0], [1, 1], |_, _| 0.0);
-    let (q, g) = lattice([-1.0, 0.02], [-1.0, 2.0], [1, 3], |_, _| 0.0);
+    let (q, g) = lattice([-1.0, 0.05], [-1.0, 2.0], [1, 3], |_, _| 0.0);
     let tiling_off = one_tile_on(&PolyMesh::new(p, f).unwrap());
     assert!(tiling_off.tiles.is_empty());
     assert_eq!(tiling_off.dropped[0].reason, DropReason::Outside);
     let tiling_thin = one_tile_on(&PolyMesh::new(q, g).unwrap());
-    assert!(tiling_thin.tiles.is_empty());
+    assert!(on_quads(&tiling_thin).is_empty());
     assert_eq!(tiling_thin.dropped[0].reason, DropReason::Sliver);
     let cutting = tiling_thin.report.cutting.as_ref().unwrap();
     assert_eq!(cutting.slivers.len(), 1);
-    assert!((cutting.slivers[0].kept_area - 0.02).abs() < 1e-9);
+    assert!((cutting.slivers[0].kept_area - 0.05).abs() < 1e-9);
 }
 
 /// A hypar `z = 0.3 x y` over `[-1, 1]^2`, as triangles, with an elliptic opening.
@@ -140,6 +146,46 @@ fn kept_points(tile: &Tile) -> Vec<Point3<f64>> {
     local.iter().map(|p| tile.to_world(Vector3::new(p[0], p[1], 0.0))).collect()
 }
 
+/// Checks that no point of the surface lies deeper than `margin` inside two tiles' kept
+/// faces (seen in each tile's frame).
+fn assert_no_overlaps(surface: &PolyMesh, tiling: &Tiling, margin: f64) {
+    for f in 0..surface.face_count() {
+        let p = surface.face_centroid(f);
+        let inside: Vec<usize> = (0..tiling.tiles.len()).filter(|&t| deep_inside(&tiling.tiles[t], &p, margin)).collect();
+        let described: Vec<_> = inside.iter().map(|&t| (t, tiling.tiles[t].kind, tiling.tiles[t].faces.clone(), tiling.tiles[t].frame.origin)).collect();
+        assert!(inside.len() <= 1, "surface point {p:?} lies in tiles {described:?}");
+    }
+}
+
+/// Whether `p` lies under `tile`'s kept face, at least `margin` from its edges.
+fn deep_inside(tile: &Tile, p: &Point3<f64>, margin: f64) -> bool {
+    let local = tile.frame.to_local(p);
+    let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
+    if local.x.abs() > hx - margin || local.y.abs() > hy - margin || local.z.abs() > hy {
+        return false;
+    }
+    let Some(cut) = &tile.cut else { return true };
+    let q = [local.x, local.y];
+    let mut winding = 0;
+    for l in &cut.loops {
+        for i in 0..l.len() {
+            let (a, b) = (l[i], l[(i + 1) % l.len()]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let t = (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / (d[0] * d[0] + d[1] * d[1])).clamp(0.0, 1.0);
+            if (q[0] - a[0] - t * d[0]).hypot(q[1] - a[1] - t * d[1]) < margin {
+                return false;
+            }
+            let side = d[0] * (q[1] - a[1]) - d[1] * (q[0] - a[0]);
+            if a[1] <= q[1] && b[1] > q[1] && side > 0.0 {
+                winding += 1;
+            } else if a[1] > q[1] && b[1] <= q[1] && side < 0.0 {
+                winding -= 1;
+            }
+        }
+    }
+    winding != 0
+}
+
 /// Checks the promises of the fabrication output on a tiling of `surface`.
 fn check_fabrication(surface: &PolyMesh, tiling: &Tiling, tolerance: f64) {
     for (t, tile) in tiling.tiles.iter().enumerate() {
@@ -180,12 +226,14 @@ fn tiles_on_a_hypar_with_an_opening_stay_on_the_surface_and_cover_it() {
     check_fabrication(&surface, &tiling, 0.002);
     // Tiles with their joints cover the surface but for the slivers left out at the opening.
     assert!(cutting.coverage >= 0.98, "coverage {}", cutting.coverage);
+    assert_no_overlaps(&surface, &tiling, 0.01);
 }
 
 #[test]
 fn tiles_on_a_ragged_quad_mesh_are_cut_to_the_surface() {
     // A shell of edge 0.1 quads turned 30 degrees against the square surface: a staircase
-    // boundary that sticks out of the surface in places and falls short in others.
+    // boundary that falls short of the surface's edge by up to one and a half quads, as
+    // QuadriFlow's does.
     let surface = hypar_with_opening();
     let (cos, sin) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
     let (p, f) = lattice([-1.5, 1.5], [-1.5, 1.5], [30, 30], |_, _| 0.0);
@@ -193,7 +241,7 @@ fn tiles_on_a_ragged_quad_mesh_are_cut_to_the_surface() {
         let (x, y) = (cos * q.x - sin * q.y, sin * q.x + cos * q.y);
         Point3::new(x, y, 0.3 * x * y)
     }).collect();
-    let quads = keep_faces(turned, f, |c| c.x.abs() < 1.03 && c.y.abs() < 1.03);
+    let quads = keep_faces(turned, f, |c| c.x.abs() < 0.93 && c.y.abs() < 0.93);
     let spec = TileSpec { length: 0.19, width: 0.095, thickness: 0.01, joint: 0.01 };
     let finish = FinishOptions::for_spec(&spec);
     // Every pair of neighbouring quads becomes a tile in one of these patterns: greedy
@@ -217,9 +265,13 @@ fn tiles_on_a_ragged_quad_mesh_are_cut_to_the_surface() {
         let tiling = pipeline::tiles_for_pattern(&quads, Some(&surface), pattern_of(&quads, &pairs), &spec, &finish).unwrap();
         assert!(tiling.report.boundary_tiles >= 20, "{}", tiling.report.boundary_tiles);
         check_fabrication(&surface, &tiling, 0.002);
-        // The staircase falls short of the surface's edge: the report says by how much.
-        let coverage = tiling.report.cutting.as_ref().unwrap().coverage;
-        assert!(coverage > 0.8 && coverage < 0.99, "coverage {coverage}");
+        // Filler pieces close the strip between the staircase and the surface's edge (without
+        // them the tiles cover 0.87 of it); what is left are slivers and corners where the
+        // continued lattice meets the edge at an angle.
+        let cutting = tiling.report.cutting.as_ref().unwrap();
+        assert!(cutting.filler_tiles > 20, "{}", cutting.filler_tiles);
+        assert!(cutting.coverage >= 0.97, "coverage {}", cutting.coverage);
+        assert_no_overlaps(&surface, &tiling, 0.01);
     }
 }
 
@@ -232,10 +284,11 @@ fn equal_cuts_share_a_label_and_mirrored_cuts_too() {
     let found = pattern_of(&quads, &[[0, 1], [2, 3], [5, 4], [7, 6]]);
     let finish = FinishOptions { min_kept_width: 0.05, ..FinishOptions::for_spec(&SQUARE) };
     let tiling = pipeline::tiles_for_pattern(&quads, Some(&surface), found, &SQUARE, &finish).unwrap();
-    assert_eq!(tiling.tiles.iter().filter(|t| t.kind == TileKind::Boundary).count(), 4);
-    let groups: Vec<_> = tiling.cut_list.iter().filter(|g| g.kind == TileKind::Boundary).collect();
-    assert_eq!(groups.len(), 1, "{groups:?}");
-    assert_eq!((groups[0].label.as_str(), groups[0].count), ("B1", 4));
+    let cut: Vec<&Tile> = on_quads(&tiling).into_iter().filter(|t| t.kind == TileKind::Boundary).collect();
+    assert_eq!(cut.len(), 4);
+    assert!(cut.iter().all(|t| t.label == cut[0].label), "{:?}", cut.iter().map(|t| &t.label).collect::<Vec<_>>());
+    let group = tiling.cut_list.iter().find(|g| g.label == cut[0].label).unwrap();
+    assert!(group.count >= 4);
 }
 
 #[test]

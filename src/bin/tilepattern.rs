@@ -510,7 +510,8 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
     let j = &t.report.joints;
     let cutting = t.report.cutting.as_ref().map_or(String::new(), |c| {
         format!(
-            "; {} cut shapes, {} slivers and {} tiles off the surface left out, coverage {:.3}",
+            "; {} filler pieces; {} cut shapes, {} slivers and {} tiles off the surface left out, coverage {:.3}",
+            c.filler_tiles,
             c.boundary_shapes,
             c.slivers.len(),
             c.outside_tiles,

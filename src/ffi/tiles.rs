@@ -219,13 +219,13 @@ pub unsafe extern "C" fn tp_tiles_copy_sizes(tiles: *const TpTiles, out: *mut f6
 }
 
 /// Copies the faces each tile covers (2 per tile; `TP_NO_FACE` in the second slot of a half
-/// tile).
+/// tile, in both slots of a filler piece beyond the quad mesh's boundary).
 ///
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tp_tiles_copy_faces(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
-    let faces = |t: &Tile| vec![t.faces[0] as u32, t.faces.get(1).map_or(TP_NO_FACE, |&f| f as u32)];
+    let faces = |t: &Tile| (0..2).map(|k| t.faces.get(k).map_or(TP_NO_FACE, |&f| f as u32)).collect();
     // SAFETY: forwarded.
     unsafe { copy_per_tile(tiles, out, capacity, faces) }
 }

@@ -69,6 +69,9 @@ pub struct Report {
 pub struct CuttingSummary {
     /// Tiles cut to the boundary.
     pub boundary_tiles: usize,
+    /// Filler pieces (half blanks) laid beyond the quad mesh's boundary, where it falls short
+    /// of the surface's edge; most of them are cut.
+    pub filler_tiles: usize,
     /// Tiles dropped because no part of them lies on the surface.
     pub outside_tiles: usize,
     /// Pieces too thin to cut or lay, left out: the gap they leave is filled with mortar or a
@@ -125,6 +128,7 @@ impl Report {
             .sum();
         self.cutting = Some(CuttingSummary {
             boundary_tiles: self.boundary_tiles,
+            filler_tiles: finished.fillers,
             outside_tiles: finished.dropped.iter().filter(|d| d.reason == DropReason::Outside).count(),
             slivers: finished.dropped.iter().filter(|d| d.reason == DropReason::Sliver).cloned().collect(),
             boundary_shapes: finished.cut_list.iter().filter(|g| g.kind == TileKind::Boundary).count(),

@@ -42,6 +42,15 @@ pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
             body.push_str(&view.line(mesh, edge.vertices, JOINT_COLOUR, 1.0));
         }
     }
+    for tile in tiles.iter().filter(|t| t.faces.is_empty()) {
+        // Filler pieces beyond the quad mesh: drawn from their kept outline.
+        let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
+        let whole = vec![vec![[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]]];
+        for outline in tile.cut.as_ref().map_or(&whole, |c| &c.loops) {
+            let points: Vec<String> = outline.iter().map(|p| view.xy(&tile.to_world(Vector3::new(p[0], p[1], 0.0)))).collect();
+            let _ = writeln!(body, r#"<polygon points="{}" fill="{BOUNDARY_FILL}" stroke="{JOINT_COLOUR}" stroke-width="0.5"/>"#, points.join(" "));
+        }
+    }
     for tile in tiles {
         for outline in tile.cut.iter().flat_map(|c| &c.loops) {
             let points: Vec<String> = outline.iter().map(|p| view.xy(&tile.to_world(Vector3::new(p[0], p[1], 0.0)))).collect();

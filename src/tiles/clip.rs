@@ -134,19 +134,32 @@ impl SurfaceBoundary {
 
     /// Whether some face of the surface passes within `radius` of `p`.
     fn touches(&self, p: &Point3<f64>, radius: f64) -> bool {
-        self.candidates(&self.face_grid, p, radius).into_iter().any(|f| {
+        self.closest(p, radius).is_some_and(|q| (q - p).norm() <= radius)
+    }
+
+    /// The point of the surface closest to `p`, if one lies within `radius`.
+    pub fn closest(&self, p: &Point3<f64>, radius: f64) -> Option<Point3<f64>> {
+        let mut best: Option<(f64, Point3<f64>)> = None;
+        for f in self.candidates(&self.face_grid, p, radius) {
             let (corners, normal) = &self.faces[f];
             let n = corners.len();
-            // Over the face (inside every edge's side plane): the distance along the normal;
-            // beside it: the distance to its nearest edge.
+            // Over the face (inside every edge's side plane): its foot on the face's plane;
+            // beside it: the nearest point of its nearest edge.
             let over = (0..n).all(|i| (corners[(i + 1) % n] - corners[i]).cross(&(p - corners[i])).dot(normal) >= 0.0);
-            let distance = if over {
-                (p - corners[0]).dot(normal).abs()
+            let q = if over {
+                p - normal * (p - corners[0]).dot(normal)
             } else {
-                (0..n).map(|i| segment_distance(p, &corners[i], &corners[(i + 1) % n])).fold(f64::INFINITY, f64::min)
+                (0..n)
+                    .map(|i| segment_closest(p, &corners[i], &corners[(i + 1) % n]))
+                    .min_by(|a, b| (a - p).norm_squared().total_cmp(&(b - p).norm_squared()))
+                    .expect("a face has corners")
             };
-            distance <= radius
-        })
+            let d = (q - p).norm();
+            if d <= radius && best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, q));
+            }
+        }
+        best.map(|(_, q)| q)
     }
 
     /// Cuts `tile` to the surface. A tile the boundary enters by no more than `tolerance`
@@ -191,7 +204,8 @@ impl SurfaceBoundary {
         }
         let full = 4.0 * hx * hy;
         let area: f64 = loops.iter().map(|l| signed_area(l)).sum();
-        if area <= full * 1e-9 {
+        if area <= tolerance * tile.size[0] + full * 1e-9 {
+            // Nothing, or a strip thinner than the tolerance along the boundary.
             Clipped::Outside
         } else if shallow && area >= full / 2.0 {
             // The boundary only grazes the tile, and the surface is on the tile's side of it.
@@ -247,6 +261,44 @@ impl SurfaceBoundary {
             chains.push(Chain { points, closed });
         }
         chains
+    }
+}
+
+impl Cut {
+    /// The part of `loops` (a tile's kept region, in its frame) inside the convex polygon
+    /// `window` (counter-clockwise), as a cut of a tile face of area `full`; `None` when
+    /// nothing is left. Each loop is clipped on its own (Sutherland-Hodgman), which keeps the
+    /// area exact.
+    pub(crate) fn within(loops: &[Vec<Point2>], window: &[Point2], full: f64) -> Option<Cut> {
+        let mut kept = Vec::new();
+        for l in loops {
+            let mut poly = l.clone();
+            for i in 0..window.len() {
+                let (a, b) = (window[i], window[(i + 1) % window.len()]);
+                let side = |p: Point2| cross(sub(b, a), sub(p, a));
+                let mut next = Vec::with_capacity(poly.len() + 2);
+                for k in 0..poly.len() {
+                    let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+                    let (sp, sq) = (side(p), side(q));
+                    if sp >= 0.0 {
+                        next.push(p);
+                    }
+                    if (sp >= 0.0) != (sq >= 0.0) {
+                        let t = sp / (sp - sq);
+                        next.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
+                    }
+                }
+                poly = next;
+                if poly.is_empty() {
+                    break;
+                }
+            }
+            if poly.len() >= 3 && signed_area(&poly).abs() > 0.0 {
+                kept.push(poly);
+            }
+        }
+        let area: f64 = kept.iter().map(|l| signed_area(l)).sum();
+        (area > 0.0).then(|| Cut { loops: kept, kept_fraction: (area / full).min(1.0) })
     }
 }
 
@@ -452,10 +504,14 @@ fn cell_of(p: &Point3<f64>, cell: f64) -> [i64; 3] {
     [p.x, p.y, p.z].map(|c| (c / cell).floor() as i64)
 }
 
-fn segment_distance(p: &Point3<f64>, a: &Point3<f64>, b: &Point3<f64>) -> f64 {
+fn segment_closest(p: &Point3<f64>, a: &Point3<f64>, b: &Point3<f64>) -> Point3<f64> {
     let ab = b - a;
     let t = if ab.norm_squared() > 0.0 { ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
-    (p - (a + ab * t)).norm()
+    a + ab * t
+}
+
+fn segment_distance(p: &Point3<f64>, a: &Point3<f64>, b: &Point3<f64>) -> f64 {
+    (p - segment_closest(p, a, b)).norm()
 }
 
 /// Distance from `q` to segment `ab`, and which end is closest when it is an end (0 or 1).

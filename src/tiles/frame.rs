@@ -41,8 +41,14 @@ impl Frame {
     /// its edges 0-1 and 3-2.
     pub fn for_face(mesh: &PolyMesh, f: usize) -> Self {
         let p: Vec<Point3<f64>> = mesh.face_points(f).collect();
-        let along = (p[1] - p[0]) + (p[2] - p[3]);
-        Self::from_axes(mesh.face_centroid(f), along, &p, mesh.face_area_vector(f))
+        Self::for_corners(&[p[0], p[1], p[2], p[3]], mesh.face_area_vector(f))
+    }
+
+    /// The frame of a half tile on the quad `p` (counter-clockwise seen from `up`): origin at
+    /// its centroid, length along the mean of its edges 0-1 and 3-2.
+    pub fn for_corners(p: &[Point3<f64>; 4], up: Vector3<f64>) -> Self {
+        let centroid = Point3::from(p.iter().map(|c| c.coords).sum::<Vector3<f64>>() / 4.0);
+        Self::from_axes(centroid, (p[1] - p[0]) + (p[2] - p[3]), p, up)
     }
 
     /// Frame with `z` the least-squares normal of `points` turned towards `up`, and `x` the

@@ -17,6 +17,7 @@
 
 pub mod clip;
 pub mod cutlist;
+mod fill;
 mod frame;
 pub mod sequence;
 
@@ -86,7 +87,8 @@ pub enum TileKind {
 pub struct Tile {
     /// Full or half.
     pub kind: TileKind,
-    /// Faces it covers (two for a full tile, one for a half tile).
+    /// Faces it covers (two for a full tile, one for a half tile, none for a filler piece
+    /// beyond the quad mesh's boundary).
     pub faces: Vec<usize>,
     /// Its local frame: origin, length, height and thickness axes.
     pub frame: Frame,
@@ -174,40 +176,84 @@ pub struct DroppedTile {
 pub struct Finished {
     /// Tiles left out: off the surface, or slivers.
     pub dropped: Vec<DroppedTile>,
+    /// Filler pieces placed beyond the quad mesh's boundary (tiles with no faces).
+    pub fillers: usize,
     /// Cut shapes with counts.
     pub cut_list: Vec<CutGroup>,
     /// Summary of the laying order.
     pub sequence: Sequence,
 }
 
-/// Makes tiles buildable: cuts them to the boundary of `surface` (the input surface; the quad
-/// mesh itself when `None`), drops tiles off the surface and slivers, groups the cut shapes
-/// into a cut list and labels each tile, and numbers the tiles in laying order.
-pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, options: &FinishOptions) -> (Vec<Tile>, Finished) {
+/// Makes tiles buildable: where the quad mesh falls short of the boundary of `surface` (the
+/// input surface; the quad mesh itself when `None`), adds filler pieces continuing the
+/// courses; cuts every tile to that boundary, drops tiles off the surface and slivers; groups
+/// the cut shapes into a cut list and labels each tile; numbers the tiles in laying order.
+pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, spec: &TileSpec, options: &FinishOptions) -> (Vec<Tile>, Finished) {
     let reference = surface.unwrap_or(quads);
-    let cell = tiles.first().map_or(1.0, |t| t.size[0].max(t.size[1]));
-    let boundary = SurfaceBoundary::new(reference, cell);
-    let mut kept = Vec::with_capacity(tiles.len());
+    let boundary = SurfaceBoundary::new(reference, spec.length.max(spec.width));
+    let half_blank = [spec.length / 2.0, spec.width, spec.thickness];
+    let fillers = fill::fill(quads, &tiles, &boundary, half_blank);
+    let fillers_from = tiles.len();
+    let mut parents = vec![None; tiles.len()];
+    parents.extend(fillers.iter().map(|f| Some(f.parent)));
+    let mut windows = vec![None; tiles.len()];
+    windows.extend(fillers.iter().map(|f| Some(f.cell)));
+    let candidates = tiles.into_iter().chain(fillers.into_iter().map(|f| f.tile));
+
+    let mut kept = Vec::with_capacity(parents.len());
+    let mut kept_index = vec![None; parents.len()];
     let mut dropped = Vec::new();
-    for mut tile in tiles {
+    for (i, mut tile) in candidates.enumerate() {
         let drop = |tile: &Tile, reason, kept_area, kept_width| DroppedTile { faces: tile.faces.clone(), reason, kept_area, kept_width };
-        match boundary.clip(&tile, options.tolerance) {
-            clip::Clipped::Whole => kept.push(tile),
-            clip::Clipped::Outside => dropped.push(drop(&tile, DropReason::Outside, 0.0, 0.0)),
-            clip::Clipped::Cut(cut) => {
-                if cut.kept_width() < options.min_kept_width {
-                    dropped.push(drop(&tile, DropReason::Sliver, cut.area(), cut.kept_width()));
-                } else {
-                    tile.kind = TileKind::Boundary;
-                    tile.cut = Some(cut);
-                    kept.push(tile);
-                }
+        let mut clipped = boundary.clip(&tile, options.tolerance);
+        if let Some(window) = &windows[i] {
+            // A filler piece stays on its own cell.
+            let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
+            let rect = vec![vec![[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]]];
+            let loops = match &clipped {
+                clip::Clipped::Cut(cut) => &cut.loops,
+                _ => &rect,
+            };
+            if !matches!(clipped, clip::Clipped::Outside) {
+                clipped = match Cut::within(loops, window, 4.0 * hx * hy) {
+                    Some(cut) if cut.kept_fraction < 1.0 - 1e-9 => clip::Clipped::Cut(cut),
+                    Some(_) => clip::Clipped::Whole,
+                    None => clip::Clipped::Outside,
+                };
             }
         }
+        match clipped {
+            clip::Clipped::Whole => {}
+            // Fillers that reach nothing are not placed at all (the fill only keeps cells that
+            // touch the surface, but a cell can touch it only within the tolerance).
+            clip::Clipped::Outside if i >= fillers_from => continue,
+            clip::Clipped::Outside => {
+                dropped.push(drop(&tile, DropReason::Outside, 0.0, 0.0));
+                continue;
+            }
+            clip::Clipped::Cut(cut) => {
+                if cut.kept_width() < options.min_kept_width {
+                    // A sliver of a filler is the strip between the quad mesh and the edge:
+                    // too thin for a piece, it is mortar (and shows in the coverage).
+                    if i < fillers_from {
+                        dropped.push(drop(&tile, DropReason::Sliver, cut.area(), cut.kept_width()));
+                    }
+                    continue;
+                }
+                tile.kind = TileKind::Boundary;
+                tile.cut = Some(cut);
+            }
+        }
+        kept_index[i] = Some(kept.len());
+        kept.push(tile);
     }
+    let mut links: Vec<[usize; 2]> =
+        parents.iter().enumerate().filter_map(|(i, p)| Some([kept_index[i]?, kept_index[(*p)?]?])).collect();
+    links.extend(filler_neighbours(&kept));
+    let fillers = kept_index[fillers_from..].iter().flatten().count();
     let cut_list = cutlist::cut_list(&mut kept, options.tolerance);
-    let sequence = sequence::laying_order(quads, &mut kept, &options.sequence);
-    (kept, Finished { dropped, cut_list, sequence })
+    let sequence = sequence::laying_order(quads, &mut kept, &links, &options.sequence);
+    (kept, Finished { dropped, fillers, cut_list, sequence })
 }
 
 /// Why tiles could not be built.
@@ -304,6 +350,34 @@ pub fn build(mesh: &PolyMesh, pattern: &Pattern, spec: &TileSpec) -> Result<Vec<
         tiles.push(Tile::new(TileKind::Half, vec![f], frame, [spec.length / 2.0, spec.width, spec.thickness]));
     }
     Ok(tiles)
+}
+
+/// Pairs of tiles, at least one of them a filler piece (no faces, so no mesh adjacency),
+/// whose centres are no further apart than their blanks' half lengths and widths plus a
+/// margin: the pieces a filler rests against.
+fn filler_neighbours(tiles: &[Tile]) -> Vec<[usize; 2]> {
+    let reach = tiles.iter().map(|t| t.size[0].max(t.size[1])).fold(0.0, f64::max) * 1.25;
+    if reach <= 0.0 {
+        return Vec::new();
+    }
+    let key = |t: &Tile| [t.frame.origin.x, t.frame.origin.y, t.frame.origin.z].map(|c| (c / reach).floor() as i64);
+    let mut grid: std::collections::HashMap<[i64; 3], Vec<usize>> = std::collections::HashMap::new();
+    for (i, t) in tiles.iter().enumerate() {
+        grid.entry(key(t)).or_default().push(i);
+    }
+    let mut links = Vec::new();
+    for (i, t) in tiles.iter().enumerate().filter(|(_, t)| t.faces.is_empty()) {
+        let k = key(t);
+        let around = (-1..=1).flat_map(|x| (-1..=1).flat_map(move |y| (-1..=1).map(move |z| [k[0] + x, k[1] + y, k[2] + z])));
+        for j in around.filter_map(|c| grid.get(&c)).flatten().copied() {
+            let u = &tiles[j];
+            let close = (u.frame.origin - t.frame.origin).norm() <= (t.size[0] + u.size[0]) / 2.0 * 1.25;
+            if j != i && close && (!u.faces.is_empty() || j > i) {
+                links.push([i, j]);
+            }
+        }
+    }
+    links
 }
 
 impl Tile {

@@ -35,8 +35,8 @@ pub struct Sequence {
 }
 
 /// Numbers every tile's `step` (0 first) and summarises the order. Tiles touch when their
-/// faces share a mesh edge.
-pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], options: &SequenceOptions) -> Sequence {
+/// faces share a mesh edge, or when `links` pairs them (filler pieces and their parents).
+pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], links: &[[usize; 2]], options: &SequenceOptions) -> Sequence {
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let up = options.up.try_normalize(0.0).unwrap_or_else(Vector3::z);
     let height = |p: &nalgebra::Point3<f64>| p.coords.dot(&up);
@@ -65,8 +65,17 @@ pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], options: &SequenceOptio
             _ => {}
         }
     }
+    for &[a, b] in links {
+        neighbours[a].insert(b);
+        neighbours[b].insert(a);
+    }
     let lowest = boundary_low.iter().copied().fold(f64::INFINITY, f64::min);
-    let on_support: Vec<bool> = boundary_low.iter().map(|&h| h <= lowest + options.support_band).collect();
+    // Pieces beyond the quad mesh (no faces) stand on a support when they sit low enough.
+    let on_support: Vec<bool> = tiles
+        .iter()
+        .zip(&boundary_low)
+        .map(|(t, &h)| if t.faces.is_empty() { height(&t.frame.origin) } else { h } <= lowest + options.support_band)
+        .collect();
     // Rank of each tile by height, lowest first (ties by index): the frontier's key.
     let mut by_height: Vec<usize> = (0..tiles.len()).collect();
     by_height.sort_by(|&a, &b| height(&tiles[a].frame.origin).total_cmp(&height(&tiles[b].frame.origin)).then(a.cmp(&b)));
