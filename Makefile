@@ -6,7 +6,7 @@ LIB_DIR := target/release
 C_FLAGS := -Wall -Wextra -Werror -DTP_TEST_PANIC -Iinclude
 C_LINK := -L$(LIB_DIR) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(LIB_DIR)
 
-.PHONY: demo test setup build bench header header-check rust-test c-test
+.PHONY: demo test setup build bench header header-check rust-test c-test dotnet-test
 
 setup:
 	@scripts/setup.sh
@@ -17,10 +17,11 @@ build: setup
 demo: build
 	./target/release/tilepattern demo --out demo
 
-# Every test: the header matches the code, the Rust tests, the C tests under valgrind.
+# Every test: the header matches the code, the Rust tests, the C tests under valgrind, the C#
+# wrapper's NUnit tests under mono.
 test: setup
 	scripts/check-header.sh
-	$(MAKE) rust-test c-test
+	$(MAKE) rust-test c-test dotnet-test
 
 rust-test:
 	$(CARGO) test --release
@@ -34,6 +35,11 @@ c-test:
 	RUST_BACKTRACE=0 target/c/test_cpp
 	RUST_BACKTRACE=0 valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
 		--show-leak-kinds=definite,indirect,possible --suppressions=tests/c/valgrind.supp target/c/test_c
+
+# The C# wrapper (dotnet/) compiled with mcs, its NUnit tests run under mono.
+dotnet-test:
+	$(CARGO) build --release --lib
+	scripts/test-dotnet.sh
 
 header:
 	cbindgen --quiet --config cbindgen.toml --crate tilepattern --output include/tilepattern.h

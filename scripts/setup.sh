@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what TilePattern needs on a fresh Debian/Ubuntu machine: the CBC solver library
-# and pkg-config (to build), a C/C++ compiler and valgrind (C tests), and cbindgen 0.29.2
-# (header check). System packages need root or sudo; otherwise it prints the command to run.
+# and pkg-config (to build), a C/C++ compiler and valgrind (C tests), mono with NUnit (C#
+# wrapper tests), and cbindgen 0.29.2 (header check). System packages need root or sudo;
+# otherwise it prints the command to run.
 set -euo pipefail
 
 if ! command -v cargo >/dev/null 2>&1; then
@@ -9,14 +10,14 @@ if ! command -v cargo >/dev/null 2>&1; then
   exit 1
 fi
 
-packages=(coinor-libcbc-dev pkg-config g++ valgrind)
+packages=(coinor-libcbc-dev pkg-config g++ valgrind mono-mcs mono-runtime nunit-console libnunit-cil-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
   if ! command -v apt-get >/dev/null 2>&1; then
-    echo "Please install: the CBC MILP solver library (C interface), pkg-config, a C++ compiler, valgrind." >&2
+    echo "Please install: the CBC MILP solver library (C interface), pkg-config, a C++ compiler, valgrind, mono (mcs, runtime, NUnit 2.6 console)." >&2
     exit 1
   fi
   if [ "$(id -u)" -eq 0 ]; then

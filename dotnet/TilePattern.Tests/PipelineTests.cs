@@ -1,0 +1,318 @@
+// The whole pipeline through the public API: remesh -> match -> tiles -> report.
+using System;
+using System.Collections.Generic;
+using System.Linq;
+using NUnit.Framework;
+
+namespace TilePattern.Tests
+{
+    [TestFixture]
+    public class PipelineTests
+    {
+        static bool Adjacent(PolyMesh mesh, FacePair pair)
+        {
+            return mesh.Face(pair.A).Intersect(mesh.Face(pair.B)).Count() == 2;
+        }
+
+        static double Norm(double[] v)
+        {
+            return Math.Sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        }
+
+        static double Dot(double[] a, double[] b)
+        {
+            return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        }
+
+        [Test]
+        public void CurvedShellFromTrianglesToReport()
+        {
+            PolyMesh surface = TestMeshes.CurvedTriangles(30, 1.5, 0.3);
+            Assert.AreEqual(1800, surface.FaceCount);
+            var tile = new TileOptions();
+            var progress = new List<double>();
+            PolyMesh quads = TilePatternEngine.Remesh(surface, RemeshOptions.ForTile(tile), new SyncProgress(progress.Add));
+            CollectionAssert.AreEqual(new[] { 0.0, 1.0 }, progress, "remesh reports its start and end");
+            Assert.That(quads.FaceCount, Is.InRange(60, 250), "about (1.5 / 0.145)^2 quads");
+            Assert.IsTrue(quads.IsQuadMesh);
+            TilePatternEngine.Validate(quads);
+
+            var options = new PatternOptions { TimeLimitSeconds = 20 };
+            using (Pattern pattern = TilePatternEngine.Match(quads, options))
+            {
+                Assert.AreEqual(quads.FaceCount, pattern.FaceCount);
+                Assert.IsNotEmpty(pattern.Pairs);
+                var used = new HashSet<int>();
+                foreach (FacePair pair in pattern.Pairs)
+                {
+                    Assert.Less(pair.A, pair.B);
+                    Assert.IsTrue(Adjacent(quads, pair), "pair " + pair + " shares an edge");
+                    Assert.IsTrue(used.Add(pair.A) && used.Add(pair.B), "faces used once");
+                }
+                foreach (int f in pattern.Unpaired)
+                    Assert.IsTrue(used.Add(f), "unpaired face " + f + " is in no pair");
+                Assert.AreEqual(pattern.FaceCount, used.Count + pattern.ExcludedCount + pattern.NonQuadCount);
+                Assert.That(pattern.Bound, Is.GreaterThanOrEqualTo(pattern.Objective - 1e-9));
+                Assert.That(pattern.Gap, Is.InRange(0.0, 1.0));
+                Assert.That(pattern.Seconds, Is.GreaterThanOrEqualTo(0.0));
+
+                // Cut to the input surface, as `tilepattern run` does.
+                Tiling tiling = TilePatternEngine.Tiles(pattern, tile, surface);
+                Report report = tiling.Report;
+                Assert.IsNotNull(report.Cutting);
+                Assert.Greater(tiling.Tiles.Length, pattern.Pairs.Length / 2);
+                Assert.AreEqual(quads.FaceCount, report.Faces);
+                Assert.AreEqual(tiling.Tiles.Length, report.FullTiles + report.HalfTiles, "full and half count by blank");
+                Assert.AreEqual(tiling.BoundaryCount, report.BoundaryTiles);
+                Assert.AreEqual(tiling.BoundaryCount, report.Cutting.BoundaryTiles);
+                Assert.That(report.Cutting.Coverage, Is.InRange(0.5, 1.0 + 1e-9));
+                Assert.AreEqual(pattern.ContinuousJoints, report.ContinuousJoints);
+                Assert.AreEqual(pattern.Objective, report.Objective, 1e-9);
+                Assert.AreEqual(pattern.Status, report.Status);
+                Assert.AreEqual(tile.Length, report.Tile.Length, 1e-12);
+                Assert.AreEqual(tile.Joint, report.Tile.Joint, 1e-12);
+                Assert.Greater(report.Joints.Contacts, 0);
+                Assert.AreEqual(tile.Joint, report.Joints.Joint, 1e-12);
+                Assert.That(report.Joints.MaxGap, Is.GreaterThanOrEqualTo(report.Joints.MinGap));
+                Assert.IsNotNull(report.Sequence);
+                Assert.Greater(report.Sequence.SupportTiles, 0);
+                CollectionAssert.AreEquivalent(Enumerable.Range(0, tiling.Tiles.Length), tiling.Tiles.Select(t => t.Step), "steps number the tiles");
+                Assert.AreEqual(tiling.Tiles.Length, tiling.CutList.Sum(g => g.Count), "the cut list counts every tile");
+                CollectionAssert.AreEquivalent(tiling.CutList.Select(g => g.Label), tiling.Tiles.Select(t => t.Label).Distinct());
+                StringAssert.Contains("\"full_tiles\"", report.Json);
+
+                foreach (Tile t in tiling.Tiles)
+                {
+                    Assert.AreEqual(24, t.Corners.Length);
+                    Assert.IsTrue(t.Corners.All(c => !double.IsNaN(c) && !double.IsInfinity(c)));
+                    Assert.AreEqual(1.0, Norm(t.XAxis), 1e-9);
+                    Assert.AreEqual(1.0, Norm(t.YAxis), 1e-9);
+                    Assert.AreEqual(1.0, Norm(t.ZAxis), 1e-9);
+                    Assert.AreEqual(0.0, Dot(t.XAxis, t.YAxis), 1e-9);
+                    Assert.AreEqual(0.0, Dot(t.XAxis, t.ZAxis), 1e-9);
+                    // Right-handed: z = x cross y (a Rhino Plane(origin, x, y) has the tile's z).
+                    double[] x = t.XAxis, y = t.YAxis;
+                    Assert.AreEqual(1.0, Dot(new[] { x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0] }, t.ZAxis), 1e-9);
+                    if (t.Kind == TileKind.Full)
+                    {
+                        Assert.AreEqual(2, t.Faces.Length);
+                        Assert.AreEqual(tile.Length, t.Length, 1e-12);
+                        Assert.AreEqual(tile.Width, t.Width, 1e-12);
+                    }
+                    else if (t.Kind == TileKind.Half)
+                    {
+                        Assert.LessOrEqual(t.Faces.Length, 1);
+                        Assert.AreEqual(tile.Length / 2, t.Length, 1e-12);
+                    }
+                    if (t.Kind == TileKind.Boundary)
+                    {
+                        Assert.IsNotEmpty(t.Outline);
+                        Assert.That(t.KeptFraction, Is.GreaterThan(0.0).And.LessThan(1.0));
+                        StringAssert.StartsWith("B", t.Label);
+                    }
+                    else
+                    {
+                        Assert.IsEmpty(t.Outline);
+                        Assert.AreEqual(1.0, t.KeptFraction);
+                        Assert.AreEqual(t.Kind == TileKind.Full ? "F" : "H", t.Label);
+                    }
+                    Assert.AreEqual(tile.Thickness, t.Thickness, 1e-12);
+                    // Corner 4 is corner 0 moved by the thickness along z.
+                    double[] c0 = t.Corner(0), c4 = t.Corner(4);
+                    Assert.AreEqual(t.Thickness, Norm(new[] { c4[0] - c0[0], c4[1] - c0[1], c4[2] - c0[2] }), 1e-9);
+                }
+            }
+        }
+
+        [Test]
+        public void PaperFigure5OnATenByTenGrid()
+        {
+            // The C tests' case: 49 tiles, no continuous joint, proven optimal.
+            PolyMesh grid = TestMeshes.Grid(10, 10);
+            using (Pattern pattern = TilePatternEngine.Match(grid, new PatternOptions { Weight = 2.0 }))
+            {
+                Assert.AreEqual(49, pattern.Pairs.Length);
+                Assert.AreEqual(2, pattern.Unpaired.Length);
+                Assert.AreEqual(0, pattern.ContinuousJoints);
+                Assert.AreEqual(SolveStatus.Optimal, pattern.Status);
+                Assert.AreEqual(49.0, pattern.Objective);
+                Assert.AreEqual(49.0, pattern.Bound);
+                Assert.IsTrue(pattern.Pairs.All(p => (p.B == p.A + 1 && p.A % 10 != 9) || p.B == p.A + 10));
+
+                var tile = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1 };
+                Tiling tiling = TilePatternEngine.Tiles(pattern, tile);
+                Assert.AreEqual(51, tiling.Tiles.Length);
+                Assert.AreEqual(TileKind.Full, tiling.Tiles[0].Kind);
+                Assert.AreEqual(TileKind.Half, tiling.Tiles[50].Kind);
+                Assert.AreEqual(1.9, tiling.Tiles[0].Length);
+                Assert.AreEqual(0.95, tiling.Tiles[50].Length);
+                Assert.AreEqual(1.0, tiling.Tiles[0].ZAxis[2], 1e-12);
+                Assert.AreEqual(0.0, tiling.Tiles[0].Corners[2]);
+                Assert.AreEqual(0.1, tiling.Tiles[0].Corners[4 * 3 + 2], 1e-12);
+                Assert.AreEqual(49, tiling.Report.FullTiles);
+                Assert.AreEqual(SolveStatus.Optimal, tiling.Report.Status);
+                Assert.AreEqual("optimal", tiling.Report.StatusText);
+                for (int i = 0; i < tiling.Tiles.Length; i++)
+                    Assert.AreEqual(i, tiling.Tiles[i].Index);
+            }
+        }
+
+        [Test]
+        public void BoundaryTilesAreCutToTheSurface()
+        {
+            // The C tests' case: quads reach x = 10, the surface ends at x = 6.5.
+            PolyMesh grid = TestMeshes.Grid(10, 10);
+            PolyMesh surface = TestMeshes.Grid(13, 20, 0.5);
+            var tile = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1 };
+            using (Pattern pattern = TilePatternEngine.Match(grid, new PatternOptions { Weight = 2.0 }))
+            {
+                Tiling cut = TilePatternEngine.Tiles(pattern, tile, surface);
+                Assert.That(cut.Tiles.Length, Is.InRange(21, 50));
+                Assert.Greater(cut.BoundaryCount, 0);
+                foreach (Tile t in cut.Tiles)
+                {
+                    Assert.AreEqual(t.Kind == TileKind.Boundary, t.KeptFraction < 1.0, "tile " + t.Index);
+                    for (int l = 0; l < t.Outline.Length; l++)
+                    {
+                        Assert.GreaterOrEqual(t.Outline[l].Length, 6, "a loop has 3 points or more");
+                        double[] xyz = t.OutlineInModel(l);
+                        for (int p = 0; p < xyz.Length; p += 3)
+                        {
+                            Assert.LessOrEqual(xyz[p], 6.5 + 1e-6, "kept outline stays on the surface");
+                            Assert.AreEqual(0.0, xyz[p + 2], 1e-9);
+                        }
+                    }
+                }
+                CollectionAssert.Contains(cut.Tiles.Select(t => t.Label).ToList(), "B1");
+                CutGroup b1 = cut.CutList.Single(g => g.Label == "B1");
+                Assert.AreEqual("boundary", b1.Kind);
+                Assert.Greater(b1.Count, 0);
+                Assert.AreEqual(1.9, Math.Max(b1.BlankLength, 0.95), 1e-12);
+                StringAssert.Contains("\"label\": \"B1\"", cut.CutListJson);
+                Assert.AreEqual(cut.Tiles.Length, cut.CutList.Sum(g => g.Count));
+
+                // Without a surface, the quad mesh's own boundary: nothing to cut on a grid.
+                Tiling whole = TilePatternEngine.Tiles(pattern, tile);
+                Assert.AreEqual(51, whole.Tiles.Length);
+                Assert.AreEqual(0, whole.BoundaryCount);
+            }
+        }
+
+        [Test]
+        public void ForcedPairsAndExcludedFacesAreHonoured()
+        {
+            PolyMesh grid = TestMeshes.Grid(10, 10);
+            var options = new PatternOptions();
+            options.ForcedPairs.Add(new FacePair(0, 10));
+            options.ExcludedFaces.Add(99);
+            using (Pattern pattern = TilePatternEngine.Match(grid, options))
+            {
+                Assert.AreEqual(1, pattern.ExcludedCount);
+                CollectionAssert.Contains(pattern.Pairs, new FacePair(0, 10));
+                Assert.IsFalse(pattern.Pairs.Any(p => p.A == 99 || p.B == 99));
+                CollectionAssert.DoesNotContain(pattern.Unpaired, 99);
+            }
+        }
+
+        [Test]
+        public void StackBondIsAMaximumMatching()
+        {
+            using (Pattern pattern = TilePatternEngine.Match(TestMeshes.Grid(10, 10), new PatternOptions { Bond = Bond.Stack }))
+            {
+                Assert.AreEqual(50, pattern.Pairs.Length);
+                Assert.IsEmpty(pattern.Unpaired);
+            }
+        }
+
+        [Test]
+        public void TilesOnAnEqualCopyOfTheMeshMatchTilesOnTheSolvedMesh()
+        {
+            PolyMesh grid = TestMeshes.Grid(6, 4);
+            using (Pattern pattern = TilePatternEngine.Match(grid))
+            {
+                var tile = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1 };
+                Tiling a = TilePatternEngine.Tiles(pattern, tile);
+                Tiling b = TilePatternEngine.Tiles(TestMeshes.Grid(6, 4), pattern, tile);
+                Assert.AreEqual(a.Tiles.Length, b.Tiles.Length);
+                for (int i = 0; i < a.Tiles.Length; i++)
+                    CollectionAssert.AreEqual(a.Tiles[i].Corners, b.Tiles[i].Corners);
+            }
+        }
+
+        [Test]
+        public void RemeshOptionsReachTheLibrary()
+        {
+            PolyMesh surface = TestMeshes.CurvedTriangles(24, 1.2, 0.2);
+            PolyMesh coarse = TilePatternEngine.Remesh(surface, new RemeshOptions { TargetEdge = 0.3 });
+            PolyMesh fine = TilePatternEngine.Remesh(surface, new RemeshOptions { TargetEdge = 0.15, Direction = FieldDirection.Angle, AngleDegrees = 45 });
+            PolyMesh along = TilePatternEngine.Remesh(surface, new RemeshOptions { TargetEdge = 0.15, Direction = FieldDirection.Vector, DirectionVector = new[] { 1.0, 1.0, 0.0 }, ShapeUp = true });
+            Assert.Less(coarse.FaceCount, fine.FaceCount);
+            Assert.Greater(along.FaceCount, coarse.FaceCount);
+        }
+
+        [Test]
+        public void OptionsStartFromTheLibraryDefaults()
+        {
+            var p = new PatternOptions();
+            Assert.AreEqual(Bond.Staggered, p.Bond);
+            Assert.AreEqual(0.5, p.Weight);
+            Assert.AreEqual(60.0, p.TimeLimitSeconds);
+            Assert.AreEqual(SolveMethod.Auto, p.Method);
+            Assert.AreEqual(Formulation.Strengthened, p.Formulation);
+            var r = new RemeshOptions();
+            Assert.AreEqual(0.145, r.TargetEdge);
+            Assert.AreEqual(FieldDirection.Curvature, r.Direction);
+            Assert.IsFalse(r.ShapeUp);
+            var t = new TileOptions();
+            Assert.AreEqual(0.28, t.Length);
+            Assert.AreEqual(0.14, t.Width);
+            Assert.AreEqual(0.015, t.Thickness);
+            Assert.AreEqual(0.01, t.Joint);
+            Assert.Less(t.CutTolerance, 0.0, "negative: automatic");
+            Assert.Less(t.MinKeptWidth, 0.0);
+            Assert.Less(t.SupportBand, 0.0);
+            CollectionAssert.AreEqual(new[] { 0.0, 0.0, 1.0 }, t.Up);
+            Assert.AreEqual(0.145, RemeshOptions.ForTile(t).TargetEdge, 1e-15);
+        }
+
+        [Test]
+        public void VersionAndAbi()
+        {
+            Assert.AreEqual(TilePatternEngine.AbiVersion, TilePatternEngine.NativeAbiVersion);
+            StringAssert.IsMatch(@"^\d+\.\d+\.\d+", TilePatternEngine.NativeVersion);
+        }
+
+        [Test]
+        public void PolyMeshRoundTrip()
+        {
+            var mesh = PolyMesh.FromFaces(new double[] { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0, 0 }, new[] { new[] { 0, 1, 2, 3 }, new[] { 1, 4, 2 } });
+            Assert.AreEqual(5, mesh.VertexCount);
+            Assert.AreEqual(2, mesh.FaceCount);
+            CollectionAssert.AreEqual(new[] { 4, 3 }, mesh.FaceSizes);
+            CollectionAssert.AreEqual(new[] { 1, 4, 2 }, mesh.Face(1));
+            CollectionAssert.AreEqual(new[] { 1.0, 1.0, 0.0 }, mesh.Vertex(2));
+            Assert.IsFalse(mesh.IsQuadMesh);
+            CollectionAssert.AreEqual(new[] { 0.5, 0.5, 0.0 }, mesh.FaceCenter(0));
+            TilePatternEngine.Validate(mesh);
+            // The arrays handed out are copies.
+            mesh.Vertices[0] = 42;
+            Assert.AreEqual(0.0, mesh.Vertex(0)[0]);
+        }
+    }
+
+    /// <summary>An IProgress that reports synchronously (System.Progress posts to a thread pool).</summary>
+    internal sealed class SyncProgress : IProgress<double>
+    {
+        readonly Action<double> report;
+
+        public SyncProgress(Action<double> report)
+        {
+            this.report = report;
+        }
+
+        public void Report(double value)
+        {
+            report(value);
+        }
+    }
+}

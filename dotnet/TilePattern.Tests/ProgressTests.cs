@@ -1,0 +1,134 @@
+// Progress, cancellation and time limits through the native callback.
+using System;
+using System.Collections.Generic;
+using System.Diagnostics;
+using System.Threading;
+using NUnit.Framework;
+
+namespace TilePattern.Tests
+{
+    [TestFixture]
+    public class ProgressTests
+    {
+        static PolyMesh big;
+
+        // 100 x 100 quads: the staggered solve takes seconds, long enough to cancel.
+        static PolyMesh Big
+        {
+            get { return big ?? (big = TestMeshes.Grid(100, 100)); }
+        }
+
+        [Test]
+        public void CancellationTokenStopsTheSolve()
+        {
+            using (var cts = new CancellationTokenSource())
+            {
+                cts.CancelAfter(300);
+                var watch = Stopwatch.StartNew();
+                var e = Assert.Throws<TilePatternCanceledException>(() => TilePatternEngine.Match(Big, new PatternOptions { TimeLimitSeconds = 60 }, null, cts.Token));
+                Assert.Less(watch.Elapsed.TotalSeconds, 5.0, "cancelled within about a second of the request");
+                Assert.AreEqual(cts.Token, e.CancellationToken);
+                Assert.AreEqual(TilePatternStatus.Cancelled, e.Status);
+                StringAssert.Contains("cancelled", e.NativeMessage);
+                Assert.IsInstanceOf<OperationCanceledException>(e);
+            }
+        }
+
+        [Test]
+        public void ProgressDrivenCancel()
+        {
+            using (var cts = new CancellationTokenSource())
+            {
+                var seen = new List<double>();
+                int thread = Thread.CurrentThread.ManagedThreadId;
+                var progress = new SyncProgress(f =>
+                {
+                    Assert.AreEqual(thread, Thread.CurrentThread.ManagedThreadId, "called on the calling thread");
+                    seen.Add(f);
+                    if (seen.Count == 3)
+                        cts.Cancel();
+                });
+                Assert.Throws<TilePatternCanceledException>(() => TilePatternEngine.Match(Big, new PatternOptions { TimeLimitSeconds = 60 }, progress, cts.Token));
+                Assert.AreEqual(3, seen.Count, "no progress after the cancel");
+                for (int i = 0; i < seen.Count; i++)
+                {
+                    Assert.That(seen[i], Is.InRange(0.0, 1.0));
+                    if (i > 0)
+                        Assert.That(seen[i], Is.GreaterThanOrEqualTo(seen[i - 1]));
+                }
+            }
+        }
+
+        [Test]
+        public void AlreadyCancelledTokenThrowsBeforeTheCall()
+        {
+            var watch = Stopwatch.StartNew();
+            var token = new CancellationToken(true);
+            var e = Assert.Throws<TilePatternCanceledException>(() => TilePatternEngine.Match(Big, null, null, token));
+            Assert.AreEqual(token, e.CancellationToken);
+            Assert.Throws<TilePatternCanceledException>(() => TilePatternEngine.Remesh(TestMeshes.CurvedTriangles(4, 1, 0.1), null, null, token));
+            Assert.Less(watch.Elapsed.TotalSeconds, 1.0);
+        }
+
+        [Test]
+        public void RemeshCancelledAtItsStart()
+        {
+            // The remesh stage polls only at its start: a progress sink that cancels there works.
+            using (var cts = new CancellationTokenSource())
+            {
+                var progress = new SyncProgress(f => cts.Cancel());
+                var e = Assert.Throws<TilePatternCanceledException>(
+                    () => TilePatternEngine.Remesh(TestMeshes.CurvedTriangles(10, 1, 0.1), null, progress, cts.Token));
+                StringAssert.Contains("cancelled", e.NativeMessage);
+            }
+        }
+
+        [Test]
+        public void ExceptionInProgressSinkIsRethrownAfterTheNativeCallReturns()
+        {
+            var progress = new SyncProgress(f => { throw new InvalidOperationException("sink failed"); });
+            var e = Assert.Throws<InvalidOperationException>(() => TilePatternEngine.Match(Big, new PatternOptions { TimeLimitSeconds = 60 }, progress));
+            Assert.AreEqual("sink failed", e.Message);
+            StringAssert.Contains("SyncProgress", e.StackTrace, "the original stack trace is kept");
+            var r = Assert.Throws<InvalidOperationException>(() => TilePatternEngine.Remesh(TestMeshes.CurvedTriangles(10, 1, 0.1), null, progress));
+            Assert.AreEqual("sink failed", r.Message);
+            // The library is unharmed.
+            using (Pattern p = TilePatternEngine.Match(TestMeshes.Grid(4, 4), null, new SyncProgress(f => { })))
+                Assert.IsNotEmpty(p.Pairs);
+        }
+
+        [Test]
+        public void TimeLimitReturnsAValidPatternWithAnHonestStatus()
+        {
+            var watch = Stopwatch.StartNew();
+            using (Pattern pattern = TilePatternEngine.Match(Big, new PatternOptions { TimeLimitSeconds = 0.5 }))
+            {
+                Assert.Less(watch.Elapsed.TotalSeconds, 10.0);
+                Assert.AreEqual(SolveStatus.TimeLimit, pattern.Status);
+                Assert.That(pattern.Bound, Is.GreaterThanOrEqualTo(pattern.Objective));
+                Assert.Greater(pattern.Pairs.Length, 4000);
+                Assert.Greater(pattern.Gap, 0.0);
+            }
+        }
+
+        [Test]
+        public void ZeroTimeLimitReturnsTheGreedyStartAtOnce()
+        {
+            var watch = Stopwatch.StartNew();
+            using (Pattern pattern = TilePatternEngine.Match(Big, new PatternOptions { TimeLimitSeconds = 0 }))
+            {
+                Assert.Less(watch.Elapsed.TotalSeconds, 5.0);
+                Assert.Greater(pattern.Pairs.Length, 4000);
+            }
+        }
+
+        [Test]
+        public void ProgressIsReportedDuringASolve()
+        {
+            var seen = new List<double>();
+            using (Pattern pattern = TilePatternEngine.Match(TestMeshes.Grid(30, 30), new PatternOptions { TimeLimitSeconds = 5 }, new SyncProgress(seen.Add)))
+                Assert.IsNotNull(pattern);
+            Assert.IsNotEmpty(seen);
+        }
+    }
+}

@@ -1,0 +1,256 @@
+// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 1, as of
+// commit 15593c8 "Boundary tiles, cut list, laying order"), and
+// mirrors of its structs. Nothing here is public: the public API is TilePatternEngine.
+//
+// C to C# type map: size_t -> UIntPtr, uint32_t -> uint, int32_t / TpStatus -> int,
+// double -> double, const char* returned -> IntPtr (static string, never freed by us),
+// opaque handles -> SafeHandle subclasses (NativeHandles.cs), out pointers -> out.
+// tp_test_panic exists only in a build with the test-panic feature: it is declared in the
+// test assembly, not here.
+using System;
+using System.Runtime.InteropServices;
+
+namespace TilePattern
+{
+    /// <summary>TpProgressCallback: return non-zero to cancel. Runs on the calling thread.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    internal delegate int TpProgressCallback(IntPtr user, uint stage, double fraction);
+
+    /// <summary>Mirror of TpPatternOptions (64 bytes on 64-bit targets).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct TpPatternOptions
+    {
+        public uint struct_size;
+        public int bond;
+        public double weight;
+        public double time_limit_seconds;
+        public int method;
+        public int formulation;
+        public IntPtr forced_pairs;          // const uint32_t*
+        public UIntPtr forced_pair_count;    // size_t
+        public IntPtr excluded_faces;        // const uint32_t*
+        public UIntPtr excluded_face_count;  // size_t
+    }
+
+    /// <summary>Mirror of TpPatternSummary (96 bytes on 64-bit targets).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct TpPatternSummary
+    {
+        public UIntPtr faces;
+        public UIntPtr pairs;
+        public UIntPtr unpaired;
+        public UIntPtr excluded;
+        public UIntPtr non_quad;
+        public UIntPtr continuous_joints;
+        public UIntPtr shifted_pairs;
+        public double objective;
+        public double bound;
+        public double gap;
+        public double seconds;
+        public int status;
+    }
+
+    /// <summary>Mirror of TpRemeshOptions (64 bytes on 64-bit targets). The C array
+    /// <c>double direction_vector[3]</c> is spelled as three doubles, which has the same
+    /// layout and keeps the struct blittable.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct TpRemeshOptions
+    {
+        public uint struct_size;
+        public double target_edge;
+        public int direction;
+        public double direction_x;
+        public double direction_y;
+        public double direction_z;
+        public double angle_degrees;
+        public int shapeup;
+    }
+
+    /// <summary>Mirror of TpTileOptions (88 bytes); <c>double up[3]</c> is spelled as three doubles.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct TpTileOptions
+    {
+        public uint struct_size;
+        public double length;
+        public double width;
+        public double thickness;
+        public double joint;
+        public double cut_tolerance;
+        public double min_kept_width;
+        public double up_x;
+        public double up_y;
+        public double up_z;
+        public double support_band;
+    }
+
+    // Return buffers of the tp_*_options_default() functions. These return their struct by
+    // value, which every 64-bit C ABI does through a caller-allocated buffer (the structs are
+    // larger than 16 bytes and start with a uint32, so they are never returned in registers).
+    // A newer library whose options struct has grown (the struct_size scheme allows that)
+    // would write its larger struct past a buffer of the size this wrapper knows, so the
+    // buffer is made 512 bytes and only the known prefix is read.
+    [StructLayout(LayoutKind.Sequential, Size = 512)]
+    internal struct TpPatternOptionsReturn
+    {
+        public TpPatternOptions value;
+    }
+
+    [StructLayout(LayoutKind.Sequential, Size = 512)]
+    internal struct TpRemeshOptionsReturn
+    {
+        public TpRemeshOptions value;
+    }
+
+    [StructLayout(LayoutKind.Sequential, Size = 512)]
+    internal struct TpTileOptionsReturn
+    {
+        public TpTileOptions value;
+    }
+
+    internal static class NativeMethods
+    {
+        internal const string Library = "tilepattern";
+
+        // The header's #defines.
+        internal const int TP_ABI_VERSION = 1;
+        internal const uint TP_STAGE_REMESH = 1;
+        internal const uint TP_STAGE_PATTERN = 2;
+        internal const int TP_BOND_STACK = 0;
+        internal const int TP_BOND_STAGGERED = 1;
+        internal const int TP_BOND_RUNNING = 2;
+        internal const int TP_METHOD_AUTO = 0;
+        internal const int TP_METHOD_MIP = 1;
+        internal const int TP_FORMULATION_STRENGTHENED = 0;
+        internal const int TP_FORMULATION_PAPER = 1;
+        internal const int TP_SOLVE_OPTIMAL = 0;
+        internal const int TP_SOLVE_TIME_LIMIT = 1;
+        internal const int TP_SOLVE_FEASIBLE = 2;
+        internal const int TP_DIRECTION_CURVATURE = 0;
+        internal const int TP_DIRECTION_VECTOR = 1;
+        internal const int TP_DIRECTION_ANGLE = 2;
+        internal const int TP_TILE_FULL = 0;
+        internal const int TP_TILE_HALF = 1;
+        internal const int TP_TILE_BOUNDARY = 2;
+        internal const uint TP_NO_FACE = uint.MaxValue;
+
+        // A safety net only: the public API calls Native.EnsureReady() before any P/Invoke.
+        // (Mono binds a P/Invoke when it compiles the caller, before this would run.)
+        static NativeMethods()
+        {
+            NativeLibraryLoader.EnsureLoaded();
+        }
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern IntPtr tp_version();
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern uint tp_abi_version();
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_mesh_new(
+            double[] vertices, UIntPtr vertex_count,
+            uint[] face_indices, UIntPtr index_count,
+            uint[] face_sizes, UIntPtr face_count,
+            out MeshHandle mesh);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern void tp_mesh_free(IntPtr mesh);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_mesh_counts(MeshHandle mesh, out UIntPtr vertex_count, out UIntPtr face_count, out UIntPtr index_count);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_mesh_copy_vertices(MeshHandle mesh, [Out] double[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_mesh_copy_faces(MeshHandle mesh, [Out] uint[] indices, UIntPtr index_capacity, [Out] uint[] sizes, UIntPtr size_capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern TpPatternOptionsReturn tp_pattern_options_default();
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_pattern_solve(MeshHandle mesh, ref TpPatternOptions options, TpProgressCallback progress, IntPtr user, out PatternHandle pattern);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern void tp_pattern_free(IntPtr pattern);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_pattern_summary(PatternHandle pattern, out TpPatternSummary summary);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_pattern_copy_pairs(PatternHandle pattern, [Out] uint[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_pattern_copy_unpaired(PatternHandle pattern, [Out] uint[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern TpRemeshOptionsReturn tp_remesh_options_default();
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_remesh(MeshHandle mesh, ref TpRemeshOptions options, TpProgressCallback progress, IntPtr user, out MeshHandle quads);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern UIntPtr tp_last_error_message([Out] byte[] buffer, UIntPtr length);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern TpTileOptionsReturn tp_tile_options_default();
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_build(MeshHandle mesh, PatternHandle pattern, ref TpTileOptions options, out TilesHandle tiles);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_build_on_surface(MeshHandle mesh, PatternHandle pattern, MeshHandle surface, ref TpTileOptions options, out TilesHandle tiles);
+
+        /// <summary>tp_tiles_build_on_surface with surface = NULL (a SafeHandle parameter cannot be null).</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, EntryPoint = "tp_tiles_build_on_surface")]
+        internal static extern int tp_tiles_build_on_surface_without_surface(MeshHandle mesh, PatternHandle pattern, IntPtr surface, ref TpTileOptions options, out TilesHandle tiles);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern void tp_tiles_free(IntPtr tiles);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_count(TilesHandle tiles, out UIntPtr count);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_kinds(TilesHandle tiles, [Out] int[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_corners(TilesHandle tiles, [Out] double[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_frames(TilesHandle tiles, [Out] double[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_sizes(TilesHandle tiles, [Out] double[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_faces(TilesHandle tiles, [Out] uint[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_report_json(TilesHandle tiles, [Out] byte[] buffer, UIntPtr length, out UIntPtr needed);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_steps(TilesHandle tiles, [Out] uint[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_kept_fractions(TilesHandle tiles, [Out] double[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_outline_counts(TilesHandle tiles, out UIntPtr loops, out UIntPtr points);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_loop_counts(TilesHandle tiles, [Out] uint[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_loop_sizes(TilesHandle tiles, [Out] uint[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_loop_points(TilesHandle tiles, [Out] double[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_labels(TilesHandle tiles, [Out] byte[] buffer, UIntPtr length, out UIntPtr needed);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_cutlist_json(TilesHandle tiles, [Out] byte[] buffer, UIntPtr length, out UIntPtr needed);
+    }
+}

@@ -1,0 +1,313 @@
+// Options of the three stages in plain .NET types. Each starts from the library's own
+// defaults (tp_*_options_default) so the two never drift apart.
+using System;
+using System.Collections.Generic;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
+
+namespace TilePattern
+{
+    /// <summary>The bond the matching aims for (TP_BOND_*).</summary>
+    public enum Bond
+    {
+        /// <summary>Maximum matching, the paper's eq. (1).</summary>
+        Stack = 0,
+        /// <summary>Staggered, eq. (2): <see cref="PatternOptions.Weight"/> is the penalty per continuous joint.</summary>
+        Staggered = 1,
+        /// <summary>Running bond, eq. (3): <see cref="PatternOptions.Weight"/> is the reward per shifted pair.</summary>
+        RunningBond = 2,
+    }
+
+    /// <summary>TP_METHOD_*.</summary>
+    public enum SolveMethod
+    {
+        /// <summary>The fastest route to a proven optimum.</summary>
+        Auto = 0,
+        /// <summary>The paper's whole program on CBC.</summary>
+        Mip = 1,
+    }
+
+    /// <summary>TP_FORMULATION_*.</summary>
+    public enum Formulation
+    {
+        /// <summary>The paper's program plus valid rows (same optimum, faster proofs).</summary>
+        Strengthened = 0,
+        /// <summary>The program exactly as printed in the paper.</summary>
+        Paper = 1,
+    }
+
+    /// <summary>TP_DIRECTION_*: what the quads are aligned with.</summary>
+    public enum FieldDirection
+    {
+        /// <summary>The principal curvature (the paper's choice).</summary>
+        Curvature = 0,
+        /// <summary><see cref="RemeshOptions.DirectionVector"/>, projected onto the surface.</summary>
+        Vector = 1,
+        /// <summary>The curvature field rotated by <see cref="RemeshOptions.AngleDegrees"/>.</summary>
+        Angle = 2,
+    }
+
+    /// <summary>TP_SOLVE_*: how good a pattern is known to be.</summary>
+    public enum SolveStatus
+    {
+        /// <summary>The objective equals the proven bound.</summary>
+        Optimal = 0,
+        /// <summary>The time limit stopped the search; the pattern is valid, a gap remains.</summary>
+        TimeLimit = 1,
+        /// <summary>The search ended with a valid pattern and a gap.</summary>
+        Feasible = 2,
+    }
+
+    /// <summary>TP_TILE_*.</summary>
+    public enum TileKind
+    {
+        /// <summary>A standard tile over two faces.</summary>
+        Full = 0,
+        /// <summary>A half tile over one unmatched quad (needs a cut).</summary>
+        Half = 1,
+        /// <summary>A full or half tile cut to the surface's boundary (see <see cref="Tile.Outline"/>).</summary>
+        Boundary = 2,
+    }
+
+    /// <summary>Two face indices that form (or must form) one tile.</summary>
+    public struct FacePair : IEquatable<FacePair>
+    {
+        public FacePair(int a, int b)
+        {
+            A = a;
+            B = b;
+        }
+
+        public int A { get; private set; }
+
+        public int B { get; private set; }
+
+        public bool Equals(FacePair other) { return A == other.A && B == other.B; }
+
+        public override bool Equals(object obj) { return obj is FacePair && Equals((FacePair)obj); }
+
+        public override int GetHashCode() { return A * 397 ^ B; }
+
+        public override string ToString() { return "[" + A + ", " + B + "]"; }
+    }
+
+    /// <summary>Options of the remesh stage (tp_remesh).</summary>
+    public sealed class RemeshOptions
+    {
+        /// <summary>The library's defaults: quads of 0.145 (a 280 mm tile plus a 10 mm joint, halved, in metres) along the curvature.</summary>
+        public RemeshOptions()
+        {
+            Native.EnsureReady();
+            LoadDefaults();
+        }
+
+        // Separate from the constructor: see Native.EnsureReady.
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        void LoadDefaults()
+        {
+            TpRemeshOptions d = NativeMethods.tp_remesh_options_default().value;
+            TargetEdge = d.target_edge;
+            Direction = (FieldDirection)d.direction;
+            DirectionVector = new[] { d.direction_x, d.direction_y, d.direction_z };
+            AngleDegrees = d.angle_degrees;
+            ShapeUp = d.shapeup != 0;
+        }
+
+        /// <summary>Quads whose edge is half a tile plus a joint: (length + joint) / 2.</summary>
+        public static RemeshOptions ForTile(TileOptions tile)
+        {
+            if (tile == null)
+                throw new ArgumentNullException("tile");
+            return new RemeshOptions { TargetEdge = (tile.Length + tile.Joint) / 2.0 };
+        }
+
+        /// <summary>Target quad edge in model units.</summary>
+        public double TargetEdge { get; set; }
+
+        public FieldDirection Direction { get; set; }
+
+        /// <summary>xyz, used with <see cref="FieldDirection.Vector"/>.</summary>
+        public double[] DirectionVector { get; set; }
+
+        /// <summary>Degrees, used with <see cref="FieldDirection.Angle"/>.</summary>
+        public double AngleDegrees { get; set; }
+
+        /// <summary>Pull faces towards squares without leaving the surface.</summary>
+        public bool ShapeUp { get; set; }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        internal TpRemeshOptions ToNative()
+        {
+            TpRemeshOptions o = NativeMethods.tp_remesh_options_default().value;
+            // The size of the struct as this wrapper knows it, not as the library does.
+            o.struct_size = (uint)Marshal.SizeOf(typeof(TpRemeshOptions));
+            o.target_edge = TargetEdge;
+            o.direction = (int)Direction;
+            double[] v = DirectionVector;
+            if (v != null)
+            {
+                if (v.Length != 3)
+                    throw new ArgumentException("DirectionVector needs 3 values (xyz), not " + v.Length, "DirectionVector");
+                o.direction_x = v[0];
+                o.direction_y = v[1];
+                o.direction_z = v[2];
+            }
+            o.angle_degrees = AngleDegrees;
+            o.shapeup = ShapeUp ? 1 : 0;
+            return o;
+        }
+    }
+
+    /// <summary>Options of the pattern stage (tp_pattern_solve).</summary>
+    public sealed class PatternOptions
+    {
+        /// <summary>The library's defaults: staggered, weight 0.5, 60 s, auto, strengthened.</summary>
+        public PatternOptions()
+        {
+            Native.EnsureReady();
+            LoadDefaults();
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        void LoadDefaults()
+        {
+            TpPatternOptions d = NativeMethods.tp_pattern_options_default().value;
+            Bond = (Bond)d.bond;
+            Weight = d.weight;
+            TimeLimitSeconds = d.time_limit_seconds;
+            Method = (SolveMethod)d.method;
+            Formulation = (Formulation)d.formulation;
+            ForcedPairs = new List<FacePair>();
+            ExcludedFaces = new List<int>();
+        }
+
+        public Bond Bond { get; set; }
+
+        /// <summary>Weight of the bond term (w or w_R).</summary>
+        public double Weight { get; set; }
+
+        /// <summary>Wall-clock limit in seconds; 0 returns the greedy start at once.</summary>
+        public double TimeLimitSeconds { get; set; }
+
+        public SolveMethod Method { get; set; }
+
+        public Formulation Formulation { get; set; }
+
+        /// <summary>Pairs of adjacent quads that must become tiles.</summary>
+        public IList<FacePair> ForcedPairs { get; set; }
+
+        /// <summary>Faces that take part in no tile (openings, areas laid by hand).</summary>
+        public IList<int> ExcludedFaces { get; set; }
+
+        /// <summary>The native struct, its arrays flattened into <paramref name="forced"/> and
+        /// <paramref name="excluded"/>; the caller pins them and fills in the pointers.</summary>
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        internal TpPatternOptions ToNative(out uint[] forced, out uint[] excluded)
+        {
+            TpPatternOptions o = NativeMethods.tp_pattern_options_default().value;
+            o.struct_size = (uint)Marshal.SizeOf(typeof(TpPatternOptions));
+            o.bond = (int)Bond;
+            o.weight = Weight;
+            o.time_limit_seconds = TimeLimitSeconds;
+            o.method = (int)Method;
+            o.formulation = (int)Formulation;
+            var pairs = ForcedPairs ?? new List<FacePair>();
+            forced = new uint[2 * pairs.Count];
+            for (int k = 0; k < pairs.Count; k++)
+            {
+                forced[2 * k] = FaceIndex(pairs[k].A, "ForcedPairs");
+                forced[2 * k + 1] = FaceIndex(pairs[k].B, "ForcedPairs");
+            }
+            var faces = ExcludedFaces ?? new List<int>();
+            excluded = new uint[faces.Count];
+            for (int k = 0; k < faces.Count; k++)
+                excluded[k] = FaceIndex(faces[k], "ExcludedFaces");
+            o.forced_pairs = IntPtr.Zero;
+            o.forced_pair_count = Native.Size(pairs.Count);
+            o.excluded_faces = IntPtr.Zero;
+            o.excluded_face_count = Native.Size(faces.Count);
+            return o;
+        }
+
+        static uint FaceIndex(int face, string what)
+        {
+            if (face < 0)
+                throw new ArgumentOutOfRangeException(what, face, "face indices are 0-based and not negative");
+            return (uint)face;
+        }
+    }
+
+    /// <summary>Tile dimensions in model units, and the cutting and laying-order settings
+    /// (tp_tiles_build / tp_tiles_build_on_surface).</summary>
+    public sealed class TileOptions
+    {
+        /// <summary>The library's defaults: 0.28 x 0.14 x 0.015 with a 0.01 joint (metres).</summary>
+        public TileOptions()
+        {
+            Native.EnsureReady();
+            LoadDefaults();
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        void LoadDefaults()
+        {
+            TpTileOptions d = NativeMethods.tp_tile_options_default().value;
+            Length = d.length;
+            Width = d.width;
+            Thickness = d.thickness;
+            Joint = d.joint;
+            CutTolerance = d.cut_tolerance;
+            MinKeptWidth = d.min_kept_width;
+            Up = new[] { d.up_x, d.up_y, d.up_z };
+            SupportBand = d.support_band;
+        }
+
+        public double Length { get; set; }
+
+        public double Width { get; set; }
+
+        public double Thickness { get; set; }
+
+        /// <summary>Mortar joint.</summary>
+        public double Joint { get; set; }
+
+        /// <summary>Tiles the boundary enters by no more than this stay whole; cut shapes this
+        /// close share a cut-list label. Negative (default): 1 % of the width.</summary>
+        public double CutTolerance { get; set; }
+
+        /// <summary>Boundary pieces narrower than this are slivers: reported, not emitted.
+        /// Negative (default): a fifth of the width.</summary>
+        public double MinKeptWidth { get; set; }
+
+        /// <summary>Up direction for the laying order, xyz; default (0, 0, 1).</summary>
+        public double[] Up { get; set; }
+
+        /// <summary>Tiles with a boundary edge within this height of the lowest boundary point
+        /// stand on the supports. Negative (default): one tile width.</summary>
+        public double SupportBand { get; set; }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        internal TpTileOptions ToNative()
+        {
+            TpTileOptions o = NativeMethods.tp_tile_options_default().value;
+            o.struct_size = (uint)Marshal.SizeOf(typeof(TpTileOptions));
+            o.length = Length;
+            o.width = Width;
+            o.thickness = Thickness;
+            o.joint = Joint;
+            o.cut_tolerance = CutTolerance;
+            o.min_kept_width = MinKeptWidth;
+            double[] up = Up;
+            if (up != null)
+            {
+                if (up.Length != 3)
+                    throw new ArgumentException("Up needs 3 values (xyz), not " + up.Length, "Up");
+                o.up_x = up[0];
+                o.up_y = up[1];
+                o.up_z = up[2];
+            }
+            o.support_band = SupportBand;
+            return o;
+        }
+    }
+}

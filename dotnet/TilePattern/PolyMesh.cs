@@ -1,0 +1,170 @@
+// A polygon mesh in plain arrays: the input surface (triangles, quads, n-gons) and the quad
+// mesh the remesh stage returns.
+using System;
+using System.Collections.Generic;
+using System.Runtime.CompilerServices;
+
+namespace TilePattern
+{
+    /// <summary>An immutable polygon mesh: vertices as xyz triples, faces as a flat list of
+    /// vertex indices plus one size per face (face i uses the next FaceSizes[i] indices).
+    /// Validation (NaN, indices out of range, non-manifold edges, empty mesh) happens in the
+    /// native library when the mesh is used, or with <see cref="TilePatternEngine.Validate"/>.</summary>
+    public sealed class PolyMesh
+    {
+        readonly double[] vertices;
+        readonly int[] faceIndices;
+        readonly int[] faceSizes;
+        readonly int[] faceStarts;
+
+        /// <summary>Copies the arrays. Throws ArgumentException when they do not fit together
+        /// (coordinates not a multiple of 3, sizes not adding up to the index count, negative
+        /// values); everything else is checked by the library.</summary>
+        public PolyMesh(double[] vertices, int[] faceIndices, int[] faceSizes)
+        {
+            if (vertices == null)
+                throw new ArgumentNullException("vertices");
+            if (faceIndices == null)
+                throw new ArgumentNullException("faceIndices");
+            if (faceSizes == null)
+                throw new ArgumentNullException("faceSizes");
+            if (vertices.Length % 3 != 0)
+                throw new ArgumentException("vertices holds xyz triples: its length " + vertices.Length + " is not a multiple of 3", "vertices");
+            long total = 0;
+            faceStarts = new int[faceSizes.Length];
+            for (int f = 0; f < faceSizes.Length; f++)
+            {
+                if (faceSizes[f] < 0)
+                    throw new ArgumentOutOfRangeException("faceSizes", faceSizes[f], "face " + f + " has a negative size");
+                faceStarts[f] = (int)total;
+                total += faceSizes[f];
+                if (total > faceIndices.Length)
+                    break;
+            }
+            if (total != faceIndices.Length)
+                throw new ArgumentException("faceSizes add up to " + total + " but faceIndices holds " + faceIndices.Length, "faceSizes");
+            for (int k = 0; k < faceIndices.Length; k++)
+                if (faceIndices[k] < 0)
+                    throw new ArgumentOutOfRangeException("faceIndices", faceIndices[k], "vertex indices are 0-based and not negative");
+            this.vertices = (double[])vertices.Clone();
+            this.faceIndices = (int[])faceIndices.Clone();
+            this.faceSizes = (int[])faceSizes.Clone();
+        }
+
+        /// <summary>A mesh from one index array per face.</summary>
+        public static PolyMesh FromFaces(double[] vertices, IList<int[]> faces)
+        {
+            if (faces == null)
+                throw new ArgumentNullException("faces");
+            var sizes = new int[faces.Count];
+            var flat = new List<int>();
+            for (int f = 0; f < faces.Count; f++)
+            {
+                if (faces[f] == null)
+                    throw new ArgumentNullException("faces", "face " + f + " is null");
+                sizes[f] = faces[f].Length;
+                flat.AddRange(faces[f]);
+            }
+            return new PolyMesh(vertices, flat.ToArray(), sizes);
+        }
+
+        /// <summary>xyz triples (a copy).</summary>
+        public double[] Vertices { get { return (double[])vertices.Clone(); } }
+
+        /// <summary>All faces' vertex indices in face order (a copy).</summary>
+        public int[] FaceIndices { get { return (int[])faceIndices.Clone(); } }
+
+        /// <summary>Vertex count of each face (a copy).</summary>
+        public int[] FaceSizes { get { return (int[])faceSizes.Clone(); } }
+
+        public int VertexCount { get { return vertices.Length / 3; } }
+
+        public int FaceCount { get { return faceSizes.Length; } }
+
+        /// <summary>Vertex i as {x, y, z}.</summary>
+        public double[] Vertex(int i)
+        {
+            return new[] { vertices[3 * i], vertices[3 * i + 1], vertices[3 * i + 2] };
+        }
+
+        /// <summary>The vertex indices of face f.</summary>
+        public int[] Face(int f)
+        {
+            var face = new int[faceSizes[f]];
+            Array.Copy(faceIndices, faceStarts[f], face, 0, face.Length);
+            return face;
+        }
+
+        /// <summary>Every face's vertex indices.</summary>
+        public int[][] Faces()
+        {
+            var faces = new int[FaceCount][];
+            for (int f = 0; f < faces.Length; f++)
+                faces[f] = Face(f);
+            return faces;
+        }
+
+        /// <summary>True when every face is a quad.</summary>
+        public bool IsQuadMesh
+        {
+            get { return Array.TrueForAll(faceSizes, s => s == 4); }
+        }
+
+        /// <summary>The centroid of face f's vertices, {x, y, z}.</summary>
+        public double[] FaceCenter(int f)
+        {
+            var c = new double[3];
+            int n = faceSizes[f];
+            for (int k = 0; k < n; k++)
+            {
+                int v = faceIndices[faceStarts[f] + k];
+                for (int d = 0; d < 3; d++)
+                    c[d] += vertices[3 * v + d] / n;
+            }
+            return c;
+        }
+
+        /// <summary>Builds and validates the native mesh (tp_mesh_new).</summary>
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        internal MeshHandle CreateHandle()
+        {
+            var indices = new uint[faceIndices.Length];
+            for (int k = 0; k < indices.Length; k++)
+                indices[k] = (uint)faceIndices[k];
+            var sizes = new uint[faceSizes.Length];
+            for (int f = 0; f < sizes.Length; f++)
+                sizes[f] = (uint)faceSizes[f];
+            MeshHandle handle;
+            int status = NativeMethods.tp_mesh_new(
+                vertices, Native.Size(VertexCount), indices, Native.Size(indices.Length), sizes, Native.Size(sizes.Length), out handle);
+            if (status != 0)
+            {
+                handle.Dispose();
+                Native.Check(status);
+            }
+            return handle;
+        }
+
+        /// <summary>Reads a native mesh back (tp_mesh_counts and the copy functions).</summary>
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        internal static PolyMesh FromHandle(MeshHandle handle)
+        {
+            UIntPtr vertexCount, faceCount, indexCount;
+            Native.Check(NativeMethods.tp_mesh_counts(handle, out vertexCount, out faceCount, out indexCount));
+            var xyz = new double[checked(3 * Native.Count(vertexCount))];
+            var indices = new uint[Native.Count(indexCount)];
+            var sizes = new uint[Native.Count(faceCount)];
+            Native.Check(NativeMethods.tp_mesh_copy_vertices(handle, xyz, Native.Size(xyz.Length)));
+            Native.Check(NativeMethods.tp_mesh_copy_faces(handle, indices, Native.Size(indices.Length), sizes, Native.Size(sizes.Length)));
+            return new PolyMesh(xyz, ToInt(indices), ToInt(sizes));
+        }
+
+        internal static int[] ToInt(uint[] values)
+        {
+            var result = new int[values.Length];
+            for (int k = 0; k < values.Length; k++)
+                result[k] = checked((int)values[k]);
+            return result;
+        }
+    }
+}

@@ -1,0 +1,423 @@
+// What the stages return: a Pattern (keeps its native handle for the tile stage), Tiles and
+// the Report (plain data, copied out of the library).
+using System;
+using System.Collections.Generic;
+using System.Threading;
+
+namespace TilePattern
+{
+    /// <summary>A solved matching. Its numbers and pairs are plain data, readable at any time;
+    /// it also owns the native pattern and the native quad mesh it was solved on, which
+    /// <c>TilePatternEngine.Tiles</c> needs. Dispose releases
+    /// them (a forgotten Dispose is caught by the SafeHandles' finalizers).</summary>
+    public sealed class Pattern : IDisposable
+    {
+        readonly PatternHandle handle;
+        readonly MeshHandle mesh;
+        int disposed;
+
+        internal Pattern(PolyMesh quads, MeshHandle mesh, PatternHandle handle)
+        {
+            this.handle = handle;
+            this.mesh = mesh;
+            QuadMesh = quads;
+            TpPatternSummary s;
+            Native.Check(NativeMethods.tp_pattern_summary(handle, out s));
+            FaceCount = Native.Count(s.faces);
+            ExcludedCount = Native.Count(s.excluded);
+            NonQuadCount = Native.Count(s.non_quad);
+            ContinuousJoints = Native.Count(s.continuous_joints);
+            ShiftedPairs = Native.Count(s.shifted_pairs);
+            Objective = s.objective;
+            Bound = s.bound;
+            Gap = s.gap;
+            Seconds = s.seconds;
+            Status = (SolveStatus)s.status;
+
+            var flat = new uint[checked(2 * Native.Count(s.pairs))];
+            Native.Check(NativeMethods.tp_pattern_copy_pairs(handle, flat, Native.Size(flat.Length)));
+            Pairs = new FacePair[flat.Length / 2];
+            for (int k = 0; k < Pairs.Length; k++)
+                Pairs[k] = new FacePair(checked((int)flat[2 * k]), checked((int)flat[2 * k + 1]));
+            var unpaired = new uint[Native.Count(s.unpaired)];
+            Native.Check(NativeMethods.tp_pattern_copy_unpaired(handle, unpaired, Native.Size(unpaired.Length)));
+            Unpaired = PolyMesh.ToInt(unpaired);
+        }
+
+        /// <summary>The quad mesh the pattern was solved on.</summary>
+        public PolyMesh QuadMesh { get; private set; }
+
+        /// <summary>Faces of the mesh.</summary>
+        public int FaceCount { get; private set; }
+
+        /// <summary>Matched pairs (full tiles), a &lt; b, sorted.</summary>
+        public FacePair[] Pairs { get; private set; }
+
+        /// <summary>Unpaired quads (half tiles, each needs a cut).</summary>
+        public int[] Unpaired { get; private set; }
+
+        public int ExcludedCount { get; private set; }
+
+        /// <summary>Faces that are not quads (no tile).</summary>
+        public int NonQuadCount { get; private set; }
+
+        public int ContinuousJoints { get; private set; }
+
+        public int ShiftedPairs { get; private set; }
+
+        public double Objective { get; private set; }
+
+        /// <summary>Proven upper bound on the objective.</summary>
+        public double Bound { get; private set; }
+
+        /// <summary>(bound - objective) / max(bound, 1).</summary>
+        public double Gap { get; private set; }
+
+        /// <summary>Wall-clock seconds of the solve.</summary>
+        public double Seconds { get; private set; }
+
+        public SolveStatus Status { get; private set; }
+
+        public bool IsDisposed { get { return disposed != 0; } }
+
+        internal PatternHandle Handle
+        {
+            get
+            {
+                if (IsDisposed)
+                    throw new ObjectDisposedException("Pattern");
+                return handle;
+            }
+        }
+
+        internal MeshHandle MeshHandle
+        {
+            get
+            {
+                if (IsDisposed)
+                    throw new ObjectDisposedException("Pattern");
+                return mesh;
+            }
+        }
+
+        /// <summary>Releases the native pattern and mesh; safe to call more than once.</summary>
+        public void Dispose()
+        {
+            if (Interlocked.Exchange(ref disposed, 1) != 0)
+                return;
+            handle.Dispose();
+            mesh.Dispose();
+        }
+
+        public override string ToString()
+        {
+            return string.Format(System.Globalization.CultureInfo.InvariantCulture,
+                "{0} pairs, {1} unpaired, {2} continuous joints, objective {3}, bound {4}, {5}",
+                Pairs.Length, Unpaired.Length, ContinuousJoints, Objective, Bound, Status);
+        }
+    }
+
+    /// <summary>One tile: a box in its own frame, spanning [-L/2, L/2] x [-W/2, W/2] x [0, T].</summary>
+    public sealed class Tile
+    {
+        internal Tile() { }
+
+        /// <summary>Position in the tile list: full tiles in pair order, then half tiles in face order.</summary>
+        public int Index { get; internal set; }
+
+        public TileKind Kind { get; internal set; }
+
+        /// <summary>8 corners as xyz (24 values): the bottom face counter-clockwise from
+        /// (-x, -y), then the top face in the same order.</summary>
+        public double[] Corners { get; internal set; }
+
+        /// <summary>Frame origin (midpoint between the face centroids), xyz.</summary>
+        public double[] Origin { get; internal set; }
+
+        /// <summary>Length axis (unit), xyz.</summary>
+        public double[] XAxis { get; internal set; }
+
+        /// <summary>Width axis (unit), xyz.</summary>
+        public double[] YAxis { get; internal set; }
+
+        /// <summary>Thickness axis (unit, the surface normal side), xyz.</summary>
+        public double[] ZAxis { get; internal set; }
+
+        public double Length { get; internal set; }
+
+        public double Width { get; internal set; }
+
+        public double Thickness { get; internal set; }
+
+        /// <summary>The quad faces it covers: two for a full tile, one for a half tile (a
+        /// boundary tile is cut from either; a piece the library adds beyond the quad mesh may
+        /// cover none). TP_NO_FACE slots are left out.</summary>
+        public int[] Faces { get; internal set; }
+
+        /// <summary>Step in the laying order, from 0.</summary>
+        public int Step { get; internal set; }
+
+        /// <summary>Kept area over face area: 1 for an uncut tile.</summary>
+        public double KeptFraction { get; internal set; }
+
+        /// <summary>Cut-list label: F (full), H (half), B1, B2, ... (boundary shapes).</summary>
+        public string Label { get; internal set; }
+
+        /// <summary>For a boundary tile, the part of its face to keep: loops of (x, y) points
+        /// in the tile's frame (x0, y0, x1, y1, ...), outer loops counter-clockwise, holes
+        /// clockwise seen from +z. Empty for an uncut tile.</summary>
+        public double[][] Outline { get; internal set; }
+
+        /// <summary>Loop <paramref name="loop"/> of <see cref="Outline"/> in model
+        /// coordinates, on the tile's bottom face (xyz triples).</summary>
+        public double[] OutlineInModel(int loop)
+        {
+            double[] xy = Outline[loop];
+            var xyz = new double[xy.Length / 2 * 3];
+            for (int p = 0; p < xy.Length / 2; p++)
+                for (int d = 0; d < 3; d++)
+                    xyz[3 * p + d] = Origin[d] + xy[2 * p] * XAxis[d] + xy[2 * p + 1] * YAxis[d];
+            return xyz;
+        }
+
+        /// <summary>Corner i (0-7) as {x, y, z}.</summary>
+        public double[] Corner(int i)
+        {
+            return new[] { Corners[3 * i], Corners[3 * i + 1], Corners[3 * i + 2] };
+        }
+    }
+
+    /// <summary>Tiles that share one cut shape (a row of the cut list).</summary>
+    public sealed class CutGroup
+    {
+        /// <summary>F, H, B1, B2, ...</summary>
+        public string Label { get; internal set; }
+        /// <summary>"full", "half" or "boundary".</summary>
+        public string Kind { get; internal set; }
+        public int Count { get; internal set; }
+        /// <summary>Length of the blank the shape is cut from.</summary>
+        public double BlankLength { get; internal set; }
+        public double BlankWidth { get; internal set; }
+        /// <summary>Kept area of one tile.</summary>
+        public double Area { get; internal set; }
+    }
+
+    /// <summary>The tile stage's result: every tile, the report and the cut list.</summary>
+    public sealed class Tiling
+    {
+        internal Tiling(Tile[] tiles, Report report, string cutListJson)
+        {
+            Tiles = tiles;
+            Report = report;
+            CutListJson = cutListJson;
+            var groups = new List<CutGroup>();
+            var list = JsonReader.Parse(cutListJson) as List<object>;
+            if (list != null)
+                foreach (object item in list)
+                {
+                    var g = item as Dictionary<string, object>;
+                    var blank = g != null && g.ContainsKey("blank") ? g["blank"] as List<object> : null;
+                    groups.Add(new CutGroup
+                    {
+                        Label = JsonAccess.Text(g, "label"),
+                        Kind = JsonAccess.Text(g, "kind"),
+                        Count = JsonAccess.Integer(g, "count"),
+                        BlankLength = blank != null && blank.Count == 2 && blank[0] is double ? (double)blank[0] : double.NaN,
+                        BlankWidth = blank != null && blank.Count == 2 && blank[1] is double ? (double)blank[1] : double.NaN,
+                        Area = JsonAccess.Number(g, "area"),
+                    });
+                }
+            CutList = groups.ToArray();
+        }
+
+        /// <summary>The cut list: one group per cut shape (tp_tiles_cutlist_json, parsed).</summary>
+        public CutGroup[] CutList { get; private set; }
+
+        /// <summary>The cut list as the library wrote it (the CLI's cutlist.json).</summary>
+        public string CutListJson { get; private set; }
+
+        public int BoundaryCount { get { return Array.FindAll(Tiles, t => t.Kind == TileKind.Boundary).Length; } }
+
+        /// <summary>Full tiles in pair order, then half tiles in face order.</summary>
+        public Tile[] Tiles { get; private set; }
+
+        public Report Report { get; private set; }
+
+        public int FullCount { get { return Array.FindAll(Tiles, t => t.Kind == TileKind.Full).Length; } }
+
+        public int HalfCount { get { return Array.FindAll(Tiles, t => t.Kind == TileKind.Half).Length; } }
+    }
+
+    /// <summary>Tile size and joint as used, in model units.</summary>
+    public sealed class TileDimensions
+    {
+        public double Length { get; internal set; }
+        public double Width { get; internal set; }
+        public double Thickness { get; internal set; }
+        public double Joint { get; internal set; }
+    }
+
+    /// <summary>Gaps between neighbouring tiles across each mesh edge that separates two tiles.</summary>
+    public sealed class JointReport
+    {
+        /// <summary>Mesh edges between two different tiles.</summary>
+        public int Contacts { get; internal set; }
+        /// <summary>Nominal joint.</summary>
+        public double Joint { get; internal set; }
+        /// <summary>Smallest gap (negative: overlap).</summary>
+        public double MinGap { get; internal set; }
+        public double MaxGap { get; internal set; }
+        /// <summary>Mean gap at the edge midpoints.</summary>
+        public double MeanGap { get; internal set; }
+        /// <summary>95th percentile of |gap - joint|.</summary>
+        public double P95Deviation { get; internal set; }
+        /// <summary>Contacts where the tiles overlap somewhere.</summary>
+        public int Overlaps { get; internal set; }
+        /// <summary>95th percentile of the gap.</summary>
+        public double P95Gap { get; internal set; }
+        /// <summary>Largest overlap (0 if none).</summary>
+        public double MaxOverlap { get; internal set; }
+    }
+
+    /// <summary>Tiles cut to the surface's boundary, and how much of the surface the tiles cover.</summary>
+    public sealed class CuttingReport
+    {
+        public int BoundaryTiles { get; internal set; }
+        /// <summary>Tiles entirely off the surface (dropped).</summary>
+        public int OutsideTiles { get; internal set; }
+        /// <summary>Boundary pieces too narrow to keep (dropped).</summary>
+        public int Slivers { get; internal set; }
+        /// <summary>Distinct boundary cut shapes (B labels).</summary>
+        public int BoundaryShapes { get; internal set; }
+        public double SurfaceArea { get; internal set; }
+        public double TileArea { get; internal set; }
+        /// <summary>Share of the surface under a kept tile face or its half joint.</summary>
+        public double Coverage { get; internal set; }
+    }
+
+    /// <summary>The laying order's summary.</summary>
+    public sealed class SequenceReport
+    {
+        /// <summary>Tiles standing on the supports.</summary>
+        public int SupportTiles { get; internal set; }
+        /// <summary>Tiles that at their step touch no lower laid tile and stand on no support.</summary>
+        public int Unsupported { get; internal set; }
+    }
+
+    /// <summary>The report of tp_tiles_report_json (the CLI's report.json without units).</summary>
+    public sealed class Report
+    {
+        internal Report() { }
+
+        public int Faces { get; private set; }
+        public int FullTiles { get; private set; }
+        public int HalfTiles { get; private set; }
+        /// <summary>Full and half tiles that are cut to the boundary (counted in FullTiles/HalfTiles too).</summary>
+        public int BoundaryTiles { get; private set; }
+        public int NonQuadFaces { get; private set; }
+        public int ExcludedFaces { get; private set; }
+        public int ContinuousJoints { get; private set; }
+        public int ShiftedPairs { get; private set; }
+        public double Objective { get; private set; }
+        public double Bound { get; private set; }
+        public double Gap { get; private set; }
+
+        /// <summary>Parsed from <see cref="StatusText"/>.</summary>
+        public SolveStatus Status { get; private set; }
+
+        /// <summary>"optimal", "time_limit" or "feasible".</summary>
+        public string StatusText { get; private set; }
+
+        public TileDimensions Tile { get; private set; }
+        public JointReport Joints { get; private set; }
+
+        /// <summary>Boundary cutting and coverage (null if the library did not report it).</summary>
+        public CuttingReport Cutting { get; private set; }
+
+        /// <summary>Laying-order summary (null if the library did not report it).</summary>
+        public SequenceReport Sequence { get; private set; }
+
+        /// <summary>Seconds of the pattern stage.</summary>
+        public double PatternSeconds { get; private set; }
+
+        /// <summary>Seconds of the tile stage.</summary>
+        public double TileSeconds { get; private set; }
+
+        /// <summary>The JSON text as the library wrote it.</summary>
+        public string Json { get; private set; }
+
+        /// <summary>Reads a report from its JSON (FormatException if it is not JSON).</summary>
+        public static Report Parse(string json)
+        {
+            var root = JsonReader.Parse(json) as Dictionary<string, object>;
+            if (root == null)
+                throw new FormatException("the report is not a JSON object");
+            var r = new Report { Json = json };
+            r.Faces = JsonAccess.Integer(root, "faces");
+            r.FullTiles = JsonAccess.Integer(root, "full_tiles");
+            r.HalfTiles = JsonAccess.Integer(root, "half_tiles");
+            r.BoundaryTiles = JsonAccess.Integer(root, "boundary_tiles");
+            r.NonQuadFaces = JsonAccess.Integer(root, "non_quad_faces");
+            r.ExcludedFaces = JsonAccess.Integer(root, "excluded_faces");
+            r.ContinuousJoints = JsonAccess.Integer(root, "continuous_joints");
+            r.ShiftedPairs = JsonAccess.Integer(root, "shifted_pairs");
+            r.Objective = JsonAccess.Number(root, "objective");
+            r.Bound = JsonAccess.Number(root, "bound");
+            r.Gap = JsonAccess.Number(root, "gap");
+            r.StatusText = JsonAccess.Text(root, "status") ?? "";
+            switch (r.StatusText)
+            {
+                case "optimal": r.Status = SolveStatus.Optimal; break;
+                case "time_limit": r.Status = SolveStatus.TimeLimit; break;
+                default: r.Status = SolveStatus.Feasible; break;
+            }
+            var tile = JsonAccess.Object(root, "tile");
+            r.Tile = new TileDimensions
+            {
+                Length = JsonAccess.Number(tile, "length"),
+                Width = JsonAccess.Number(tile, "width"),
+                Thickness = JsonAccess.Number(tile, "thickness"),
+                Joint = JsonAccess.Number(tile, "joint"),
+            };
+            var joints = JsonAccess.Object(root, "joints");
+            r.Joints = new JointReport
+            {
+                Contacts = JsonAccess.Integer(joints, "contacts"),
+                Joint = JsonAccess.Number(joints, "joint"),
+                MinGap = JsonAccess.Number(joints, "min_gap"),
+                MaxGap = JsonAccess.Number(joints, "max_gap"),
+                MeanGap = JsonAccess.Number(joints, "mean_gap"),
+                P95Deviation = JsonAccess.Number(joints, "p95_deviation"),
+                Overlaps = JsonAccess.Integer(joints, "overlaps"),
+                P95Gap = JsonAccess.Number(joints, "p95_gap"),
+                MaxOverlap = JsonAccess.Number(joints, "max_overlap"),
+            };
+            var cutting = JsonAccess.Object(root, "cutting");
+            if (cutting != null)
+            {
+                var slivers = cutting.ContainsKey("slivers") ? cutting["slivers"] as List<object> : null;
+                r.Cutting = new CuttingReport
+                {
+                    BoundaryTiles = JsonAccess.Integer(cutting, "boundary_tiles"),
+                    OutsideTiles = JsonAccess.Integer(cutting, "outside_tiles"),
+                    Slivers = slivers == null ? 0 : slivers.Count,
+                    BoundaryShapes = JsonAccess.Integer(cutting, "boundary_shapes"),
+                    SurfaceArea = JsonAccess.Number(cutting, "surface_area"),
+                    TileArea = JsonAccess.Number(cutting, "tile_area"),
+                    Coverage = JsonAccess.Number(cutting, "coverage"),
+                };
+            }
+            var sequence = JsonAccess.Object(root, "sequence");
+            if (sequence != null)
+                r.Sequence = new SequenceReport
+                {
+                    SupportTiles = JsonAccess.Integer(sequence, "support_tiles"),
+                    Unsupported = JsonAccess.Integer(sequence, "unsupported"),
+                };
+            var seconds = JsonAccess.Object(root, "seconds");
+            r.PatternSeconds = JsonAccess.Number(seconds, "pattern");
+            r.TileSeconds = JsonAccess.Number(seconds, "tiles");
+            return r;
+        }
+    }
+}

@@ -1,0 +1,298 @@
+// The public entry points: remesh -> match -> tiles (+ report).
+using System;
+using System.Collections.Generic;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
+using System.Text;
+using System.Threading;
+
+namespace TilePattern
+{
+    // Every public method here first calls Native.EnsureReady() and leaves the P/Invokes to a
+    // [NoInlining] helper: Mono binds a P/Invoke when it compiles the method that calls it, so
+    // that method must be compiled after the loader has run (see NativeLibraryLoader).
+
+    /// <summary>The three stages of the TilePattern library. Every method is thread-safe in
+    /// the sense that calls on different threads do not interfere; progress is reported and
+    /// cancellation polled on the calling thread. Failures throw a
+    /// <see cref="TilePatternException"/> subclass (or <see cref="TilePatternCanceledException"/>).</summary>
+    public static class TilePatternEngine
+    {
+        /// <summary>The ABI version this wrapper was written for (TP_ABI_VERSION).</summary>
+        public const int AbiVersion = NativeMethods.TP_ABI_VERSION;
+
+        /// <summary>Names the native library file to load, or a folder holding it (directly or
+        /// under runtimes/&lt;rid&gt;/native/); overrides TILEPATTERN_LIB. For hosts that load
+        /// TilePattern.dll from bytes, where its own folder is unknown. Call it before anything
+        /// else: it returns false, and does nothing, once the library has been looked for.</summary>
+        public static bool UseNativeLibrary(string path)
+        {
+            return NativeLibraryLoader.SetExplicitPath(path);
+        }
+
+        /// <summary>Where the native library was loaded from (null: found by the runtime's own search).</summary>
+        public static string NativeLibraryPath
+        {
+            get
+            {
+                Native.EnsureReady();
+                return NativeLibraryLoader.LoadedPath;
+            }
+        }
+
+        /// <summary>What the loader tried, for error reports.</summary>
+        public static string NativeLibraryDescription
+        {
+            get { return NativeLibraryLoader.Description; }
+        }
+
+        /// <summary>The native library's version, e.g. "0.1.0".</summary>
+        public static string NativeVersion
+        {
+            get
+            {
+                Native.EnsureReady();
+                return Native.Version();
+            }
+        }
+
+        /// <summary>TP_ABI_VERSION of the library actually loaded.</summary>
+        public static int NativeAbiVersion
+        {
+            get
+            {
+                NativeLibraryLoader.EnsureLoaded();
+                return (int)Native.AbiVersion();
+            }
+        }
+
+        /// <summary>Throws <see cref="InvalidMeshException"/> if the library refuses the mesh.</summary>
+        public static void Validate(PolyMesh mesh)
+        {
+            if (mesh == null)
+                throw new ArgumentNullException("mesh");
+            Native.EnsureReady();
+            mesh.CreateHandle().Dispose();
+        }
+
+        /// <summary>Stage 1: quadrangulates a triangle or polygon surface into near-square quads.
+        /// The library reports progress only at the start and the end of this stage, and can be
+        /// cancelled only before it starts.</summary>
+        public static PolyMesh Remesh(PolyMesh surface, RemeshOptions options = null, IProgress<double> progress = null,
+            CancellationToken cancellationToken = default(CancellationToken))
+        {
+            if (surface == null)
+                throw new ArgumentNullException("surface");
+            Native.EnsureReady();
+            return RemeshCore(surface, options ?? new RemeshOptions(), progress, cancellationToken);
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        static PolyMesh RemeshCore(PolyMesh surface, RemeshOptions options, IProgress<double> progress, CancellationToken cancellationToken)
+        {
+            TpRemeshOptions native = options.ToNative();
+            var bridge = new ProgressBridge(progress, cancellationToken);
+            bridge.ThrowIfCancelled();
+            using (MeshHandle input = surface.CreateHandle())
+            {
+                MeshHandle quads;
+                int status = NativeMethods.tp_remesh(input, ref native, bridge.Callback, IntPtr.Zero, out quads);
+                using (quads)
+                {
+                    bridge.Finish(status);
+                    return PolyMesh.FromHandle(quads);
+                }
+            }
+        }
+
+        /// <summary>Stage 2: matches the faces of a quad mesh into tiles. A solve stopped by
+        /// the time limit succeeds with <see cref="SolveStatus.TimeLimit"/>. The returned
+        /// pattern owns native memory: dispose it when done.</summary>
+        public static Pattern Match(PolyMesh quads, PatternOptions options = null, IProgress<double> progress = null,
+            CancellationToken cancellationToken = default(CancellationToken))
+        {
+            if (quads == null)
+                throw new ArgumentNullException("quads");
+            Native.EnsureReady();
+            return MatchCore(quads, options ?? new PatternOptions(), progress, cancellationToken);
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        static Pattern MatchCore(PolyMesh quads, PatternOptions options, IProgress<double> progress, CancellationToken cancellationToken)
+        {
+            uint[] forced, excluded;
+            TpPatternOptions native = options.ToNative(out forced, out excluded);
+            var bridge = new ProgressBridge(progress, cancellationToken);
+            bridge.ThrowIfCancelled();
+            MeshHandle mesh = quads.CreateHandle();
+            PatternHandle pattern = null;
+            GCHandle forcedPin = GCHandle.Alloc(forced, GCHandleType.Pinned);
+            GCHandle excludedPin = GCHandle.Alloc(excluded, GCHandleType.Pinned);
+            try
+            {
+                native.forced_pairs = forced.Length == 0 ? IntPtr.Zero : forcedPin.AddrOfPinnedObject();
+                native.excluded_faces = excluded.Length == 0 ? IntPtr.Zero : excludedPin.AddrOfPinnedObject();
+                int status = NativeMethods.tp_pattern_solve(mesh, ref native, bridge.Callback, IntPtr.Zero, out pattern);
+                bridge.Finish(status);
+                return new Pattern(quads, mesh, pattern);
+            }
+            catch
+            {
+                if (pattern != null)
+                    pattern.Dispose();
+                mesh.Dispose();
+                throw;
+            }
+            finally
+            {
+                forcedPin.Free();
+                excludedPin.Free();
+            }
+        }
+
+        /// <summary>Stage 3: a box per matched pair and a half tile per unpaired quad, on the
+        /// mesh the pattern was solved on, cut to <paramref name="surface"/>'s boundary (the
+        /// input surface the quads were made from; null: the quad mesh's own boundary),
+        /// labelled for the cut list and numbered in laying order; and the report.</summary>
+        public static Tiling Tiles(Pattern pattern, TileOptions options = null, PolyMesh surface = null)
+        {
+            if (pattern == null)
+                throw new ArgumentNullException("pattern");
+            Native.EnsureReady();
+            return Build(pattern.MeshHandle, pattern, options ?? new TileOptions(), surface);
+        }
+
+        /// <summary>Stage 3 on another copy of the quad mesh (throws
+        /// <see cref="InvalidPatternException"/> if the pattern does not fit it).</summary>
+        public static Tiling Tiles(PolyMesh quads, Pattern pattern, TileOptions options = null, PolyMesh surface = null)
+        {
+            if (quads == null)
+                throw new ArgumentNullException("quads");
+            if (pattern == null)
+                throw new ArgumentNullException("pattern");
+            Native.EnsureReady();
+            return BuildOn(quads, pattern, options ?? new TileOptions(), surface);
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        static Tiling BuildOn(PolyMesh quads, Pattern pattern, TileOptions options, PolyMesh surface)
+        {
+            using (MeshHandle mesh = quads.CreateHandle())
+                return Build(mesh, pattern, options, surface);
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        static Tiling Build(MeshHandle mesh, Pattern pattern, TileOptions options, PolyMesh surface)
+        {
+            TpTileOptions native = options.ToNative();
+            TilesHandle tiles;
+            int status;
+            if (surface == null)
+                status = NativeMethods.tp_tiles_build_on_surface_without_surface(mesh, pattern.Handle, IntPtr.Zero, ref native, out tiles);
+            else
+                using (MeshHandle boundary = surface.CreateHandle())
+                    status = NativeMethods.tp_tiles_build_on_surface(mesh, pattern.Handle, boundary, ref native, out tiles);
+            using (tiles)
+            {
+                Native.Check(status);
+                return ReadTiles(tiles);
+            }
+        }
+
+        static Tiling ReadTiles(TilesHandle handle)
+        {
+            UIntPtr count;
+            Native.Check(NativeMethods.tp_tiles_count(handle, out count));
+            int n = Native.Count(count);
+            var kinds = new int[n];
+            var corners = new double[checked(24 * n)];
+            var frames = new double[checked(12 * n)];
+            var sizes = new double[checked(3 * n)];
+            var faces = new uint[checked(2 * n)];
+            var steps = new uint[n];
+            var kept = new double[n];
+            var loopCounts = new uint[n];
+            Native.Check(NativeMethods.tp_tiles_copy_kinds(handle, kinds, Native.Size(kinds.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_corners(handle, corners, Native.Size(corners.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_frames(handle, frames, Native.Size(frames.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_sizes(handle, sizes, Native.Size(sizes.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_faces(handle, faces, Native.Size(faces.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_steps(handle, steps, Native.Size(steps.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_kept_fractions(handle, kept, Native.Size(kept.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_loop_counts(handle, loopCounts, Native.Size(loopCounts.Length)));
+            UIntPtr loopTotal, pointTotal;
+            Native.Check(NativeMethods.tp_tiles_outline_counts(handle, out loopTotal, out pointTotal));
+            var loopSizes = new uint[Native.Count(loopTotal)];
+            var points = new double[checked(2 * Native.Count(pointTotal))];
+            Native.Check(NativeMethods.tp_tiles_copy_loop_sizes(handle, loopSizes, Native.Size(loopSizes.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_loop_points(handle, points, Native.Size(points.Length)));
+            string[] labels = Text(handle, NativeMethods.tp_tiles_labels).Split(new[] { '\n' }, StringSplitOptions.None);
+
+            var result = new Tile[n];
+            int loop = 0, point = 0;
+            for (int i = 0; i < n; i++)
+            {
+                var t = new Tile
+                {
+                    Index = i,
+                    Kind = (TileKind)kinds[i],
+                    Corners = Slice(corners, 24 * i, 24),
+                    Origin = Slice(frames, 12 * i, 3),
+                    XAxis = Slice(frames, 12 * i + 3, 3),
+                    YAxis = Slice(frames, 12 * i + 6, 3),
+                    ZAxis = Slice(frames, 12 * i + 9, 3),
+                    Length = sizes[3 * i],
+                    Width = sizes[3 * i + 1],
+                    Thickness = sizes[3 * i + 2],
+                    Step = checked((int)steps[i]),
+                    KeptFraction = kept[i],
+                    Label = i < labels.Length ? labels[i] : "",
+                };
+                var covered = new List<int>(2);
+                for (int k = 0; k < 2; k++)
+                    if (faces[2 * i + k] != NativeMethods.TP_NO_FACE)
+                        covered.Add(checked((int)faces[2 * i + k]));
+                t.Faces = covered.ToArray();
+                t.Outline = new double[loopCounts[i]][];
+                for (int l = 0; l < t.Outline.Length; l++, loop++)
+                {
+                    int m = checked((int)loopSizes[loop]);
+                    t.Outline[l] = Slice(points, 2 * point, 2 * m);
+                    point += m;
+                }
+                result[i] = t;
+            }
+            if (loop != loopSizes.Length || 2 * point != points.Length)
+                throw new TilePatternException(TilePatternStatus.InvalidArgument, "the outline counts do not add up: " + loop + " loops, " + point + " points read");
+            return new Tiling(result, Report.Parse(Text(handle, NativeMethods.tp_tiles_report_json)), Text(handle, NativeMethods.tp_tiles_cutlist_json));
+        }
+
+        internal delegate int TextExport(TilesHandle tiles, byte[] buffer, UIntPtr length, out UIntPtr needed);
+
+        /// <summary>Reads a string export (report, labels, cut list): asks for the size (which
+        /// the library answers with TP_BUFFER_TOO_SMALL and the length), then copies.</summary>
+        internal static string Text(TilesHandle handle, TextExport export)
+        {
+            UIntPtr needed;
+            int status = export(handle, null, UIntPtr.Zero, out needed);
+            if (status != (int)TilePatternStatus.Ok && status != (int)TilePatternStatus.BufferTooSmall)
+                Native.Check(status);
+            var buffer = new byte[checked(Native.Count(needed) + 1)];
+            UIntPtr written;
+            Native.Check(export(handle, buffer, Native.Size(buffer.Length), out written));
+            return Encoding.UTF8.GetString(buffer, 0, Native.Count(written));
+        }
+
+        internal static string ReportJson(TilesHandle handle)
+        {
+            return Text(handle, NativeMethods.tp_tiles_report_json);
+        }
+
+        static double[] Slice(double[] source, int start, int length)
+        {
+            var result = new double[length];
+            Array.Copy(source, start, result, 0, length);
+            return result;
+        }
+    }
+}
