@@ -15,8 +15,10 @@
 
 /**
  * Version of this ABI: raised when an existing function or struct changes incompatibly.
+ * 2: `TpTileOptions` grew (boundary tiles); the `tp_*_options_init` functions were added so
+ * that options structs can grow again without breaking callers built against older headers.
  */
-#define TP_ABI_VERSION 1
+#define TP_ABI_VERSION 2
 
 /**
  * Stage numbers passed to a progress callback.
@@ -453,6 +455,16 @@ TpStatus tp_mesh_copy_faces(const struct TpMesh *mesh,
 struct TpPatternOptions tp_pattern_options_default(void);
 
 /**
+ * Fills `*options`, a `TpPatternOptions` of `size` bytes (pass `sizeof *options`), with the
+ * defaults. Prefer this to [`tp_pattern_options_default`] in code that may load a newer library: it
+ * never writes more than `size` bytes.
+ *
+ * # Safety
+ * `options` must point to `size` writable bytes.
+ */
+TpStatus tp_pattern_options_init(struct TpPatternOptions *options, size_t size);
+
+/**
  * Matches the faces of `mesh` into tiles. `progress` (may be NULL) is called with
  * `TP_STAGE_PATTERN` and the share of the time limit used; a non-zero return cancels the
  * solve within about a second and returns `TP_CANCELLED`. A solve stopped by the time
@@ -508,6 +520,16 @@ TpStatus tp_pattern_copy_unpaired(const struct TpPattern *pattern, uint32_t *out
 struct TpRemeshOptions tp_remesh_options_default(void);
 
 /**
+ * Fills `*options`, a `TpRemeshOptions` of `size` bytes (pass `sizeof *options`), with the
+ * defaults. Prefer this to [`tp_remesh_options_default`] in code that may load a newer library: it
+ * never writes more than `size` bytes.
+ *
+ * # Safety
+ * `options` must point to `size` writable bytes.
+ */
+TpStatus tp_remesh_options_init(struct TpRemeshOptions *options, size_t size);
+
+/**
  * Quadrangulates `mesh` (a triangle or polygon surface) into near-square quads (stage 1);
  * `*out` gets the quad mesh, read it with the `tp_mesh_*` functions. `progress` (may be NULL)
  * is told the start and the end of the stage; a non-zero return at the start cancels.
@@ -532,6 +554,16 @@ size_t tp_last_error_message(char *buf, size_t len);
  * The default tile options (280 x 140 x 15 mm tiles, 10 mm joint, in metres).
  */
 struct TpTileOptions tp_tile_options_default(void);
+
+/**
+ * Fills `*options`, a `TpTileOptions` of `size` bytes (pass `sizeof *options`), with the
+ * defaults. Prefer this to [`tp_tile_options_default`] in code that may load a newer library: it
+ * never writes more than `size` bytes.
+ *
+ * # Safety
+ * `options` must point to `size` writable bytes.
+ */
+TpStatus tp_tile_options_init(struct TpTileOptions *options, size_t size);
 
 /**
  * Builds the tiles of `pattern` on `mesh` (the mesh the pattern was solved on): full tiles in
@@ -651,9 +683,10 @@ TpStatus tp_tiles_copy_kept_fractions(const struct TpTiles *tiles, double *out, 
 /**
  * Writes the total number of outline loops and of their points over all boundary tiles: the
  * capacities for [`tp_tiles_copy_loop_sizes`] and (times 2) [`tp_tiles_copy_loop_points`].
+ * Either pointer may be NULL.
  *
  * # Safety
- * `tiles` must be a live handle, `loops` and `points` writable.
+ * `tiles` must be a live handle, `loops` and `points` NULL or writable.
  */
 TpStatus tp_tiles_outline_counts(const struct TpTiles *tiles, size_t *loops, size_t *points);
 

@@ -1,5 +1,5 @@
-// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 1, as of
-// commit 15593c8 "Boundary tiles, cut list, laying order"), and
+// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 2: boundary
+// tiles and the tp_*_options_init functions), and
 // mirrors of its structs. Nothing here is public: the public API is TilePatternEngine.
 //
 // C to C# type map: size_t -> UIntPtr, uint32_t -> uint, int32_t / TpStatus -> int,
@@ -112,7 +112,7 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 1;
+        internal const int TP_ABI_VERSION = 2;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const int TP_BOND_STACK = 0;
@@ -169,6 +169,9 @@ namespace TilePattern
         internal static extern TpPatternOptionsReturn tp_pattern_options_default();
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_pattern_options_init(ref TpPatternOptions options, UIntPtr size);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern int tp_pattern_solve(MeshHandle mesh, ref TpPatternOptions options, TpProgressCallback progress, IntPtr user, out PatternHandle pattern);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
@@ -187,6 +190,9 @@ namespace TilePattern
         internal static extern TpRemeshOptionsReturn tp_remesh_options_default();
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_remesh_options_init(ref TpRemeshOptions options, UIntPtr size);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern int tp_remesh(MeshHandle mesh, ref TpRemeshOptions options, TpProgressCallback progress, IntPtr user, out MeshHandle quads);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
@@ -194,6 +200,41 @@ namespace TilePattern
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern TpTileOptionsReturn tp_tile_options_default();
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tile_options_init(ref TpTileOptions options, UIntPtr size);
+
+        // Defaults through the tp_*_options_init functions, which write no more than the
+        // struct this wrapper knows, whatever the loaded library's version.
+        [System.Runtime.CompilerServices.MethodImpl(System.Runtime.CompilerServices.MethodImplOptions.NoInlining)]
+        internal static TpPatternOptions PatternDefaults()
+        {
+            var o = new TpPatternOptions();
+            Initialised(tp_pattern_options_init(ref o, (UIntPtr)Marshal.SizeOf(typeof(TpPatternOptions))));
+            return o;
+        }
+
+        [System.Runtime.CompilerServices.MethodImpl(System.Runtime.CompilerServices.MethodImplOptions.NoInlining)]
+        internal static TpRemeshOptions RemeshDefaults()
+        {
+            var o = new TpRemeshOptions();
+            Initialised(tp_remesh_options_init(ref o, (UIntPtr)Marshal.SizeOf(typeof(TpRemeshOptions))));
+            return o;
+        }
+
+        [System.Runtime.CompilerServices.MethodImpl(System.Runtime.CompilerServices.MethodImplOptions.NoInlining)]
+        internal static TpTileOptions TileDefaults()
+        {
+            var o = new TpTileOptions();
+            Initialised(tp_tile_options_init(ref o, (UIntPtr)Marshal.SizeOf(typeof(TpTileOptions))));
+            return o;
+        }
+
+        static void Initialised(int status)
+        {
+            if (status != 0)
+                throw new InvalidOperationException("initialising native options failed with status " + status);
+        }
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern int tp_tiles_build(MeshHandle mesh, PatternHandle pattern, ref TpTileOptions options, out TilesHandle tiles);

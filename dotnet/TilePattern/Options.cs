@@ -1,5 +1,5 @@
 // Options of the three stages in plain .NET types. Each starts from the library's own
-// defaults (tp_*_options_default) so the two never drift apart.
+// defaults (tp_*_options_init) so the two never drift apart.
 using System;
 using System.Collections.Generic;
 using System.Runtime.CompilerServices;
@@ -105,7 +105,7 @@ namespace TilePattern
         [MethodImpl(MethodImplOptions.NoInlining)]
         void LoadDefaults()
         {
-            TpRemeshOptions d = NativeMethods.tp_remesh_options_default().value;
+            TpRemeshOptions d = NativeMethods.RemeshDefaults();
             TargetEdge = d.target_edge;
             Direction = (FieldDirection)d.direction;
             DirectionVector = new[] { d.direction_x, d.direction_y, d.direction_z };
@@ -138,7 +138,7 @@ namespace TilePattern
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal TpRemeshOptions ToNative()
         {
-            TpRemeshOptions o = NativeMethods.tp_remesh_options_default().value;
+            TpRemeshOptions o = NativeMethods.RemeshDefaults();
             // The size of the struct as this wrapper knows it, not as the library does.
             o.struct_size = (uint)Marshal.SizeOf(typeof(TpRemeshOptions));
             o.target_edge = TargetEdge;
@@ -171,7 +171,7 @@ namespace TilePattern
         [MethodImpl(MethodImplOptions.NoInlining)]
         void LoadDefaults()
         {
-            TpPatternOptions d = NativeMethods.tp_pattern_options_default().value;
+            TpPatternOptions d = NativeMethods.PatternDefaults();
             Bond = (Bond)d.bond;
             Weight = d.weight;
             TimeLimitSeconds = d.time_limit_seconds;
@@ -204,7 +204,7 @@ namespace TilePattern
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal TpPatternOptions ToNative(out uint[] forced, out uint[] excluded)
         {
-            TpPatternOptions o = NativeMethods.tp_pattern_options_default().value;
+            TpPatternOptions o = NativeMethods.PatternDefaults();
             o.struct_size = (uint)Marshal.SizeOf(typeof(TpPatternOptions));
             o.bond = (int)Bond;
             o.weight = Weight;
@@ -251,7 +251,7 @@ namespace TilePattern
         [MethodImpl(MethodImplOptions.NoInlining)]
         void LoadDefaults()
         {
-            TpTileOptions d = NativeMethods.tp_tile_options_default().value;
+            TpTileOptions d = NativeMethods.TileDefaults();
             Length = d.length;
             Width = d.width;
             Thickness = d.thickness;
@@ -289,7 +289,7 @@ namespace TilePattern
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal TpTileOptions ToNative()
         {
-            TpTileOptions o = NativeMethods.tp_tile_options_default().value;
+            TpTileOptions o = NativeMethods.TileDefaults();
             o.struct_size = (uint)Marshal.SizeOf(typeof(TpTileOptions));
             o.length = Length;
             o.width = Width;

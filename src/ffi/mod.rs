@@ -34,7 +34,9 @@ use std::ffi::{c_char, c_void};
 use status::{Failure, TpStatus::*};
 
 /// Version of this ABI: raised when an existing function or struct changes incompatibly.
-pub const TP_ABI_VERSION: u32 = 1;
+/// 2: `TpTileOptions` grew (boundary tiles); the `tp_*_options_init` functions were added so
+/// that options structs can grow again without breaking callers built against older headers.
+pub const TP_ABI_VERSION: u32 = 2;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;
@@ -143,6 +145,32 @@ unsafe fn read_options<T: Copy>(options: *const T, defaults: T, name: &str) -> R
     // SAFETY: the caller's struct has `size >= n` bytes; ours has `size_of::<T>() >= n`.
     unsafe { std::ptr::copy_nonoverlapping(options.cast::<u8>(), (&raw mut merged).cast::<u8>(), n) };
     Ok(merged)
+}
+
+/// Fills the caller's options struct of `size` bytes with `defaults`: the fields both sides
+/// know get their default, `struct_size` becomes `size`, bytes of a newer caller's fields
+/// this library does not know are zeroed. Unlike returning the struct by value, this never
+/// writes past the caller's struct when the library's is larger.
+///
+/// # Safety
+/// `out` must be NULL or point to `size` writable bytes.
+unsafe fn init_options<T: Copy>(out: *mut T, size: usize, defaults: T, name: &str) -> Result<(), Failure> {
+    if out.is_null() {
+        return Err(Failure::null(name));
+    }
+    if size < size_of::<u32>() || size > 1 << 16 {
+        return Err(Failure::new(TP_INVALID_ARGUMENT, format!("{name}: size {size} is not the size of an options struct; pass sizeof(*{name})")));
+    }
+    let known = size.min(size_of::<T>());
+    let bytes = out.cast::<u8>();
+    // SAFETY: the caller promises `size` writable bytes at `out`; `defaults` has
+    // `size_of::<T>() >= known` bytes.
+    unsafe {
+        std::ptr::copy_nonoverlapping((&raw const defaults).cast::<u8>(), bytes, known);
+        std::ptr::write_bytes(bytes.add(known), 0, size - known);
+        bytes.cast::<u32>().write_unaligned(size as u32);
+    }
+    Ok(())
 }
 
 /// Moves a result into a new handle for the caller.

@@ -3,7 +3,7 @@
 use std::ffi::c_void;
 
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
-use super::{TP_STAGE_PATTERN, TpMesh, TpProgressCallback, borrow, hand_over, input, output, progress_reporter, read_options, release, write_out};
+use super::{TP_STAGE_PATTERN, TpMesh, TpProgressCallback, borrow, hand_over, init_options, input, output, progress_reporter, read_options, release, write_out};
 use crate::control::Control;
 use crate::pattern::{self, Bond, Formulation, Method, Pattern, PatternOptions, SolveStatus};
 
@@ -104,6 +104,18 @@ pub extern "C" fn tp_pattern_options_default() -> TpPatternOptions {
         excluded_faces: std::ptr::null(),
         excluded_face_count: 0,
     }
+}
+
+/// Fills `*options`, a `TpPatternOptions` of `size` bytes (pass `sizeof *options`), with the
+/// defaults. Prefer this to [`tp_pattern_options_default`] in code that may load a newer library: it
+/// never writes more than `size` bytes.
+///
+/// # Safety
+/// `options` must point to `size` writable bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_pattern_options_init(options: *mut TpPatternOptions, size: usize) -> TpStatus {
+    // SAFETY: forwarded.
+    guard(|| unsafe { init_options(options, size, tp_pattern_options_default(), "options") })
 }
 
 /// Matches the faces of `mesh` into tiles. `progress` (may be NULL) is called with

@@ -3,7 +3,7 @@
 use std::ffi::c_void;
 
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
-use super::{TP_STAGE_REMESH, TpMesh, TpProgressCallback, borrow, hand_over, progress_reporter, read_options};
+use super::{TP_STAGE_REMESH, TpMesh, TpProgressCallback, borrow, hand_over, init_options, progress_reporter, read_options};
 use crate::remesh::{self, FieldDirection, RemeshOptions};
 
 /// `direction`: follow the principal curvature (the paper's choice).
@@ -42,6 +42,18 @@ pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
         angle_degrees: 0.0,
         shapeup: 0,
     }
+}
+
+/// Fills `*options`, a `TpRemeshOptions` of `size` bytes (pass `sizeof *options`), with the
+/// defaults. Prefer this to [`tp_remesh_options_default`] in code that may load a newer library: it
+/// never writes more than `size` bytes.
+///
+/// # Safety
+/// `options` must point to `size` writable bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_remesh_options_init(options: *mut TpRemeshOptions, size: usize) -> TpStatus {
+    // SAFETY: forwarded.
+    guard(|| unsafe { init_options(options, size, tp_remesh_options_default(), "options") })
 }
 
 /// Quadrangulates `mesh` (a triangle or polygon surface) into near-square quads (stage 1);

@@ -3,7 +3,7 @@
 use std::ffi::c_char;
 
 use super::status::{Failure, TpStatus, guard};
-use super::{TpMesh, TpPattern, borrow, hand_over, output, output_text, read_options, release, write_out};
+use super::{TpMesh, TpPattern, borrow, hand_over, init_options, output, output_text, read_options, release, write_out};
 use crate::pipeline::{self, Tiling};
 use crate::tiles::{FinishOptions, SequenceOptions, Tile, TileKind, TileSpec};
 
@@ -83,6 +83,18 @@ pub extern "C" fn tp_tile_options_default() -> TpTileOptions {
         up: [0.0, 0.0, 1.0],
         support_band: -1.0,
     }
+}
+
+/// Fills `*options`, a `TpTileOptions` of `size` bytes (pass `sizeof *options`), with the
+/// defaults. Prefer this to [`tp_tile_options_default`] in code that may load a newer library: it
+/// never writes more than `size` bytes.
+///
+/// # Safety
+/// `options` must point to `size` writable bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tile_options_init(options: *mut TpTileOptions, size: usize) -> TpStatus {
+    // SAFETY: forwarded.
+    guard(|| unsafe { init_options(options, size, tp_tile_options_default(), "options") })
 }
 
 /// Builds the tiles of `pattern` on `mesh` (the mesh the pattern was solved on): full tiles in
@@ -269,20 +281,23 @@ pub unsafe extern "C" fn tp_tiles_copy_kept_fractions(tiles: *const TpTiles, out
 
 /// Writes the total number of outline loops and of their points over all boundary tiles: the
 /// capacities for [`tp_tiles_copy_loop_sizes`] and (times 2) [`tp_tiles_copy_loop_points`].
+/// Either pointer may be NULL.
 ///
 /// # Safety
-/// `tiles` must be a live handle, `loops` and `points` writable.
+/// `tiles` must be a live handle, `loops` and `points` NULL or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tp_tiles_outline_counts(tiles: *const TpTiles, loops: *mut usize, points: *mut usize) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
         let all = || tiling.tiles.iter().flat_map(|t| t.cut.iter().flat_map(|c| &c.loops));
-        // SAFETY: writable by the caller's promise.
-        unsafe {
-            write_out(loops, all().count(), "loops")?;
-            write_out(points, all().map(Vec::len).sum(), "points")
+        for (out, value) in [(loops, all().count()), (points, all().map(Vec::len).sum())] {
+            if !out.is_null() {
+                // SAFETY: non-null and writable by the caller's promise.
+                unsafe { write_out(out, value, "count") }?;
+            }
         }
+        Ok(())
     })
 }
 

@@ -193,6 +193,28 @@ static void test_pattern_and_tiles(void) {
   free(json);
   tp_tiles_free(tiles);
 
+  /* Options initialisers write no more than the caller's struct: an ABI 1 caller's
+     TpTileOptions ended before cut_tolerance. */
+  {
+    unsigned char buffer[sizeof(TpTileOptions) + 16];
+    memset(buffer, 0xAB, sizeof buffer);
+    size_t old_size = offsetof(TpTileOptions, cut_tolerance);
+    CHECK(tp_tile_options_init((TpTileOptions *)(void *)buffer, old_size) == TP_OK);
+    int untouched = 1;
+    for (size_t b = old_size; b < sizeof buffer; b++) untouched &= buffer[b] == 0xAB;
+    TpTileOptions read_back;
+    memcpy(&read_back, buffer, old_size);
+    CHECK(untouched && read_back.struct_size == old_size && read_back.length == 0.28 && read_back.joint == 0.01);
+    TpTileOptions full;
+    CHECK(tp_tile_options_init(&full, sizeof full) == TP_OK && full.struct_size == sizeof full && full.up[2] == 1.0);
+    TpPatternOptions pattern_options;
+    TpRemeshOptions remesh_options;
+    CHECK(tp_pattern_options_init(&pattern_options, sizeof pattern_options) == TP_OK && pattern_options.bond == TP_BOND_STAGGERED);
+    CHECK(tp_remesh_options_init(&remesh_options, sizeof remesh_options) == TP_OK && remesh_options.target_edge > 0.0);
+    CHECK(tp_tile_options_init(NULL, sizeof full) == TP_NULL_POINTER);
+    CHECK(tp_tile_options_init(&full, 2) == TP_INVALID_ARGUMENT && last_error_contains("size 2"));
+  }
+
   /* Boundary tiles: cut to a surface that ends at x = 6.5 (the quads reach x = 10). */
   {
     double *sv;
@@ -220,6 +242,7 @@ static void test_pattern_and_tiles(void) {
     CHECK(tp_tiles_copy_kept_fractions(cut, kept, n) == TP_OK);
     CHECK(tp_tiles_copy_loop_counts(cut, loop_counts, n) == TP_OK);
     CHECK(tp_tiles_outline_counts(cut, &loops, &points) == TP_OK && loops > 0 && points >= 3 * loops);
+    CHECK(tp_tiles_outline_counts(cut, NULL, &points) == TP_OK);
     size_t boundary = 0, loop_sum = 0, step_sum = 0;
     int fractions_ok = 1;
     for (size_t t = 0; t < n; t++) {
