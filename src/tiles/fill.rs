@@ -145,11 +145,13 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
             // Counter-clockwise seen along the normal, the open edge traversed backwards.
             let cell = Cell { corners: [edge.b, edge.a, a2, b2], normal };
             let centre = cell.centroid();
-            // Cells may not overlap: not at the centre, nor near any corner, nor at any
-            // edge's middle.
-            let near_corners = cell.corners.map(|c| c + (centre - c) * 0.2);
-            let mids = [0, 1, 2, 3].map(|i| nalgebra::center(&cell.corners[i], &cell.corners[(i + 1) % 4]) + (centre - nalgebra::center(&cell.corners[i], &cell.corners[(i + 1) % 4])) * 0.2);
-            if cells.covered(&centre) || near_corners.iter().chain(&mids).any(|p| cells.covered(p)) {
+            // Cells may not overlap beyond a sliver: the centre must be free, and at most two
+            // of the probes a fifth of the way in from the corners and edge middles may lie
+            // on other cells (on a curved surface neighbouring rows of cells fan in and out).
+            let probe = |p: Point3<f64>| p + (centre - p) * 0.2;
+            let mids = [0, 1, 2, 3].map(|i| nalgebra::center(&cell.corners[i], &cell.corners[(i + 1) % 4]));
+            let probes = cell.corners.iter().chain(&mids).map(|&p| probe(p));
+            if cells.covered(&centre) || probes.filter(|p| cells.covered(p)).count() >= 3 {
                 continue;
             }
             let frame = Frame::for_corners(&cell.corners, normal);
