@@ -209,13 +209,20 @@ fn check_fabrication(surface: &PolyMesh, tiling: &Tiling, tolerance: f64) {
     assert!(first.frame.origin.z <= lowest + 0.3, "the order starts at the supports, low down");
 }
 
+/// Tiles for quads of edge 0.1: (0.19 + 0.01) / 2.
+const SMALL: TileSpec = TileSpec { length: 0.19, width: 0.095, thickness: 0.01, joint: 0.01 };
+
+/// Quads of edge 0.1 over the hypar's whole square, ignoring the opening.
+fn hypar_quads() -> PolyMesh {
+    let (p, f) = lattice([-1.0, 1.0], [-1.0, 1.0], [20, 20], |x, y| 0.3 * x * y);
+    PolyMesh::new(p, f).unwrap()
+}
+
 #[test]
 fn tiles_on_a_hypar_with_an_opening_stay_on_the_surface_and_cover_it() {
     let surface = hypar_with_opening();
-    // The quads ignore the opening: a lattice of edge 0.1 over the whole square.
-    let (p, f) = lattice([-1.0, 1.0], [-1.0, 1.0], [20, 20], |x, y| 0.3 * x * y);
-    let quads = PolyMesh::new(p, f).unwrap();
-    let spec = TileSpec { length: 0.19, width: 0.095, thickness: 0.01, joint: 0.01 };
+    let quads = hypar_quads();
+    let spec = SMALL;
     let finish = FinishOptions::for_spec(&spec);
     let options = PatternOptions { time_limit: Duration::from_secs(5), ..PatternOptions::default() };
     let tiling = pipeline::tile_quad_mesh(&quads, Some(&surface), &options, &spec, &finish, &mut tilepattern::control::Control::none()).unwrap();
@@ -242,7 +249,7 @@ fn tiles_on_a_ragged_quad_mesh_are_cut_to_the_surface() {
         Point3::new(x, y, 0.3 * x * y)
     }).collect();
     let quads = keep_faces(turned, f, |c| c.x.abs() < 0.93 && c.y.abs() < 0.93);
-    let spec = TileSpec { length: 0.19, width: 0.095, thickness: 0.01, joint: 0.01 };
+    let spec = SMALL;
     let finish = FinishOptions::for_spec(&spec);
     // Every pair of neighbouring quads becomes a tile in one of these patterns: greedy
     // rounds over the mesh's interior edges.
@@ -294,9 +301,8 @@ fn equal_cuts_share_a_label_and_mirrored_cuts_too() {
 #[test]
 fn the_fabrication_output_is_deterministic() {
     let surface = hypar_with_opening();
-    let (p, f) = lattice([-1.0, 1.0], [-1.0, 1.0], [20, 20], |x, y| 0.3 * x * y);
-    let quads = PolyMesh::new(p, f).unwrap();
-    let spec = TileSpec { length: 0.19, width: 0.095, thickness: 0.01, joint: 0.01 };
+    let quads = hypar_quads();
+    let spec = SMALL;
     let run = || {
         let found = pattern::solve(&quads, &PatternOptions { time_limit: Duration::ZERO, ..PatternOptions::default() }).unwrap();
         let tiling = pipeline::tiles_for_pattern(&quads, Some(&surface), found, &spec, &FinishOptions::for_spec(&spec)).unwrap();

@@ -283,6 +283,8 @@ namespace TilePattern
     public sealed class CuttingReport
     {
         public int BoundaryTiles { get; internal set; }
+        /// <summary>Filler pieces laid beyond the quad mesh where it falls short of the surface's edge.</summary>
+        public int FillerTiles { get; internal set; }
         /// <summary>Tiles entirely off the surface (dropped).</summary>
         public int OutsideTiles { get; internal set; }
         /// <summary>Boundary pieces too narrow to keep (dropped).</summary>
@@ -399,6 +401,7 @@ namespace TilePattern
                 r.Cutting = new CuttingReport
                 {
                     BoundaryTiles = JsonAccess.Integer(cutting, "boundary_tiles"),
+                    FillerTiles = JsonAccess.Integer(cutting, "filler_tiles"),
                     OutsideTiles = JsonAccess.Integer(cutting, "outside_tiles"),
                     Slivers = slivers == null ? 0 : slivers.Count,
                     BoundaryShapes = JsonAccess.Integer(cutting, "boundary_shapes"),
