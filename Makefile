@@ -6,7 +6,7 @@ LIB_DIR := target/release
 C_FLAGS := -Wall -Wextra -Werror -DTP_TEST_PANIC -Iinclude
 C_LINK := -L$(LIB_DIR) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(LIB_DIR)
 
-.PHONY: demo test setup build bench header header-check rust-test c-test dotnet-test
+.PHONY: demo test setup build bench header header-check rust-test c-test dotnet-test python-test
 
 setup:
 	@scripts/setup.sh
@@ -18,10 +18,10 @@ demo: build
 	./target/release/tilepattern demo --out demo
 
 # Every test: the header matches the code, the Rust tests, the C tests under valgrind, the C#
-# wrapper's NUnit tests under mono.
+# wrapper's NUnit tests under mono, the Python package's pytest suite.
 test: setup
 	scripts/check-header.sh
-	$(MAKE) rust-test c-test dotnet-test
+	$(MAKE) rust-test c-test dotnet-test python-test
 
 rust-test:
 	$(CARGO) test --release
@@ -40,6 +40,11 @@ c-test:
 dotnet-test:
 	$(CARGO) build --release --lib
 	scripts/test-dotnet.sh
+
+# The Python package (python/) in a venv under target/, tested with pytest.
+python-test:
+	$(CARGO) build --release --lib
+	scripts/test-python.sh
 
 header:
 	cbindgen --quiet --config cbindgen.toml --crate tilepattern --output include/tilepattern.h
