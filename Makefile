@@ -35,6 +35,9 @@ c-test:
 	RUST_BACKTRACE=0 target/c/test_cpp
 	RUST_BACKTRACE=0 valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
 		--show-leak-kinds=definite,indirect,possible --suppressions=tests/c/valgrind.supp target/c/test_c
+	$(CC) -std=c11 $(C_FLAGS) tests/c/test_bad_input.c $(C_LINK) -o target/c/test_bad_input
+	RUST_BACKTRACE=0 valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
+		--suppressions=tests/c/valgrind.supp target/c/test_bad_input
 
 # The C# wrapper (dotnet/) compiled with mcs, its NUnit tests run under mono.
 dotnet-test:

@@ -117,6 +117,22 @@
 #define TP_NO_FACE UINT32_MAX
 
 /**
+ * Most vertices one mesh may have: every stage together needs about a kilobyte per face at
+ * its peak, so a mesh at the limits needs some 4 GB.
+ */
+#define MAX_VERTICES 4000000
+
+/**
+ * Most faces one mesh may have (see [`MAX_VERTICES`]).
+ */
+#define MAX_FACES 4000000
+
+/**
+ * Most face indices (the sum of the faces' sizes) one mesh may have.
+ */
+#define MAX_INDICES 16000000
+
+/**
  * What a call did. The numbers are stable: new codes get new numbers, none is reused.
  */
 enum TpStatus
@@ -396,7 +412,9 @@ TpStatus tp_test_panic(void);
  * Builds and validates a mesh from `vertex_count` xyz triples at `vertices` and
  * `face_count` faces: face `i` has `face_sizes[i]` vertex indices, taken in order from
  * `face_indices` (`index_count` in all). Triangles, quads and n-gons may be mixed. On
- * success `*out` holds a new mesh to release with [`tp_mesh_free`].
+ * success `*out` holds a new mesh to release with [`tp_mesh_free`]. Counts above 4 million
+ * vertices or faces or 16 million indices are refused (`TP_INVALID_MESH`) before anything
+ * is allocated.
  *
  * # Safety
  * The arrays must hold the stated numbers of items; `out` must be writable.

@@ -14,7 +14,9 @@ pub struct TpMesh {
 /// Builds and validates a mesh from `vertex_count` xyz triples at `vertices` and
 /// `face_count` faces: face `i` has `face_sizes[i]` vertex indices, taken in order from
 /// `face_indices` (`index_count` in all). Triangles, quads and n-gons may be mixed. On
-/// success `*out` holds a new mesh to release with [`tp_mesh_free`].
+/// success `*out` holds a new mesh to release with [`tp_mesh_free`]. Counts above 4 million
+/// vertices or faces or 16 million indices are refused (`TP_INVALID_MESH`) before anything
+/// is allocated.
 ///
 /// # Safety
 /// The arrays must hold the stated numbers of items; `out` must be writable.
@@ -32,6 +34,8 @@ pub unsafe extern "C" fn tp_mesh_new(
         if out.is_null() {
             return Err(Failure::null("out"));
         }
+        // Refuse absurd counts before reading or allocating anything for them.
+        crate::mesh::check_size(vertex_count, face_count, index_count)?;
         let coordinates_len = vertex_count
             .checked_mul(3)
             .ok_or_else(|| Failure::new(TP_INVALID_ARGUMENT, format!("vertex_count {vertex_count} is too large")))?;

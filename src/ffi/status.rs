@@ -58,7 +58,9 @@ impl Failure {
 
 impl From<MeshError> for Failure {
     fn from(e: MeshError) -> Self {
-        Self::new(TpStatus::TP_INVALID_MESH, e.to_string())
+        // Counts over the limits are bad arguments (nothing was read), the rest bad meshes.
+        let status = if matches!(e, MeshError::TooLarge { .. }) { TpStatus::TP_INVALID_ARGUMENT } else { TpStatus::TP_INVALID_MESH };
+        Self::new(status, e.to_string())
     }
 }
 

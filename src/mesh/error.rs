@@ -56,6 +56,35 @@ pub enum MeshError {
         /// The first three faces found on it.
         faces: Vec<usize>,
     },
+    /// Two faces have the same vertices.
+    #[error("face {face} repeats face {first} (the same vertices); remove one of them")]
+    DuplicateFace {
+        /// The later face.
+        face: usize,
+        /// The face it repeats.
+        first: usize,
+    },
+    /// Two faces run along their shared edge in the same direction: their normals point to
+    /// opposite sides.
+    #[error("faces {faces:?} both run from vertex {a} to vertex {b}: their orientations disagree; unify the face normals (Rhino: UnifyMeshNormals)")]
+    InconsistentOrientation {
+        /// Start of the shared edge in both faces.
+        a: usize,
+        /// End of the shared edge in both faces.
+        b: usize,
+        /// The two faces.
+        faces: [usize; 2],
+    },
+    /// The mesh is larger than one call may take.
+    #[error("the mesh has {count} {what}; one call takes at most {limit}: split the shell into parts")]
+    TooLarge {
+        /// `"vertices"`, `"faces"` or `"face indices"`.
+        what: &'static str,
+        /// How many were given.
+        count: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// The OBJ text could not be read.
     #[error("OBJ line {line}: {message}")]
     ObjSyntax {

@@ -15,6 +15,28 @@ pub use topology::{Edge, Topology};
 
 use nalgebra::{Point3, Vector3};
 
+/// Most vertices one mesh may have: every stage together needs about a kilobyte per face at
+/// its peak, so a mesh at the limits needs some 4 GB.
+pub const MAX_VERTICES: usize = 4_000_000;
+/// Most faces one mesh may have (see [`MAX_VERTICES`]).
+pub const MAX_FACES: usize = 4_000_000;
+/// Most face indices (the sum of the faces' sizes) one mesh may have.
+pub const MAX_INDICES: usize = 16_000_000;
+
+/// Checks counts against [`MAX_VERTICES`], [`MAX_FACES`] and [`MAX_INDICES`] before anything
+/// is allocated for them.
+///
+/// # Errors
+/// [`MeshError::TooLarge`] naming the first count over its limit.
+pub fn check_size(vertices: usize, faces: usize, indices: usize) -> Result<(), MeshError> {
+    for (what, count, limit) in [("vertices", vertices, MAX_VERTICES), ("faces", faces, MAX_FACES), ("face indices", indices, MAX_INDICES)] {
+        if count > limit {
+            return Err(MeshError::TooLarge { what, count, limit });
+        }
+    }
+    Ok(())
+}
+
 /// A validated polygon surface mesh: positions (f64) and faces as lists of vertex indices.
 ///
 /// Invariants established by [`PolyMesh::new`]: at least one face; finite coordinates; every
@@ -30,10 +52,11 @@ impl PolyMesh {
     /// Validates and builds a mesh.
     ///
     /// # Errors
-    /// The first problem found, in this order: empty mesh, non-finite coordinate, face with
-    /// fewer than three vertices, index out of range, repeated index in a face, non-manifold
-    /// edge.
+    /// The first problem found, in this order: too large, empty mesh, non-finite coordinate,
+    /// face with fewer than three vertices, index out of range, repeated index in a face,
+    /// duplicate face, non-manifold edge, inconsistent orientation.
     pub fn new(positions: Vec<Point3<f64>>, faces: Vec<Vec<usize>>) -> Result<Self, MeshError> {
+        check_size(positions.len(), faces.len(), faces.iter().map(Vec::len).sum())?;
         if faces.is_empty() || positions.is_empty() {
             return Err(MeshError::Empty {
                 vertices: positions.len(),
@@ -56,8 +79,17 @@ impl PolyMesh {
                 }
             }
         }
+        let mut seen: std::collections::HashMap<Vec<usize>, usize> = std::collections::HashMap::with_capacity(faces.len());
+        for (face, indices) in faces.iter().enumerate() {
+            let mut key = indices.clone();
+            key.sort_unstable();
+            if let Some(&first) = seen.get(&key) {
+                return Err(MeshError::DuplicateFace { face, first });
+            }
+            seen.insert(key, face);
+        }
         let mesh = Self { positions, faces };
-        Topology::new(&mesh)?;
+        Topology::new(&mesh)?.check_orientation(&mesh)?;
         Ok(mesh)
     }
 

@@ -72,6 +72,29 @@ impl Topology {
         Ok(Self { edges, face_edges, vertex_edges })
     }
 
+    /// Checks that every edge shared by two faces is run in opposite directions by them.
+    ///
+    /// # Errors
+    /// [`MeshError::InconsistentOrientation`] naming the first such edge.
+    pub fn check_orientation(&self, mesh: &PolyMesh) -> Result<(), MeshError> {
+        for (f, edges) in self.face_edges.iter().enumerate() {
+            let face = &mesh.faces()[f];
+            for (i, &e) in edges.iter().enumerate() {
+                let Some(g) = self.edges[e].other_face(f) else { continue };
+                if g < f {
+                    continue;
+                }
+                let (a, b) = (face[i], face[(i + 1) % face.len()]);
+                let k = self.face_edges[g].iter().position(|&x| x == e).expect("the other face has the edge");
+                let other = &mesh.faces()[g];
+                if other[k] == a {
+                    return Err(MeshError::InconsistentOrientation { a, b, faces: [f, g] });
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// All edges.
     pub fn edges(&self) -> &[Edge] {
         &self.edges

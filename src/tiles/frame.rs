@@ -58,7 +58,12 @@ impl Frame {
         if z.dot(&up) < 0.0 {
             z = -z;
         }
-        let x = (along - z * along.dot(&z)).normalize();
+        // A degenerate face (zero area, coincident corners) gives no direction: any axis in
+        // the plane will do.
+        let x = (along - z * along.dot(&z)).try_normalize(1e-300).unwrap_or_else(|| {
+            let other = if z.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+            (other - z * other.dot(&z)).normalize()
+        });
         let y = z.cross(&x);
         Self { origin, x, y, z }
     }

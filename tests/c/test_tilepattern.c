@@ -404,7 +404,8 @@ static int32_t cancel_later(void *user, uint32_t stage, double fraction) {
   s->calls++;
   s->last_stage = (int)stage;
   (void)fraction;
-  if (now_seconds() - s->start < s->cancel_after) return 0;
+  /* Keep going for a while and at least one callback, however slow the machine. */
+  if (s->calls < 2 || now_seconds() - s->start < s->cancel_after) return 0;
   if (s->cancelled_at == 0.0) s->cancelled_at = now_seconds();
   return 1;
 }
