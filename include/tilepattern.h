@@ -117,22 +117,6 @@
 #define TP_NO_FACE UINT32_MAX
 
 /**
- * Most vertices one mesh may have: every stage together needs about a kilobyte per face at
- * its peak, so a mesh at the limits needs some 4 GB.
- */
-#define MAX_VERTICES 4000000
-
-/**
- * Most faces one mesh may have (see [`MAX_VERTICES`]).
- */
-#define MAX_FACES 4000000
-
-/**
- * Most face indices (the sum of the faces' sizes) one mesh may have.
- */
-#define MAX_INDICES 16000000
-
-/**
  * What a call did. The numbers are stable: new codes get new numbers, none is reused.
  */
 enum TpStatus
