@@ -5,9 +5,12 @@
 
 use std::f64::consts::PI;
 
+use std::time::Duration;
+
 use nalgebra::Point3;
+use tilepattern::control::Control;
 use tilepattern::mesh::{PolyMesh, obj};
-use tilepattern::remesh::{BoundaryAlignment, FieldDirection, Metrics, RemeshError, RemeshOptions, metrics, remesh};
+use tilepattern::remesh::{BoundaryAlignment, FieldDirection, Metrics, RemeshError, RemeshOptions, metrics, remesh, remesh_with};
 
 /// Triangulates a regular (u, v) grid of `nu x nv` cells mapped through `f`, alternating the
 /// diagonal so the mesh has no preferred direction.
@@ -75,6 +78,81 @@ fn holed() -> PolyMesh {
         let reach = 1.5 / c.abs().max(s.abs());
         let outer = [reach * c, reach * s];
         [inner[0] + (outer[0] - inner[0]) * v, inner[1] + (outer[1] - inner[1]) * v, 0.0]
+    })
+}
+
+/// Hypar z = 0.3 x y over a convex quadrilateral with a 21 degree corner (a tongue of the
+/// shell narrower than a quad for its last quad lengths).
+fn acute_hypar() -> PolyMesh {
+    let corners = [[0.0, 0.0], [3.0, 0.0], [3.2, 1.6], [0.9, 0.35]];
+    grid_surface(48, 24, false, |u, v| {
+        let lerp = |a: [f64; 2], b: [f64; 2], s: f64| [a[0] + (b[0] - a[0]) * s, a[1] + (b[1] - a[1]) * s];
+        let bottom = lerp(corners[0], corners[1], u);
+        let top = lerp(corners[3], corners[2], u);
+        let [x, y] = lerp(bottom, top, v);
+        [x, y, 0.3 * (x - 1.5) * (y - 0.8)]
+    })
+}
+
+/// A gently curved 3 x 2 patch whose bottom edge carries a comb of five needle triangles
+/// (teeth half a quad wide at the base and four quads long, in narrow notches), as left by
+/// subdividing a mesh with slivers at a support.
+fn comb_patch() -> PolyMesh {
+    let (nu, nv) = (36, 24);
+    let base = grid_surface(nu, nv, false, |u, v| {
+        let (x, y) = (3.0 * u, 2.0 * v);
+        [x, y, 0.03 * (x - 1.5) * (x - 1.5) + 0.1 * y]
+    });
+    let mut positions = base.positions().to_vec();
+    let mut faces = base.faces().to_vec();
+    for i in 1..6 {
+        let (a, b) = (positions[i], positions[i + 1]);
+        let lift = if i % 2 == 0 { 0.12 } else { -0.12 };
+        positions.push(Point3::new(0.5 * (a.x + b.x) - 0.3 + 0.12 * (i - 1) as f64, -0.6, a.z + lift));
+        // The boundary edge i -> i+1 has the patch on its left; the tooth goes on its right.
+        faces.push(vec![i + 1, i, positions.len() - 1]);
+    }
+    PolyMesh::new(positions, faces).expect("comb patch is valid")
+}
+
+/// A flat 3 x 2.5 patch whose bottom-left corner (1.2 x 0.45) is folded up by 90 degrees
+/// along a sharp crease: quads laid flat across the crease would leave the surface, as they
+/// did at the crumpled supports of the benchmark shells.
+fn folded_corner() -> PolyMesh {
+    grid_surface(36, 30, false, |u, v| {
+        let (x, y) = (3.0 * u, 2.5 * v);
+        if y < 0.45 && x < 1.2 { [x, 0.45, 0.45 - y] } else { [x, y, 0.0] }
+    })
+}
+
+/// True when every vertex's faces form one fan (a manifold surface, boundary included).
+fn vertex_manifold(mesh: &PolyMesh) -> bool {
+    let n = mesh.positions().len();
+    let mut around: Vec<Vec<(usize, usize)>> = vec![Vec::new(); n];
+    for f in mesh.faces() {
+        for i in 0..f.len() {
+            let (prev, next) = (f[(i + f.len() - 1) % f.len()], f[(i + 1) % f.len()]);
+            around[f[i]].push((prev, next));
+        }
+    }
+    around.iter().all(|corners| {
+        if corners.is_empty() {
+            return true;
+        }
+        // Walk the fan from one corner through shared edges; it must reach every corner.
+        let mut seen = vec![false; corners.len()];
+        let mut stack = vec![0];
+        seen[0] = true;
+        while let Some(c) = stack.pop() {
+            for (k, other) in corners.iter().enumerate() {
+                let (p, q) = corners[c];
+                if !seen[k] && (other.0 == q || other.1 == p || other.0 == p || other.1 == q) {
+                    seen[k] = true;
+                    stack.push(k);
+                }
+            }
+        }
+        seen.iter().all(|&s| s)
     })
 }
 
@@ -157,6 +235,99 @@ fn every_boundary_mode_gives_a_sound_mesh() {
     }
 }
 
+/// The acceptance lines that concern the surface and its boundary, not the quads' shape.
+fn check_fit(name: &str, mesh: &PolyMesh, m: &Metrics, max_irregular: usize, min_covered: f64) {
+    println!("{name}: {m:?}");
+    assert!(m.pure_quad, "{name}: not pure quad");
+    assert!(vertex_manifold(mesh), "{name}: a vertex is pinched");
+    assert_eq!(m.boundary_vertices_off_input, 0, "{name}: boundary vertices off the input boundary");
+    assert!(m.max_distance_to_input_ratio <= 0.1, "{name}: max distance {}", m.max_distance_to_input_ratio);
+    assert!(m.area_covered_ratio >= min_covered, "{name}: area covered {}", m.area_covered_ratio);
+    assert!(m.interior_irregular_vertices <= max_irregular, "{name}: {} irregular vertices", m.interior_irregular_vertices);
+    assert!((m.mean_edge_ratio - 1.0).abs() <= 0.08, "{name}: mean edge ratio {}", m.mean_edge_ratio);
+}
+
+#[test]
+fn acute_corner_stays_on_the_surface() {
+    // Rows cannot follow both sides of a 21 degree tongue; the quads there are sheared, but
+    // they must stay on the surface, cover it and keep the rest of the patch regular.
+    let input = acute_hypar();
+    let result = remesh(&input, &options(0.15)).expect("remesh");
+    check_fit("acute hypar", &result.quads, &result.metrics, 6, 0.99);
+    assert!(result.metrics.edges_within_20pct >= 0.55, "acute hypar: edges within 20%: {}", result.metrics.edges_within_20pct);
+}
+
+#[test]
+fn needle_teeth_are_not_bridged() {
+    let input = comb_patch();
+    let result = remesh(&input, &options(0.15)).expect("remesh");
+    // The teeth themselves (2 % of the area) are narrower than a quad.
+    check_fit("comb", &result.quads, &result.metrics, 4, 0.975);
+    assert!(result.metrics.edges_within_20pct >= 0.9, "comb: edges within 20%: {}", result.metrics.edges_within_20pct);
+    assert!(result.metrics.faces_area_within_20pct >= 0.85, "comb: areas within 20%: {}", result.metrics.faces_area_within_20pct);
+}
+
+#[test]
+fn folded_corner_is_followed_not_spanned() {
+    let input = folded_corner();
+    let result = remesh(&input, &options(0.15)).expect("remesh");
+    check_fit("folded corner", &result.quads, &result.metrics, 8, 0.99);
+    assert!(result.metrics.edges_within_20pct >= 0.85, "folded: edges within 20%: {}", result.metrics.edges_within_20pct);
+}
+
+#[test]
+fn a_hole_leaves_every_vertex_manifold() {
+    let result = remesh(&holed(), &options(0.15)).expect("remesh");
+    assert!(vertex_manifold(&result.quads));
+    assert!(result.quads.faces().iter().enumerate().all(|(f, _)| result.quads.face_area_vector(f).norm() > 1e-6));
+}
+
+#[test]
+fn progress_is_reported_and_cancel_stops_the_stage() {
+    let input = hypar();
+    let mut seen: Vec<f64> = Vec::new();
+    let mut record = |fraction: f64| {
+        seen.push(fraction);
+        true
+    };
+    let result = remesh_with(&input, &options(0.15), &mut Control::with_progress(&mut record));
+    assert!(result.is_ok());
+    assert!(seen.len() >= 5, "{seen:?}");
+    assert_eq!(seen.first(), Some(&0.0));
+    assert_eq!(seen.last(), Some(&1.0));
+    assert!(seen.windows(2).all(|w| w[0] <= w[1]), "progress went backwards: {seen:?}");
+    assert!(seen.iter().any(|&f| f > 0.0 && f < 1.0));
+
+    // Cancelled in every part of the stage: an error, and no callback after the cancel.
+    for stop_at in [0.01, 0.1, 0.3, 0.8] {
+        let mut calls_after = 0;
+        let mut stopped = false;
+        let mut cancel = |fraction: f64| {
+            if stopped {
+                calls_after += 1;
+            }
+            stopped = fraction >= stop_at;
+            !stopped
+        };
+        let error = remesh_with(&input, &options(0.15), &mut Control::with_progress(&mut cancel)).err();
+        assert_eq!(error, Some(RemeshError::Cancelled), "stop at {stop_at}");
+        assert_eq!(calls_after, 0);
+    }
+}
+
+#[test]
+fn time_limit_without_a_mesh_is_an_error() {
+    let input = hypar();
+    let none = RemeshOptions { time_limit: Duration::ZERO, ..options(0.15) };
+    assert!(matches!(remesh(&input, &none), Err(RemeshError::TimeLimit { .. })));
+    // A generous limit changes nothing.
+    let generous = RemeshOptions { time_limit: Duration::from_secs(600), ..options(0.15) };
+    let (a, b) = (remesh(&input, &generous).expect("remesh"), remesh(&input, &options(0.15)).expect("remesh"));
+    assert_eq!(obj::to_string(&a.quads), obj::to_string(&b.quads));
+    assert!(matches!(RemeshOptions::time_limit_from_secs(-1.0), Err(RemeshError::BadTimeLimit(_))));
+    assert!(matches!(RemeshOptions::time_limit_from_secs(f64::NAN), Err(RemeshError::BadTimeLimit(_))));
+}
+
 #[test]
 fn pinched_input_is_refused() {
     // Two triangles meeting at one vertex: the surface is not a manifold there.
@@ -178,10 +349,13 @@ fn shapeup_stays_on_the_surface() {
 
 #[test]
 fn runs_are_byte_identical() {
-    let input = holed();
-    let a = remesh(&input, &options(0.15)).expect("remesh");
-    let b = remesh(&input, &options(0.15)).expect("remesh");
-    assert_eq!(obj::to_string(&a.quads), obj::to_string(&b.quads));
+    // The folded corner goes through every fitting step (row extension, peeling, strip
+    // splitting), the hole through the hole filling.
+    for input in [holed(), folded_corner()] {
+        let a = remesh(&input, &options(0.15)).expect("remesh");
+        let b = remesh(&input, &options(0.15)).expect("remesh");
+        assert_eq!(obj::to_string(&a.quads), obj::to_string(&b.quads));
+    }
 }
 
 #[test]

@@ -165,7 +165,7 @@ namespace TilePattern.Tests
             AssertMirror(typeof(TpRemeshOptions), "TpRemeshOptions", n => n.StartsWith("direction_vector[") ? "direction_" + "xyz"[n[17] - '0'] : n);
             Assert.AreEqual(64, Marshal.SizeOf(typeof(TpPatternOptions)));
             Assert.AreEqual(96, Marshal.SizeOf(typeof(TpPatternSummary)));
-            Assert.AreEqual(64, Marshal.SizeOf(typeof(TpRemeshOptions)));
+            Assert.AreEqual(72, Marshal.SizeOf(typeof(TpRemeshOptions)));
             Assert.AreEqual(88, Marshal.SizeOf(typeof(TpTileOptions)));
         }
 

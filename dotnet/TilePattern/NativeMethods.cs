@@ -50,7 +50,7 @@ namespace TilePattern
         public int status;
     }
 
-    /// <summary>Mirror of TpRemeshOptions (64 bytes on 64-bit targets). The C array
+    /// <summary>Mirror of TpRemeshOptions (72 bytes on 64-bit targets). The C array
     /// <c>double direction_vector[3]</c> is spelled as three doubles, which has the same
     /// layout and keeps the struct blittable.</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -64,6 +64,7 @@ namespace TilePattern
         public double direction_z;
         public double angle_degrees;
         public int shapeup;
+        public double time_limit_seconds;
     }
 
     /// <summary>Mirror of TpTileOptions (88 bytes); <c>double up[3]</c> is spelled as three doubles.</summary>

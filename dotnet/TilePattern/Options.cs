@@ -111,6 +111,7 @@ namespace TilePattern
             DirectionVector = new[] { d.direction_x, d.direction_y, d.direction_z };
             AngleDegrees = d.angle_degrees;
             ShapeUp = d.shapeup != 0;
+            TimeLimitSeconds = d.time_limit_seconds;
         }
 
         /// <summary>Quads whose edge is half a tile plus a joint: (length + joint) / 2.</summary>
@@ -135,6 +136,10 @@ namespace TilePattern
         /// <summary>Pull faces towards squares without leaving the surface.</summary>
         public bool ShapeUp { get; set; }
 
+        /// <summary>Wall-clock limit of the stage in seconds (default 60): when it passes, the quad
+        /// mesh as it stands is returned if one exists, otherwise a <see cref="SolverTimeLimitException"/>.</summary>
+        public double TimeLimitSeconds { get; set; }
+
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal TpRemeshOptions ToNative()
         {
@@ -154,6 +159,7 @@ namespace TilePattern
             }
             o.angle_degrees = AngleDegrees;
             o.shapeup = ShapeUp ? 1 : 0;
+            o.time_limit_seconds = TimeLimitSeconds;
             return o;
         }
     }

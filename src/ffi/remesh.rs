@@ -4,7 +4,8 @@ use std::ffi::c_void;
 
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
 use super::{TP_STAGE_REMESH, TpMesh, TpProgressCallback, borrow, hand_over, init_options, progress_reporter, read_options};
-use crate::remesh::{self, FieldDirection, RemeshOptions};
+use crate::control::Control;
+use crate::remesh::{self, FieldDirection, RemeshError, RemeshOptions};
 
 /// `direction`: follow the principal curvature (the paper's choice).
 pub const TP_DIRECTION_CURVATURE: i32 = 0;
@@ -29,6 +30,11 @@ pub struct TpRemeshOptions {
     pub angle_degrees: f64,
     /// Non-zero: pull faces towards squares (shape-up) without leaving the surface.
     pub shapeup: i32,
+    /// Wall-clock limit of the stage in seconds; default 60. When it passes, the quad mesh as
+    /// it stands is returned if one exists (the final fitting is cut short), otherwise
+    /// `TP_TIME_LIMIT`. The last field: callers compiled with an older, shorter struct get
+    /// the default.
+    pub time_limit_seconds: f64,
 }
 
 /// The default remesh options.
@@ -41,6 +47,7 @@ pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
         direction_vector: [1.0, 0.0, 0.0],
         angle_degrees: 0.0,
         shapeup: 0,
+        time_limit_seconds: 60.0,
     }
 }
 
@@ -58,7 +65,9 @@ pub unsafe extern "C" fn tp_remesh_options_init(options: *mut TpRemeshOptions, s
 
 /// Quadrangulates `mesh` (a triangle or polygon surface) into near-square quads (stage 1);
 /// `*out` gets the quad mesh, read it with the `tp_mesh_*` functions. `progress` (may be NULL)
-/// is told the start and the end of the stage; a non-zero return at the start cancels.
+/// is told the fraction done during the stage (from 0 to 1, about every 10 ms); a non-zero
+/// return cancels it, and `tp_remesh` returns `TP_CANCELLED` soon after. `TP_TIME_LIMIT` when
+/// `time_limit_seconds` passed before any quad mesh was ready.
 ///
 /// # Safety
 /// `mesh` must be a live mesh, `options` valid, `out` writable.
@@ -82,13 +91,14 @@ pub unsafe extern "C" fn tp_remesh(
             TP_DIRECTION_ANGLE => FieldDirection::Angle(raw.angle_degrees),
             other => return Err(Failure::new(TP_INVALID_ARGUMENT, format!("direction {other} is not one of TP_DIRECTION_CURVATURE, TP_DIRECTION_VECTOR, TP_DIRECTION_ANGLE"))),
         };
-        let options = RemeshOptions { target_edge: raw.target_edge, direction, shapeup: raw.shapeup != 0, ..RemeshOptions::default() };
+        let time_limit = RemeshOptions::time_limit_from_secs(raw.time_limit_seconds)?;
+        let options = RemeshOptions { target_edge: raw.target_edge, direction, shapeup: raw.shapeup != 0, time_limit, ..RemeshOptions::default() };
         let mut report = progress_reporter(progress, user, TP_STAGE_REMESH);
-        if !report(0.0) {
-            return Err(Failure::new(TP_CANCELLED, "cancelled by the caller"));
-        }
-        let remeshed = remesh::remesh(surface, &options)?;
-        report(1.0);
+        let remeshed = remesh::remesh_with(surface, &options, &mut Control::with_progress(&mut report)).map_err(|e| match e {
+            RemeshError::Cancelled => Failure::new(TP_CANCELLED, e.to_string()),
+            RemeshError::TimeLimit { .. } => Failure::new(TP_TIME_LIMIT, e.to_string()),
+            other => other.into(),
+        })?;
         // SAFETY: checked non-null above.
         unsafe { hand_over(out, TpMesh { mesh: remeshed.quads }, "out") }
     })

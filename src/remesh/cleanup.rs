@@ -13,15 +13,21 @@
 //!    when each component has an even number of odd faces, and a boundary edge split fixes
 //!    the parity otherwise);
 //! 4. even polygons are cut into quads by their best diagonals;
-//! 5. boundary vertices are snapped onto the input boundary (input corners onto corners),
-//!    all others onto the surface, with a few rounds of tangential smoothing.
+//! 5. the boundary is fitted to the input's ([`super::fit`]): rows are extended over gaps
+//!    to the input boundary, boundary vertices snapped onto it (input corners onto corners),
+//!    all others onto the surface, with a few rounds of tangential smoothing; faces that
+//!    still leave the surface are pulled back, peeled and re-extended, halved along their
+//!    quad strip, or (on the rim) dropped; edges are rotated where that makes vertices
+//!    regular.
 
 use std::collections::{BTreeMap, HashMap, VecDeque};
 
 use nalgebra::Vector3;
 
 use super::RemeshError;
+use super::budget::{Budget, Stop};
 use super::extract::Raw;
+use super::fit;
 use super::surface::Locator;
 
 /// A quad mesh in progress.
@@ -34,21 +40,392 @@ pub(crate) struct Quads {
 }
 
 /// Runs the repair steps listed in the module documentation.
-pub(crate) fn pure_quads(raw: Raw, locator: &Locator, t: f64) -> Result<Quads, RemeshError> {
+///
+/// The topology repair must finish (a stop there is an error); the fitting rounds after it
+/// only improve a valid mesh, so when the time limit passes during them the mesh as it is
+/// comes back.
+pub(crate) fn pure_quads(raw: Raw, locator: &Locator, t: f64, budget: &mut Budget) -> Result<Quads, RemeshError> {
     let mut pos = raw.positions;
     let mut faces: Vec<Vec<usize>> = raw.faces.into_iter().filter(|f| distinct(f)).collect();
     make_edge_manifold(&mut faces);
+    drop_small_components(&mut faces);
     fill_holes(&pos, &mut faces, locator, t);
     make_edge_manifold(&mut faces);
-    merge_triangles(&pos, &mut faces);
-    pair_odd_faces(&mut pos, &mut faces);
-    split_even(&pos, &mut faces);
-    let (mut pos, faces) = compact(pos, faces);
+    make_quads(&mut pos, &mut faces, budget);
+    budget.check()?;
+    let (mut pos, mut faces) = compact(pos, faces);
+    for p in pos.iter_mut() {
+        *p = locator.closest(p).0;
+    }
+    let loops = boundary_loops(&faces);
+    fit::extend_boundary(&mut pos, &mut faces, &loops, locator, t);
     relax(&mut pos, &faces, locator, t, 6);
+    for round in 0..=FIT_ROUNDS {
+        if !budget.poll(0.5 + 0.5 * round as f64 / (FIT_ROUNDS + 1) as f64) {
+            match budget.stopped() {
+                Some(Stop::Cancelled) => budget.check()?,
+                _ => break,
+            }
+        }
+        let anchors = Anchors::new(&mut pos, &faces, locator, t);
+        fit::conform(&mut pos, &faces, &anchors, locator, t);
+        // Faces at the boundary that still leave the surface are peeled off and the gap is
+        // closed again by a fresh row extension; in the last round the new boundary vertices
+        // are only put onto the input boundary, and the peeling is kept only if it helped.
+        let bad: Vec<bool> = faces
+            .iter()
+            .map(|f| f.iter().any(|&v| !anchors.bnbrs[v].is_empty()) && fit::deviation(&pos, f, locator) > PEEL * t)
+            .collect();
+        if !bad.iter().any(|&b| b) {
+            break;
+        }
+        let before = (round == FIT_ROUNDS).then(|| (pos.clone(), faces.clone()));
+        let mut kept: Vec<Vec<usize>> = faces.iter().zip(&bad).filter(|(_, b)| !**b).map(|(f, _)| f.clone()).collect();
+        drop_small_components(&mut kept);
+        remove_doublets(&mut kept);
+        let (p2, f2) = compact(pos, kept);
+        pos = p2;
+        faces = f2;
+        if let Some((old_pos, old_faces)) = before {
+            let anchors = Anchors::new(&mut pos, &faces, locator, t);
+            for (v, p) in pos.iter_mut().enumerate() {
+                if !anchors.bnbrs[v].is_empty() && !anchors.pinned[v] {
+                    *p = anchors.project(locator, v, p);
+                }
+            }
+            fit::conform(&mut pos, &faces, &anchors, locator, t);
+            let worst = |pos: &[Vector3<f64>], faces: &[Vec<usize>]| faces.iter().map(|f| fit::deviation(pos, f, locator)).fold(0.0, f64::max);
+            let on_boundary = (0..pos.len()).all(|v| {
+                anchors.bnbrs[v].is_empty() || locator.closest_boundary(&pos[v]).is_some_and(|q| (q - pos[v]).norm() <= 0.04 * t)
+            });
+            if !on_boundary || worst(&pos, &faces) >= worst(&old_pos, &old_faces) {
+                pos = old_pos;
+                faces = old_faces;
+            }
+        } else {
+            let loops = boundary_loops(&faces);
+            fit::extend_boundary(&mut pos, &mut faces, &loops, locator, t);
+            relax(&mut pos, &faces, locator, t, 2);
+        }
+    }
+    rotate_edges(&pos, &mut faces);
+    remove_doublets(&mut faces);
+    for _ in 0..SPLIT_ROUNDS {
+        if !split_unfit_faces(&mut pos, &mut faces, locator, t) {
+            break;
+        }
+    }
+    drop_unfit_rim_faces(&mut pos, &mut faces, locator, t);
+    drop_rim_slivers(&pos, &mut faces, locator, t);
+    split_pinched_vertices(&mut pos, &mut faces);
+    let (pos, faces) = compact(pos, faces);
     if faces.is_empty() {
         return Err(RemeshError::NothingExtracted(t));
     }
     Ok(Quads { positions: pos.iter().map(super::surface::point).collect(), faces })
+}
+
+/// Drops faces with (almost) no area whose corners all lie on the input boundary: slivers
+/// that row extension and strip splitting can leave along a ragged rim. Nothing is exposed
+/// that is off the boundary.
+fn drop_rim_slivers(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>, locator: &Locator, t: f64) {
+    let on_rim = |v: usize| locator.closest_boundary(&pos[v]).is_some_and(|q| (q - pos[v]).norm() <= 0.04 * t);
+    let area = |f: &[usize]| {
+        let k = f.len();
+        (0..k).fold(Vector3::zeros(), |acc: Vector3<f64>, i| acc + pos[f[i]].cross(&pos[f[(i + 1) % k]])).norm() * 0.5
+    };
+    let before = faces.len();
+    faces.retain(|f| !(area(f) < SLIVER * t * t && f.iter().all(|&v| on_rim(v))));
+    if faces.len() != before {
+        drop_small_components(faces);
+    }
+}
+
+/// Area (times `t` squared) below which a rim face is a sliver.
+const SLIVER: f64 = 0.05;
+
+/// Rounds of peeling and re-extending boundary faces that leave the surface.
+const FIT_ROUNDS: usize = 4;
+
+/// Faces that still leave the surface after fitting span more surface than a quad can follow
+/// there (a crumpled support). Each is halved across its long sides together with the rest of
+/// its quad strip (chord), when that strip runs to the boundary within a few faces both
+/// ways: splitting a whole strip keeps every face a quad and adds no irregular vertex.
+/// Returns whether anything changed.
+fn split_unfit_faces(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, locator: &Locator, t: f64) -> bool {
+    let limit = FINAL * t;
+    let map = edge_faces(faces);
+    let other = |e: (usize, usize), f: usize| -> Option<usize> { map.get(&e).and_then(|l| l.iter().copied().find(|&g| g != f)) };
+    let edge = |f: &[usize], i: usize| key(f[i % 4], f[(i + 1) % 4]);
+    let mut in_chord = vec![false; faces.len()];
+    // (face, index of its first split edge) for every face of every accepted chord.
+    let mut splits: Vec<(usize, usize)> = Vec::new();
+    for f0 in 0..faces.len() {
+        if in_chord[f0] || faces[f0].len() != 4 || fit::deviation(pos, &faces[f0], locator) <= limit {
+            continue;
+        }
+        // Split across the sides whose midpoints leave the surface most, or across the
+        // longer sides when only the centre does.
+        let q = &faces[f0];
+        let len = |i: usize| (pos[q[i]] - pos[q[(i + 1) % 4]]).norm() + (pos[q[(i + 2) % 4]] - pos[q[(i + 3) % 4]]).norm();
+        let off = |i: usize| locator.distance(&((pos[q[i % 4]] + pos[q[(i + 1) % 4]]) * 0.5));
+        let worst = |i: usize| off(i).max(off(i + 2));
+        let i0 = if worst(0).max(worst(1)) > limit {
+            if worst(0) >= worst(1) { 0 } else { 1 }
+        } else if len(0) >= len(1) {
+            0
+        } else {
+            1
+        };
+        let mut chord = vec![(f0, i0)];
+        let mut ok = true;
+        // Walk across the split edges both ways.
+        for start_edge in [i0, i0 + 2] {
+            let (mut f, mut e) = (f0, edge(&faces[f0], start_edge));
+            while let Some(g) = other(e, f) {
+                if g == f0 || faces[g].len() != 4 || in_chord[g] || chord.iter().any(|&(h, _)| h == g) || chord.len() >= MAX_CHORD {
+                    ok = false;
+                    break;
+                }
+                let Some(k) = (0..4).find(|&k| edge(&faces[g], k) == e) else {
+                    ok = false;
+                    break;
+                };
+                chord.push((g, k % 2));
+                f = g;
+                e = edge(&faces[g], k + 2);
+            }
+            if !ok {
+                break;
+            }
+        }
+        if !ok {
+            continue;
+        }
+        for &(g, k) in &chord {
+            in_chord[g] = true;
+            splits.push((g, k));
+        }
+    }
+    if splits.is_empty() {
+        return false;
+    }
+    let mut mids: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+    let mut mid = |pos: &mut Vec<Vector3<f64>>, a: usize, b: usize| -> usize {
+        *mids.entry(key(a, b)).or_insert_with(|| {
+            let m = (pos[a] + pos[b]) * 0.5;
+            let boundary = map.get(&key(a, b)).is_some_and(|l| l.len() == 1);
+            let q = if boundary { locator.closest_boundary(&m).unwrap_or_else(|| locator.closest(&m).0) } else { locator.closest(&m).0 };
+            pos.push(q);
+            pos.len() - 1
+        })
+    };
+    let mut added = Vec::new();
+    for &(g, k) in &splits {
+        let f = faces[g].clone();
+        let v = |i: usize| f[(k + i) % 4];
+        let ma = mid(pos, v(0), v(1));
+        let mb = mid(pos, v(2), v(3));
+        faces[g] = vec![v(0), ma, mb, v(3)];
+        added.push(vec![ma, v(1), v(2), mb]);
+    }
+    faces.extend(added);
+    let anchors = Anchors::new(pos, faces, locator, t);
+    fit::conform(pos, faces, &anchors, locator, t);
+    true
+}
+
+/// Longest quad strip [`split_unfit_faces`] halves.
+const MAX_CHORD: usize = 12;
+
+/// Rounds of [`split_unfit_faces`].
+const SPLIT_ROUNDS: usize = 2;
+
+/// Drops faces at the rim that still leave the surface (a quad spanning a fold of slivers
+/// at a support), one at a time and only where the vertices this exposes can go onto the
+/// input boundary without pushing a neighbouring face off the surface.
+fn drop_unfit_rim_faces(pos: &mut [Vector3<f64>], faces: &mut Vec<Vec<usize>>, locator: &Locator, t: f64) {
+    let limit = FINAL * t;
+    let mut candidates: Vec<usize> = (0..faces.len()).filter(|&f| fit::deviation(pos, &faces[f], locator) > limit).collect();
+    if candidates.is_empty() {
+        return;
+    }
+    let mut gone = vec![false; faces.len()];
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); pos.len()];
+    for (fi, f) in faces.iter().enumerate() {
+        for &v in f {
+            incident[v].push(fi);
+        }
+    }
+    let mut count: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+    for f in faces.iter() {
+        for i in 0..f.len() {
+            *count.entry(key(f[i], f[(i + 1) % f.len()])).or_default() += 1;
+        }
+    }
+    let on_boundary = |v: usize, count: &BTreeMap<(usize, usize), usize>, gone: &[bool]| {
+        incident[v].iter().filter(|&&g| !gone[g]).any(|&g| {
+            let f = &faces[g];
+            let i = f.iter().position(|&w| w == v).unwrap_or(0);
+            let k = f.len();
+            count.get(&key(v, f[(i + 1) % k])) == Some(&1) || count.get(&key(v, f[(i + k - 1) % k])) == Some(&1)
+        })
+    };
+    candidates.sort_unstable();
+    for fi in candidates {
+        let f = faces[fi].clone();
+        if !f.iter().any(|&v| on_boundary(v, &count, &gone)) {
+            continue;
+        }
+        let exposed: Vec<usize> = f.iter().copied().filter(|&v| !on_boundary(v, &count, &gone)).collect();
+        let mut moves = Vec::new();
+        let mut ok = true;
+        for &v in &exposed {
+            match locator.closest_boundary(&pos[v]) {
+                Some(q) if (q - pos[v]).norm() <= 0.35 * t => moves.push((v, pos[v], q)),
+                _ => ok = false,
+            }
+        }
+        if !ok {
+            continue;
+        }
+        gone[fi] = true;
+        let around: Vec<usize> = {
+            let mut list: Vec<usize> = moves.iter().flat_map(|&(v, _, _)| incident[v].iter().copied()).filter(|&g| !gone[g]).collect();
+            list.sort_unstable();
+            list.dedup();
+            list
+        };
+        let before: Vec<f64> = around.iter().map(|&g| fit::deviation(pos, &faces[g], locator)).collect();
+        for &(v, _, q) in &moves {
+            pos[v] = q;
+        }
+        let fine = around.iter().zip(&before).all(|(&g, &b)| fit::deviation(pos, &faces[g], locator) <= limit.max(b + 0.01 * t));
+        if fine {
+            for i in 0..f.len() {
+                if let Some(c) = count.get_mut(&key(f[i], f[(i + 1) % f.len()])) {
+                    *c -= 1;
+                }
+            }
+        } else {
+            gone[fi] = false;
+            for &(v, old, _) in &moves {
+                pos[v] = old;
+            }
+        }
+    }
+    let mut k = 0;
+    faces.retain(|_| {
+        k += 1;
+        !gone[k - 1]
+    });
+    drop_small_components(faces);
+}
+
+/// Deviation (times `t`) above which [`drop_unfit_rim_faces`] drops a rim face.
+const FINAL: f64 = 0.095;
+
+/// Deviation from the surface (times `t`) at which a boundary face is peeled off.
+const PEEL: f64 = 0.08;
+
+/// Components with fewer faces than this are dropped (stray faces of a garbled lattice).
+const MIN_COMPONENT: usize = 4;
+
+/// Topology repair: triangles paired, odd faces evened, even polygons cut, doublets merged.
+fn make_quads(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, budget: &mut Budget) {
+    merge_triangles(pos, faces);
+    pair_odd_faces(pos, faces, budget);
+    split_even(pos, faces);
+    remove_doublets(faces);
+}
+
+/// Drops edge-connected components with fewer than [`MIN_COMPONENT`] faces.
+fn drop_small_components(faces: &mut Vec<Vec<usize>>) {
+    let map = edge_faces(faces);
+    let mut component = vec![usize::MAX; faces.len()];
+    let mut sizes = Vec::new();
+    for seed in 0..faces.len() {
+        if component[seed] != usize::MAX {
+            continue;
+        }
+        let id = sizes.len();
+        component[seed] = id;
+        let mut stack = vec![seed];
+        let mut size = 0;
+        while let Some(f) = stack.pop() {
+            size += 1;
+            let face = &faces[f];
+            for i in 0..face.len() {
+                for &g in &map[&key(face[i], face[(i + 1) % face.len()])] {
+                    if component[g] == usize::MAX {
+                        component[g] = id;
+                        stack.push(g);
+                    }
+                }
+            }
+        }
+        sizes.push(size);
+    }
+    let mut k = 0;
+    faces.retain(|_| {
+        let keep = sizes[component[k]] >= MIN_COMPONENT;
+        k += 1;
+        keep
+    });
+}
+
+/// Gives every fan of faces around a vertex its own copy of the vertex, so two boundary
+/// loops touching at a vertex (after peeling) leave a manifold mesh.
+fn split_pinched_vertices(pos: &mut Vec<Vector3<f64>>, faces: &mut [Vec<usize>]) {
+    let n = pos.len();
+    // Corners (face, index) around each vertex.
+    let mut around: Vec<Vec<(usize, usize)>> = vec![Vec::new(); n];
+    for (fi, f) in faces.iter().enumerate() {
+        for (i, &v) in f.iter().enumerate() {
+            around[v].push((fi, i));
+        }
+    }
+    for v in 0..n {
+        let corners = &around[v];
+        if corners.len() < 2 {
+            continue;
+        }
+        // Union corners that share an edge at v.
+        let mut parent: Vec<usize> = (0..corners.len()).collect();
+        fn root(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
+            }
+            x
+        }
+        let neighbours = |&(fi, i): &(usize, usize)| {
+            let f = &faces[fi];
+            let k = f.len();
+            [f[(i + 1) % k], f[(i + k - 1) % k]]
+        };
+        for a in 0..corners.len() {
+            for b in a + 1..corners.len() {
+                let (na, nb) = (neighbours(&corners[a]), neighbours(&corners[b]));
+                if na.iter().any(|w| nb.contains(w)) {
+                    let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                    parent[ra.max(rb)] = ra.min(rb);
+                }
+            }
+        }
+        let roots: Vec<usize> = (0..corners.len()).map(|a| root(&mut parent, a)).collect();
+        let mut copies: BTreeMap<usize, usize> = BTreeMap::new();
+        for (a, &(fi, i)) in corners.iter().enumerate() {
+            if roots[a] == roots[0] {
+                continue;
+            }
+            let copy = *copies.entry(roots[a]).or_insert_with(|| {
+                pos.push(pos[v]);
+                pos.len() - 1
+            });
+            faces[fi][i] = copy;
+        }
+    }
 }
 
 fn distinct(f: &[usize]) -> bool {
@@ -150,6 +527,16 @@ fn fill_holes(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>, locator: &Locat
         if near * 2 >= lp.len() {
             continue;
         }
+        // A loop around a single face (a stray face) is not a hole.
+        let mut sorted = lp.clone();
+        sorted.sort_unstable();
+        if faces.iter().any(|f| f.len() == sorted.len() && {
+            let mut g = f.clone();
+            g.sort_unstable();
+            g == sorted
+        }) {
+            continue;
+        }
         let mut face = lp;
         face.reverse();
         faces.push(face);
@@ -213,10 +600,14 @@ fn merge_triangles(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>) {
 
 /// Pairs odd faces along shortest dual paths (or to the boundary) and splits the crossed
 /// edges at their midpoints, so every face gets an even number of sides.
-fn pair_odd_faces(pos: &mut Vec<Vector3<f64>>, faces: &mut [Vec<usize>]) {
+fn pair_odd_faces(pos: &mut Vec<Vector3<f64>>, faces: &mut [Vec<usize>], budget: &mut Budget) {
+    // Kept up to date as edges are split (each half keeps the edge's faces, in order).
+    let mut map = edge_faces(faces);
     loop {
         let Some(f0) = faces.iter().position(|f| f.len() % 2 == 1) else { return };
-        let map = edge_faces(faces);
+        if !budget.poll(0.25) {
+            return;
+        }
         // BFS over faces; `from[g]` = (previous face, edge crossed).
         let mut from: Vec<Option<(usize, (usize, usize))>> = vec![None; faces.len()];
         let mut seen = vec![false; faces.len()];
@@ -261,13 +652,16 @@ fn pair_odd_faces(pos: &mut Vec<Vector3<f64>>, faces: &mut [Vec<usize>]) {
         for (a, b) in cut {
             let m = pos.len();
             pos.push((pos[a] + pos[b]) * 0.5);
-            for &fi in map.get(&(a, b)).into_iter().flatten() {
+            let list = map.remove(&(a, b)).unwrap_or_default();
+            for &fi in &list {
                 let f = &mut faces[fi];
                 let n = f.len();
                 if let Some(i) = (0..n).find(|&i| key(f[i], f[(i + 1) % n]) == (a, b)) {
                     f.insert(i + 1, m);
                 }
             }
+            map.insert(key(a, m), list.clone());
+            map.insert(key(m, b), list);
         }
     }
 }
@@ -297,6 +691,134 @@ fn split_even(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>) {
         out.push(rest);
     }
     *faces = out;
+}
+
+/// Rotates interior edges between two quads where that brings the valences of the four
+/// vertices involved closer to four (Bommes et al.'s quad mesh "edge rotation"): a 5 next
+/// to a 3 across a quad, left by the lattice at a crumpled spot, becomes two regular
+/// vertices. Only rotations whose two new quads are no worse shaped than a bound are made.
+fn rotate_edges(pos: &[Vector3<f64>], faces: &mut [Vec<usize>]) {
+    for _ in 0..ROTATION_PASSES {
+        let map = edge_faces(faces);
+        let mut valence = vec![0i64; pos.len()];
+        let mut boundary = vec![false; pos.len()];
+        for (&(a, b), list) in &map {
+            valence[a] += 1;
+            valence[b] += 1;
+            if list.len() != 2 {
+                boundary[a] = true;
+                boundary[b] = true;
+            }
+        }
+        let mut changed = false;
+        let mut touched = vec![false; faces.len()];
+        for (&(a, b), list) in &map {
+            let [f1, f2] = list.as_slice() else { continue };
+            let (f1, f2) = (*f1, *f2);
+            if touched[f1] || touched[f2] || faces[f1].len() != 4 || faces[f2].len() != 4 {
+                continue;
+            }
+            // Orient: f1 has a -> b, f2 has b -> a.
+            let has = |f: &[usize], x: usize, y: usize| (0..4).any(|i| f[i] == x && f[(i + 1) % 4] == y);
+            let (f1, f2) = if has(&faces[f1], a, b) { (f1, f2) } else { (f2, f1) };
+            if !has(&faces[f1], a, b) || !has(&faces[f2], b, a) {
+                continue;
+            }
+            let turn = |f: &[usize], start: usize| -> [usize; 4] {
+                let i = f.iter().position(|&v| v == start).unwrap_or(0);
+                [f[i], f[(i + 1) % 4], f[(i + 2) % 4], f[(i + 3) % 4]]
+            };
+            let [_, _, c, d] = turn(&faces[f1], a);
+            let [_, _, e, f] = turn(&faces[f2], b);
+            // Hexagon a e f b c d; the edge ab may rotate to e-c or to f-d.
+            let hexagon = [a, e, f, b, c, d];
+            if hexagon.iter().enumerate().any(|(i, v)| hexagon[i + 1..].contains(v)) {
+                continue;
+            }
+            let cost = |v: usize, delta: i64| -> i64 {
+                if boundary[v] { 0 } else { (valence[v] + delta - 4).pow(2) }
+            };
+            let now = cost(a, 0) + cost(b, 0) + cost(c, 0) + cost(d, 0) + cost(e, 0) + cost(f, 0);
+            if [a, b].iter().any(|&v| boundary[v]) {
+                continue;
+            }
+            let shape_now = quad_cost(pos, [a, b, c, d]) + quad_cost(pos, [b, a, e, f]);
+            let options = [
+                ([e, c], [[e, f, b, c], [c, d, a, e]]),
+                ([f, d], [[f, b, c, d], [d, a, e, f]]),
+            ];
+            let mut best: Option<(i64, f64, [[usize; 4]; 2])> = None;
+            for ([p, q], quads) in options {
+                if boundary[p] || boundary[q] || map.contains_key(&key(p, q)) {
+                    continue;
+                }
+                let after = cost(a, -1) + cost(b, -1) + cost(p, 1) + cost(q, 1)
+                    + [c, d, e, f].iter().filter(|&&v| v != p && v != q).map(|&v| cost(v, 0)).sum::<i64>();
+                let shape = quad_cost(pos, quads[0]) + quad_cost(pos, quads[1]);
+                if after < now && shape <= shape_now + ROTATION_SHAPE_SLACK && best.is_none_or(|(c0, s0, _)| (after, shape) < (c0, s0)) {
+                    best = Some((after, shape, quads));
+                }
+            }
+            if let Some((_, _, [q1, q2])) = best {
+                faces[f1] = q1.to_vec();
+                faces[f2] = q2.to_vec();
+                touched[f1] = true;
+                touched[f2] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            return;
+        }
+    }
+}
+
+/// Passes of [`rotate_edges`].
+const ROTATION_PASSES: usize = 6;
+
+/// How much worse (summed corner deviation, radians) two quads may get by a rotation.
+const ROTATION_SHAPE_SLACK: f64 = 0.6;
+
+/// Merges the two quads around every interior vertex of valence two (a doublet, left where
+/// rows from two sides meet along a seam) into one quad, which makes both ends of the seam
+/// edge regular again.
+fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
+    loop {
+        let mut around: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        for (fi, f) in faces.iter().enumerate() {
+            for &v in f {
+                around.entry(v).or_default().push(fi);
+            }
+        }
+        let map = edge_faces(faces);
+        let mut gone = vec![false; faces.len()];
+        let mut added = Vec::new();
+        for (&v, list) in &around {
+            let [f1, f2] = list.as_slice() else { continue };
+            if gone[*f1] || gone[*f2] || faces[*f1].len() != 4 || faces[*f2].len() != 4 {
+                continue;
+            }
+            let turn = |f: &[usize]| -> Option<[usize; 3]> {
+                let i = f.iter().position(|&w| w == v)?;
+                Some([f[(i + 1) % 4], f[(i + 2) % 4], f[(i + 3) % 4]])
+            };
+            let (Some([p1, q1, r1]), Some([p2, q2, r2])) = (turn(&faces[*f1]), turn(&faces[*f2])) else { continue };
+            // Interior: both edges at v are shared by exactly these two faces.
+            let interior = [p1, r1].iter().all(|&w| map.get(&key(v, w)).is_some_and(|l| l.len() == 2));
+            if !interior || p1 != r2 || r1 != p2 || q1 == q2 {
+                continue;
+            }
+            gone[*f1] = true;
+            gone[*f2] = true;
+            added.push(vec![p1, q1, p2, q2]);
+        }
+        if added.is_empty() {
+            return;
+        }
+        let mut kept: Vec<Vec<usize>> = faces.iter().enumerate().filter(|(i, _)| !gone[*i]).map(|(_, f)| f.clone()).collect();
+        kept.extend(added);
+        *faces = kept;
+    }
 }
 
 /// Drops unused vertices, keeping order.
@@ -399,3 +921,4 @@ fn relax(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], locator: &Locator, t: f
         }
     }
 }
+

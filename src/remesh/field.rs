@@ -15,6 +15,7 @@
 
 use nalgebra::{Matrix5, Vector3, Vector5};
 
+use super::budget::Budget;
 use super::linalg::conjugate_gradient;
 use super::surface::{Surface, any_tangent};
 use super::{FieldDirection, RemeshOptions};
@@ -127,7 +128,8 @@ fn curvature(s: &Surface, frames: &[Vector3<f64>], v: usize, mark: &mut [usize])
 
 /// Solves the orientation field on `s`; returns one unit tangent per vertex (any of the four
 /// directions of its cross).
-pub(crate) fn solve(s: &Surface, options: &RemeshOptions) -> Vec<Vector3<f64>> {
+/// Stops early (with a usable but less smooth field) once `budget` says so.
+pub(crate) fn solve(s: &Surface, options: &RemeshOptions, budget: &mut Budget) -> Vec<Vector3<f64>> {
     let n = s.len();
     let frames = reference_frames(s);
     // Transport r_ab per edge: z_a ~ r_ab z_b.
@@ -230,14 +232,17 @@ pub(crate) fn solve(s: &Surface, options: &RemeshOptions) -> Vec<Vector3<f64>> {
         }
     }
     let linear = Operator { s, transport: &transport, weight: &weight, fixed: &fixed, shift: 0.0 };
-    conjugate_gradient(|x: &[f64], out: &mut [f64]| linear.apply(x, out), &rhs, &mut x, 4000, 1e-9);
+    conjugate_gradient(|x: &[f64], out: &mut [f64]| linear.apply(x, out), &rhs, &mut x, 4000, 1e-9, &mut |k| budget.poll(0.5 * k as f64 / 4000.0));
     // Ginzburg-Landau style renormalisation (Viertel and Osting 2019): the linear solve lets
     // |z| vanish, which gathers all the boundary-forced turning into one high-order zero (a
     // polar pattern, fatal for square quads). Implicit steps towards unit crosses split it
     // into separate +1/4 cones placed where they cost least.
     let shift = GL_SHIFT;
     let relaxed = Operator { shift, ..linear };
-    for _ in 0..GL_STEPS {
+    for round in 0..GL_STEPS {
+        if !budget.poll(0.5 + 0.5 * round as f64 / GL_STEPS as f64) {
+            break;
+        }
         let mut step = rhs.clone();
         for v in 0..n {
             let norm = x[2 * v].hypot(x[2 * v + 1]);
@@ -246,7 +251,7 @@ pub(crate) fn solve(s: &Surface, options: &RemeshOptions) -> Vec<Vector3<f64>> {
                 step[2 * v + 1] += shift * x[2 * v + 1] / norm;
             }
         }
-        conjugate_gradient(|x: &[f64], out: &mut [f64]| relaxed.apply(x, out), &step, &mut x, 200, 1e-6);
+        conjugate_gradient(|x: &[f64], out: &mut [f64]| relaxed.apply(x, out), &step, &mut x, 200, 1e-6, &mut |_| budget.poll(0.5 + 0.5 * round as f64 / GL_STEPS as f64));
     }
     (0..n)
         .map(|v| {

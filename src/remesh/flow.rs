@@ -80,13 +80,17 @@ impl<'a> Jumps<'a> {
         if a < b { self.turns[e] } else { self.turns[e].inv() }
     }
 
-    /// Lattice step from `x` to `y`, in `x`'s frame.
-    fn step(&self, m: &[[i64; 2]], x: usize, y: usize) -> [i64; 2] {
-        let e = edge_id(self.s, x, y);
+    /// [`Self::frame_map`] for the ends of a known edge `e`.
+    fn frame_map_on(&self, a: usize, b: usize, e: usize) -> Rot {
+        if a < b { self.turns[e] } else { self.turns[e].inv() }
+    }
+
+    /// Lattice step from `x` to `y` (the ends of edge `e`), in `x`'s frame.
+    fn step_on(&self, m: &[[i64; 2]], x: usize, y: usize, e: usize) -> [i64; 2] {
         if x < y {
             m[e]
         } else {
-            let v = self.frame_map(x, y).apply(m[e]);
+            let v = self.frame_map_on(x, y, e).apply(m[e]);
             [-v[0], -v[1]]
         }
     }
@@ -94,15 +98,17 @@ impl<'a> Jumps<'a> {
     /// True when the cross field turns around triangle `t` (a field singularity).
     fn is_cone(&self, t: usize) -> bool {
         let [a, b, c] = self.s.tris[t];
-        (self.frame_map(a, b).0 + self.frame_map(b, c).0 + self.frame_map(c, a).0) % 4 != 0
+        let [eab, ebc, eca] = self.tri_edges[t];
+        (self.frame_map_on(a, b, eab).0 + self.frame_map_on(b, c, ebc).0 + self.frame_map_on(c, a, eca).0) % 4 != 0
     }
 
     /// Sum of lattice steps around triangle `t`, in the frame of its first vertex.
     fn curl(&self, m: &[[i64; 2]], t: usize) -> [i64; 2] {
         let [a, b, c] = self.s.tris[t];
-        let s1 = self.step(m, a, b);
-        let s2 = self.frame_map(a, b).apply(self.step(m, b, c));
-        let s3 = self.frame_map(a, c).apply(self.step(m, c, a));
+        let [eab, ebc, eca] = self.tri_edges[t];
+        let s1 = self.step_on(m, a, b, eab);
+        let s2 = self.frame_map_on(a, b, eab).apply(self.step_on(m, b, c, ebc));
+        let s3 = self.frame_map_on(a, c, eca).apply(self.step_on(m, c, a, eca));
         [s1[0] + s2[0] + s3[0], s1[1] + s2[1] + s3[1]]
     }
 
@@ -120,7 +126,8 @@ impl<'a> Jumps<'a> {
     /// through the boundary within `exit_depth` triangles. `pinned_normal[v]` says the boundary vertex `v` has its
     /// lattice line pinned along the boundary (then only tangential steps may leave there).
     /// Returns how many defects were removed.
-    pub fn cancel(&self, m: &mut [[i64; 2]], depth: usize, exit_depth: usize, pinned_normal: &[bool]) -> usize {
+    /// `keep_going` is asked now and then; `false` stops with the defects left so far.
+    pub fn cancel(&self, m: &mut [[i64; 2]], depth: usize, exit_depth: usize, pinned_normal: &[bool], keep_going: &mut dyn FnMut() -> bool) -> usize {
         let nt = self.s.tris.len();
         let cone: Vec<bool> = (0..nt).map(|t| self.is_cone(t)).collect();
         let mut removed = 0;
@@ -130,6 +137,9 @@ impl<'a> Jumps<'a> {
         for start in 0..nt {
             if cone[start] || self.curl(m, start) == [0, 0] {
                 continue;
+            }
+            if !keep_going() {
+                break;
             }
             // Breadth-first search over non-cone triangles.
             stamp[start] = start;

@@ -4,12 +4,14 @@
 
 /// Solves `A x = b` for a symmetric positive (semi-)definite `A` given as `apply(x, out)`,
 /// starting from `x`, for at most `iterations` steps or until the residual drops by `tol`.
+/// `keep_going(k)` is asked every [`POLL_EVERY`] steps (`k` done so far); `false` stops early.
 pub(crate) fn conjugate_gradient(
     apply: impl Fn(&[f64], &mut [f64]),
     b: &[f64],
     x: &mut [f64],
     iterations: usize,
     tol: f64,
+    keep_going: &mut dyn FnMut(usize) -> bool,
 ) {
     let n = b.len();
     let mut ax = vec![0.0; n];
@@ -19,8 +21,8 @@ pub(crate) fn conjugate_gradient(
     let mut rr = dot(&r, &r);
     let b_norm = dot(b, b).sqrt().max(1e-300);
     let mut ap = vec![0.0; n];
-    for _ in 0..iterations {
-        if rr.sqrt() <= tol * b_norm {
+    for k in 0..iterations {
+        if rr.sqrt() <= tol * b_norm || (k % POLL_EVERY == 0 && !keep_going(k)) {
             break;
         }
         apply(&p, &mut ap);
@@ -41,6 +43,9 @@ pub(crate) fn conjugate_gradient(
         }
     }
 }
+
+/// Steps between two polls of `keep_going`.
+const POLL_EVERY: usize = 8;
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()

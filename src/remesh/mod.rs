@@ -9,27 +9,36 @@
 //! 1. [`field`]: a 4-RoSy orientation field, the globally smoothest one (Knöppel et al. 2013
 //!    style complex representation, solved by conjugate gradients) that follows principal
 //!    curvature where the surface is anisotropic, and is pinned to the boundary tangents so
-//!    quads line up with the shell's edges;
+//!    quads line up with the shell's edges, except where the boundary is narrower than a
+//!    quad (teeth, slivers) or turns into an acute tongue;
 //! 2. [`position`]: an isotropic lattice (position) field of spacing `t`, solved globally by
-//!    least squares with integer lattice jumps that are re-rounded between solves (the
-//!    Instant Meshes energy, with QuadriFlow's idea of fixing integer offsets globally), with
-//!    boundary lattice lines pinned onto the boundary;
+//!    least squares (cotangent-weighted, so skewed triangulations do not shear it) with
+//!    integer lattice jumps that are re-rounded between solves (the Instant Meshes energy,
+//!    with QuadriFlow's idea of fixing integer offsets globally), with boundary lattice
+//!    lines pinned onto the boundary; the working surface is refined until no edge is longer
+//!    than three quarters of a quad;
 //! 3. [`extract`]: vertices sharing a lattice point are collapsed, unit lattice offsets become
 //!    quad edges, faces are traced in the tangent plane;
-//! 4. [`cleanup`]: holes are filled, non-quads paired and split so that the result is a pure,
-//!    manifold quad mesh; boundary vertices are snapped onto the input boundary and every
-//!    vertex onto the surface;
+//! 4. [`cleanup`]: holes are filled, non-quads paired and split, doublets merged, so that the
+//!    result is a pure, manifold quad mesh; then [`fit`]: where the quads stop short of the
+//!    input boundary the boundary row is extended onto it, boundary vertices go onto the
+//!    input boundary and every vertex onto the surface, faces that still leave the surface
+//!    are pulled back, peeled and re-extended, or halved along their quad strip;
 //! 5. [`shapeup`] (optional): local-global iterations towards squares of side `t`
 //!    (Bouaziz et al., "Shape-Up", SGP 2012, as used in the paper via libigl), projected back
 //!    onto the input after every step;
 //! 6. [`metrics`]: the acceptance numbers, usable on any quad mesh.
 //!
+//! [`remesh_with`] reports progress and honours cancellation and a time limit ([`budget`]).
+//!
 //! Everything is deterministic: iteration is in index order, no hash-map order reaches a
 //! result and no threads are used.
 
+mod budget;
 mod cleanup;
 mod extract;
 mod field;
+mod fit;
 mod flow;
 mod linalg;
 mod metrics;
@@ -37,10 +46,13 @@ mod position;
 mod shapeup;
 mod surface;
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
+
+use budget::Budget;
 
 use thiserror::Error;
 
+use crate::control::Control;
 use crate::mesh::{MeshError, PolyMesh};
 
 pub use metrics::{Metrics, metrics};
@@ -95,6 +107,10 @@ pub struct RemeshOptions {
     pub shapeup_tolerance: f64,
     /// Number of shape-up iterations.
     pub shapeup_iterations: usize,
+    /// Wall-clock limit of [`remesh_with`]: when it passes, the quad mesh as it stands is
+    /// returned if there is one (the last fitting rounds and shape-up are cut short),
+    /// otherwise [`RemeshError::TimeLimit`]. Default 60 s.
+    pub time_limit: Duration,
 }
 
 impl Default for RemeshOptions {
@@ -106,7 +122,19 @@ impl Default for RemeshOptions {
             shapeup: false,
             shapeup_tolerance: 0.1,
             shapeup_iterations: 20,
+            time_limit: Duration::from_secs(60),
         }
+    }
+}
+
+impl RemeshOptions {
+    /// Converts seconds (as typed on a command line or passed through the C ABI) into a time
+    /// limit.
+    ///
+    /// # Errors
+    /// [`RemeshError::BadTimeLimit`] for negative, NaN or overflowing values.
+    pub fn time_limit_from_secs(seconds: f64) -> Result<Duration, RemeshError> {
+        Duration::try_from_secs_f64(seconds).map_err(|_| RemeshError::BadTimeLimit(seconds))
     }
 }
 
@@ -163,6 +191,18 @@ pub enum RemeshError {
     /// Extraction found no quad at all.
     #[error("no quad could be extracted; the target edge {0} is probably too large for this surface")]
     NothingExtracted(f64),
+    /// A time limit that is negative, NaN or too large.
+    #[error("time limit {0} s is not a finite number >= 0")]
+    BadTimeLimit(f64),
+    /// The caller cancelled the stage through its [`crate::control::Control`].
+    #[error("remesh cancelled by the caller")]
+    Cancelled,
+    /// The time limit passed before any quad mesh existed.
+    #[error("the remesh time limit passed after {seconds:.2} s, before a quad mesh was ready; allow more time")]
+    TimeLimit {
+        /// Seconds spent.
+        seconds: f64,
+    },
 }
 
 /// Most quads [`remesh`] will produce, so a wrong unit (mm for m) fails fast instead of
@@ -170,17 +210,37 @@ pub enum RemeshError {
 pub const MAX_QUADS: usize = 2_000_000;
 
 /// Quadrangulates `input` into near-squares of edge `options.target_edge` (paper section 3.1).
+/// Runs without progress reports or cancellation; see [`remesh_with`].
+///
+/// # Errors
+/// As [`remesh_with`].
+pub fn remesh(input: &PolyMesh, options: &RemeshOptions) -> Result<Remeshed, RemeshError> {
+    remesh_with(input, options, &mut Control::none())
+}
+
+/// [`remesh`] reporting progress in `[0, 1]` to `control` (about every 10 ms, on the calling
+/// thread) and stopping when it asks to, or when `options.time_limit` has passed: then the
+/// quad mesh as it stands is returned if one exists already (the final fitting rounds and
+/// shape-up are cut short), otherwise [`RemeshError::TimeLimit`].
 ///
 /// # Errors
 /// [`RemeshError`] for bad options (target edge not positive, far too large or small, bad
-/// direction), unsupported input (no area, pinched vertices), or an extraction failure.
-pub fn remesh(input: &PolyMesh, options: &RemeshOptions) -> Result<Remeshed, RemeshError> {
+/// direction), unsupported input (no area, pinched vertices), an extraction failure,
+/// [`RemeshError::Cancelled`] when `control` asked to stop and [`RemeshError::TimeLimit`]
+/// when the limit passed before any quad mesh existed.
+pub fn remesh_with(input: &PolyMesh, options: &RemeshOptions, control: &mut Control<'_>) -> Result<Remeshed, RemeshError> {
     let start = Instant::now();
     check_options(input, options)?;
+    let mut budget = Budget::new(control, start, options.time_limit);
     let t = options.target_edge;
+    budget.stage(0.0, 0.02);
+    budget.check()?;
     let mut base = surface::Surface::from_polymesh(input)?;
     base.set_boundary_scale(t * 0.5);
-    let frames = field::solve(&base, options);
+    budget.stage(0.02, 0.15);
+    let frames = field::solve(&base, options, &mut budget);
+    budget.check()?;
+    budget.stage(0.15, 0.2);
     let (work, mut work_frames) = surface::refine(&base, &frames, t);
     let rotation = match options.direction {
         FieldDirection::Angle(deg) => deg,
@@ -191,20 +251,26 @@ pub fn remesh(input: &PolyMesh, options: &RemeshOptions) -> Result<Remeshed, Rem
     // Lattice lines can lie on the boundary only when the crosses follow it.
     let pin = (rotation / 90.0 - (rotation / 90.0).round()).abs() < 1e-9;
     let pinned: Vec<bool> = aligned.iter().map(|&a| a && pin).collect();
-    let lattice = position::solve(&work, &work_frames, t, &pinned);
+    budget.stage(0.2, 0.8);
+    let lattice = position::solve(&work, &work_frames, t, &pinned, &mut budget);
+    budget.check()?;
+    budget.stage(0.8, 0.82);
     let raw = extract::extract(&work, &lattice);
     if raw.faces.is_empty() {
         return Err(RemeshError::NothingExtracted(t));
     }
     let locator = surface::Locator::new(&base, t);
-    let mut quads = cleanup::pure_quads(raw, &locator, t)?;
-    if options.shapeup {
-        quads = shapeup::shapeup(&quads, &locator, t, options.shapeup_iterations, options.shapeup_tolerance);
+    budget.stage(0.82, 0.97);
+    let mut quads = cleanup::pure_quads(raw, &locator, t, &mut budget)?;
+    if options.shapeup && budget.stopped().is_none() {
+        budget.stage(0.97, 0.99);
+        quads = shapeup::shapeup(&quads, &locator, t, options.shapeup_iterations, options.shapeup_tolerance, &mut budget)?;
     }
     let quads = PolyMesh::new(quads.positions, quads.faces)?;
     let seconds = start.elapsed().as_secs_f64();
     let mut found = metrics::metrics_with(&locator, input, &quads, t);
     found.seconds = seconds;
+    budget.finish();
     Ok(Remeshed { quads, metrics: found })
 }
 

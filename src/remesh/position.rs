@@ -17,6 +17,7 @@
 
 use nalgebra::{Matrix2, Matrix3x2, Vector2, Vector3};
 
+use super::budget::Budget;
 use super::flow::Jumps;
 use super::linalg::conjugate_gradient;
 use super::surface::Surface;
@@ -55,7 +56,8 @@ fn bases(s: &Surface, frames: &[Vector3<f64>]) -> Vec<Matrix3x2<f64>> {
 }
 
 /// Solves the lattice of spacing `t` for the cross field `frames` on `s`.
-pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool]) -> Lattice {
+/// Stops early (with an unfinished lattice the caller must discard) once `budget` says so.
+pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool], budget: &mut Budget) -> Lattice {
     let n = s.len();
     let basis = bases(s, frames);
     let transfer: Vec<Matrix2<f64>> = s.edges.iter().map(|&[a, b]| basis[a].transpose() * basis[b]).collect();
@@ -98,21 +100,26 @@ pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool]) 
     let mut active = vec![false; 2 * n];
     let flow = Jumps::new(s, &transfer);
     let mut pinned_normal = vec![false; n];
-    let system = System { s, transfer: &transfer, delta: &delta, t };
+    let weight = edge_weights(s);
+    let system = System { s, transfer: &transfer, delta: &delta, weight: &weight, t };
     // Jumps as read before the last cancellation, to fall back on when cancelling strains
     // the lattice too much (a shell whose rows must really end somewhere, like a dome with
     // rows along its rim).
     let mut uncancelled: Option<Vec<[i64; 2]>> = None;
     let mut cancelling = true;
-    let cancel = |m: &mut Vec<[i64; 2]>, cancelling: bool, pinned_normal: &[bool]| -> Option<Vec<[i64; 2]>> {
+    let cancel = |m: &mut Vec<[i64; 2]>, cancelling: bool, pinned_normal: &[bool], budget: &mut Budget| -> Option<Vec<[i64; 2]>> {
         if !cancelling {
             return None;
         }
         let before = m.clone();
-        flow.cancel(m, CANCEL_DEPTH, CANCEL_DEPTH, pinned_normal);
+        flow.cancel(m, CANCEL_DEPTH, CANCEL_DEPTH, pinned_normal, &mut || budget.poll(0.0));
         Some(before)
     };
     for round in 0..ROUNDS {
+        let share = |within: f64| (round as f64 + within) / ROUNDS as f64;
+        if !budget.poll(share(0.0)) {
+            break;
+        }
         if round == PIN_FROM {
             // From here on the boundary lattice lines sit on the boundary.
             active.copy_from_slice(&fixed);
@@ -125,18 +132,19 @@ pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool]) 
                 }
             }
             m = jumps(&u);
-            uncancelled = cancel(&mut m, cancelling, &pinned_normal);
+            uncancelled = cancel(&mut m, cancelling, &pinned_normal, budget);
         }
         let last = round + 1 == ROUNDS;
         let iterations = if last { LAST_ITERATIONS } else { ITERATIONS };
         let u_before = u.clone();
-        system.solve(&active, &m, &mut u, iterations);
+        let mut keep_going = |k: usize| budget.poll(share(k as f64 / iterations as f64));
+        system.solve(&active, &m, &mut u, iterations, &mut keep_going);
         if let Some(before) = uncancelled.take() {
             if system.strained(&m, &u) {
                 cancelling = false;
                 m = before;
                 u = u_before;
-                system.solve(&active, &m, &mut u, iterations);
+                system.solve(&active, &m, &mut u, iterations, &mut keep_going);
             }
         }
         if last {
@@ -150,7 +158,7 @@ pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool]) 
             }
         }
         m = jumps(&u);
-        uncancelled = cancel(&mut m, cancelling, &pinned_normal);
+        uncancelled = cancel(&mut m, cancelling, &pinned_normal, budget);
     }
     let origin = (0..n).map(|v| s.pos[v] + basis[v] * read(&u, v)).collect();
     Lattice { origin, offset: m, pinned }
@@ -167,6 +175,8 @@ struct System<'a> {
     s: &'a Surface,
     transfer: &'a [Matrix2<f64>],
     delta: &'a [Vector2<f64>],
+    /// Per edge weight of its misfit (see [`edge_weights`]).
+    weight: &'a [f64],
     t: f64,
 }
 
@@ -191,18 +201,27 @@ impl System<'_> {
 
     /// Minimises the energy over the offsets `u` for fixed jumps `m`, with the components
     /// flagged in `active` held at zero.
-    fn solve(&self, active: &[bool], m: &[[i64; 2]], u: &mut [f64], iterations: usize) {
-        // Branch-free inner loop: held components are multiplied by zero.
-        let keep: Vec<f64> = active.iter().map(|&a| if a { 0.0 } else { 1.0 }).collect();
-        let matrices: Vec<[f64; 4]> =
-            self.transfer.iter().map(|t| [t[(0, 0)], t[(0, 1)], t[(1, 0)], t[(1, 1)]]).collect();
+    fn solve(&self, active: &[bool], m: &[[i64; 2]], u: &mut [f64], iterations: usize, keep_going: &mut dyn FnMut(usize) -> bool) {
+        // Held components of every vector the solver applies the operator to are exactly
+        // zero (they start at zero, and the operator keeps them there), so the edge loop
+        // needs no masking. Edges are packed (u32 ends, transfer matrix, weight) for speed.
+        debug_assert!(active.iter().zip(u.iter()).all(|(&a, &x)| !a || x == 0.0));
+        let packed: Vec<([u32; 2], [f64; 4], f64)> = self
+            .s
+            .edges
+            .iter()
+            .zip(self.transfer)
+            .zip(self.weight)
+            .map(|((&[a, b], t), &w)| ([a as u32, b as u32], [t[(0, 0)], t[(0, 1)], t[(1, 0)], t[(1, 1)]], w))
+            .collect();
         let apply = |x: &[f64], out: &mut [f64]| {
             out.iter_mut().zip(x).for_each(|(o, x)| *o = 1e-6 * x);
-            for (&[a, b], t) in self.s.edges.iter().zip(&matrices) {
-                let (xa0, xa1) = (x[2 * a] * keep[2 * a], x[2 * a + 1] * keep[2 * a + 1]);
-                let (xb0, xb1) = (x[2 * b] * keep[2 * b], x[2 * b + 1] * keep[2 * b + 1]);
-                let l0 = t[0] * xb0 + t[1] * xb1 - xa0;
-                let l1 = t[2] * xb0 + t[3] * xb1 - xa1;
+            for &([a, b], t, w) in &packed {
+                let (a, b) = (a as usize, b as usize);
+                let (xa0, xa1) = (x[2 * a], x[2 * a + 1]);
+                let (xb0, xb1) = (x[2 * b], x[2 * b + 1]);
+                let l0 = w * (t[0] * xb0 + t[1] * xb1 - xa0);
+                let l1 = w * (t[2] * xb0 + t[3] * xb1 - xa1);
                 out[2 * a] -= l0;
                 out[2 * a + 1] -= l1;
                 out[2 * b] += t[0] * l0 + t[2] * l1;
@@ -216,7 +235,7 @@ impl System<'_> {
         };
         let mut rhs: Vec<f64> = u.iter().map(|x| 1e-6 * x).collect();
         for (e, &[a, b]) in self.s.edges.iter().enumerate() {
-            let c = self.delta[e] - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t;
+            let c = (self.delta[e] - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t) * self.weight[e];
             let cb = self.transfer[e].transpose() * c;
             rhs[2 * a] += c.x;
             rhs[2 * a + 1] += c.y;
@@ -228,8 +247,33 @@ impl System<'_> {
                 rhs[k] = 0.0;
             }
         }
-        conjugate_gradient(apply, &rhs, u, iterations, 1e-6);
+        conjugate_gradient(apply, &rhs, u, iterations, 1e-6, keep_going);
     }
+}
+
+/// Per edge: the cotangent weight of the edge (half the cotangents of the opposite angles),
+/// relative to that of an equilateral mesh and clamped to `[0.1, 4]`. With equal weights the
+/// least-squares lattice is that of a graph, which on a skewed or anisotropic triangulation
+/// (a bilinear grid over a tapering patch, slivers) is not the surface's: the lattice then
+/// shears and stretches. Cotangent weights make it the surface's.
+fn edge_weights(s: &Surface) -> Vec<f64> {
+    let mut weight = vec![0.0; s.edges.len()];
+    let edge_of = |a: usize, b: usize| -> usize {
+        let list = &s.adj[a];
+        let k = list.partition_point(|&(v, _)| v < b);
+        list[k].1
+    };
+    for &[a, b, c] in &s.tris {
+        for (p, q, r) in [(a, b, c), (b, c, a), (c, a, b)] {
+            let (u, v) = (s.pos[p] - s.pos[r], s.pos[q] - s.pos[r]);
+            let cross = u.cross(&v).norm();
+            if cross > 1e-300 {
+                weight[edge_of(p, q)] += 0.5 * u.dot(&v) / cross;
+            }
+        }
+    }
+    let equilateral = 1.0 / 3f64.sqrt();
+    weight.iter().map(|w| (w / equilateral).clamp(0.1, 4.0)).collect()
 }
 
 /// Initial lattice by integration along a breadth-first tree from vertex 0: each vertex takes

@@ -10,18 +10,27 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::budget::{Budget, Stop};
 use super::cleanup::{Anchors, Quads};
+use super::RemeshError;
 use super::surface::{Locator, point};
 
 /// Runs `iterations` local-global rounds on `quads`; returns the input unchanged if the
-/// result would leave the surface by more than `tolerance * t`.
-pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usize, tolerance: f64) -> Quads {
+/// result would leave the surface by more than `tolerance * t`. When the time limit passes
+/// the rounds done so far stand; a cancel is an error.
+pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usize, tolerance: f64, budget: &mut Budget) -> Result<Quads, RemeshError> {
     let mut pos: Vec<Vector3<f64>> = quads.positions.iter().map(|p| p.coords).collect();
     let faces = &quads.faces;
     let anchors = Anchors::new(&mut pos, faces, locator, t);
     let h = t * 0.5;
     let square = [Vector3::new(-h, -h, 0.0), Vector3::new(h, -h, 0.0), Vector3::new(h, h, 0.0), Vector3::new(-h, h, 0.0)];
-    for _ in 0..iterations {
+    for round in 0..iterations {
+        if !budget.poll(round as f64 / iterations.max(1) as f64) {
+            if budget.stopped() == Some(Stop::Cancelled) {
+                budget.check()?;
+            }
+            break;
+        }
         let mut sum = vec![Vector3::zeros(); pos.len()];
         let mut count = vec![0.0; pos.len()];
         for f in faces.iter().filter(|f| f.len() == 4) {
@@ -52,7 +61,7 @@ pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usiz
     }
     let worst = pos.iter().map(|p| locator.distance(p)).fold(0.0, f64::max);
     if worst > tolerance * t {
-        return quads.clone();
+        return Ok(quads.clone());
     }
-    Quads { positions: pos.iter().map(point).collect(), faces: faces.clone() }
+    Ok(Quads { positions: pos.iter().map(point).collect(), faces: faces.clone() })
 }

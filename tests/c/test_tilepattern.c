@@ -354,6 +354,63 @@ static void test_pattern_and_tiles(void) {
   tp_mesh_free(mesh);
 }
 
+struct remesh_progress {
+  int calls, inside, backwards, stage_ok, calls_after_cancel;
+  double first, last, cancel_from;
+  int cancelled;
+};
+
+static int32_t watch_remesh(void *user, uint32_t stage, double fraction) {
+  struct remesh_progress *p = (struct remesh_progress *)user;
+  if (p->cancelled) p->calls_after_cancel++;
+  if (p->calls == 0) p->first = fraction;
+  if (p->calls > 0 && fraction < p->last) p->backwards++;
+  p->calls++;
+  p->last = fraction;
+  p->inside += fraction > 0.0 && fraction < 1.0;
+  p->stage_ok += stage == TP_STAGE_REMESH;
+  if (p->cancel_from > 0.0 && fraction >= p->cancel_from && fraction < 1.0) {
+    p->cancelled = 1;
+    return 1;
+  }
+  return 0;
+}
+
+/* Progress during the stage, cancel in the middle of it, the time limit, older structs. */
+static void test_remesh_progress(const TpMesh *surface) {
+  TpRemeshOptions options = tp_remesh_options_default();
+  options.target_edge = 0.2;
+  CHECK(options.time_limit_seconds == 60.0);
+  TpMesh *quads = NULL;
+  struct remesh_progress watch = {0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0};
+  CHECK(tp_remesh(surface, &options, watch_remesh, &watch, &quads) == TP_OK && quads != NULL);
+  CHECK(watch.calls >= 3 && watch.first == 0.0 && watch.last == 1.0 && watch.inside >= 1);
+  CHECK(watch.backwards == 0 && watch.stage_ok == watch.calls);
+  tp_mesh_free(quads);
+
+  /* Cancelled once a fifth of the stage is done: no mesh, no further callbacks. */
+  quads = NULL;
+  struct remesh_progress cancel = {0, 0, 0, 0, 0, 0.0, 0.0, 0.2, 0};
+  CHECK(tp_remesh(surface, &options, watch_remesh, &cancel, &quads) == TP_CANCELLED && quads == NULL);
+  CHECK(last_error_contains("cancelled"));
+  CHECK(cancel.cancelled && cancel.last >= 0.2 && cancel.last < 1.0 && cancel.calls_after_cancel == 0);
+
+  /* No time at all: nothing to return. A negative limit is refused. */
+  options.time_limit_seconds = 0.0;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_TIME_LIMIT && quads == NULL);
+  CHECK(last_error_contains("time limit"));
+  options.time_limit_seconds = -1.0;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_INVALID_ARGUMENT && last_error_contains("time limit"));
+  options.time_limit_seconds = NAN;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_INVALID_ARGUMENT && quads == NULL);
+
+  /* A caller compiled before time_limit_seconds existed gets the default limit. */
+  options.struct_size = (uint32_t)offsetof(TpRemeshOptions, time_limit_seconds);
+  options.time_limit_seconds = -5.0;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_OK && quads != NULL);
+  tp_mesh_free(quads);
+}
+
 static void test_remesh(void) {
   /* A flat 2 x 2 square split into 800 triangles, remeshed with quads of edge 0.2. */
   double *v;
@@ -386,6 +443,7 @@ static void test_remesh(void) {
   CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_INVALID_ARGUMENT && last_error_contains("direction 9"));
   CHECK(tp_remesh(NULL, &options, NULL, NULL, &quads) == TP_NULL_POINTER);
   CHECK(tp_remesh(surface, &options, NULL, NULL, NULL) == TP_NULL_POINTER);
+  test_remesh_progress(surface);
   tp_mesh_free(surface);
   free(v);
   free(quad_idx);

@@ -1,0 +1,231 @@
+//! Fitting the extracted quads to the input's boundary.
+//!
+//! Where the lattice could not be read right up to the shell's edge (crumpled supports,
+//! slivers, teeth narrower than a quad), extraction leaves the quad mesh's boundary short of
+//! the input boundary. Snapping those boundary vertices outwards would stretch their quads
+//! across the gap (and off the surface where the gap is not convex), so deep gaps are closed
+//! by extending the boundary quad row instead: every boundary vertex of the short stretch
+//! sends a spoke to the input boundary, consecutive spokes bound new quads (one row per quad
+//! length of gap), and the two ends fan onto the boundary.
+
+use nalgebra::Vector3;
+
+use super::cleanup::Anchors;
+use super::surface::Locator;
+
+/// Boundary vertices farther than this (times `t`) from the input boundary start a row
+/// extension instead of being snapped.
+const SNAP: f64 = 0.9;
+
+/// Most rows one extension adds.
+const MAX_ROWS: usize = 3;
+
+/// Extends the boundary rows of `faces` over the gaps to the input boundary (see the module
+/// documentation). `loops` are the boundary loops of `faces` (faces on the left).
+pub(crate) fn extend_boundary(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, loops: &[Vec<usize>], locator: &Locator, t: f64) {
+    for lp in loops {
+        let n = lp.len();
+        if n < 3 {
+            continue;
+        }
+        let places: Vec<_> = lp.iter().map(|&v| locator.closest_boundary_at(&pos[v])).collect();
+        let near: Vec<bool> =
+            lp.iter().zip(&places).map(|(&v, b)| b.is_some_and(|b| (b.point - pos[v]).norm() <= SNAP * t)).collect();
+        let Some(start) = (0..n).find(|&i| near[i] && !near[(i + 1) % n]) else { continue };
+        // Walk the loop once from `start`, collecting runs of far vertices.
+        let mut i = start;
+        let mut walked = 0;
+        while walked < n {
+            if near[i] && !near[(i + 1) % n] {
+                let mut run = vec![lp[i]];
+                let mut j = (i + 1) % n;
+                let mut steps = 1;
+                while !near[j] && steps < n {
+                    run.push(lp[j]);
+                    j = (j + 1) % n;
+                    steps += 1;
+                }
+                run.push(lp[j]);
+                let (Some(first), Some(last)) = (places[i], places[j]) else { break };
+                extend_run(pos, faces, &run, first.lp, first.arc, last.arc, locator, t);
+                walked += steps;
+                i = j;
+            } else {
+                i = (i + 1) % n;
+                walked += 1;
+            }
+        }
+    }
+}
+
+/// One extension: `run` = near vertex, far vertices, near vertex (along the quad boundary,
+/// faces on the left); the input boundary loop `lp` runs the same way from arc `from` to `to`.
+#[allow(clippy::too_many_arguments)]
+fn extend_run(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, run: &[usize], lp: usize, from: f64, to: f64, locator: &Locator, t: f64) {
+    let m = run.len() - 2;
+    if m == 0 {
+        return;
+    }
+    let length = locator.loop_length(lp);
+    let span = (to - from).rem_euclid(length);
+    let mut chain = vec![0.0];
+    for k in 1..run.len() {
+        chain.push(chain[k - 1] + (pos[run[k]] - pos[run[k - 1]]).norm());
+    }
+    let total = chain[run.len() - 1];
+    // The stretch of boundary must be comparable to the quad boundary it faces; otherwise
+    // the two ends were matched to different parts of the boundary.
+    if !(span > 0.2 * t && span < 3.0 * total + 2.0 * t && total > 0.0) {
+        return;
+    }
+    // Spokes land where the boundary is nearest, in order along it (so a tooth between two
+    // spokes is skipped rather than fanned into); where that order cannot be kept, in
+    // proportion to the quad boundary.
+    let gap = (0.25 * t).min(span / (m + 1) as f64);
+    let mut offsets: Vec<f64> = Vec::with_capacity(m + 2);
+    offsets.push(0.0);
+    for k in 1..=m {
+        let (o, _) = locator.closest_on_arc(lp, from, span, &pos[run[k]]);
+        offsets.push(o.max(offsets[k - 1] + gap));
+    }
+    if offsets[m] > span - gap {
+        for (k, o) in offsets.iter_mut().enumerate() {
+            *o = span * chain[k] / total;
+        }
+    }
+    offsets.push(span);
+    let arc_at = |k: usize| from + offsets[k];
+    let spokes: Vec<Vector3<f64>> = (1..=m).map(|k| locator.boundary_point(lp, arc_at(k))).collect();
+    let longest = (1..=m).map(|k| (pos[run[k]] - spokes[k - 1]).norm()).fold(0.0, f64::max);
+    let rows = ((longest / t).round() as usize).clamp(1, MAX_ROWS);
+    fn add(pos: &mut Vec<Vector3<f64>>, p: Vector3<f64>) -> usize {
+        pos.push(p);
+        pos.len() - 1
+    }
+    // p[k][r]: spoke of far vertex k (1-based in run), r = 0 at the vertex, rows at the boundary.
+    let mut spoke: Vec<Vec<usize>> = Vec::with_capacity(m + 2);
+    spoke.push(Vec::new());
+    for k in 1..=m {
+        let v = run[k];
+        let a = pos[v];
+        let b = spokes[k - 1];
+        let mut column = vec![v];
+        for r in 1..rows {
+            let q = a + (b - a) * (r as f64 / rows as f64);
+            column.push(add(pos, locator.closest(&q).0));
+        }
+        column.push(add(pos, b));
+        spoke.push(column);
+    }
+    // Middle quads between consecutive spokes.
+    for k in 1..m {
+        for r in 0..rows {
+            faces.push(vec![spoke[k + 1][r], spoke[k][r], spoke[k][r + 1], spoke[k + 1][r + 1]]);
+        }
+    }
+    // First end: fan from spoke 1 onto the boundary between the first near vertex and it.
+    let first_arc = offsets[1];
+    let mut y = vec![run[0]];
+    for r in 1..=rows {
+        y.push(add(pos, locator.boundary_point(lp, from + first_arc * r as f64 / (rows + 1) as f64)));
+    }
+    for r in 0..rows {
+        faces.push(vec![spoke[1][r], y[r], y[r + 1], spoke[1][r + 1]]);
+    }
+    // Last end: fan from spoke m onto the boundary between it and the last near vertex.
+    let last_arc = span - offsets[m];
+    let mut z = vec![run[m + 1]];
+    for r in 1..=rows {
+        z.push(add(pos, locator.boundary_point(lp, to - last_arc * r as f64 / (rows + 1) as f64)));
+    }
+    for r in 0..rows {
+        faces.push(vec![z[r], spoke[m][r], spoke[m][r + 1], z[r + 1]]);
+    }
+}
+
+/// Deviation above which [`conform`] works on a face, times `t`.
+const CONFORM_FROM: f64 = 0.05;
+
+/// A sample point of a face, the (vertex, weight) pairs that make it and how many of them.
+type Sample = (Vector3<f64>, [(usize, f64); 4], usize);
+
+/// Sample points of a face (centroid and edge midpoints) with the vertex weights that make
+/// them.
+fn face_samples(pos: &[Vector3<f64>], f: &[usize]) -> Vec<Sample> {
+    let k = f.len();
+    let mut out = Vec::with_capacity(k + 1);
+    if k == 4 {
+        let c = (pos[f[0]] + pos[f[1]] + pos[f[2]] + pos[f[3]]) * 0.25;
+        out.push((c, [(f[0], 0.25), (f[1], 0.25), (f[2], 0.25), (f[3], 0.25)], 4));
+    }
+    for i in 0..k {
+        let (a, b) = (f[i], f[(i + 1) % k]);
+        out.push(((pos[a] + pos[b]) * 0.5, [(a, 0.5), (b, 0.5), (a, 0.0), (a, 0.0)], 2));
+    }
+    out
+}
+
+/// Largest distance to the surface of a face's centroid and edge midpoints.
+pub(crate) fn deviation(pos: &[Vector3<f64>], f: &[usize], locator: &Locator) -> f64 {
+    face_samples(pos, f).iter().map(|(p, _, _)| locator.distance(p)).fold(0.0, f64::max)
+}
+
+/// Pulls faces whose centroid or edge midpoints leave the surface back onto it by moving
+/// their vertices (each towards the surface points its samples should reach), keeping
+/// boundary vertices on the boundary and corners in place. Works only where needed.
+pub(crate) fn conform(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], anchors: &Anchors, locator: &Locator, t: f64) {
+    let n = pos.len();
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (fi, f) in faces.iter().enumerate() {
+        for &v in f {
+            incident[v].push(fi);
+        }
+    }
+    let threshold = CONFORM_FROM * t;
+    let mut active: Vec<usize> = (0..faces.len()).filter(|&fi| deviation(pos, &faces[fi], locator) > threshold).collect();
+    let mut disp = vec![Vector3::zeros(); n];
+    let mut weight = vec![0.0; n];
+    let mut stamp = vec![usize::MAX; faces.len()];
+    for round in 0..CONFORM_ROUNDS {
+        if active.is_empty() {
+            break;
+        }
+        let mut touched: Vec<usize> = Vec::new();
+        for &fi in &active {
+            for (p, members, count) in face_samples(pos, &faces[fi]) {
+                let d = locator.closest(&p).0 - p;
+                if d.norm() <= 0.5 * threshold {
+                    continue;
+                }
+                for &(v, w) in &members[..count] {
+                    if weight[v] == 0.0 {
+                        touched.push(v);
+                    }
+                    disp[v] += d * w;
+                    weight[v] += w * w;
+                }
+            }
+        }
+        touched.sort_unstable();
+        let mut next: Vec<usize> = Vec::new();
+        for &v in &touched {
+            if !anchors.pinned[v] {
+                let target = pos[v] + disp[v] / weight[v] * 0.5;
+                pos[v] = anchors.project(locator, v, &target);
+            }
+            disp[v] = Vector3::zeros();
+            weight[v] = 0.0;
+            for &fi in &incident[v] {
+                if stamp[fi] != round {
+                    stamp[fi] = round;
+                    next.push(fi);
+                }
+            }
+        }
+        next.sort_unstable();
+        active = next.into_iter().filter(|&fi| deviation(pos, &faces[fi], locator) > threshold).collect();
+    }
+}
+
+/// Rounds of [`conform`].
+const CONFORM_ROUNDS: usize = 40;
