@@ -6,7 +6,7 @@ LIB_DIR := target/release
 C_FLAGS := -Wall -Wextra -Werror -DTP_TEST_PANIC -Iinclude
 C_LINK := -L$(LIB_DIR) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(LIB_DIR)
 
-.PHONY: demo test setup build bench header header-check rust-test c-test dotnet-test python-test
+.PHONY: demo test setup build bench header header-check rust-test c-test asan-test dotnet-test python-test
 
 setup:
 	@scripts/setup.sh
@@ -36,8 +36,26 @@ c-test:
 	RUST_BACKTRACE=0 valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
 		--show-leak-kinds=definite,indirect,possible --suppressions=tests/c/valgrind.supp target/c/test_c
 	$(CC) -std=c11 $(C_FLAGS) tests/c/test_bad_input.c $(C_LINK) -o target/c/test_bad_input
+	$(CXX) -std=c++17 $(C_FLAGS) -x c++ tests/c/test_bad_input.c $(C_LINK) -o target/c/test_bad_input_cpp
+	RUST_BACKTRACE=0 target/c/test_bad_input_cpp
 	RUST_BACKTRACE=0 valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
 		--suppressions=tests/c/valgrind.supp target/c/test_bad_input
+
+# The C tests under AddressSanitizer (leaks included): the library built with
+# -Zsanitizer=address in target/asan (a nightly flag: RUSTC_BOOTSTRAP=1 lets the stable
+# toolchain take it; --target keeps build scripts uninstrumented), the tests with
+# -fsanitize=address. Not part of `make test`: it builds every dependency again (~2 min).
+HOST := $(shell rustc -vV | sed -n 's/^host: //p')
+ASAN_LIB := target/asan/$(HOST)/release
+ASAN_LINK := -fsanitize=address -fno-omit-frame-pointer -L$(ASAN_LIB) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(ASAN_LIB)
+asan-test:
+	RUSTC_BOOTSTRAP=1 RUSTFLAGS="-Zsanitizer=address" $(CARGO) build --release --lib --features test-panic \
+		--target $(HOST) --target-dir target/asan
+	mkdir -p target/c
+	$(CC) -std=c11 $(C_FLAGS) tests/c/test_tilepattern.c $(ASAN_LINK) -o target/c/test_c_asan
+	$(CC) -std=c11 $(C_FLAGS) tests/c/test_bad_input.c $(ASAN_LINK) -o target/c/test_bad_input_asan
+	RUST_BACKTRACE=0 target/c/test_c_asan
+	RUST_BACKTRACE=0 target/c/test_bad_input_asan
 
 # The C# wrapper (dotnet/) compiled with mcs, its NUnit tests run under mono.
 dotnet-test:

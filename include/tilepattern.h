@@ -203,11 +203,12 @@ typedef struct TpPatternOptions {
    */
   int32_t bond;
   /**
-   * Weight of the bond term (w or w_R); default 0.5.
+   * Weight of the bond term (w or w_R), from 0 to 1000; default 0.5.
    */
   double weight;
   /**
-   * Wall-clock limit in seconds; default 60. Zero returns the greedy start.
+   * Wall-clock limit in seconds; default 60. Zero returns the greedy start; NaN, negative
+   * and infinite limits are refused, finite ones above 1e9 s count as 1e9 s.
    */
   double time_limit_seconds;
   /**
@@ -324,6 +325,13 @@ typedef struct TpRemeshOptions {
    * Non-zero: pull faces towards squares (shape-up) without leaving the surface.
    */
   int32_t shapeup;
+  /**
+   * Wall-clock limit of the stage in seconds; default 60. When it passes, the quad mesh as
+   * it stands is returned if one exists (the final fitting is cut short), otherwise
+   * `TP_TIME_LIMIT`. The last field: callers compiled with an older, shorter struct get
+   * the default.
+   */
+  double time_limit_seconds;
 } TpRemeshOptions;
 
 /**
@@ -396,9 +404,20 @@ TpStatus tp_test_panic(void);
  * Builds and validates a mesh from `vertex_count` xyz triples at `vertices` and
  * `face_count` faces: face `i` has `face_sizes[i]` vertex indices, taken in order from
  * `face_indices` (`index_count` in all). Triangles, quads and n-gons may be mixed. On
- * success `*out` holds a new mesh to release with [`tp_mesh_free`]. Counts above 4 million
- * vertices or faces or 16 million indices are refused (`TP_INVALID_MESH`) before anything
- * is allocated.
+ * success `*out` holds a new mesh to release with [`tp_mesh_free`].
+ *
+ * Limits per mesh: 4,000,000 vertices, 4,000,000 faces, 16,000,000 face indices; larger
+ * counts are refused with `TP_INVALID_ARGUMENT` before any array is read or anything is
+ * allocated (a mesh needs about a kilobyte per face at the peak of all stages, so a mesh at
+ * the limits needs some 4 GB).
+ *
+ * Refused with `TP_INVALID_MESH`, the message naming the face or vertex: no faces or no
+ * vertices; a NaN or infinite coordinate, or one larger than 1e12 in magnitude; a face
+ * with fewer than 3 vertices; an index out of range (a negative index converted to
+ * `uint32_t` is one); a vertex twice in one face; two faces with the same vertices; an edge
+ * shared by 3 or more faces; two faces running along their shared edge in the same
+ * direction (inconsistent orientation). Accepted: zero-area faces, vertices where pieces
+ * touch, disconnected pieces, unused vertices, triangles and n-gons (never paired).
  *
  * # Safety
  * The arrays must hold the stated numbers of items; `out` must be writable.
@@ -534,7 +553,9 @@ TpStatus tp_remesh_options_init(struct TpRemeshOptions *options, size_t size);
 /**
  * Quadrangulates `mesh` (a triangle or polygon surface) into near-square quads (stage 1);
  * `*out` gets the quad mesh, read it with the `tp_mesh_*` functions. `progress` (may be NULL)
- * is told the start and the end of the stage; a non-zero return at the start cancels.
+ * is told the fraction done during the stage (from 0 to 1, about every 10 ms); a non-zero
+ * return cancels it, and `tp_remesh` returns `TP_CANCELLED` soon after. `TP_TIME_LIMIT` when
+ * `time_limit_seconds` passed before any quad mesh was ready.
  *
  * # Safety
  * `mesh` must be a live mesh, `options` valid, `out` writable.

@@ -27,7 +27,42 @@ pub enum Error {
     /// The remesh stage failed.
     #[error(transparent)]
     Remesh(#[from] RemeshError),
+    /// The pattern was made for a mesh with another number of faces.
+    #[error("the pattern was made for a mesh of {pattern_faces} faces, but this mesh has {mesh_faces}: give the quad mesh the pattern was solved on")]
+    PatternMismatch {
+        /// Faces of the mesh the pattern was solved on.
+        pattern_faces: usize,
+        /// Faces of the mesh given.
+        mesh_faces: usize,
+    },
+    /// The tile is so small next to a mesh's faces that cutting the tiles to the boundary
+    /// would need an absurd amount of memory (see [`MAX_GRID_CELLS`]): typically a tile in
+    /// metres on a mesh in millimetres.
+    #[error(
+        "tile length {length:?} is tiny next to face {face} of the {mesh}, which spans {span:?} along one axis: cutting the tiles would need about {cells:.3e} grid cells (at most {limit:.3e}); are the tile and the mesh in the same units?"
+    )]
+    TileTooSmall {
+        /// `"quad mesh"` or `"surface"`.
+        mesh: &'static str,
+        /// The face spanning the most grid cells.
+        face: usize,
+        /// Its largest extent along a coordinate axis.
+        span: f64,
+        /// The tile length.
+        length: f64,
+        /// Grid cells the boundary search would need.
+        cells: f64,
+        /// The limit for these meshes.
+        limit: f64,
+    },
 }
+
+/// Grid cells (of a tile's size) that cutting tiles to a boundary may take: every face is
+/// entered in each cell its bounding box meets, so a tile much smaller than the faces (a
+/// unit mistake) would need memory by the gigabyte. Meshes whose faces are about half a
+/// tile, as the remesher makes them, use at most 8 cells per face; the limit is this or 8
+/// per face, whichever is larger.
+pub const MAX_GRID_CELLS: f64 = 16e6;
 
 /// The result of the whole pipeline.
 #[derive(Debug, Clone)]
@@ -46,7 +81,9 @@ pub struct Tiling {
 }
 
 /// All three stages: quadrangulates `surface` with quads of edge `remesh.target_edge`, then
-/// matches and tiles them, cutting the tiles to `surface`'s boundary.
+/// matches and tiles them, cutting the tiles to `surface`'s boundary. `control` hears the
+/// remesh stage as fractions `0..0.5` and the pattern stage as `0.5..1`, and can cancel
+/// either.
 ///
 /// # Errors
 /// The first stage error.
@@ -59,9 +96,17 @@ pub fn tile_surface(
     control: &mut Control<'_>,
 ) -> Result<(Remeshed, Tiling), Error> {
     spec.validate()?;
-    let remeshed = remesh::remesh(surface, remesh)?;
-    spec.validate()?;
-    let pattern = pattern::solve_with(&remeshed.quads, options, control)?;
+    // Before the long stages: a tile far too small for the surface fails at once.
+    check_tile_scale(None, Some(surface), spec)?;
+    // Progress: the remesh stage reports the first half, the pattern stage the second.
+    let remeshed = {
+        let mut first_half = |fraction: f64| control.keep_going(0.5 * fraction);
+        remesh::remesh_with(surface, remesh, &mut Control::with_progress(&mut first_half))?
+    };
+    let pattern = {
+        let mut second_half = |fraction: f64| control.keep_going(0.5 + 0.5 * fraction);
+        pattern::solve_with(&remeshed.quads, options, &mut Control::with_progress(&mut second_half))?
+    };
     let tiling = tiles_for_pattern(&remeshed.quads, Some(surface), pattern, spec, finish)?;
     Ok((remeshed, tiling))
 }
@@ -88,14 +133,52 @@ pub fn tile_quad_mesh(
 /// cut to the boundary of `surface` (the quad mesh's own when `None`).
 ///
 /// # Errors
-/// An invalid spec or a pattern that does not fit the mesh.
+/// An invalid spec or finishing option, a pattern that does not fit the mesh
+/// ([`Error::PatternMismatch`], [`TileError`]), a tile far too small for the meshes
+/// ([`Error::TileTooSmall`]).
 pub fn tiles_for_pattern(quads: &PolyMesh, surface: Option<&PolyMesh>, pattern: Pattern, spec: &TileSpec, finish: &FinishOptions) -> Result<Tiling, Error> {
     let started = Instant::now();
+    // The tile first: finishing options default to fractions of it.
+    spec.validate()?;
     finish.validate()?;
+    if pattern.faces != quads.face_count() {
+        return Err(Error::PatternMismatch { pattern_faces: pattern.faces, mesh_faces: quads.face_count() });
+    }
+    check_tile_scale(Some(quads), surface, spec)?;
     let boxes = tiles::build(quads, &pattern, spec)?;
     let (tiles, finished) = tiles::finish(quads, surface, boxes, spec, finish);
     let mut report = Report::new(quads, &pattern, &tiles, spec);
     report.add_finish(&tiles, &finished, surface.unwrap_or(quads));
     report.seconds.tiles = started.elapsed().as_secs_f64();
     Ok(Tiling { pattern, tiles, dropped: finished.dropped, cut_list: finished.cut_list, report })
+}
+
+/// Refuses a tile far smaller than the faces of `quads` or `surface` before cutting builds its
+/// grids of tile-sized cells (see [`MAX_GRID_CELLS`]).
+fn check_tile_scale(quads: Option<&PolyMesh>, surface: Option<&PolyMesh>, spec: &TileSpec) -> Result<(), Error> {
+    // The smallest cell any grid of the tile stage uses.
+    let cell = spec.length.max(spec.width);
+    let meshes = [("quad mesh", quads), ("surface", surface)];
+    let faces: usize = meshes.iter().filter_map(|(_, m)| m.map(PolyMesh::face_count)).sum();
+    let limit = MAX_GRID_CELLS.max(8.0 * faces as f64);
+    let mut cells = 0.0;
+    let mut worst = (0.0, "quad mesh", 0, 0.0);
+    for (name, mesh) in meshes {
+        let Some(mesh) = mesh else { continue };
+        for f in 0..mesh.face_count() {
+            let (lo, hi) = mesh.face_points(f).fold((mesh.positions()[mesh.faces()[f][0]], mesh.positions()[mesh.faces()[f][0]]), |(lo, hi), p| (lo.inf(&p), hi.sup(&p)));
+            let per_axis = (0..3).map(|k| (hi[k] / cell).floor() - (lo[k] / cell).floor() + 1.0);
+            // NaN only when a ratio overflowed: as bad as it gets.
+            let here = Some(per_axis.product::<f64>()).filter(|c| !c.is_nan()).unwrap_or(f64::INFINITY);
+            cells += here;
+            if here > worst.0 {
+                worst = (here, name, f, (hi - lo).amax());
+            }
+        }
+    }
+    if cells > limit {
+        let (_, mesh, face, span) = worst;
+        return Err(Error::TileTooSmall { mesh, face, span, length: spec.length, cells, limit });
+    }
+    Ok(())
 }

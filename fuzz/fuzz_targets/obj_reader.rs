@@ -1,14 +1,8 @@
-//! Arbitrary bytes as an OBJ file: parsed and validated, or refused with an error; never a
-//! panic. A parsed mesh must write back to OBJ and parse again to the same mesh.
+//! Arbitrary bytes as an OBJ file (see `harness::obj_reader`).
 #![no_main]
 
-use libfuzzer_sys::fuzz_target;
-use tilepattern::mesh::obj;
+#[allow(dead_code, unused_imports)] // each target uses one function of the shared harness
+#[path = "../harness.rs"]
+mod harness;
 
-fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
-    if let Ok(mesh) = obj::parse(text) {
-        let again = obj::parse(&obj::to_string(&mesh)).expect("a written mesh parses");
-        assert_eq!(again.faces(), mesh.faces());
-    }
-});
+libfuzzer_sys::fuzz_target!(|data: &[u8]| harness::obj_reader(data));

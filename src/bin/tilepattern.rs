@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use serde::Serialize;
-use tilepattern::mesh::{self, PolyMesh};
+use tilepattern::mesh::{self, MeshError, PolyMesh};
 use tilepattern::pattern::{self, Bond, Formulation, Method, Pattern, PatternOptions};
 use tilepattern::control::Control;
 use tilepattern::pipeline::{self, Tiling};
@@ -76,6 +76,10 @@ enum Command {
         /// Quality metrics (JSON).
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Wall-clock limit in seconds: when it passes the quad mesh as it stands is written
+        /// (final fitting cut short), or the command fails if none is ready yet.
+        #[arg(long, default_value_t = 60.0)]
+        time_limit: f64,
     },
     /// All three stages on a surface: remesh with quads of (L + joint) / 2, match, tile.
     Run {
@@ -87,6 +91,10 @@ enum Command {
         field: FieldArgs,
         #[command(flatten)]
         pattern: PatternArgs,
+        /// Wall-clock limit of the remesh stage in seconds (`--time-limit` is the pattern
+        /// stage's).
+        #[arg(long, default_value_t = 60.0)]
+        remesh_time_limit: f64,
         /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv,
         /// cutlist.json, sequence.json, gaps.svg.
         #[arg(long)]
@@ -184,7 +192,7 @@ struct TileArgs {
     #[arg(long, value_parser = parse_tile)]
     tile: [f64; 3],
     /// Mortar joint in millimetres.
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = 10.0, value_parser = parse_mm)]
     joint: f64,
     /// Units of the mesh coordinates; auto = millimetres if the mesh's bounding-box diagonal
     /// is 1000 or more, metres otherwise.
@@ -192,18 +200,18 @@ struct TileArgs {
     units: Units,
     /// Cutting tolerance in millimetres: tiles the boundary enters by no more than this stay
     /// whole, cut shapes this close share a label (default: 1 % of the tile width).
-    #[arg(long)]
+    #[arg(long, value_parser = parse_mm)]
     cut_tolerance: Option<f64>,
     /// Boundary pieces narrower than this (millimetres) are reported as slivers, not emitted
     /// (default: a fifth of the tile width).
-    #[arg(long)]
+    #[arg(long, value_parser = parse_mm)]
     min_kept_width: Option<f64>,
     /// Up direction x,y,z for the laying order.
     #[arg(long, value_parser = parse_vector, default_value = "0,0,1")]
     up: [f64; 3],
     /// Tiles with a boundary edge within this height (millimetres) of the lowest boundary
     /// point stand on the supports (default: one tile width).
-    #[arg(long)]
+    #[arg(long, value_parser = parse_mm)]
     support_band: Option<f64>,
 }
 
@@ -251,19 +259,21 @@ fn run(cli: Cli) -> Result<()> {
             eprintln!("{}", tiling_summary(&tiling, units));
             json.map_or(Ok(()), |path| write_json(Some(&path), &ReportFile { units: units.name(), remesh: None, report: &tiling.report }))
         }
-        Command::Remesh { input, edge, field, output, json } => {
+        Command::Remesh { input, edge, field, output, json, time_limit } => {
             let surface = read_mesh(&input)?;
-            let remeshed = tilepattern::remesh::remesh(&surface, &field.options(edge))?;
+            let options = RemeshOptions { time_limit: RemeshOptions::time_limit_from_secs(time_limit)?, ..field.options(edge) };
+            let remeshed = tilepattern::remesh::remesh(&surface, &options)?;
             mesh::obj::write(&remeshed.quads, &output)?;
             eprintln!("{}", remesh_summary(&remeshed.metrics));
             json.map_or(Ok(()), |path| write_json(Some(&path), &remeshed.metrics))
         }
-        Command::Run { input, tile, field, pattern, out } => {
+        Command::Run { input, tile, field, pattern, remesh_time_limit, out } => {
             let surface = read_mesh(&input)?;
             let (spec, units) = tile.spec(&surface);
             let finish = tile.finish(&spec, units);
-            let (remeshed, tiling) =
-                pipeline::tile_surface(&surface, &field.options(spec.target_edge()), &pattern.options()?, &spec, &finish, &mut Control::none())?;
+            let remesh =
+                RemeshOptions { time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?, ..field.options(spec.target_edge()) };
+            let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &pattern.options()?, &spec, &finish, &mut Control::none())?;
             write_outputs(&out, &remeshed.quads, &tiling, units, Some(&remeshed.metrics))?;
             println!("{}", remesh_summary(&remeshed.metrics));
             println!("{}", tiling_summary(&tiling, units));
@@ -434,8 +444,24 @@ fn parse_tile(text: &str) -> Result<[f64; 3], String> {
     let parts: Vec<&str> = text.split(['x', 'X']).collect();
     let numbers: Option<Vec<f64>> = parts.iter().map(|p| p.trim().parse().ok()).collect();
     match numbers.as_deref() {
-        Some(&[l, w, t]) => Ok([l, w, t]),
+        Some(&[l, w, t]) => {
+            for (name, value) in [("length", l), ("width", w), ("thickness", t)] {
+                if !(value.is_finite() && value > 0.0) {
+                    return Err(format!("tile {name} {value} mm must be a number > 0"));
+                }
+            }
+            Ok([l, w, t])
+        }
         _ => Err(format!("'{text}' is not a tile size; write length x width x thickness in mm, e.g. 280x140x15")),
+    }
+}
+
+/// A length in millimetres that may be zero (joint, tolerances).
+fn parse_mm(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(value) if value.is_finite() && value >= 0.0 => Ok(value),
+        Ok(value) => Err(format!("{value} mm must be a number >= 0")),
+        Err(_) => Err(format!("'{text}' is not a length in mm")),
     }
 }
 
@@ -459,7 +485,14 @@ fn parse_pair(text: &str) -> Result<[usize; 2], String> {
 }
 
 fn read_mesh(path: &Path) -> Result<PolyMesh> {
-    mesh::obj::read(path).with_context(|| format!("cannot use {} as a mesh", path.display()))
+    mesh::obj::read(path).map_err(|error| {
+        // Errors naming a face or vertex: say how they are counted, as OBJ counts from 1.
+        let numbering = match error {
+            MeshError::ObjSyntax { .. } | MeshError::Io { .. } | MeshError::TooLarge { .. } | MeshError::Empty { .. } => "",
+            _ => " (faces and vertices counted from 0 in file order: face 0 is the first `f` line, vertex 0 the first `v` line)",
+        };
+        anyhow::Error::new(error).context(format!("cannot use {} as a mesh{numbering}", path.display()))
+    })
 }
 
 fn write_text(path: &Path, text: &str) -> Result<()> {

@@ -14,9 +14,20 @@ pub struct TpMesh {
 /// Builds and validates a mesh from `vertex_count` xyz triples at `vertices` and
 /// `face_count` faces: face `i` has `face_sizes[i]` vertex indices, taken in order from
 /// `face_indices` (`index_count` in all). Triangles, quads and n-gons may be mixed. On
-/// success `*out` holds a new mesh to release with [`tp_mesh_free`]. Counts above 4 million
-/// vertices or faces or 16 million indices are refused (`TP_INVALID_MESH`) before anything
-/// is allocated.
+/// success `*out` holds a new mesh to release with [`tp_mesh_free`].
+///
+/// Limits per mesh: 4,000,000 vertices, 4,000,000 faces, 16,000,000 face indices; larger
+/// counts are refused with `TP_INVALID_ARGUMENT` before any array is read or anything is
+/// allocated (a mesh needs about a kilobyte per face at the peak of all stages, so a mesh at
+/// the limits needs some 4 GB).
+///
+/// Refused with `TP_INVALID_MESH`, the message naming the face or vertex: no faces or no
+/// vertices; a NaN or infinite coordinate, or one larger than 1e12 in magnitude; a face
+/// with fewer than 3 vertices; an index out of range (a negative index converted to
+/// `uint32_t` is one); a vertex twice in one face; two faces with the same vertices; an edge
+/// shared by 3 or more faces; two faces running along their shared edge in the same
+/// direction (inconsistent orientation). Accepted: zero-area faces, vertices where pieces
+/// touch, disconnected pieces, unused vertices, triangles and n-gons (never paired).
 ///
 /// # Safety
 /// The arrays must hold the stated numbers of items; `out` must be writable.

@@ -36,9 +36,10 @@ pub struct TpPatternOptions {
     pub struct_size: u32,
     /// `TP_BOND_*`; default staggered.
     pub bond: i32,
-    /// Weight of the bond term (w or w_R); default 0.5.
+    /// Weight of the bond term (w or w_R), from 0 to 1000; default 0.5.
     pub weight: f64,
-    /// Wall-clock limit in seconds; default 60. Zero returns the greedy start.
+    /// Wall-clock limit in seconds; default 60. Zero returns the greedy start; NaN, negative
+    /// and infinite limits are refused, finite ones above 1e9 s count as 1e9 s.
     pub time_limit_seconds: f64,
     /// `TP_METHOD_*`; default auto.
     pub method: i32,
@@ -167,10 +168,13 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
         TP_FORMULATION_PAPER => Formulation::Paper,
         other => return Err(invalid(format!("formulation {other} is not one of TP_FORMULATION_STRENGTHENED, TP_FORMULATION_PAPER"))),
     };
-    let pair_values = raw
-        .forced_pair_count
-        .checked_mul(2)
-        .ok_or_else(|| invalid(format!("forced_pair_count {} is too large", raw.forced_pair_count)))?;
+    // Refuse absurd counts before reading or copying the arrays: no mesh has more faces.
+    for (name, count) in [("forced_pair_count", raw.forced_pair_count), ("excluded_face_count", raw.excluded_face_count)] {
+        if count > crate::mesh::MAX_FACES {
+            return Err(invalid(format!("options->{name} is {count}; a mesh has at most {} faces", crate::mesh::MAX_FACES)));
+        }
+    }
+    let pair_values = 2 * raw.forced_pair_count;
     // SAFETY: the arrays hold their stated counts by the caller's promise.
     let (forced, excluded) =
         unsafe { (input(raw.forced_pairs, pair_values, "options->forced_pairs")?, input(raw.excluded_faces, raw.excluded_face_count, "options->excluded_faces")?) };

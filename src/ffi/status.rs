@@ -70,6 +70,7 @@ impl From<PatternError> for Failure {
             PatternError::Cancelled => TpStatus::TP_CANCELLED,
             PatternError::Solver(_) => TpStatus::TP_SOLVER_FAILED,
             PatternError::InvalidWeight { .. }
+            | PatternError::WeightTooLarge { .. }
             | PatternError::InvalidTimeLimit { .. }
             | PatternError::FaceOutOfRange { .. }
             | PatternError::ForcedNotAdjacent { .. }
@@ -110,6 +111,8 @@ impl From<Error> for Failure {
             Error::Pattern(e) => e.into(),
             Error::Tiles(e) => e.into(),
             Error::Remesh(e) => e.into(),
+            Error::TileTooSmall { .. } => Self::new(TpStatus::TP_INVALID_ARGUMENT, e.to_string()),
+            Error::PatternMismatch { .. } => Self::new(TpStatus::TP_INVALID_PATTERN, e.to_string()),
         }
     }
 }

@@ -18,6 +18,16 @@ pub enum MeshError {
         /// The vertex at fault.
         vertex: usize,
     },
+    /// A coordinate is larger in magnitude than [`super::MAX_COORDINATE`].
+    #[error("vertex {vertex} has a coordinate of magnitude {value:e}; coordinates may be at most {limit:e} (wrong units?)")]
+    CoordinateTooLarge {
+        /// The vertex at fault.
+        vertex: usize,
+        /// The largest magnitude among its coordinates.
+        value: f64,
+        /// The limit.
+        limit: f64,
+    },
     /// A face has fewer than three vertices.
     #[error("face {face} has {count} vertices; a face needs at least 3")]
     TooFewVertices {

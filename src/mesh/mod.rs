@@ -22,6 +22,10 @@ pub const MAX_VERTICES: usize = 4_000_000;
 pub const MAX_FACES: usize = 4_000_000;
 /// Most face indices (the sum of the faces' sizes) one mesh may have.
 pub const MAX_INDICES: usize = 16_000_000;
+/// Largest coordinate magnitude a vertex may have. A kilometre in millimetres is 1e6; beyond
+/// 1e12 products of coordinates (areas, normals, volumes of the later stages) would come
+/// close to overflowing and a tile's grid cells would no longer fit an integer.
+pub const MAX_COORDINATE: f64 = 1e12;
 
 /// Checks counts against [`MAX_VERTICES`], [`MAX_FACES`] and [`MAX_INDICES`] before anything
 /// is allocated for them.
@@ -37,11 +41,30 @@ pub fn check_size(vertices: usize, faces: usize, indices: usize) -> Result<(), M
     Ok(())
 }
 
+/// The first vertex of `face` (in face order) that appears again later in it. Linear time, so
+/// that one huge face cannot stall validation.
+fn first_repeated(face: &[usize]) -> Option<usize> {
+    if face.len() <= 16 {
+        return face.iter().enumerate().find(|&(k, v)| face[k + 1..].contains(v)).map(|(_, &v)| v);
+    }
+    let mut last = std::collections::HashMap::with_capacity(face.len());
+    for (k, &v) in face.iter().enumerate() {
+        last.insert(v, k);
+    }
+    face.iter().enumerate().find(|&(k, v)| last[v] > k).map(|(_, &v)| v)
+}
+
 /// A validated polygon surface mesh: positions (f64) and faces as lists of vertex indices.
 ///
-/// Invariants established by [`PolyMesh::new`]: at least one face; finite coordinates; every
-/// face has at least three distinct, in-range vertex indices; no edge is shared by more than
-/// two faces.
+/// Invariants established by [`PolyMesh::new`]: at most [`MAX_VERTICES`] vertices,
+/// [`MAX_FACES`] faces and [`MAX_INDICES`] face indices; at least one face; finite
+/// coordinates no larger than [`MAX_COORDINATE`]; every face has at least three distinct,
+/// in-range vertex indices; no two faces have the same vertices; no edge is shared by more
+/// than two faces; faces sharing an edge run along it in opposite directions.
+///
+/// Accepted as they are: zero-area faces, vertices where pieces touch (non-manifold
+/// vertices), disconnected pieces, vertices no face uses, any mix of triangles, quads and
+/// n-gons.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PolyMesh {
     positions: Vec<Point3<f64>>,
@@ -53,8 +76,8 @@ impl PolyMesh {
     ///
     /// # Errors
     /// The first problem found, in this order: too large, empty mesh, non-finite coordinate,
-    /// face with fewer than three vertices, index out of range, repeated index in a face,
-    /// duplicate face, non-manifold edge, inconsistent orientation.
+    /// coordinate too large, face with fewer than three vertices, index out of range,
+    /// repeated index in a face, duplicate face, non-manifold edge, inconsistent orientation.
     pub fn new(positions: Vec<Point3<f64>>, faces: Vec<Vec<usize>>) -> Result<Self, MeshError> {
         check_size(positions.len(), faces.len(), faces.iter().map(Vec::len).sum())?;
         if faces.is_empty() || positions.is_empty() {
@@ -66,6 +89,10 @@ impl PolyMesh {
         if let Some(vertex) = positions.iter().position(|p| !p.coords.iter().all(|c| c.is_finite())) {
             return Err(MeshError::NonFiniteCoordinate { vertex });
         }
+        if let Some(vertex) = positions.iter().position(|p| p.coords.amax() > MAX_COORDINATE) {
+            let value = positions[vertex].coords.amax();
+            return Err(MeshError::CoordinateTooLarge { vertex, value, limit: MAX_COORDINATE });
+        }
         for (face, indices) in faces.iter().enumerate() {
             if indices.len() < 3 {
                 return Err(MeshError::TooFewVertices { face, count: indices.len() });
@@ -73,10 +100,8 @@ impl PolyMesh {
             if let Some(&index) = indices.iter().find(|&&i| i >= positions.len()) {
                 return Err(MeshError::IndexOutOfRange { face, index, vertex_count: positions.len() });
             }
-            for (k, &vertex) in indices.iter().enumerate() {
-                if indices[k + 1..].contains(&vertex) {
-                    return Err(MeshError::RepeatedIndex { face, vertex });
-                }
+            if let Some(vertex) = first_repeated(indices) {
+                return Err(MeshError::RepeatedIndex { face, vertex });
             }
         }
         let mut seen: std::collections::HashMap<Vec<usize>, usize> = std::collections::HashMap::with_capacity(faces.len());

@@ -1,25 +1,34 @@
 //! Wavefront OBJ in and out.
 //!
-//! Only geometry is read: `v` lines and `f` lines (`v`, `v/vt`, `v//vn`, `v/vt/vn`, negative
-//! relative indices). Vertex and face order are kept exactly as in the file, which is why
-//! this is not `tobj`: it renumbers vertices by first use and splits groups into separate
-//! meshes, and face indices in our results must refer to the file's own numbering.
+//! Only geometry is read: `v` lines and `f` lines (`v`, `v/vt`, `v//vn`, `v/vt/vn`). Negative
+//! indices are legal OBJ and are accepted: `-1` is the last vertex read so far, `-2` the one
+//! before it, and so on; a negative index reaching before the first vertex, and index 0, are
+//! [`MeshError::ObjSyntax`] errors naming the line. Vertex and face order are kept exactly as
+//! in the file, which is why this is not `tobj`: it renumbers vertices by first use and splits
+//! groups into separate meshes, and face indices in our results must refer to the file's own
+//! numbering (0-based: the first `f` line is face 0, the first `v` line vertex 0).
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use nalgebra::Point3;
 
-use super::{MeshError, PolyMesh};
+use super::{MAX_FACES, MAX_INDICES, MAX_VERTICES, MeshError, PolyMesh};
+
+/// Largest OBJ file [`read`] loads: a mesh at the size limits ([`MAX_VERTICES`],
+/// [`MAX_FACES`], [`MAX_INDICES`]) takes well under a gigabyte of OBJ text.
+pub const MAX_FILE_BYTES: u64 = 2 << 30;
 
 /// Parses OBJ text into a validated mesh.
 ///
 /// # Errors
-/// [`MeshError::ObjSyntax`] with the line number for malformed lines, then any validation
-/// error of [`PolyMesh::new`].
+/// [`MeshError::ObjSyntax`] with the line number for malformed lines,
+/// [`MeshError::TooLarge`] as soon as the text holds more vertices, faces or face indices
+/// than one mesh may have, then any validation error of [`PolyMesh::new`].
 pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
     let mut positions = Vec::new();
-    let mut faces = Vec::new();
+    let mut faces: Vec<Vec<usize>> = Vec::new();
+    let mut index_count = 0usize;
     for (number, raw) in text.lines().enumerate() {
         let line = number + 1;
         let syntax = |message: String| MeshError::ObjSyntax { line, message };
@@ -33,6 +42,9 @@ pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
                     *c = word.parse().map_err(|_| syntax(format!("'{word}' is not a number")))?;
                 }
                 positions.push(Point3::from(xyz));
+                if positions.len() > MAX_VERTICES {
+                    return Err(MeshError::TooLarge { what: "vertices", count: positions.len(), limit: MAX_VERTICES });
+                }
             }
             Some("f") => {
                 let mut face = Vec::new();
@@ -47,8 +59,15 @@ pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
                     let resolved = usize::try_from(resolved)
                         .map_err(|_| syntax(format!("relative index {index} reaches before the first vertex")))?;
                     face.push(resolved);
+                    index_count += 1;
+                    if index_count > MAX_INDICES {
+                        return Err(MeshError::TooLarge { what: "face indices", count: index_count, limit: MAX_INDICES });
+                    }
                 }
                 faces.push(face);
+                if faces.len() > MAX_FACES {
+                    return Err(MeshError::TooLarge { what: "faces", count: faces.len(), limit: MAX_FACES });
+                }
             }
             _ => {}
         }
@@ -59,8 +78,14 @@ pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
 /// Reads and validates an OBJ file.
 ///
 /// # Errors
-/// [`MeshError::Io`] if the file cannot be read, otherwise as [`parse`].
+/// [`MeshError::Io`] if the file cannot be read or is larger than [`MAX_FILE_BYTES`],
+/// otherwise as [`parse`].
 pub fn read(path: &Path) -> Result<PolyMesh, MeshError> {
+    let size = std::fs::metadata(path).map_err(|e| io_error(path, &e))?.len();
+    if size > MAX_FILE_BYTES {
+        let message = format!("the file has {size} bytes; an OBJ file may have at most {MAX_FILE_BYTES} (split the shell into parts)");
+        return Err(MeshError::Io { path: path.display().to_string(), message });
+    }
     let text = std::fs::read_to_string(path).map_err(|e| io_error(path, &e))?;
     parse(&text)
 }

@@ -37,6 +37,9 @@ pub struct Topology {
     /// `face_edges[f][i]` is the edge from corner `i` to corner `i + 1` of face `f`.
     face_edges: Vec<Vec<usize>>,
     vertex_edges: Vec<Vec<usize>>,
+    /// `edge_corners[e][k]`: the corner of `edges[e].faces[k]` where edge `e` starts, so that
+    /// finding an edge in a face takes constant time however large the face.
+    edge_corners: Vec<[usize; 2]>,
 }
 
 impl Topology {
@@ -49,6 +52,7 @@ impl Topology {
         let mut edges: Vec<Edge> = Vec::new();
         let mut vertex_edges = vec![Vec::new(); mesh.positions().len()];
         let mut face_edges = Vec::with_capacity(mesh.face_count());
+        let mut edge_corners: Vec<[usize; 2]> = Vec::new();
         for (f, face) in mesh.faces().iter().enumerate() {
             let mut own = Vec::with_capacity(face.len());
             for (i, &a) in face.iter().enumerate() {
@@ -56,6 +60,7 @@ impl Topology {
                 let key = [a.min(b), a.max(b)];
                 let e = *index.entry(key).or_insert_with(|| {
                     edges.push(Edge { vertices: key, faces: Vec::with_capacity(2) });
+                    edge_corners.push([usize::MAX; 2]);
                     vertex_edges[key[0]].push(edges.len() - 1);
                     vertex_edges[key[1]].push(edges.len() - 1);
                     edges.len() - 1
@@ -65,11 +70,12 @@ impl Topology {
                     let faces = edges[e].faces.clone();
                     return Err(MeshError::NonManifoldEdge { a: key[0], b: key[1], face_count: faces.len(), faces });
                 }
+                edge_corners[e][edges[e].faces.len() - 1] = i;
                 own.push(e);
             }
             face_edges.push(own);
         }
-        Ok(Self { edges, face_edges, vertex_edges })
+        Ok(Self { edges, face_edges, vertex_edges, edge_corners })
     }
 
     /// Checks that every edge shared by two faces is run in opposite directions by them.
@@ -85,7 +91,7 @@ impl Topology {
                     continue;
                 }
                 let (a, b) = (face[i], face[(i + 1) % face.len()]);
-                let k = self.face_edges[g].iter().position(|&x| x == e).expect("the other face has the edge");
+                let k = self.corner(g, e).expect("the other face has the edge");
                 let other = &mesh.faces()[g];
                 if other[k] == a {
                     return Err(MeshError::InconsistentOrientation { a, b, faces: [f, g] });
@@ -93,6 +99,13 @@ impl Topology {
             }
         }
         Ok(())
+    }
+
+    /// The corner of face `f` where edge `e` starts (`face_edges(f)[corner] == e`), if `e`
+    /// borders `f`.
+    fn corner(&self, f: usize, e: usize) -> Option<usize> {
+        let k = self.edges.get(e)?.faces.iter().position(|&x| x == f)?;
+        Some(self.edge_corners[e][k])
     }
 
     /// All edges.
@@ -119,7 +132,7 @@ impl Topology {
     /// on `v`'s side), or `None` if `e` is not an edge of `f` touching `v`.
     pub fn face_edge_at(&self, f: usize, e: usize, v: usize) -> Option<usize> {
         let own = &self.face_edges[f];
-        let i = own.iter().position(|&x| x == e)?;
+        let i = self.corner(f, e)?;
         let n = own.len();
         [own[(i + n - 1) % n], own[(i + 1) % n]]
             .into_iter()

@@ -4,10 +4,19 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum PatternError {
     /// A bond weight is negative, NaN or infinite.
-    #[error("bond weight {weight} is not a finite number >= 0")]
+    #[error("bond weight {weight:?} is not a finite number >= 0")]
     InvalidWeight {
         /// The weight given.
         weight: f64,
+    },
+    /// A bond weight is larger than [`super::MAX_WEIGHT`]: it would only break the solver's
+    /// numerics.
+    #[error("bond weight {weight:?} is larger than {max}, the most that makes sense (above 1 one joint already outweighs a tile)")]
+    WeightTooLarge {
+        /// The weight given.
+        weight: f64,
+        /// The largest weight accepted.
+        max: f64,
     },
     /// A face index in the options does not exist.
     #[error("face {face} does not exist (the mesh has {face_count} faces, valid: 0..{face_count})")]
@@ -45,8 +54,8 @@ pub enum PatternError {
         /// Its number of corners.
         corners: usize,
     },
-    /// The time limit is negative or not finite.
-    #[error("time limit {seconds} s is not a finite number >= 0")]
+    /// The time limit is negative, NaN or infinite.
+    #[error("time limit {seconds:?} s is not a finite number >= 0")]
     InvalidTimeLimit {
         /// The limit given.
         seconds: f64,

@@ -49,6 +49,15 @@ pub enum Bond {
 /// The paper's default weight for the staggered and running-bond objectives.
 pub const DEFAULT_WEIGHT: f64 = 0.5;
 
+/// Largest bond weight accepted. Weights above 1 already make one joint or shifted pair
+/// outweigh a whole tile; far larger ones only break the solver's numerics (CBC reports
+/// valid programs infeasible from about 1e20 and aborts the process from about 1e25).
+pub const MAX_WEIGHT: f64 = 1000.0;
+
+/// Longest time limit: longer limits (up to any finite number of seconds) are cut to this
+/// many seconds (about 31 years), which keeps deadlines representable.
+pub const MAX_TIME_LIMIT_SECONDS: u64 = 1_000_000_000;
+
 /// How the integer program is written for the solver.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Formulation {
@@ -68,7 +77,8 @@ pub enum Formulation {
 pub struct PatternOptions {
     /// The objective.
     pub bond: Bond,
-    /// Wall-clock limit for the solver. Zero skips the solver and returns the greedy start.
+    /// Wall-clock limit for the solver. Zero skips the solver and returns the greedy start;
+    /// limits over [`MAX_TIME_LIMIT_SECONDS`] count as that limit.
     pub time_limit: Duration,
     /// Face pairs that must become tiles (0-based face indices).
     pub forced_pairs: Vec<[usize; 2]>,
@@ -111,12 +121,16 @@ impl Default for PatternOptions {
 
 impl PatternOptions {
     /// Converts seconds (as typed on a command line or passed through the C ABI) into a time
-    /// limit.
+    /// limit. Finite limits longer than [`MAX_TIME_LIMIT_SECONDS`] become that limit.
     ///
     /// # Errors
-    /// [`PatternError::InvalidTimeLimit`] for negative, NaN or overflowing values.
+    /// [`PatternError::InvalidTimeLimit`] for negative, NaN or infinite values.
     pub fn time_limit_from_secs(seconds: f64) -> Result<Duration, PatternError> {
-        Duration::try_from_secs_f64(seconds).map_err(|_| PatternError::InvalidTimeLimit { seconds })
+        if !(seconds.is_finite() && seconds >= 0.0) {
+            return Err(PatternError::InvalidTimeLimit { seconds });
+        }
+        // `abs` turns -0.0 into 0.0; only values beyond `Duration` fail to convert.
+        Ok(Duration::try_from_secs_f64(seconds.abs()).unwrap_or(Duration::MAX).min(Duration::from_secs(MAX_TIME_LIMIT_SECONDS)))
     }
 }
 
@@ -188,8 +202,10 @@ pub fn solve_with(mesh: &PolyMesh, options: &PatternOptions, control: &mut Contr
     let graph = DualGraph::new(mesh, &topology, &excluded);
     let forced = forced_tiles(mesh, &graph, &excluded, &options.forced_pairs)?;
 
-    let deadline = started + options.time_limit;
-    let limit = options.time_limit.as_secs_f64().max(1e-9);
+    // A longer limit (e.g. `Duration::MAX` from a Rust caller) would overflow the deadline.
+    let time_limit = options.time_limit.min(Duration::from_secs(MAX_TIME_LIMIT_SECONDS));
+    let deadline = started + time_limit;
+    let limit = time_limit.as_secs_f64().max(1e-9);
     let progress = move || started.elapsed().as_secs_f64() / limit;
     if !control.keep_going(0.0) {
         return Err(PatternError::Cancelled);
@@ -325,6 +341,7 @@ fn validate_weights(bond: Bond) -> Result<(), PatternError> {
         Bond::Staggered { weight } | Bond::RunningBond { weight } if !(weight.is_finite() && weight >= 0.0) => {
             Err(PatternError::InvalidWeight { weight })
         }
+        Bond::Staggered { weight } | Bond::RunningBond { weight } if weight > MAX_WEIGHT => Err(PatternError::WeightTooLarge { weight, max: MAX_WEIGHT }),
         _ => Ok(()),
     }
 }
