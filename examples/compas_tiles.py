@@ -1,17 +1,25 @@
-"""Tile a COMPAS mesh: remesh (if it is made of triangles), match, place tiles, cut them to
-the surface, print the report, write a Rhino file and a COMPAS JSON of the boxes.
+"""Tile a COMPAS mesh with standard rectangular tiles.
 
-    python examples/compas_tiles.py [MESH.obj] [--tile 280x140x15] [--joint 10] [--units m]
+Loads a surface (an OBJ file, or COMPAS's sample hypar made of triangles), quadrangulates
+it when it is not made of quads, matches the quads into tiles (staggered bond by default),
+places the tiles cut to the surface's boundary, prints the report, and writes a Rhino file
+(layers tiles::full, tiles::half, tiles::cuts) and, with --json, the tiles as COMPAS boxes.
 
-Without a mesh it uses COMPAS's sample hypar (triangulated). Needs `pip install compas
-rhino3dm` and the TilePattern library (`cargo build --release`, or TILEPATTERN_LIB).
+    python examples/compas_tiles.py [MESH.obj] [--units m] [--tile 280x140x15] [--joint 10]
+                                    [--bond staggered] [--time-limit 10] [--out compas_tiles]
+                                    [--json]
+
+Needs numpy, compas and rhino3dm (pip install compas rhino3dm) and the TilePattern library
+(`cargo build --release --lib` in the repository, or TILEPATTERN_LIB=/path/to/library).
 """
 
 import argparse
 import json
 import sys
+import time
 from pathlib import Path
 
+# Run from a source checkout without installing the package.
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
 
 import compas  # noqa: E402
@@ -20,46 +28,84 @@ from compas.datastructures import Mesh  # noqa: E402
 import tilepattern.compas as tpc  # noqa: E402
 from tilepattern.rhino import export_3dm  # noqa: E402
 
+#: Mesh units: (model units per millimetre, Rhino unit system).
 UNITS = {"m": (0.001, "Meters"), "cm": (0.1, "Centimeters"), "mm": (1.0, "Millimeters")}
 
 
-def main():
+def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("mesh", nargs="?", help="OBJ surface (triangles or quads)")
-    parser.add_argument("--tile", default="280x140x15", help="tile size LxWxT in millimetres")
-    parser.add_argument("--joint", type=float, default=10.0, help="mortar joint in millimetres")
-    parser.add_argument("--units", choices=UNITS, default="m", help="units of the mesh coordinates")
-    parser.add_argument("--time-limit", type=float, default=10.0)
-    parser.add_argument("--out", default="compas_tiles", help="output folder")
-    args = parser.parse_args()
+    parser.add_argument("mesh", nargs="?", help="OBJ surface (triangles, quads or polygons); default: COMPAS's hypar, triangulated")
+    parser.add_argument("--units", choices=sorted(UNITS), default="m", help="units of the mesh coordinates (default m)")
+    parser.add_argument("--tile", default="280x140x15", help="tile length x width x thickness in mm (default 280x140x15)")
+    parser.add_argument("--joint", type=float, default=10.0, help="mortar joint in mm (default 10)")
+    parser.add_argument("--bond", choices=["staggered", "stack", "running"], default="staggered")
+    parser.add_argument("--time-limit", type=float, default=10.0, help="seconds for the matching (default 10)")
+    parser.add_argument("--out", default="compas_tiles", help="output folder (default ./compas_tiles)")
+    parser.add_argument("--json", action="store_true", help="also write the tiles as COMPAS boxes (boxes.json)")
+    return parser.parse_args()
 
+
+class Progress:
+    """Prints a stage's progress in steps of 10 %; Ctrl-C cancels the stage cleanly."""
+
+    def __init__(self):
+        self.shown = None
+
+    def __call__(self, stage, fraction):
+        step = (stage, int(10 * fraction))
+        if step != self.shown:
+            self.shown = step
+            print("  %s %3d%%" % (stage, 10 * step[1]), end="\n" if fraction >= 1 else "\r", flush=True)
+        return False  # True would cancel
+
+
+def main():
+    args = parse_args()
     per_mm, rhino_units = UNITS[args.units]
-    length, width, thickness = (float(d) * per_mm for d in args.tile.split("x"))
+    length, width, thickness = (float(d) * per_mm for d in args.tile.lower().split("x"))
     joint = args.joint * per_mm
+
     if args.mesh:
         surface = Mesh.from_obj(args.mesh)
     else:
-        surface = Mesh.from_obj(compas.get("hypar.obj"))
+        surface = Mesh.from_obj(compas.get("hypar.obj"))  # 5 x 5 x 3, read as metres
         surface.quads_to_triangles()
+    print("surface: %d vertices, %d faces" % (surface.number_of_vertices(), surface.number_of_faces()))
 
-    quads = surface
-    if any(len(surface.face_vertices(f)) != 4 for f in surface.faces()):
-        quads = tpc.remesh(surface, target_edge=(length + joint) / 2)
-        print("remeshed %d faces into %d quads" % (surface.number_of_faces(), quads.number_of_faces()))
+    start = time.perf_counter()
+    if all(len(surface.face_vertices(face)) == 4 for face in surface.faces()):
+        quads = surface
+    else:
+        quads = tpc.remesh(surface, target_edge=(length + joint) / 2, progress=Progress())
+        print("remeshed into %d quads" % quads.number_of_faces())
 
-    pattern = tpc.match(quads, bond="staggered", time_limit=args.time_limit)
-    print("%d tiles, %d half tiles, objective %.1f, bound %.1f (%s)" % (len(pattern.pairs), len(pattern.unpaired), pattern.objective, pattern.bound, pattern.status))
-    placed = tpc.tiles(quads, pattern, surface=surface, length=length, width=width, thickness=thickness, joint=joint)
-    report = tpc.report(placed)
-    cutting = report["cutting"]
-    print("%d tiles placed: %d cut to the boundary in %d shapes, coverage %.3f" % (len(placed), cutting["boundary_tiles"] + cutting["filler_tiles"], cutting["boundary_shapes"], cutting["coverage"]))
+    pattern = tpc.match(quads, bond=args.bond, time_limit=args.time_limit, progress=Progress())
+    print(
+        "pattern: %d pairs, %d unpaired quads, %d continuous joints; objective %.1f, bound %.1f (%s)"
+        % (len(pattern.pairs), len(pattern.unpaired), pattern.continuous_joints, pattern.objective, pattern.bound, pattern.status)
+    )
+
+    boxes = tpc.tiles(quads, pattern, surface=surface, length=length, width=width, thickness=thickness, joint=joint)
+    report = tpc.report(boxes)
+    cutting, joints = report["cutting"], report["joints"]
+    print("tiles: %d full, %d half, %d cut to the boundary in %d shapes; coverage %.3f" % (
+        report["full_tiles"], report["half_tiles"], cutting["boundary_tiles"], cutting["boundary_shapes"], cutting["coverage"]))
+    print("joints: %d contacts, gap %.1f..%.1f mm (nominal %.1f)" % (
+        joints["contacts"], joints["min_gap"] / per_mm, joints["max_gap"] / per_mm, joints["joint"] / per_mm))
+    print("cut list:")
+    for entry in boxes.tiles.cutlist:
+        print("  %-4s %-8s x %4d   blank %s" % (entry["label"], entry["kind"], entry["count"], " x ".join("%.0f" % (b / per_mm) for b in entry["blank"])))
+    print("done in %.1f s" % (time.perf_counter() - start))
 
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    written = export_3dm(placed, out / "tiles.3dm", units=rhino_units)
-    compas.json_dump(tpc.boxes(placed), out / "boxes.json")
+    export_3dm(boxes, out / "tiles.3dm", units=rhino_units)
     (out / "report.json").write_text(json.dumps(report, indent=2))
-    print("wrote %d tiles to %s, boxes.json and report.json" % (written, out / "tiles.3dm"))
+    written = [out / "tiles.3dm", out / "report.json"]
+    if args.json:
+        compas.json_dump(list(boxes), str(out / "boxes.json"))
+        written.append(out / "boxes.json")
+    print("wrote " + ", ".join(str(p) for p in written))
 
 
 if __name__ == "__main__":

@@ -1,17 +1,27 @@
-"""Fixtures: the meshes of meshes.py."""
+"""Test setup: the package from this checkout, shared meshes."""
 
-import numpy as np
+import sys
+from pathlib import Path
+
 import pytest
 
-from meshes import grid, triangulated
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))
+sys.path.insert(0, str(HERE))
+
+from meshes import grid, shell  # noqa: E402
+
+#: The C header, when the tests run in a source checkout.
+HEADER = HERE.parent.parent / "include" / "tilepattern.h"
 
 
 @pytest.fixture
 def quads():
+    """A flat 10 x 8 grid of 145 mm quads."""
     return grid(10, 8)
 
 
-@pytest.fixture
-def shell():
-    """A doubly curved triangle mesh, 2 x 1.6 m, fine enough to remesh at 0.145."""
-    return triangulated(*grid(40, 32, edge=0.05, height=lambda x, y: 0.15 * np.sin(x) * np.sin(1.5 * y)))
+@pytest.fixture(scope="session")
+def curved():
+    """A doubly curved triangle surface (2 x 1.6 m)."""
+    return shell()

@@ -1,4 +1,4 @@
-"""The three stages on plain arrays, errors, cancellation and handle lifetime."""
+"""The three stages on plain arrays: inputs in every form, results, frames and corners."""
 
 import math
 
@@ -6,134 +6,150 @@ import numpy as np
 import pytest
 
 import tilepattern as tp
-from tilepattern import _native
-from tilepattern.core import _mesh, mesh_arrays
+from tilepattern.core import face_arrays, mesh_arrays, mesh_handle
 
-from meshes import grid
-
-
-def test_every_export_of_the_header_is_declared():
-    header = open(_native.library_path().parents[2] / "include" / "tilepattern.h").read()
-    import re
-
-    exports = set(re.findall(r"\b(tp_[a-z0-9_]+)\(", header)) - {"tp_test_panic"}
-    declared = set(_native._EXPORTS)
-    assert exports - declared == set(), "exports without a declaration"
-    assert declared - exports == set(), "declarations of functions the header does not have"
-
-
-def test_option_structs_match_the_library_sizes():
-    for struct, init in [
-        (_native.PatternOptions, "tp_pattern_options_init"),
-        (_native.RemeshOptions, "tp_remesh_options_init"),
-        (_native.TileOptions, "tp_tile_options_init"),
-    ]:
-        assert _native.init(struct, init).struct_size == __import__("ctypes").sizeof(struct)
-        default = getattr(_native.lib(), init.replace("_init", "_default"))()
-        assert default.struct_size == __import__("ctypes").sizeof(struct)
+from meshes import grid, mixed, triangulated
 
 
 def test_mesh_round_trip_keeps_order(quads):
     v, f = quads
-    with _mesh(v, f) as handle:
+    with mesh_handle(v, f) as handle:
         back_v, back_f = mesh_arrays(handle)
     assert np.array_equal(back_v, v)
-    assert [list(x) for x in back_f] == f
+    assert isinstance(back_f, np.ndarray) and back_f.tolist() == f
 
 
-def test_pipeline_on_a_curved_shell(shell):
-    v, f = shell
-    qv, qf = tp.remesh(v, f, target_edge=0.145)
-    assert qf.shape[1] == 4 and len(qf) > 100
-    pattern = tp.match(qv, qf, bond="staggered", time_limit=5)
-    assert pattern.status in ("optimal", "time_limit", "feasible")
-    assert pattern.bound >= pattern.objective
-    assert 2 * len(pattern.pairs) + len(pattern.unpaired) + pattern.excluded + pattern.non_quad == len(qf)
-    placed = tp.tiles(qv, qf, pattern, surface=(v, f))
-    assert len(placed) == len(placed.labels) == len(placed.steps) == len(placed.outlines)
-    assert sorted(placed.steps) == list(range(len(placed)))
-    assert sum(g["count"] for g in placed.cut_list) == len(placed)
-    assert placed.report["cutting"]["coverage"] > 0.9
-    for kind, fraction, outline in zip(placed.kinds, placed.kept_fractions, placed.outlines):
-        assert (kind == "boundary") == (fraction < 1.0) == bool(outline)
-
-
-def test_frames_and_corners_agree(quads):
-    v, f = quads
-    placed = tp.tiles(v, f, tp.match(v, f, time_limit=5))
-    for frame, size, corners in zip(placed.frames, placed.sizes, placed.corners):
-        origin, x, y, z = frame
-        expected = origin + x * (-size[0] / 2) + y * (-size[1] / 2)
-        assert np.allclose(corners[0], expected)
-        assert np.allclose(corners[4], expected + z * size[2])
-        assert math.isclose(np.linalg.norm(corners[1] - corners[0]), size[0])
-
-
-def test_half_tiles_have_one_face(quads):
-    v, f = grid(3, 1)
-    placed = tp.tiles(v, f, tp.match(v, f, time_limit=5))
-    half = [k for k, kind in enumerate(placed.kinds) if kind == "half"]
-    assert len(half) == 1 and placed.faces[half[0], 1] == -1
-
-
-def test_stack_bond_and_forced_and_excluded(quads):
-    v, f = quads
-    p = tp.match(v, f, bond="stack", forced_pairs=[[0, 1]], excluded_faces=[79], time_limit=5)
-    assert [0, 1] in p.pairs.tolist()
-    assert 79 not in p.pairs and p.excluded == 1
+def test_polygon_faces_of_mixed_sizes():
+    v, f = mixed()
+    indices, sizes = face_arrays(f)
+    assert sizes.tolist() == [3, 3, 4, 5, 4, 4, 4] and len(indices) == 27
+    assert indices.dtype == np.uint32 and sizes.dtype == np.uint32
+    with mesh_handle(v, f) as handle:
+        assert handle.counts() == (len(v), 7, 27)
+        back_v, back_f = mesh_arrays(handle)
+    assert back_f == f  # a list of lists when the sizes differ
+    pattern = tp.match(v, f, bond="stack", time_limit=5)
+    assert pattern.non_quad == 3 and pattern.faces == 7
+    assert 2 * len(pattern.pairs) + len(pattern.unpaired) == 4
 
 
 @pytest.mark.parametrize(
-    "vertices, faces, code",
+    "convert",
     [
-        ([[0, 0, 0], [1, 0, 0], [1, 1, float("nan")], [0, 1, 0]], [[0, 1, 2, 3]], "TP_INVALID_MESH"),
-        ([[0, 0, 0], [1, 0, 0], [1, 1, 0]], [[0, 1, 5]], "TP_INVALID_MESH"),
-        ([[0, 0, 0], [1, 0, 0], [1, 1, 0]], [[0, 1, -1]], "TP_INVALID_MESH"),
-        ([], [], "TP_INVALID_MESH"),
-        ([[0, 0, 0], [1, 0, 0], [1, 1, 0]], [[0, 1, 1]], "TP_INVALID_MESH"),
+        lambda v, f: (v.tolist(), f),
+        lambda v, f: (np.asfortranarray(v), np.array(f, dtype=np.uint32)),
+        lambda v, f: (v.astype(np.float32), np.array(f, dtype=np.int64)),
+        lambda v, f: (v[:, [0, 1, 2]], np.array(f, dtype=np.float64)),  # integral floats accepted
+        lambda v, f: ([tuple(p) for p in v], [tuple(x) for x in f]),
+        lambda v, f: (v, [np.array(x, dtype=np.int32) for x in f]),
     ],
 )
-def test_bad_meshes_raise_with_the_native_status(vertices, faces, code):
-    with pytest.raises(tp.TilePatternError) as caught:
-        tp.match(vertices, faces, time_limit=1)
-    assert caught.value.name == code
-    assert caught.value.message
-
-
-def test_bad_options_raise(quads):
+def test_inputs_as_lists_or_arrays(quads, convert):
     v, f = quads
-    for kwargs in [dict(weight=float("nan")), dict(time_limit=-1), dict(bond="herringbone"), dict(forced_pairs=[[0, 55]])]:
-        with pytest.raises(tp.TilePatternError) as caught:
-            tp.match(v, f, **kwargs)
-        assert caught.value.status in (2, 5), kwargs
-    with pytest.raises(tp.TilePatternError) as caught:
-        tp.tiles(v, f, tp.match(v, f, time_limit=1), length=0)
-    assert caught.value.name == "TP_INVALID_ARGUMENT"
+    cv, cf = convert(np.asarray(v), f)
+    with mesh_handle(cv, cf) as handle:
+        back_v, back_f = mesh_arrays(handle)
+    assert np.allclose(back_v, v, atol=1e-6) and back_f.tolist() == f
 
 
-def test_progress_can_cancel_and_errors_in_it_surface():
-    v, f = grid(60, 60)
-    seen = []
+def test_pipeline_on_a_curved_shell(curved):
+    v, f = curved
+    qv, qf = tp.remesh(v, f, target_edge=0.145)
+    assert qv.dtype == np.float64 and qv.shape[1] == 3
+    assert qf.shape[1] == 4 and len(qf) > 100
+    pattern = tp.match(qv, qf, bond="staggered", time_limit=5)
+    assert pattern.status in ("optimal", "time_limit", "feasible")
+    assert pattern.bound >= pattern.objective - 1e-9 and 0 <= pattern.gap <= 1 and pattern.seconds >= 0
+    assert pattern.pairs.shape[1] == 2 and pattern.pairs.dtype == np.int64
+    assert np.all(pattern.pairs[:, 0] < pattern.pairs[:, 1])
+    assert 2 * len(pattern.pairs) + len(pattern.unpaired) + pattern.excluded + pattern.non_quad == len(qf) == pattern.faces
+    assert pattern.counts["pairs"] == len(pattern.pairs)
+    assert pattern.to_dict()["pairs"] == pattern.pairs.tolist()
 
-    def stop(stage, fraction):
-        seen.append((stage, fraction))
-        return True
+    placed = tp.tiles(qv, qf, pattern, surface=(v, f))
+    n = len(placed)
+    assert placed.corners.shape == (n, 8, 3) and placed.frames.shape == (n, 4, 3) and placed.sizes.shape == (n, 3)
+    assert placed.faces.shape == (n, 2) and len(placed.labels) == len(placed.outlines) == n
+    assert sorted(placed.steps.tolist()) == list(range(n))
+    assert sum(entry["count"] for entry in placed.cutlist) == n
+    report = placed.report
+    assert report["full_tiles"] + report["half_tiles"] == n
+    assert report["cutting"]["coverage"] > 0.9
+    for kind, fraction, outline in zip(placed.kinds, placed.kept_fractions, placed.outlines):
+        assert (kind == "boundary") == (fraction < 1.0) == bool(outline)
+    assert set(placed.blanks.tolist()) <= {"full", "half"}
+    assert (placed.blanks == "full").sum() == report["full_tiles"]
 
-    with pytest.raises(tp.TilePatternError) as caught:
-        tp.match(v, f, bond="running", time_limit=30, progress=stop)
-    assert caught.value.name == "TP_CANCELLED" and seen[0][0] == "pattern"
 
-    def broken(stage, fraction):
-        raise KeyError("from the callback")
+def test_remesh_options_reach_the_library(curved):
+    v, f = curved
+    qv, qf = tp.remesh(v, f, target_edge=0.2, direction=[1, 0, 0], shapeup=True)
+    edges = qv[qf[:, 1]] - qv[qf[:, 0]]
+    mean = np.mean(np.linalg.norm(edges, axis=1))
+    assert 0.15 < mean < 0.25
+    qv2, qf2 = tp.remesh(v, f, target_edge=0.2, angle=45)
+    assert len(qf2) > 20
 
-    with pytest.raises(KeyError):
-        tp.match(v, f, bond="running", time_limit=30, progress=broken)
+
+def test_frames_and_corners_agree():
+    v, f = grid(5, 4, height=lambda x, y: 0.2 * x * y)
+    placed = tp.tiles(v, f, tp.match(v, f, time_limit=5))
+    for frame, size, corners in zip(placed.frames, placed.sizes, placed.corners):
+        origin, x, y, z = frame
+        assert np.allclose(frame[1:] @ frame[1:].T, np.eye(3))  # orthonormal
+        assert np.isclose(np.dot(np.cross(x, y), z), 1.0)  # right-handed
+        half = size / 2
+        expected = [origin + sx * half[0] * x + sy * half[1] * y for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+        assert np.allclose(corners[:4], expected)
+        assert np.allclose(corners[4:], np.array(expected) + z * size[2])
+        assert math.isclose(np.linalg.norm(corners[1] - corners[0]), size[0])
+    assert np.allclose(placed.centres, placed.corners.mean(axis=1))
 
 
-def test_handles_close_once(quads):
+def test_half_tiles_have_one_face():
+    v, f = grid(3, 1)
+    placed = tp.tiles(v, f, tp.match(v, f, time_limit=5))
+    assert sorted(placed.kinds.tolist()) == ["full", "half"]
+    half = int(np.flatnonzero(placed.kinds == "half")[0])
+    assert placed.faces[half, 1] == -1 and placed.faces[half, 0] >= 0
+    assert placed.labels[half] == "H" and placed.blanks[half] == "half"
+    assert np.isclose(placed.sizes[half, 0], 0.14)
+
+
+def test_stack_bond_forced_pairs_and_excluded_faces(quads):
     v, f = quads
-    p = tp.match(v, f, time_limit=1)
-    p.close()
-    p.close()
-    with pytest.raises(ValueError):
-        tp.tiles(v, f, p)
+    pattern = tp.match(v, f, bond="stack", forced_pairs=[[0, 1]], excluded_faces=[79], time_limit=5)
+    assert [0, 1] in pattern.pairs.tolist()
+    assert 79 not in pattern.pairs and 79 not in pattern.unpaired and pattern.excluded == 1
+    running = tp.match(*grid(6, 4), bond="running", weight=0.3, time_limit=5)
+    assert running.optimal and running.shifted_pairs == 8
+    paper = tp.match(v, f, method="mip", formulation="paper", time_limit=5)
+    assert paper.optimal and len(paper.pairs) == 40
+
+
+def test_zero_time_limit_returns_the_greedy_start(quads):
+    v, f = quads
+    pattern = tp.match(v, f, time_limit=0)
+    assert len(pattern.pairs) > 0 and pattern.status in ("optimal", "time_limit", "feasible")
+
+
+def test_tile_options(quads):
+    v, f = quads
+    with tp.match(v, f, time_limit=5) as pattern:
+        placed = tp.tiles(v, f, pattern, length=0.28, width=0.14, thickness=0.02, joint=0.01, up=(0, 1, 0), support_band=0.1)
+    assert np.allclose(placed.sizes[placed.kinds == "full"], [0.28, 0.14, 0.02])
+    assert placed.report["tile"]["thickness"] == 0.02
+
+
+def test_tiles_cut_to_a_smaller_surface():
+    v, f = grid(9, 7)
+    surface = triangulated(*grid(24, 20, edge=0.05))  # 1.2 x 1.0 inside the 1.305 x 1.015 quads
+    placed = tp.tiles(v, f, tp.match(v, f, time_limit=5), surface=surface)
+    cut = placed.kinds == "boundary"
+    assert cut.any() and all(len(loops) >= 1 for loops in np.array(placed.outlines, dtype=object)[cut])
+    assert any(label.startswith("B") for label in placed.labels)
+    assert np.all(placed.kept_fractions[cut] < 1) and np.all(placed.kept_fractions > 0)
+    for loops, size in zip(placed.outlines, placed.sizes):
+        for loop in loops:
+            assert loop.shape[1] == 2 and len(loop) >= 3
+            assert np.all(np.abs(loop) <= size[:2] / 2 + 1e-9)

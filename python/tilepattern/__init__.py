@@ -1,25 +1,66 @@
 """TilePattern for Python: laying patterns of standard rectangular tiles on free-form shells.
 
-Wraps the TilePattern C library through ctypes. The three stages take ``(vertices, faces)``
-like COMPAS's ``Mesh.to_vertices_and_faces()``::
+A pure-Python (ctypes) wrapper of the TilePattern C library. The three stages take
+``(vertices, faces)`` like COMPAS's ``Mesh.to_vertices_and_faces()`` and return numpy
+arrays and small result objects::
 
-    from tilepattern import remesh, match, tiles
-    QV, QF = remesh(V, F, target_edge=0.145)         # triangles -> quads of 145 mm
-    pattern = match(QV, QF, bond="staggered")        # quads -> pairs
-    placed = tiles(QV, QF, pattern, surface=(V, F))  # pairs -> boxes cut to the surface
+    import tilepattern as tp
 
-``tilepattern.compas`` works on COMPAS meshes and returns COMPAS boxes;
-``tilepattern.rhino.export_3dm`` writes the tiles to a Rhino file.
+    QV, QF = tp.remesh(V, F, target_edge=0.145)            # triangles -> quads of 145 mm
+    pattern = tp.match(QV, QF, bond="staggered")            # quads -> pairs (Pattern)
+    placed = tp.tiles(QV, QF, pattern, surface=(V, F))      # pairs -> boxes (Tiles)
+    placed.report["full_tiles"], placed.corners.shape      # (N, 8, 3)
+
+:mod:`tilepattern.compas` works on COMPAS meshes and returns COMPAS boxes;
+:func:`tilepattern.rhino.export_3dm` writes tiles to a Rhino file. Failures raise
+:class:`TilePatternError` (one subclass per status code of the C library).
+
+The native library is found through ``TILEPATTERN_LIB``, next to the package, or in
+``target/release`` of a source checkout; see :func:`library_path`.
 """
 
-from ._native import TilePatternError, library_path
+from ._native import (
+    ABI_VERSION,
+    BufferTooSmallError,
+    CancelledError,
+    InvalidArgumentError,
+    InvalidMeshError,
+    InvalidPatternError,
+    LibraryNotFoundError,
+    NotAvailableError,
+    NullPointerError,
+    PanicError,
+    SolverFailedError,
+    TilePatternError,
+    TimeLimitError,
+    abi_version,
+    library_path,
+    version,
+)
 from .core import Pattern, Tiles, match, remesh, tiles
 
-__all__ = ["TilePatternError", "Pattern", "Tiles", "remesh", "match", "tiles", "library_path", "version"]
+__version__ = "0.1.0"
 
-
-def version():
-    """The native library's version, e.g. ``"0.1.0"``."""
-    from . import _native
-
-    return _native.lib().tp_version().decode()
+__all__ = [
+    "remesh",
+    "match",
+    "tiles",
+    "Pattern",
+    "Tiles",
+    "TilePatternError",
+    "NullPointerError",
+    "InvalidArgumentError",
+    "BufferTooSmallError",
+    "InvalidMeshError",
+    "InvalidPatternError",
+    "SolverFailedError",
+    "TimeLimitError",
+    "CancelledError",
+    "NotAvailableError",
+    "PanicError",
+    "LibraryNotFoundError",
+    "library_path",
+    "version",
+    "abi_version",
+    "ABI_VERSION",
+]

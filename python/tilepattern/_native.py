@@ -1,75 +1,309 @@
-"""The C library through ctypes: loading, struct mirrors, every export, status checks.
+"""Low-level ctypes binding of ``include/tilepattern.h`` (ABI 2).
 
-Everything here mirrors ``include/tilepattern.h`` (ABI 2). The rest of the package calls
-the library only through this module.
+This module mirrors the C header one to one: the constants, the status codes (as
+exception classes), the option and summary structs, the progress callback type and the
+``argtypes``/``restype`` of every exported function (``tp_test_panic`` only exists in test
+builds of the library and is bound only when present). It also owns the three kinds of
+native handle (:class:`MeshHandle`, :class:`PatternHandle`, :class:`TilesHandle`), each
+freed exactly once by ``close()``, a ``with`` block or garbage collection.
+
+The rest of the package calls the library only through this module. The library is
+loaded on first use (:func:`lib`), so ``import tilepattern`` works without it.
+
+Notes
+-----
+Options structs are filled with the ``tp_*_options_init`` functions, never with the
+``tp_*_options_default`` functions that return a struct by value: a library whose struct
+grew (the ``struct_size`` scheme allows that without a new ABI version) would write past
+the end of a shorter return buffer. The ``_default`` functions are still bound, with a
+return type padded by :data:`RETURN_PADDING` bytes so that calling them stays safe.
 """
+
+from __future__ import annotations
 
 import ctypes
 import os
 import sys
-from ctypes import POINTER, c_char, c_char_p, c_double, c_int32, c_size_t, c_uint32, c_void_p
+import threading
+from ctypes import (
+    CFUNCTYPE,
+    POINTER,
+    Structure,
+    c_char,
+    c_char_p,
+    c_double,
+    c_int32,
+    c_size_t,
+    c_ubyte,
+    c_uint32,
+    c_void_p,
+)
 from pathlib import Path
 
-ABI_VERSION = 2
+import numpy as np
 
-STATUS_NAMES = {
-    0: "TP_OK",
-    1: "TP_NULL_POINTER",
-    2: "TP_INVALID_ARGUMENT",
-    3: "TP_BUFFER_TOO_SMALL",
-    4: "TP_INVALID_MESH",
-    5: "TP_INVALID_PATTERN",
-    6: "TP_SOLVER_FAILED",
-    7: "TP_TIME_LIMIT",
-    8: "TP_CANCELLED",
-    9: "TP_NOT_AVAILABLE",
-    10: "TP_PANIC",
-}
+# ---------------------------------------------------------------------------------------
+# Constants of the header
+# ---------------------------------------------------------------------------------------
+
+#: ``TP_ABI_VERSION`` of the header this module mirrors.
+ABI_VERSION = 2
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
-BONDS = {"stack": 0, "staggered": 1, "running": 2, "running-bond": 2}
-METHODS = {"auto": 0, "mip": 1}
-FORMULATIONS = {"strengthened": 0, "paper": 1}
-SOLVE_STATUS = {0: "optimal", 1: "time_limit", 2: "feasible"}
-DIRECTIONS = {"curvature": 0, "vector": 1, "angle": 2}
-TILE_KINDS = {0: "full", 1: "half", 2: "boundary"}
-NO_FACE = 0xFFFFFFFF
+
+TP_BOND_STACK = 0
+TP_BOND_STAGGERED = 1
+TP_BOND_RUNNING = 2
+
+TP_METHOD_AUTO = 0
+TP_METHOD_MIP = 1
+
+TP_FORMULATION_STRENGTHENED = 0
+TP_FORMULATION_PAPER = 1
+
+TP_SOLVE_OPTIMAL = 0
+TP_SOLVE_TIME_LIMIT = 1
+TP_SOLVE_FEASIBLE = 2
+
+TP_DIRECTION_CURVATURE = 0
+TP_DIRECTION_VECTOR = 1
+TP_DIRECTION_ANGLE = 2
+
+TP_TILE_FULL = 0
+TP_TILE_HALF = 1
+TP_TILE_BOUNDARY = 2
+
+TP_NO_FACE = 0xFFFFFFFF
+
+MAX_VERTICES = 4_000_000
+MAX_FACES = 4_000_000
+MAX_INDICES = 16_000_000
+
+# Status codes (enum TpStatus).
+TP_OK = 0
+TP_NULL_POINTER = 1
+TP_INVALID_ARGUMENT = 2
+TP_BUFFER_TOO_SMALL = 3
+TP_INVALID_MESH = 4
+TP_INVALID_PATTERN = 5
+TP_SOLVER_FAILED = 6
+TP_TIME_LIMIT = 7
+TP_CANCELLED = 8
+TP_NOT_AVAILABLE = 9
+TP_PANIC = 10
+
+#: Status code -> name, for every code of ``enum TpStatus``.
+STATUS_NAMES = {
+    TP_OK: "TP_OK",
+    TP_NULL_POINTER: "TP_NULL_POINTER",
+    TP_INVALID_ARGUMENT: "TP_INVALID_ARGUMENT",
+    TP_BUFFER_TOO_SMALL: "TP_BUFFER_TOO_SMALL",
+    TP_INVALID_MESH: "TP_INVALID_MESH",
+    TP_INVALID_PATTERN: "TP_INVALID_PATTERN",
+    TP_SOLVER_FAILED: "TP_SOLVER_FAILED",
+    TP_TIME_LIMIT: "TP_TIME_LIMIT",
+    TP_CANCELLED: "TP_CANCELLED",
+    TP_NOT_AVAILABLE: "TP_NOT_AVAILABLE",
+    TP_PANIC: "TP_PANIC",
+}
+
+STAGE_NAMES = {TP_STAGE_REMESH: "remesh", TP_STAGE_PATTERN: "pattern"}
+SOLVE_STATUS_NAMES = {TP_SOLVE_OPTIMAL: "optimal", TP_SOLVE_TIME_LIMIT: "time_limit", TP_SOLVE_FEASIBLE: "feasible"}
+TILE_KIND_NAMES = {TP_TILE_FULL: "full", TP_TILE_HALF: "half", TP_TILE_BOUNDARY: "boundary"}
+
+# ---------------------------------------------------------------------------------------
+# Errors
+# ---------------------------------------------------------------------------------------
 
 
 class TilePatternError(Exception):
     """A call into the TilePattern library failed.
 
+    Every non-zero ``TpStatus`` raises a subclass of this exception, chosen by
+    :func:`error_class`; catch ``TilePatternError`` to catch them all.
+
+    Parameters
+    ----------
+    status : int
+        The status code returned by the library.
+    message : str
+        Why the call failed (the library's ``tp_last_error_message``).
+
     Attributes
     ----------
     status : int
-        The library's stable status code (``TP_*``).
+        The library's stable status code, e.g. ``4``.
     name : str
-        The code's name, e.g. ``"TP_INVALID_MESH"``.
+        The code's name in the header, e.g. ``"TP_INVALID_MESH"``.
     message : str
-        The library's explanation, naming the face or vertex at fault.
+        The native message; it names the face, vertex or option at fault.
+
+    Examples
+    --------
+    >>> from tilepattern import TilePatternError, match
+    >>> try:
+    ...     match([[0, 0, 0], [1, 0, 0], [1, 1, 0]], [[0, 1, 7]])
+    ... except TilePatternError as error:
+    ...     print(error.status, error.name)
+    4 TP_INVALID_MESH
     """
 
-    def __init__(self, status, message):
-        self.status = status
-        self.name = STATUS_NAMES.get(status, "TP_UNKNOWN_%d" % status)
+    #: The status code this class stands for (``None``: any).
+    code = None
+
+    def __init__(self, status, message=""):
+        self.status = int(status)
+        self.name = STATUS_NAMES.get(self.status, "TP_UNKNOWN_%d" % self.status)
         self.message = message
-        super().__init__("%s: %s" % (self.name, message))
+        super().__init__("%s (%d): %s" % (self.name, self.status, message) if message else "%s (%d)" % (self.name, self.status))
+
+    def __reduce__(self):
+        return (_rebuild_error, (self.status, self.message))
 
 
-class _Mesh(ctypes.Structure):
-    pass
+def _rebuild_error(status, message):
+    return error_class(status)(status, message)
 
 
-class _Pattern(ctypes.Structure):
-    pass
+class NullPointerError(TilePatternError):
+    """``TP_NULL_POINTER``: a required pointer was NULL."""
+
+    code = TP_NULL_POINTER
 
 
-class _Tiles(ctypes.Structure):
-    pass
+class InvalidArgumentError(TilePatternError, ValueError):
+    """``TP_INVALID_ARGUMENT``: an argument or option is out of range."""
+
+    code = TP_INVALID_ARGUMENT
 
 
-class PatternOptions(ctypes.Structure):
+class BufferTooSmallError(TilePatternError):
+    """``TP_BUFFER_TOO_SMALL``: a copy buffer was smaller than the data."""
+
+    code = TP_BUFFER_TOO_SMALL
+
+
+class InvalidMeshError(TilePatternError, ValueError):
+    """``TP_INVALID_MESH``: the mesh was refused (NaN, bad indices, non-manifold, empty)."""
+
+    code = TP_INVALID_MESH
+
+
+class InvalidPatternError(TilePatternError, ValueError):
+    """``TP_INVALID_PATTERN``: the pattern does not fit the mesh."""
+
+    code = TP_INVALID_PATTERN
+
+
+class SolverFailedError(TilePatternError):
+    """``TP_SOLVER_FAILED``: the MIP solver failed."""
+
+    code = TP_SOLVER_FAILED
+
+
+class TimeLimitError(TilePatternError):
+    """``TP_TIME_LIMIT``: the stage hit its time limit before it had any result."""
+
+    code = TP_TIME_LIMIT
+
+
+class CancelledError(TilePatternError):
+    """``TP_CANCELLED``: the progress callback asked to stop."""
+
+    code = TP_CANCELLED
+
+
+class NotAvailableError(TilePatternError):
+    """``TP_NOT_AVAILABLE``: the stage (or the library itself) is not available."""
+
+    code = TP_NOT_AVAILABLE
+
+
+class PanicError(TilePatternError):
+    """``TP_PANIC``: a bug in the library; the panic was caught and the handle discarded."""
+
+    code = TP_PANIC
+
+
+class LibraryNotFoundError(NotAvailableError, OSError):
+    """The native library could not be found or loaded (status ``TP_NOT_AVAILABLE``)."""
+
+    def __init__(self, message):
+        super().__init__(TP_NOT_AVAILABLE, message)
+
+    def __reduce__(self):
+        return (LibraryNotFoundError, (self.message,))
+
+
+_ERROR_CLASSES = {
+    cls.code: cls
+    for cls in (
+        NullPointerError,
+        InvalidArgumentError,
+        BufferTooSmallError,
+        InvalidMeshError,
+        InvalidPatternError,
+        SolverFailedError,
+        TimeLimitError,
+        CancelledError,
+        NotAvailableError,
+        PanicError,
+    )
+}
+
+
+def error_class(status):
+    """The exception class for a status code (``TilePatternError`` for unknown codes).
+
+    Parameters
+    ----------
+    status : int
+        A non-zero ``TpStatus``.
+
+    Returns
+    -------
+    type
+        A subclass of :class:`TilePatternError`.
+
+    Examples
+    --------
+    >>> error_class(4).__name__, error_class(99).__name__
+    ('InvalidMeshError', 'TilePatternError')
+    """
+    return _ERROR_CLASSES.get(int(status), TilePatternError)
+
+
+def error(status, message):
+    """A ready-to-raise exception for ``status`` with ``message``."""
+    return error_class(status)(status, message)
+
+
+# ---------------------------------------------------------------------------------------
+# Structs and types
+# ---------------------------------------------------------------------------------------
+
+
+class TpMesh(Structure):
+    """Opaque ``TpMesh``."""
+
+
+class TpPattern(Structure):
+    """Opaque ``TpPattern``."""
+
+
+class TpTiles(Structure):
+    """Opaque ``TpTiles``."""
+
+
+TpMeshP = POINTER(TpMesh)
+TpPatternP = POINTER(TpPattern)
+TpTilesP = POINTER(TpTiles)
+
+
+class TpPatternOptions(Structure):
+    """``TpPatternOptions``; create filled with defaults by :func:`pattern_options`."""
+
     _fields_ = [
         ("struct_size", c_uint32),
         ("bond", c_int32),
@@ -84,7 +318,9 @@ class PatternOptions(ctypes.Structure):
     ]
 
 
-class PatternSummary(ctypes.Structure):
+class TpPatternSummary(Structure):
+    """``TpPatternSummary``."""
+
     _fields_ = [
         ("faces", c_size_t),
         ("pairs", c_size_t),
@@ -101,7 +337,9 @@ class PatternSummary(ctypes.Structure):
     ]
 
 
-class RemeshOptions(ctypes.Structure):
+class TpRemeshOptions(Structure):
+    """``TpRemeshOptions``; create filled with defaults by :func:`remesh_options`."""
+
     _fields_ = [
         ("struct_size", c_uint32),
         ("target_edge", c_double),
@@ -109,10 +347,13 @@ class RemeshOptions(ctypes.Structure):
         ("direction_vector", c_double * 3),
         ("angle_degrees", c_double),
         ("shapeup", c_int32),
+        ("time_limit_seconds", c_double),
     ]
 
 
-class TileOptions(ctypes.Structure):
+class TpTileOptions(Structure):
+    """``TpTileOptions``; create filled with defaults by :func:`tile_options`."""
+
     _fields_ = [
         ("struct_size", c_uint32),
         ("length", c_double),
@@ -126,177 +367,617 @@ class TileOptions(ctypes.Structure):
     ]
 
 
-PROGRESS = ctypes.CFUNCTYPE(c_int32, c_void_p, c_uint32, c_double)
+#: Spare bytes after the return value of the ``tp_*_options_default`` functions.
+RETURN_PADDING = 256
 
-# name: (restype, argtypes). Every export of the header but tp_test_panic (test builds only).
-_EXPORTS = {
+
+def _padded(struct):
+    """``struct`` followed by :data:`RETURN_PADDING` spare bytes, as a return type: every
+    options struct is far larger than 16 bytes, so on x86-64, AArch64 and Windows x64
+    it is returned through a caller-provided buffer either way, and the padding keeps a
+    newer library with a longer struct inside that buffer."""
+    return type(struct.__name__ + "Return", (struct,), {"_fields_": [("_reserved", c_ubyte * RETURN_PADDING)]})
+
+
+TpPatternOptionsReturn = _padded(TpPatternOptions)
+TpRemeshOptionsReturn = _padded(TpRemeshOptions)
+TpTileOptionsReturn = _padded(TpTileOptions)
+
+#: ``TpProgressCallback``: ``int32_t (*)(void *user, uint32_t stage, double fraction)``.
+TpProgressCallback = CFUNCTYPE(c_int32, c_void_p, c_uint32, c_double)
+
+TpStatus = c_int32
+_u32p = POINTER(c_uint32)
+_f64p = POINTER(c_double)
+_i32p = POINTER(c_int32)
+_sizep = POINTER(c_size_t)
+_charp = POINTER(c_char)
+
+#: ``name: (restype, argtypes)`` for every export of the header.
+PROTOTYPES = {
     "tp_version": (c_char_p, []),
     "tp_abi_version": (c_uint32, []),
-    "tp_last_error_message": (c_size_t, [POINTER(c_char), c_size_t]),
-    "tp_mesh_new": (c_int32, [POINTER(c_double), c_size_t, POINTER(c_uint32), c_size_t, POINTER(c_uint32), c_size_t, POINTER(POINTER(_Mesh))]),
-    "tp_mesh_free": (None, [POINTER(_Mesh)]),
-    "tp_mesh_counts": (c_int32, [POINTER(_Mesh), POINTER(c_size_t), POINTER(c_size_t), POINTER(c_size_t)]),
-    "tp_mesh_copy_vertices": (c_int32, [POINTER(_Mesh), POINTER(c_double), c_size_t]),
-    "tp_mesh_copy_faces": (c_int32, [POINTER(_Mesh), POINTER(c_uint32), c_size_t, POINTER(c_uint32), c_size_t]),
-    "tp_pattern_options_default": (PatternOptions, []),
-    "tp_pattern_options_init": (c_int32, [POINTER(PatternOptions), c_size_t]),
-    "tp_pattern_solve": (c_int32, [POINTER(_Mesh), POINTER(PatternOptions), PROGRESS, c_void_p, POINTER(POINTER(_Pattern))]),
-    "tp_pattern_free": (None, [POINTER(_Pattern)]),
-    "tp_pattern_summary": (c_int32, [POINTER(_Pattern), POINTER(PatternSummary)]),
-    "tp_pattern_copy_pairs": (c_int32, [POINTER(_Pattern), POINTER(c_uint32), c_size_t]),
-    "tp_pattern_copy_unpaired": (c_int32, [POINTER(_Pattern), POINTER(c_uint32), c_size_t]),
-    "tp_remesh_options_default": (RemeshOptions, []),
-    "tp_remesh_options_init": (c_int32, [POINTER(RemeshOptions), c_size_t]),
-    "tp_remesh": (c_int32, [POINTER(_Mesh), POINTER(RemeshOptions), PROGRESS, c_void_p, POINTER(POINTER(_Mesh))]),
-    "tp_tile_options_default": (TileOptions, []),
-    "tp_tile_options_init": (c_int32, [POINTER(TileOptions), c_size_t]),
-    "tp_tiles_build": (c_int32, [POINTER(_Mesh), POINTER(_Pattern), POINTER(TileOptions), POINTER(POINTER(_Tiles))]),
-    "tp_tiles_build_on_surface": (c_int32, [POINTER(_Mesh), POINTER(_Pattern), POINTER(_Mesh), POINTER(TileOptions), POINTER(POINTER(_Tiles))]),
-    "tp_tiles_free": (None, [POINTER(_Tiles)]),
-    "tp_tiles_count": (c_int32, [POINTER(_Tiles), POINTER(c_size_t)]),
-    "tp_tiles_copy_kinds": (c_int32, [POINTER(_Tiles), POINTER(c_int32), c_size_t]),
-    "tp_tiles_copy_corners": (c_int32, [POINTER(_Tiles), POINTER(c_double), c_size_t]),
-    "tp_tiles_copy_frames": (c_int32, [POINTER(_Tiles), POINTER(c_double), c_size_t]),
-    "tp_tiles_copy_sizes": (c_int32, [POINTER(_Tiles), POINTER(c_double), c_size_t]),
-    "tp_tiles_copy_faces": (c_int32, [POINTER(_Tiles), POINTER(c_uint32), c_size_t]),
-    "tp_tiles_copy_steps": (c_int32, [POINTER(_Tiles), POINTER(c_uint32), c_size_t]),
-    "tp_tiles_copy_kept_fractions": (c_int32, [POINTER(_Tiles), POINTER(c_double), c_size_t]),
-    "tp_tiles_outline_counts": (c_int32, [POINTER(_Tiles), POINTER(c_size_t), POINTER(c_size_t)]),
-    "tp_tiles_copy_loop_counts": (c_int32, [POINTER(_Tiles), POINTER(c_uint32), c_size_t]),
-    "tp_tiles_copy_loop_sizes": (c_int32, [POINTER(_Tiles), POINTER(c_uint32), c_size_t]),
-    "tp_tiles_copy_loop_points": (c_int32, [POINTER(_Tiles), POINTER(c_double), c_size_t]),
-    "tp_tiles_labels": (c_int32, [POINTER(_Tiles), POINTER(c_char), c_size_t, POINTER(c_size_t)]),
-    "tp_tiles_cutlist_json": (c_int32, [POINTER(_Tiles), POINTER(c_char), c_size_t, POINTER(c_size_t)]),
-    "tp_tiles_report_json": (c_int32, [POINTER(_Tiles), POINTER(c_char), c_size_t, POINTER(c_size_t)]),
+    "tp_mesh_new": (TpStatus, [_f64p, c_size_t, _u32p, c_size_t, _u32p, c_size_t, POINTER(TpMeshP)]),
+    "tp_mesh_free": (None, [TpMeshP]),
+    "tp_mesh_counts": (TpStatus, [TpMeshP, _sizep, _sizep, _sizep]),
+    "tp_mesh_copy_vertices": (TpStatus, [TpMeshP, _f64p, c_size_t]),
+    "tp_mesh_copy_faces": (TpStatus, [TpMeshP, _u32p, c_size_t, _u32p, c_size_t]),
+    "tp_pattern_options_default": (TpPatternOptionsReturn, []),
+    "tp_pattern_options_init": (TpStatus, [POINTER(TpPatternOptions), c_size_t]),
+    "tp_pattern_solve": (TpStatus, [TpMeshP, POINTER(TpPatternOptions), TpProgressCallback, c_void_p, POINTER(TpPatternP)]),
+    "tp_pattern_free": (None, [TpPatternP]),
+    "tp_pattern_summary": (TpStatus, [TpPatternP, POINTER(TpPatternSummary)]),
+    "tp_pattern_copy_pairs": (TpStatus, [TpPatternP, _u32p, c_size_t]),
+    "tp_pattern_copy_unpaired": (TpStatus, [TpPatternP, _u32p, c_size_t]),
+    "tp_remesh_options_default": (TpRemeshOptionsReturn, []),
+    "tp_remesh_options_init": (TpStatus, [POINTER(TpRemeshOptions), c_size_t]),
+    "tp_remesh": (TpStatus, [TpMeshP, POINTER(TpRemeshOptions), TpProgressCallback, c_void_p, POINTER(TpMeshP)]),
+    "tp_last_error_message": (c_size_t, [_charp, c_size_t]),
+    "tp_tile_options_default": (TpTileOptionsReturn, []),
+    "tp_tile_options_init": (TpStatus, [POINTER(TpTileOptions), c_size_t]),
+    "tp_tiles_build": (TpStatus, [TpMeshP, TpPatternP, POINTER(TpTileOptions), POINTER(TpTilesP)]),
+    "tp_tiles_build_on_surface": (TpStatus, [TpMeshP, TpPatternP, TpMeshP, POINTER(TpTileOptions), POINTER(TpTilesP)]),
+    "tp_tiles_free": (None, [TpTilesP]),
+    "tp_tiles_count": (TpStatus, [TpTilesP, _sizep]),
+    "tp_tiles_copy_kinds": (TpStatus, [TpTilesP, _i32p, c_size_t]),
+    "tp_tiles_copy_corners": (TpStatus, [TpTilesP, _f64p, c_size_t]),
+    "tp_tiles_copy_frames": (TpStatus, [TpTilesP, _f64p, c_size_t]),
+    "tp_tiles_copy_sizes": (TpStatus, [TpTilesP, _f64p, c_size_t]),
+    "tp_tiles_copy_faces": (TpStatus, [TpTilesP, _u32p, c_size_t]),
+    "tp_tiles_report_json": (TpStatus, [TpTilesP, _charp, c_size_t, _sizep]),
+    "tp_tiles_copy_steps": (TpStatus, [TpTilesP, _u32p, c_size_t]),
+    "tp_tiles_copy_kept_fractions": (TpStatus, [TpTilesP, _f64p, c_size_t]),
+    "tp_tiles_outline_counts": (TpStatus, [TpTilesP, _sizep, _sizep]),
+    "tp_tiles_copy_loop_counts": (TpStatus, [TpTilesP, _u32p, c_size_t]),
+    "tp_tiles_copy_loop_sizes": (TpStatus, [TpTilesP, _u32p, c_size_t]),
+    "tp_tiles_copy_loop_points": (TpStatus, [TpTilesP, _f64p, c_size_t]),
+    "tp_tiles_labels": (TpStatus, [TpTilesP, _charp, c_size_t, _sizep]),
+    "tp_tiles_cutlist_json": (TpStatus, [TpTilesP, _charp, c_size_t, _sizep]),
 }
 
+#: Exports that exist only in some builds: bound when present.
+OPTIONAL_PROTOTYPES = {
+    "tp_test_panic": (TpStatus, []),
+}
 
-def _library_names():
+# ---------------------------------------------------------------------------------------
+# Loading
+# ---------------------------------------------------------------------------------------
+
+_PACKAGE_DIR = Path(__file__).resolve().parent
+
+
+def library_file_names():
+    """The library's file names on this platform, most likely first."""
     if sys.platform == "win32":
-        return ["tilepattern.dll"]
+        return ["tilepattern.dll", "libtilepattern.dll"]
     if sys.platform == "darwin":
-        return ["libtilepattern.dylib"]
+        return ["libtilepattern.dylib", "libtilepattern.so"]
     return ["libtilepattern.so"]
 
 
-def library_path():
-    """Where the native library is found.
+def library_candidates():
+    """Where the library is looked for, in order (the environment variable aside).
 
-    In order: the ``TILEPATTERN_LIB`` environment variable (a full path), next to this
-    package, the cargo target folder of a source checkout (``target/release``).
+    Returns
+    -------
+    list of pathlib.Path
+        Next to the package, then ``target/release`` of a source checkout (the package
+        lives in ``python/tilepattern`` of it) and of ``$CARGO_TARGET_DIR``.
+    """
+    folders = [_PACKAGE_DIR, _PACKAGE_DIR.parent.parent / "target" / "release"]
+    if os.environ.get("CARGO_TARGET_DIR"):
+        folders.append(Path(os.environ["CARGO_TARGET_DIR"]) / "release")
+    return [folder / name for folder in folders for name in library_file_names()]
+
+
+def library_path():
+    """The path of the native library that :func:`lib` loads.
+
+    Looked for in order: the ``TILEPATTERN_LIB`` environment variable (a full path), next
+    to the package (``tilepattern/libtilepattern.so``, ``.dylib`` or ``tilepattern.dll``),
+    and the cargo target folder of a source checkout (``../target/release`` relative to
+    ``python/``).
+
+    Returns
+    -------
+    pathlib.Path
 
     Raises
     ------
-    TilePatternError
-        With status ``TP_NOT_AVAILABLE`` when it is nowhere.
+    LibraryNotFoundError
+        When ``TILEPATTERN_LIB`` names a missing file, or the library is nowhere.
     """
     explicit = os.environ.get("TILEPATTERN_LIB")
     if explicit:
-        return Path(explicit)
-    here = Path(__file__).resolve().parent
-    candidates = [here / n for n in _library_names()]
-    candidates += [here.parent.parent / "target" / "release" / n for n in _library_names()]
+        path = Path(explicit).expanduser()
+        if not path.is_file():
+            raise LibraryNotFoundError("TILEPATTERN_LIB is set to %s, which is not a file" % explicit)
+        return path
+    candidates = library_candidates()
     for candidate in candidates:
         if candidate.is_file():
             return candidate
-    raise TilePatternError(9, "the TilePattern library was not found; build it with `cargo build --release` or set TILEPATTERN_LIB (looked at %s)" % ", ".join(str(c) for c in candidates))
+    raise LibraryNotFoundError(
+        "the TilePattern library was not found. Build it with `cargo build --release --lib` in the "
+        "repository, copy it next to the package, or set TILEPATTERN_LIB to its full path. Looked at: "
+        + ", ".join(str(c) for c in candidates)
+    )
 
 
-def _load():
-    lib = ctypes.CDLL(str(library_path()))
-    for name, (restype, argtypes) in _EXPORTS.items():
-        function = getattr(lib, name)
+def bind(library):
+    """Declares ``argtypes`` and ``restype`` of every export on a loaded ``ctypes.CDLL``.
+
+    Parameters
+    ----------
+    library : ctypes.CDLL
+
+    Raises
+    ------
+    LibraryNotFoundError
+        When an export of the header is missing (a library older than the header).
+    """
+    for name, (restype, argtypes) in PROTOTYPES.items():
+        try:
+            function = getattr(library, name)
+        except AttributeError:
+            raise LibraryNotFoundError("%s does not export %s: it is older than this package" % (library._name, name)) from None
         function.restype = restype
         function.argtypes = argtypes
-    loaded = lib.tp_abi_version()
-    if loaded != ABI_VERSION:
-        raise TilePatternError(9, "the library has ABI version %d, this package needs %d" % (loaded, ABI_VERSION))
-    return lib
+    for name, (restype, argtypes) in OPTIONAL_PROTOTYPES.items():
+        function = getattr(library, name, None)
+        if function is not None:
+            function.restype = restype
+            function.argtypes = argtypes
+    return library
 
 
 _lib = None
+_lib_lock = threading.Lock()
+
+
+def load(path=None):
+    """Loads and binds the library at ``path`` (default :func:`library_path`) and checks
+    its ABI version. Does not make it the library :func:`lib` returns.
+
+    Returns
+    -------
+    ctypes.CDLL
+    """
+    path = library_path() if path is None else Path(path)
+    try:
+        library = ctypes.CDLL(str(path))
+    except OSError as why:
+        raise LibraryNotFoundError("could not load %s: %s" % (path, why)) from None
+    bind(library)
+    loaded = library.tp_abi_version()
+    if loaded != ABI_VERSION:
+        raise LibraryNotFoundError("%s has ABI version %d; this package needs %d" % (path, loaded, ABI_VERSION))
+    return library
 
 
 def lib():
-    """The loaded library (loaded on first use)."""
+    """The loaded, bound library (loaded on first use, then cached).
+
+    Returns
+    -------
+    ctypes.CDLL
+    """
     global _lib
     if _lib is None:
-        _lib = _load()
+        with _lib_lock:
+            if _lib is None:
+                _lib = load()
     return _lib
 
 
-def last_error():
-    """This thread's last error message from the library."""
-    size = lib().tp_last_error_message(None, 0)
+# ---------------------------------------------------------------------------------------
+# Calls
+# ---------------------------------------------------------------------------------------
+
+
+def last_error_message():
+    """This thread's last error message from the library (empty after a success)."""
+    library = lib()
+    size = library.tp_last_error_message(None, 0)
     buffer = ctypes.create_string_buffer(size + 1)
-    lib().tp_last_error_message(buffer, size + 1)
+    library.tp_last_error_message(buffer, size + 1)
     return buffer.value.decode("utf-8", "replace")
 
 
 def check(status):
-    """Raises :class:`TilePatternError` for a non-zero status."""
-    if status != 0:
-        raise TilePatternError(status, last_error())
+    """Raises the :class:`TilePatternError` subclass for a non-zero status, with the
+    library's message; returns ``None`` for ``TP_OK``."""
+    if status != TP_OK:
+        raise error(status, last_error_message())
 
 
-def init(struct_type, init_name):
-    """A options struct filled with the library's defaults."""
-    options = struct_type()
+def as_pointer(array, ctype):
+    """A ``POINTER(ctype)`` to the data of a C-contiguous numpy array (``None`` for ``None``)."""
+    if array is None:
+        return None
+    if not array.flags.c_contiguous:
+        raise ValueError("array must be C-contiguous")
+    return array.ctypes.data_as(POINTER(ctype))
+
+
+def _options(struct, init_name):
+    options = struct()
     check(getattr(lib(), init_name)(ctypes.byref(options), ctypes.sizeof(options)))
     return options
 
 
-def text(function, handle):
-    """A string returned by one of the size-then-copy text functions."""
+def pattern_options():
+    """A :class:`TpPatternOptions` filled with the library's defaults (``_init``)."""
+    return _options(TpPatternOptions, "tp_pattern_options_init")
+
+
+def remesh_options():
+    """A :class:`TpRemeshOptions` filled with the library's defaults (``_init``)."""
+    return _options(TpRemeshOptions, "tp_remesh_options_init")
+
+
+def tile_options():
+    """A :class:`TpTileOptions` filled with the library's defaults (``_init``)."""
+    return _options(TpTileOptions, "tp_tile_options_init")
+
+
+def native_struct_size(default_name):
+    """The ``struct_size`` the library puts in its own defaults, e.g. for
+    ``"tp_remesh_options_default"``: ``sizeof`` the struct as the library was compiled.
+
+    Compare it with ``ctypes.sizeof`` of the mirror to find a header/library mismatch.
+    """
+    return getattr(lib(), default_name)().struct_size
+
+
+def _text(function, pointer):
+    """A string from one of the ask-the-size-then-copy text functions."""
     needed = c_size_t(0)
-    function(handle, None, 0, ctypes.byref(needed))
-    buffer = ctypes.create_string_buffer(needed.value + 1)
-    check(function(handle, buffer, needed.value + 1, None))
-    return buffer.value.decode("utf-8")
+    status = function(pointer, None, 0, ctypes.byref(needed))
+    if status not in (TP_OK, TP_BUFFER_TOO_SMALL):
+        check(status)
+    while True:
+        buffer = ctypes.create_string_buffer(needed.value + 1)
+        length = needed.value
+        status = function(pointer, buffer, length + 1, ctypes.byref(needed))
+        if status == TP_BUFFER_TOO_SMALL and needed.value > length:
+            continue  # cannot happen for an immutable handle; be safe anyway
+        check(status)
+        return buffer.raw[: needed.value].decode("utf-8")
+
+
+# ---------------------------------------------------------------------------------------
+# Progress callbacks
+# ---------------------------------------------------------------------------------------
+
+
+class ProgressBridge:
+    """A Python callable as a ``TpProgressCallback``.
+
+    ``progress(stage, fraction)`` gets the stage name (``"remesh"`` or ``"pattern"``) and
+    the fraction done; a true return value cancels the stage. An exception raised by
+    ``progress`` (``KeyboardInterrupt`` included) never reaches C: it is stored, the stage
+    is cancelled, and :meth:`finish` raises it again once the native call returned. The
+    bridge is installed even without ``progress``, so that Ctrl-C cancels a long solve.
+
+    Keep the bridge referenced for as long as the native call runs (the ctypes callback
+    object must outlive it).
+
+    Parameters
+    ----------
+    progress : callable or None
+    """
+
+    def __init__(self, progress=None):
+        if progress is not None and not callable(progress):
+            raise InvalidArgumentError(TP_INVALID_ARGUMENT, "progress must be callable, got %r" % (progress,))
+        self.progress = progress
+        self.exception = None
+        self.calls = 0
+        self.callback = TpProgressCallback(self._call)
+
+    def _call(self, _user, stage, fraction):
+        if self.exception is not None:
+            return 1
+        try:
+            self.calls += 1
+            if self.progress is None:
+                return 0
+            return 1 if self.progress(STAGE_NAMES.get(stage, str(stage)), float(fraction)) else 0
+        except BaseException as caught:  # noqa: BLE001 - raised again by finish()
+            self.exception = caught
+            return 1
+
+    def finish(self, status):
+        """Raises the callback's exception, if any, else checks ``status``."""
+        if self.exception is not None:
+            caught, self.exception = self.exception, None
+            try:
+                raise caught
+            finally:
+                caught = None
+        check(status)
+
+
+# ---------------------------------------------------------------------------------------
+# Handles
+# ---------------------------------------------------------------------------------------
 
 
 class Handle:
-    """Owns one native handle and frees it exactly once (``close``, ``with`` or garbage
-    collection)."""
+    """Owns one native pointer and releases it exactly once.
 
-    _free = None
+    ``close()`` (safe to call any number of times), the end of a ``with`` block and
+    garbage collection all release it; the handle keeps the library's free function, so
+    the library outlives it. Copies share the handle (``copy.copy`` returns the handle
+    itself) and pickling is refused: a native pointer cannot cross processes.
 
-    def __init__(self, pointer):
+    Parameters
+    ----------
+    pointer : ctypes pointer
+        A non-NULL pointer returned by the library.
+    free : callable
+        The ``tp_*_free`` function to release it with.
+    """
+
+    kind = "handle"
+
+    def __init__(self, pointer, free):
+        if not pointer:
+            raise ValueError("a %s handle needs a non-NULL pointer" % self.kind)
         self._pointer = pointer
+        self._free = free
+        self._lock = threading.Lock()
 
     @property
     def pointer(self):
-        if self._pointer is None:
-            raise ValueError("the handle was closed")
-        return self._pointer
+        """The native pointer; ``ValueError`` once the handle was closed."""
+        pointer = getattr(self, "_pointer", None)
+        if pointer is None:
+            raise ValueError("operation on a closed %s handle" % self.kind)
+        return pointer
+
+    @property
+    def closed(self):
+        """True once the native object was released."""
+        return getattr(self, "_pointer", None) is None
 
     def close(self):
-        pointer, self._pointer = self._pointer, None
-        if pointer is not None and _lib is not None:
-            getattr(_lib, self._free)(pointer)
+        """Releases the native object; further calls do nothing."""
+        lock = getattr(self, "_lock", None)
+        if lock is None:
+            return
+        with lock:
+            pointer, self._pointer = self._pointer, None
+        if pointer is not None:
+            self._free(pointer)
 
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc_info):
         self.close()
 
     def __del__(self):
-        self.close()
+        try:
+            self.close()
+        except Exception:  # noqa: BLE001 - nothing sensible to do at collection time
+            pass
+
+    def __copy__(self):
+        return self
+
+    def __deepcopy__(self, memo):
+        return self
+
+    def __reduce__(self):
+        raise TypeError("a native %s handle cannot be pickled" % self.kind)
+
+    def __repr__(self):
+        state = "closed" if self.closed else "0x%x" % ctypes.cast(self._pointer, c_void_p).value
+        return "<%s %s>" % (type(self).__name__, state)
 
 
 class MeshHandle(Handle):
-    _free = "tp_mesh_free"
+    """A validated native mesh (``TpMesh``)."""
+
+    kind = "mesh"
+
+    def __init__(self, pointer):
+        super().__init__(pointer, lib().tp_mesh_free)
+
+    @classmethod
+    def new(cls, vertices, indices, sizes):
+        """``tp_mesh_new`` on prepared arrays.
+
+        Parameters
+        ----------
+        vertices : ndarray (V, 3) float64, C-contiguous
+        indices : ndarray (I,) uint32, C-contiguous
+            All faces' vertex indices, face after face.
+        sizes : ndarray (F,) uint32, C-contiguous
+            Each face's number of vertices.
+        """
+        out = TpMeshP()
+        check(
+            lib().tp_mesh_new(
+                as_pointer(vertices, c_double), len(vertices),
+                as_pointer(indices, c_uint32), len(indices),
+                as_pointer(sizes, c_uint32), len(sizes),
+                ctypes.byref(out),
+            )
+        )
+        return cls(out)
+
+    def counts(self):
+        """``(vertex_count, face_count, index_count)``."""
+        nv, nf, ni = c_size_t(), c_size_t(), c_size_t()
+        check(lib().tp_mesh_counts(self.pointer, ctypes.byref(nv), ctypes.byref(nf), ctypes.byref(ni)))
+        return nv.value, nf.value, ni.value
+
+    def arrays(self):
+        """``(vertices (V, 3) float64, indices (I,) uint32, sizes (F,) uint32)``."""
+        nv, nf, ni = self.counts()
+        vertices = np.empty((nv, 3), dtype=np.float64)
+        indices = np.empty(ni, dtype=np.uint32)
+        sizes = np.empty(nf, dtype=np.uint32)
+        check(lib().tp_mesh_copy_vertices(self.pointer, as_pointer(vertices, c_double), vertices.size))
+        check(lib().tp_mesh_copy_faces(self.pointer, as_pointer(indices, c_uint32), ni, as_pointer(sizes, c_uint32), nf))
+        return vertices, indices, sizes
+
+    def remesh(self, options, progress=None):
+        """``tp_remesh``: the quad mesh as a new :class:`MeshHandle`."""
+        out = TpMeshP()
+        bridge = ProgressBridge(progress)
+        status = lib().tp_remesh(self.pointer, ctypes.byref(options), bridge.callback, None, ctypes.byref(out))
+        if status == TP_OK and out:
+            result = MeshHandle(out)
+        else:
+            result = None
+            if out:  # never expected: the library leaves *out alone on failure
+                lib().tp_mesh_free(out)
+        bridge.finish(status)
+        return result
+
+    def solve(self, options, progress=None):
+        """``tp_pattern_solve``: a new :class:`PatternHandle`."""
+        out = TpPatternP()
+        bridge = ProgressBridge(progress)
+        status = lib().tp_pattern_solve(self.pointer, ctypes.byref(options), bridge.callback, None, ctypes.byref(out))
+        if status == TP_OK and out:
+            result = PatternHandle(out)
+        else:
+            result = None
+            if out:
+                lib().tp_pattern_free(out)
+        bridge.finish(status)
+        return result
 
 
 class PatternHandle(Handle):
-    _free = "tp_pattern_free"
+    """A solved native pattern (``TpPattern``)."""
+
+    kind = "pattern"
+
+    def __init__(self, pointer):
+        super().__init__(pointer, lib().tp_pattern_free)
+
+    def summary(self):
+        """The :class:`TpPatternSummary`."""
+        summary = TpPatternSummary()
+        check(lib().tp_pattern_summary(self.pointer, ctypes.byref(summary)))
+        return summary
+
+    def pairs(self, count=None):
+        """Matched pairs as an ``(P, 2)`` uint32 array."""
+        count = self.summary().pairs if count is None else count
+        out = np.empty((count, 2), dtype=np.uint32)
+        check(lib().tp_pattern_copy_pairs(self.pointer, as_pointer(out, c_uint32), out.size))
+        return out
+
+    def unpaired(self, count=None):
+        """Unpaired quads as a ``(U,)`` uint32 array."""
+        count = self.summary().unpaired if count is None else count
+        out = np.empty(count, dtype=np.uint32)
+        check(lib().tp_pattern_copy_unpaired(self.pointer, as_pointer(out, c_uint32), out.size))
+        return out
+
+    def build_tiles(self, mesh, options, surface=None):
+        """``tp_tiles_build`` (or ``_on_surface``): a new :class:`TilesHandle`."""
+        out = TpTilesP()
+        if surface is None:
+            check(lib().tp_tiles_build(mesh.pointer, self.pointer, ctypes.byref(options), ctypes.byref(out)))
+        else:
+            check(lib().tp_tiles_build_on_surface(mesh.pointer, self.pointer, surface.pointer, ctypes.byref(options), ctypes.byref(out)))
+        return TilesHandle(out)
 
 
 class TilesHandle(Handle):
-    _free = "tp_tiles_free"
+    """Placed native tiles (``TpTiles``)."""
+
+    kind = "tiles"
+
+    def __init__(self, pointer):
+        super().__init__(pointer, lib().tp_tiles_free)
+
+    def count(self):
+        """The number of tiles."""
+        n = c_size_t()
+        check(lib().tp_tiles_count(self.pointer, ctypes.byref(n)))
+        return n.value
+
+    def _copy(self, name, shape, dtype, ctype):
+        out = np.empty(shape, dtype=dtype)
+        check(getattr(lib(), name)(self.pointer, as_pointer(out, ctype), out.size))
+        return out
+
+    def kinds(self, n):
+        """``TP_TILE_*`` per tile, ``(n,)`` int32."""
+        return self._copy("tp_tiles_copy_kinds", n, np.int32, c_int32)
+
+    def corners(self, n):
+        """``(n, 8, 3)`` box corners."""
+        return self._copy("tp_tiles_copy_corners", (n, 8, 3), np.float64, c_double)
+
+    def frames(self, n):
+        """``(n, 4, 3)``: origin, x (length), y (width), z (thickness) axes."""
+        return self._copy("tp_tiles_copy_frames", (n, 4, 3), np.float64, c_double)
+
+    def sizes(self, n):
+        """``(n, 3)``: length, width, thickness."""
+        return self._copy("tp_tiles_copy_sizes", (n, 3), np.float64, c_double)
+
+    def faces(self, n):
+        """``(n, 2)`` uint32 faces under each tile, ``TP_NO_FACE`` where none."""
+        return self._copy("tp_tiles_copy_faces", (n, 2), np.uint32, c_uint32)
+
+    def steps(self, n):
+        """``(n,)`` uint32 laying steps."""
+        return self._copy("tp_tiles_copy_steps", n, np.uint32, c_uint32)
+
+    def kept_fractions(self, n):
+        """``(n,)`` kept area over face area."""
+        return self._copy("tp_tiles_copy_kept_fractions", n, np.float64, c_double)
+
+    def outline_counts(self):
+        """``(loops, points)`` over all tiles."""
+        loops, points = c_size_t(), c_size_t()
+        check(lib().tp_tiles_outline_counts(self.pointer, ctypes.byref(loops), ctypes.byref(points)))
+        return loops.value, points.value
+
+    def outlines(self, n):
+        """Per tile, the list of its outline loops as ``(k, 2)`` arrays in its frame."""
+        loops, points = self.outline_counts()
+        loop_counts = self._copy("tp_tiles_copy_loop_counts", n, np.uint32, c_uint32)
+        loop_sizes = self._copy("tp_tiles_copy_loop_sizes", loops, np.uint32, c_uint32)
+        xy = self._copy("tp_tiles_copy_loop_points", (points, 2), np.float64, c_double)
+        ends = np.cumsum(loop_sizes, dtype=np.int64)
+        loop_arrays = [xy[e - s : e] for s, e in zip(loop_sizes.astype(np.int64), ends)]
+        result, at = [], 0
+        for c in loop_counts.astype(np.int64):
+            result.append(loop_arrays[at : at + c])
+            at += c
+        return result
+
+    def report_json(self):
+        """The report as a JSON string."""
+        return _text(lib().tp_tiles_report_json, self.pointer)
+
+    def labels(self):
+        """The cut-list label of every tile, as a list of str."""
+        return _text(lib().tp_tiles_labels, self.pointer).splitlines()
+
+    def cutlist_json(self):
+        """The cut list as a JSON string."""
+        return _text(lib().tp_tiles_cutlist_json, self.pointer)
 
 
-def new_handle(kind):
-    """A NULL out-pointer for a handle of ``kind`` (``_Mesh``, ``_Pattern`` or ``_Tiles``)."""
-    return POINTER(kind)()
+def version():
+    """The native library's version string, e.g. ``"0.1.0"``."""
+    return lib().tp_version().decode("ascii")
+
+
+def abi_version():
+    """The ABI version of the loaded library (:data:`ABI_VERSION` when it loaded)."""
+    return lib().tp_abi_version()

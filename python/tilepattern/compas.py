@@ -1,51 +1,226 @@
-"""TilePattern on COMPAS meshes: ``Mesh`` in, ``Mesh`` and ``Box`` out.
+"""TilePattern on COMPAS meshes: ``compas.datastructures.Mesh`` in, ``Mesh`` and
+``compas.geometry.Box`` out.
 
-COMPAS is imported here only, so the rest of the package works without it.
+COMPAS is imported when these functions are called, not when :mod:`tilepattern` is, so the
+core package works without it.
+
+Face indices in the results are COMPAS face keys: for a mesh whose keys are not
+``0 .. F-1`` in order (after faces were deleted, say), pairs, unpaired faces and tile faces
+are translated, and ``forced_pairs`` and ``excluded_faces`` are taken as face keys too.
+
+Examples
+--------
+>>> import compas
+>>> from compas.datastructures import Mesh
+>>> import tilepattern.compas as tpc
+>>> surface = Mesh.from_obj(compas.get("hypar.obj"))          # 64 quads, ~0.67 units each
+>>> pattern = tpc.match(surface, time_limit=5)
+>>> boxes = tpc.tiles(surface, pattern, length=1.2, width=0.6, thickness=0.05, joint=0.04)
+>>> len(boxes), tpc.report(boxes)["full_tiles"]
+(32, 32)
+>>> boxes[0].name, round(boxes[0].xsize, 2)
+('F', 1.2)
 """
 
-from compas.datastructures import Mesh
-from compas.geometry import Box, Frame
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
 
 from . import core
+from ._native import TP_INVALID_ARGUMENT, InvalidArgumentError
 
-__all__ = ["remesh", "match", "tiles", "boxes", "report"]
+__all__ = ["remesh", "match", "tiles", "boxes", "report", "TileBoxes", "mesh_vertices_faces", "box_from_frame"]
 
 
-def _vertices_faces(mesh):
+def _compas():
+    try:
+        from compas.datastructures import Mesh
+        from compas.geometry import Box, Frame
+    except ImportError as why:  # pragma: no cover - depends on the environment
+        raise ImportError("tilepattern.compas needs COMPAS 2: pip install 'compas>=2'") from why
+    return Mesh, Box, Frame
+
+
+def mesh_vertices_faces(mesh):
+    """The vertices, faces and face keys of a COMPAS mesh.
+
+    Parameters
+    ----------
+    mesh : compas.datastructures.Mesh
+
+    Returns
+    -------
+    vertices : list of list of float
+    faces : list of list of int
+        Vertex indices (positions in ``vertices``), any face sizes.
+    face_keys : ndarray (F,) int64
+        The COMPAS key of each face, in the order of ``faces``.
+    """
     vertices, faces = mesh.to_vertices_and_faces()
-    return vertices, faces
+    return vertices, faces, np.fromiter(mesh.faces(), dtype=np.int64, count=len(faces))
+
+
+def _keys_are_positions(keys):
+    return bool(np.array_equal(keys, np.arange(len(keys))))
+
+
+def _positions(values, keys, what):
+    """Face keys -> positions (as given when keys are positions)."""
+    if values is None or _keys_are_positions(keys):
+        return values
+    index = {int(k): i for i, k in enumerate(keys)}
+    a = np.asarray(values, dtype=np.int64)
+    try:
+        return np.vectorize(lambda k: index[int(k)], otypes=[np.int64])(a) if a.size else a
+    except KeyError as missing:
+        raise InvalidArgumentError(TP_INVALID_ARGUMENT, "%s: the mesh has no face %s" % (what, missing.args[0])) from None
+
+
+def _keys(positions, keys):
+    """Positions -> face keys; -1 stays -1."""
+    if _keys_are_positions(keys):
+        return positions
+    positions = np.asarray(positions, dtype=np.int64)
+    return np.where(positions >= 0, keys[np.clip(positions, 0, max(len(keys) - 1, 0))], -1)
 
 
 def remesh(mesh, target_edge=0.145, **options):
-    """Quadrangulate a COMPAS mesh (stage 1); see :func:`tilepattern.remesh`.
+    """Quadrangulate a COMPAS mesh (triangles or polygons) into near-square quads.
+
+    Parameters
+    ----------
+    mesh : compas.datastructures.Mesh
+        The surface.
+    target_edge : float, optional
+        Quad edge in model units: ``(L + joint) / 2`` for tiles of length ``L``.
+    **options
+        ``direction``, ``angle``, ``shapeup``, ``time_limit``, ``progress``: see
+        :func:`tilepattern.remesh`.
 
     Returns
     -------
     compas.datastructures.Mesh
-        The quad mesh; face keys are 0..F-1 in the order the library returns them.
+        The quad mesh; its face keys are ``0 .. F-1``.
+
+    Examples
+    --------
+    >>> import compas
+    >>> from compas.datastructures import Mesh
+    >>> import tilepattern.compas as tpc
+    >>> surface = Mesh.from_obj(compas.get("hypar.obj"))
+    >>> surface.quads_to_triangles()
+    >>> quads = tpc.remesh(surface, target_edge=0.4)
+    >>> all(len(quads.face_vertices(f)) == 4 for f in quads.faces())
+    True
     """
-    vertices, faces = core.remesh(*_vertices_faces(mesh), target_edge=target_edge, **options)
-    return Mesh.from_vertices_and_faces(vertices.tolist(), faces.tolist())
+    Mesh, _, _ = _compas()
+    vertices, faces, _ = mesh_vertices_faces(mesh)
+    qv, qf = core.remesh(vertices, faces, target_edge=target_edge, **options)
+    return Mesh.from_vertices_and_faces(qv.tolist(), qf.tolist() if isinstance(qf, np.ndarray) else qf)
 
 
-def match(mesh, **options):
-    """Match the faces of a COMPAS quad mesh into tiles (stage 2); see
-    :func:`tilepattern.match`. Face indices refer to the mesh's faces in iteration order."""
-    return core.match(*_vertices_faces(mesh), **options)
+def match(mesh, forced_pairs=None, excluded_faces=None, **options):
+    """Match the faces of a COMPAS quad mesh into tiles.
+
+    Parameters
+    ----------
+    mesh : compas.datastructures.Mesh
+        The quad mesh.
+    forced_pairs : list of [int, int], optional
+        Pairs of face keys that must form a tile.
+    excluded_faces : list of int, optional
+        Face keys that take part in no tile.
+    **options
+        ``bond``, ``weight``, ``time_limit``, ``method``, ``formulation``, ``progress``:
+        see :func:`tilepattern.match`.
+
+    Returns
+    -------
+    tilepattern.Pattern
+        ``pairs`` and ``unpaired`` hold face keys of ``mesh``.
+
+    Examples
+    --------
+    >>> import compas
+    >>> from compas.datastructures import Mesh
+    >>> import tilepattern.compas as tpc
+    >>> pattern = tpc.match(Mesh.from_obj(compas.get("hypar.obj")), bond="stack", time_limit=5)
+    >>> pattern.pairs.shape, pattern.status
+    ((32, 2), 'optimal')
+    """
+    vertices, faces, keys = mesh_vertices_faces(mesh)
+    pattern = core.match(
+        vertices,
+        faces,
+        forced_pairs=_positions(forced_pairs, keys, "forced_pairs"),
+        excluded_faces=_positions(excluded_faces, keys, "excluded_faces"),
+        **options,
+    )
+    if _keys_are_positions(keys):
+        return pattern
+    return dataclasses.replace(pattern, pairs=np.sort(_keys(pattern.pairs, keys), axis=1), unpaired=_keys(pattern.unpaired, keys))
 
 
-def tiles(mesh, pattern, surface=None, **options):
-    """Place tiles on a COMPAS quad mesh (stage 3), optionally cut to the COMPAS mesh
-    ``surface``; see :func:`tilepattern.tiles`."""
-    reference = _vertices_faces(surface) if surface is not None else None
-    return core.tiles(*_vertices_faces(mesh), pattern, surface=reference, **options)
+class TileBoxes(list):
+    """The list of COMPAS boxes returned by :func:`tiles`, one per tile, in tile order.
+
+    Attributes
+    ----------
+    tiles : tilepattern.Tiles
+        Everything else about the tiles: kinds, frames, corners, faces (face keys), laying
+        steps, outlines of cut tiles, labels, cut list.
+    report : dict
+        The tile report (``report.json``).
+    """
+
+    def __init__(self, boxes, tiles):
+        super().__init__(boxes)
+        self.tiles = tiles
+
+    @property
+    def report(self):
+        return self.tiles.report
+
+
+def box_from_frame(frame, size, name=None):
+    """A COMPAS box from a TilePattern tile frame and size.
+
+    TilePattern's frame sits at the centre of the box's bottom face (the box spans
+    ``[-L/2, L/2] x [-W/2, W/2] x [0, T]``); a COMPAS box's frame sits at its centre, so
+    the origin moves half the thickness along z. The axes stay.
+
+    Parameters
+    ----------
+    frame : array_like (4, 3)
+        Origin, x (length), y (width), z (thickness) axes.
+    size : array_like (3,)
+        Length, width, thickness.
+    name : str, optional
+
+    Returns
+    -------
+    compas.geometry.Box
+
+    Examples
+    --------
+    >>> box = box_from_frame([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], [0.28, 0.14, 0.015])
+    >>> box.frame.point.z, box.zmin, box.zmax
+    (0.0075, 0.0, 0.015)
+    """
+    _, Box, Frame = _compas()
+    origin, x, y, z = (np.asarray(v, dtype=np.float64) for v in np.asarray(frame, dtype=np.float64))
+    length, width, thickness = (float(s) for s in size)
+    centre = origin + z * (thickness / 2.0)
+    box = Box(length, width, thickness, frame=Frame(centre.tolist(), x.tolist(), y.tolist()))
+    if name is not None:
+        box.name = name
+    return box
 
 
 def boxes(placed):
-    """The tiles as COMPAS boxes.
-
-    COMPAS frames sit at the box centre; TilePattern's sit at the centre of the bottom
-    face, so each frame is moved half a thickness along its z axis.
+    """The tiles of :func:`tilepattern.tiles` as COMPAS boxes, named by cut-list label.
 
     Parameters
     ----------
@@ -53,19 +228,73 @@ def boxes(placed):
 
     Returns
     -------
-    list of compas.geometry.Box
-        Named by cut-list label.
+    TileBoxes
+        A list of :class:`compas.geometry.Box`, with the tiles under ``.tiles``.
     """
-    result = []
-    for frame, size, label in zip(placed.frames, placed.sizes, placed.labels):
-        origin, x, y, z = frame
-        centre = origin + z * (size[2] / 2.0)
-        box = Box(size[0], size[1], size[2], frame=Frame(centre.tolist(), x.tolist(), y.tolist()))
-        box.name = label
-        result.append(box)
-    return result
+    return TileBoxes(
+        [box_from_frame(frame, size, label) for frame, size, label in zip(placed.frames, placed.sizes, placed.labels)],
+        placed,
+    )
 
 
-def report(placed):
-    """The tile report as a dict (the library's ``report.json``)."""
+def tiles(mesh, pattern, surface=None, **options):
+    """Place tiles on a COMPAS quad mesh and return them as COMPAS boxes.
+
+    Parameters
+    ----------
+    mesh : compas.datastructures.Mesh
+        The quad mesh the pattern was solved on.
+    pattern : tilepattern.Pattern
+        From :func:`match` on this mesh.
+    surface : compas.datastructures.Mesh, optional
+        The surface the quads were made from: tiles are cut to its boundary.
+    **options
+        ``length``, ``width``, ``thickness``, ``joint``, ``cut_tolerance``,
+        ``min_kept_width``, ``up``, ``support_band``: see :func:`tilepattern.tiles`.
+
+    Returns
+    -------
+    TileBoxes
+        A list of :class:`compas.geometry.Box` (frames at the box centres, named by
+        cut-list label ``F``, ``H``, ``B1``...), with ``.tiles`` and ``.report``.
+
+    Examples
+    --------
+    >>> import compas
+    >>> from compas.datastructures import Mesh
+    >>> import tilepattern.compas as tpc
+    >>> quads = Mesh.from_obj(compas.get("hypar.obj"))
+    >>> boxes = tpc.tiles(quads, tpc.match(quads, time_limit=5), length=1.2, width=0.6, thickness=0.05, joint=0.04)
+    >>> boxes.tiles.kinds[:2].tolist(), boxes.report["half_tiles"]
+    (['full', 'full'], 0)
+    """
+    vertices, faces, keys = mesh_vertices_faces(mesh)
+    reference = None
+    if surface is not None:
+        sv, sf, _ = mesh_vertices_faces(surface)
+        reference = (sv, sf)
+    placed = core.tiles(vertices, faces, pattern, surface=reference, **options)
+    if not _keys_are_positions(keys):
+        placed = dataclasses.replace(placed, faces=_keys(placed.faces, keys))
+    return boxes(placed)
+
+
+def report(result):
+    """The tile report as a dict.
+
+    Parameters
+    ----------
+    result : TileBoxes or tilepattern.Tiles
+        What :func:`tiles` or :func:`tilepattern.tiles` returned.
+
+    Returns
+    -------
+    dict
+        ``faces``, ``full_tiles``, ``half_tiles``, ``boundary_tiles``, ``objective``,
+        ``bound``, ``gap``, ``status``, ``tile``, ``joints``, ``cutting``, ``sequence``,
+        ``seconds``... (``report.json`` of the command line).
+    """
+    placed = getattr(result, "tiles", result)
+    if not isinstance(placed, core.Tiles):
+        raise TypeError("report() takes what tiles() returned, got %s" % type(result).__name__)
     return dict(placed.report)

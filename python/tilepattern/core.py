@@ -1,161 +1,319 @@
-"""The three stages on plain arrays: ``(vertices, faces)`` in, numpy arrays and small result
-objects out, in the style of compas_cgal and compas_libigl."""
+"""The three stages on plain arrays, in the style of compas_cgal and compas_libigl:
+``(vertices, faces)`` in, numpy arrays and small result objects out.
 
-import ctypes
+``vertices`` is anything ``numpy.asarray`` turns into a ``(V, 3)`` float array (a list of
+``[x, y, z]``, COMPAS points, an array). ``faces`` is a list of vertex-index lists, which
+may mix triangles, quads and n-gons (COMPAS's ``Mesh.to_vertices_and_faces()``), or an
+``(F, k)`` integer array. Face and vertex indices are 0-based and keep their order, so the
+face indices in results refer to the faces as given.
+"""
+
+from __future__ import annotations
+
+import itertools
 import json
-from ctypes import c_double, c_int32, c_size_t, c_uint32
+import warnings
 from dataclasses import dataclass, field
+from typing import Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from . import _native as nat
-from ._native import TilePatternError
+from ._native import InvalidArgumentError, InvalidMeshError
 
-__all__ = ["Pattern", "Tiles", "mesh_arrays", "remesh", "match", "tiles"]
+__all__ = [
+    "Pattern",
+    "Tiles",
+    "remesh",
+    "match",
+    "tiles",
+    "mesh_handle",
+    "mesh_arrays",
+    "BONDS",
+    "METHODS",
+    "FORMULATIONS",
+]
+
+#: ``bond`` names of :func:`match` and their ``TP_BOND_*`` codes.
+BONDS = {"stack": nat.TP_BOND_STACK, "staggered": nat.TP_BOND_STAGGERED, "running": nat.TP_BOND_RUNNING, "running-bond": nat.TP_BOND_RUNNING}
+#: ``method`` names of :func:`match`.
+METHODS = {"auto": nat.TP_METHOD_AUTO, "mip": nat.TP_METHOD_MIP}
+#: ``formulation`` names of :func:`match`.
+FORMULATIONS = {"strengthened": nat.TP_FORMULATION_STRENGTHENED, "paper": nat.TP_FORMULATION_PAPER}
+
+Progress = Callable[[str, float], Optional[bool]]
+
+# ---------------------------------------------------------------------------------------
+# Meshes
+# ---------------------------------------------------------------------------------------
 
 
-def _faces_arrays(faces):
-    """Flat indices and sizes of ``faces`` (a list of index lists, or an ``(F, k)`` array)."""
+def _vertex_array(vertices):
+    try:
+        v = np.asarray(vertices, dtype=np.float64, order="C")
+    except (TypeError, ValueError) as why:
+        raise InvalidMeshError(nat.TP_INVALID_MESH, "vertices are not an array of (x, y, z) numbers: %s" % why) from None
+    if v.size == 0:
+        return np.zeros((0, 3), dtype=np.float64)
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise InvalidMeshError(nat.TP_INVALID_MESH, "vertices must have shape (V, 3), got %s" % (v.shape,))
+    return np.ascontiguousarray(v)
+
+
+def _integer_array(values, what):
+    a = np.asarray(values)
+    if a.size == 0:
+        return np.zeros(a.shape, dtype=np.int64)
+    if a.dtype.kind in "iu":
+        return a.astype(np.int64, copy=False)
+    if a.dtype.kind == "f" and np.all(np.isfinite(a)) and np.all(a == np.round(a)):
+        return a.astype(np.int64)
+    raise InvalidMeshError(nat.TP_INVALID_MESH, "%s must be integers, got %s" % (what, a.dtype))
+
+
+def _uniform_faces(faces):
+    """``faces`` as an ``(F, k)`` array when all faces have the same size (the fast path),
+    else unchanged."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # numpy < 1.24 only warns about ragged lists
+            array = np.asarray(faces)
+    except (ValueError, TypeError, Warning):
+        return faces
+    return array if array.ndim == 2 and array.dtype.kind in "iuf" else faces
+
+
+def face_arrays(faces):
+    """Flat vertex indices and face sizes in the layout of ``tp_mesh_new``.
+
+    Parameters
+    ----------
+    faces : list of list of int or array_like (F, k)
+        Faces of any sizes (triangles, quads, n-gons may be mixed).
+
+    Returns
+    -------
+    indices : ndarray (I,) uint32
+        All faces' vertex indices, face after face.
+    sizes : ndarray (F,) uint32
+        Each face's number of vertices.
+
+    Raises
+    ------
+    InvalidMeshError
+        For indices that are not integers or are negative or beyond ``uint32``.
+
+    Examples
+    --------
+    >>> indices, sizes = face_arrays([[0, 1, 2], [0, 2, 3, 4]])
+    >>> indices.tolist(), sizes.tolist()
+    ([0, 1, 2, 0, 2, 3, 4], [3, 4])
+    """
+    if not isinstance(faces, np.ndarray):
+        faces = _uniform_faces(faces)
     if isinstance(faces, np.ndarray) and faces.ndim == 2:
-        rows = faces
-        sizes = np.full(len(rows), rows.shape[1], dtype=np.int64)
-        flat = np.asarray(rows, dtype=np.int64).reshape(-1)
+        flat = _integer_array(faces, "face indices").reshape(-1)
+        sizes = np.full(faces.shape[0], faces.shape[1], dtype=np.int64)
     else:
-        rows = [np.asarray(f, dtype=np.int64).reshape(-1) for f in faces]
-        sizes = np.array([len(r) for r in rows], dtype=np.int64)
-        flat = np.concatenate(rows) if rows else np.zeros(0, dtype=np.int64)
-    if flat.size and (flat.min() < 0 or flat.max() > 0xFFFFFFFE):
-        bad = int(np.flatnonzero((flat < 0) | (flat > 0xFFFFFFFE))[0])
-        face = int(np.searchsorted(np.cumsum(sizes), bad, side="right"))
-        raise TilePatternError(4, "face %d: vertex index %d is out of range" % (face, int(flat[bad])))
-    return np.ascontiguousarray(flat, dtype=np.uint32), np.ascontiguousarray(sizes, dtype=np.uint32)
-
-
-def _mesh(vertices, faces):
-    """A native mesh from ``(vertices, faces)``, validated by the library."""
-    v = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64).reshape(-1, 3))
-    indices, sizes = _faces_arrays(faces)
-    out = nat.new_handle(nat._Mesh)
-    nat.check(
-        nat.lib().tp_mesh_new(
-            v.ctypes.data_as(ctypes.POINTER(c_double)), len(v),
-            indices.ctypes.data_as(ctypes.POINTER(c_uint32)), len(indices),
-            sizes.ctypes.data_as(ctypes.POINTER(c_uint32)), len(sizes),
-            ctypes.byref(out),
-        )
-    )
-    return nat.MeshHandle(out)
-
-
-def mesh_arrays(handle):
-    """``(vertices (V, 3) float64, faces list of index arrays)`` of a native mesh."""
-    counts = [c_size_t(), c_size_t(), c_size_t()]
-    nat.check(nat.lib().tp_mesh_counts(handle.pointer, *[ctypes.byref(c) for c in counts]))
-    nv, nf, ni = (c.value for c in counts)
-    vertices = np.zeros((nv, 3), dtype=np.float64)
-    indices = np.zeros(ni, dtype=np.uint32)
-    sizes = np.zeros(nf, dtype=np.uint32)
-    nat.check(nat.lib().tp_mesh_copy_vertices(handle.pointer, vertices.ctypes.data_as(ctypes.POINTER(c_double)), 3 * nv))
-    nat.check(
-        nat.lib().tp_mesh_copy_faces(
-            handle.pointer, indices.ctypes.data_as(ctypes.POINTER(c_uint32)), ni, sizes.ctypes.data_as(ctypes.POINTER(c_uint32)), nf
-        )
-    )
-    return vertices, np.split(indices.astype(np.int64), np.cumsum(sizes)[:-1]) if nf else []
-
-
-class _Progress:
-    """A Python callable as a native progress callback: ``progress(stage, fraction)``
-    returning True cancels. Exceptions in it cancel the call and are raised after it."""
-
-    STAGES = {nat.TP_STAGE_REMESH: "remesh", nat.TP_STAGE_PATTERN: "pattern"}
-
-    def __init__(self, progress):
-        self.progress = progress
-        self.error = None
-        self.callback = nat.PROGRESS(self._call) if progress else nat.PROGRESS()
-
-    def _call(self, _user, stage, fraction):
+        rows = [face if hasattr(face, "__len__") else list(face) for face in faces]
+        sizes = np.fromiter(map(len, rows), dtype=np.int64, count=len(rows))
         try:
-            return 1 if self.progress(self.STAGES.get(stage, str(stage)), fraction) else 0
-        except BaseException as error:  # noqa: BLE001 - re-raised after the native call
-            self.error = error
-            return 1
+            flat = np.fromiter(itertools.chain.from_iterable(rows), dtype=np.float64, count=int(sizes.sum()))
+        except (TypeError, ValueError):
+            flat = np.concatenate([np.asarray(row).reshape(-1) for row in rows]) if rows else np.zeros(0)
+        flat = _integer_array(flat, "face indices")
+    bad = np.flatnonzero((flat < 0) | (flat > 0xFFFFFFFE))
+    if bad.size:
+        face = int(np.searchsorted(np.cumsum(sizes), bad[0], side="right"))
+        raise InvalidMeshError(nat.TP_INVALID_MESH, "face %d refers to vertex %d, which is out of range" % (face, flat[bad[0]]))
+    return np.asarray(flat, dtype=np.uint32, order="C"), np.asarray(sizes, dtype=np.uint32, order="C")
 
-    def finish(self, status):
-        if self.error is not None:
-            raise self.error
-        nat.check(status)
 
-
-def remesh(vertices, faces, target_edge=0.145, direction=None, angle=None, shapeup=False, progress=None):
-    """Quadrangulate a triangle (or polygon) surface into near-square quads (stage 1).
+def mesh_handle(vertices, faces):
+    """A validated native mesh from ``(vertices, faces)``.
 
     Parameters
     ----------
     vertices : array_like (V, 3)
-    faces : list of index lists or array_like (F, k)
-    target_edge : float
-        Quad edge in model units; ``(L + joint) / 2`` for tiles of length L.
-    direction : array_like (3,), optional
-        Align the quads with this direction instead of the principal curvature.
-    angle : float, optional
-        Rotate the curvature-aligned field by this many degrees.
-    shapeup : bool
-        Pull faces towards squares without leaving the surface.
-    progress : callable, optional
-        ``progress(stage, fraction)``; return True to cancel.
+    faces : list of list of int or array_like (F, k)
 
     Returns
     -------
-    tuple
-        ``(vertices (V, 3) float64, faces (F, 4) int64)`` of the quad mesh.
+    tilepattern._native.MeshHandle
+        Close it (or use it in a ``with`` block) when done.
+
+    Raises
+    ------
+    InvalidMeshError
+        NaN or infinite coordinates, bad indices, non-manifold edges, an empty mesh.
 
     Examples
     --------
+    >>> with mesh_handle([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2, 3]]) as mesh:
+    ...     mesh.counts()
+    (4, 1, 4)
+    """
+    v = _vertex_array(vertices)
+    indices, sizes = face_arrays(faces)
+    return nat.MeshHandle.new(v, indices, sizes)
+
+
+def _faces_out(indices, sizes):
+    """An ``(F, k)`` int64 array when all faces have k vertices, else a list of lists."""
+    if len(sizes) == 0:
+        return np.zeros((0, 4), dtype=np.int64)
+    if np.all(sizes == sizes[0]):
+        return indices.astype(np.int64).reshape(-1, int(sizes[0]))
+    ends = np.cumsum(sizes, dtype=np.int64)
+    flat = indices.tolist()
+    return [flat[e - s : e] for s, e in zip(sizes.tolist(), ends.tolist())]
+
+
+def mesh_arrays(handle):
+    """``(vertices, faces)`` of a native mesh.
+
+    Returns
+    -------
+    vertices : ndarray (V, 3) float64
+    faces : ndarray (F, k) int64 or list of list of int
+        An array when all faces have the same size, else a list of lists.
+    """
+    vertices, indices, sizes = handle.arrays()
+    return vertices, _faces_out(indices, sizes)
+
+
+# ---------------------------------------------------------------------------------------
+# Stage 1: remesh
+# ---------------------------------------------------------------------------------------
+
+
+def remesh(
+    vertices,
+    faces,
+    target_edge: float = 0.145,
+    direction: Optional[Sequence[float]] = None,
+    angle: Optional[float] = None,
+    shapeup: bool = False,
+    time_limit: float = 60.0,
+    progress: Optional[Progress] = None,
+) -> Tuple[np.ndarray, np.ndarray]:
+    """Quadrangulate a surface into near-square quads (stage 1).
+
+    The quads follow the principal curvature (the paper's choice), a direction projected
+    onto the surface, or the curvature field rotated by an angle.
+
+    Parameters
+    ----------
+    vertices : array_like (V, 3)
+        The surface's vertices.
+    faces : list of list of int or array_like (F, k)
+        Its faces: triangles, quads or n-gons, mixed if need be.
+    target_edge : float, optional
+        Quad edge in model units; ``(L + joint) / 2`` for tiles of length ``L``.
+        Default 0.145, i.e. 280 mm tiles and 10 mm joints in metres.
+    direction : array_like (3,), optional
+        Align the quads with this direction (projected onto the surface).
+    angle : float, optional
+        Rotate the curvature-aligned field by this many degrees.
+    shapeup : bool, optional
+        Pull the faces towards squares without leaving the surface.
+    time_limit : float, optional
+        Wall-clock seconds for the stage (default 60): when they pass, the quad mesh as it
+        stands is returned if there is one, else :class:`~tilepattern.TimeLimitError`.
+    progress : callable, optional
+        ``progress(stage, fraction)`` with ``stage == "remesh"``, called about every 10 ms;
+        return True to cancel (:class:`~tilepattern.CancelledError`).
+
+    Returns
+    -------
+    vertices : ndarray (V, 3) float64
+        The quad mesh's vertices.
+    faces : ndarray (F, 4) int64
+        Its faces (a list of lists in the unlikely case that not all are quads).
+
+    Raises
+    ------
+    TilePatternError
+        ``InvalidMeshError`` for a bad surface, ``InvalidArgumentError`` for bad options,
+        ``CancelledError``, ``TimeLimitError``.
+
+    Examples
+    --------
+    A gently curved 2 x 2 square of 800 triangles, remeshed into quads of edge 0.25:
+
     >>> import numpy as np
     >>> from tilepattern import remesh
-    >>> x, y = np.meshgrid(np.linspace(0, 2, 21), np.linspace(0, 2, 21))
+    >>> n = 21
+    >>> x, y = np.meshgrid(np.linspace(0, 2, n), np.linspace(0, 2, n))
     >>> V = np.c_[x.ravel(), y.ravel(), 0.1 * x.ravel() * y.ravel()]
-    >>> F = [[i + 21 * j, i + 1 + 21 * j, i + 1 + 21 * (j + 1)] for j in range(20) for i in range(20)]
-    >>> F += [[i + 21 * j, i + 1 + 21 * (j + 1), i + 21 * (j + 1)] for j in range(20) for i in range(20)]
+    >>> at = lambda i, j: i + n * j
+    >>> F = [[at(i, j), at(i + 1, j), at(i + 1, j + 1)] for j in range(n - 1) for i in range(n - 1)]
+    >>> F += [[at(i, j), at(i + 1, j + 1), at(i, j + 1)] for j in range(n - 1) for i in range(n - 1)]
     >>> QV, QF = remesh(V, F, target_edge=0.25)
-    >>> QF.shape[1]
-    4
+    >>> QF.shape[1], 40 < len(QF) < 90
+    (4, True)
     """
-    options = nat.init(nat.RemeshOptions, "tp_remesh_options_init")
-    options.target_edge = target_edge
+    if direction is not None and angle is not None:
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "give either direction or angle, not both")
+    options = nat.remesh_options()
+    options.target_edge = float(target_edge)
     if direction is not None:
-        options.direction = nat.DIRECTIONS["vector"]
-        options.direction_vector[:] = [float(c) for c in direction]
+        d = np.asarray(direction, dtype=np.float64).reshape(-1)
+        if d.shape != (3,):
+            raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "direction must be 3 numbers, got %r" % (direction,))
+        options.direction = nat.TP_DIRECTION_VECTOR
+        options.direction_vector[:] = d.tolist()
     elif angle is not None:
-        options.direction = nat.DIRECTIONS["angle"]
-        options.angle_degrees = angle
+        options.direction = nat.TP_DIRECTION_ANGLE
+        options.angle_degrees = float(angle)
     options.shapeup = 1 if shapeup else 0
-    with _mesh(vertices, faces) as surface:
-        out = nat.new_handle(nat._Mesh)
-        bridge = _Progress(progress)
-        status = nat.lib().tp_remesh(surface.pointer, ctypes.byref(options), bridge.callback, None, ctypes.byref(out))
-        bridge.finish(status)
-        with nat.MeshHandle(out) as quads:
-            qv, qf = mesh_arrays(quads)
-    return qv, np.array(qf, dtype=np.int64).reshape(-1, 4)
+    options.time_limit_seconds = float(time_limit)
+    with mesh_handle(vertices, faces) as surface:
+        with surface.remesh(options, progress) as quads:
+            return mesh_arrays(quads)
 
 
-@dataclass
+# ---------------------------------------------------------------------------------------
+# Stage 2: match
+# ---------------------------------------------------------------------------------------
+
+
+@dataclass(eq=False)
 class Pattern:
-    """A matching of quads into tiles (stage 2).
+    """A matching of quads into tiles: the result of :func:`match`.
+
+    It keeps the native pattern that :func:`tiles` needs; ``close()`` (or a ``with``
+    block) releases it early, garbage collection does otherwise.
 
     Attributes
     ----------
     pairs : ndarray (P, 2) int64
-        Matched faces: each row becomes a full tile.
+        Matched faces ``[a, b]``, ``a < b``, sorted: each pair becomes a full tile.
     unpaired : ndarray (U,) int64
-        Quads left alone: each becomes a half tile.
-    objective, bound, gap : float
-        The objective, a proven upper bound on it, and their relative gap.
+        Quads in no pair: each becomes a half tile, which needs a cut.
+    faces : int
+        Faces of the mesh.
+    excluded : int
+        Faces excluded with ``excluded_faces``.
+    non_quad : int
+        Faces that are not quads (never paired, no tile).
+    continuous_joints : int
+        Continuous joints in the pattern (the paper's eq. 2, y).
+    shifted_pairs : int
+        Tiles side by side shifted by one face (eq. 3, z).
+    objective : float
+        Objective of this pattern.
+    bound : float
+        Proven upper bound on the objective.
+    gap : float
+        ``(bound - objective) / max(bound, 1)``.
     status : str
-        ``"optimal"`` (proven), ``"time_limit"`` or ``"feasible"``.
+        ``"optimal"`` only when proven; ``"time_limit"`` when the limit stopped the
+        search with a gap; ``"feasible"`` when it ended with a gap for another reason.
+    seconds : float
+        Wall-clock time of the solve.
+    status_code : int
+        ``TP_SOLVE_*``.
     """
 
     pairs: np.ndarray
@@ -170,238 +328,404 @@ class Pattern:
     gap: float
     status: str
     seconds: float
-    _handle: nat.PatternHandle = field(repr=False, default=None)
+    status_code: int = 0
+    handle: Optional[nat.PatternHandle] = field(default=None, repr=False)
+
+    @property
+    def optimal(self) -> bool:
+        """True when the pattern is proven optimal."""
+        return self.status_code == nat.TP_SOLVE_OPTIMAL
+
+    @property
+    def counts(self) -> dict:
+        """The face and tile counts as a dict."""
+        return {
+            "faces": self.faces,
+            "pairs": len(self.pairs),
+            "unpaired": len(self.unpaired),
+            "excluded": self.excluded,
+            "non_quad": self.non_quad,
+            "continuous_joints": self.continuous_joints,
+            "shifted_pairs": self.shifted_pairs,
+        }
+
+    def to_dict(self) -> dict:
+        """The pattern as plain data, with the field names of ``tilepattern match --json``."""
+        return dict(
+            self.counts,
+            pairs=self.pairs.tolist(),
+            unpaired=self.unpaired.tolist(),
+            objective=self.objective,
+            bound=self.bound,
+            gap=self.gap,
+            status=self.status,
+            seconds=self.seconds,
+        )
+
+    @property
+    def closed(self) -> bool:
+        """True once the native pattern was released (it can no longer make tiles)."""
+        return self.handle is None or self.handle.closed
 
     def close(self):
-        """Releases the native pattern (also done when the object is collected)."""
-        if self._handle is not None:
-            self._handle.close()
+        """Releases the native pattern; the arrays stay. Safe to call more than once."""
+        if self.handle is not None:
+            self.handle.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        self.close()
+
+    @classmethod
+    def _from_handle(cls, handle):
+        s = handle.summary()
+        return cls(
+            pairs=handle.pairs(s.pairs).astype(np.int64),
+            unpaired=handle.unpaired(s.unpaired).astype(np.int64),
+            faces=int(s.faces),
+            excluded=int(s.excluded),
+            non_quad=int(s.non_quad),
+            continuous_joints=int(s.continuous_joints),
+            shifted_pairs=int(s.shifted_pairs),
+            objective=float(s.objective),
+            bound=float(s.bound),
+            gap=float(s.gap),
+            status=nat.SOLVE_STATUS_NAMES.get(s.status, str(s.status)),
+            seconds=float(s.seconds),
+            status_code=int(s.status),
+            handle=handle,
+        )
+
+
+def _choice(value, choices, what):
+    if isinstance(value, str) and value in choices:
+        return choices[value]
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+        return int(value)  # a TP_* code: the library checks its range
+    raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "%s %r: choose one of %s" % (what, value, ", ".join(repr(c) for c in choices)))
+
+
+def _index_array(values, what, shape_last=None):
+    if values is None:
+        return np.zeros(0, dtype=np.uint32)
+    try:
+        a = _integer_array(values, what)
+    except InvalidMeshError as why:
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, why.message) from None
+    if shape_last is not None and a.size and a.shape[-1] != shape_last:
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "%s must be pairs of face indices, got shape %s" % (what, a.shape))
+    a = a.reshape(-1)
+    if a.size and (a.min() < 0 or a.max() > 0xFFFFFFFF):
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "%s: face %d is out of range" % (what, a[(a < 0) | (a > 0xFFFFFFFF)][0]))
+    return np.asarray(a, dtype=np.uint32, order="C")
 
 
 def match(
     vertices,
     faces,
-    bond="staggered",
-    weight=0.5,
-    time_limit=60.0,
-    method="auto",
-    formulation="strengthened",
-    forced_pairs=(),
-    excluded_faces=(),
-    progress=None,
-):
+    bond: str = "staggered",
+    weight: float = 0.5,
+    time_limit: float = 60.0,
+    method: str = "auto",
+    formulation: str = "strengthened",
+    forced_pairs=None,
+    excluded_faces=None,
+    progress: Optional[Progress] = None,
+) -> Pattern:
     """Match adjacent quads into tiles with the paper's integer programs (stage 2).
 
     Parameters
     ----------
-    vertices, faces
-        The quad mesh.
-    bond : {"staggered", "stack", "running"}
-        Eq. (2) staggered bond, eq. (1) maximum matching, eq. (3) running bond.
-    weight : float
-        Penalty per continuous joint (staggered) or reward per shifted pair (running).
-    time_limit : float
-        Wall-clock seconds; the result states whether it is proven optimal.
-    forced_pairs : array_like (K, 2)
-        Pairs of faces that must become tiles.
-    excluded_faces : array_like (E,)
-        Faces that take part in no tile.
+    vertices : array_like (V, 3)
+        Vertices of the quad mesh.
+    faces : list of list of int or array_like (F, k)
+        Its faces; faces that are not quads take part in no tile.
+    bond : {"staggered", "stack", "running"}, optional
+        ``"staggered"`` (eq. 2, default): as many tiles as possible with few continuous
+        joints; ``"stack"`` (eq. 1): maximum matching; ``"running"`` (eq. 3): running bond.
+    weight : float, optional
+        Penalty per continuous joint (staggered) or reward per shifted pair (running);
+        default 0.5.
+    time_limit : float, optional
+        Wall-clock seconds (default 60); 0 returns the greedy start at once. A solve
+        stopped by the limit still returns a valid pattern with ``status="time_limit"``.
+    method : {"auto", "mip"}, optional
+        ``"auto"``: whole program on CBC up to 600 faces, a decomposition above;
+        ``"mip"``: the paper's whole program.
+    formulation : {"strengthened", "paper"}, optional
+        ``"strengthened"`` adds valid rows to eq. 2 (same optimum, proven sooner).
+    forced_pairs : array_like (K, 2) of int, optional
+        Pairs of adjacent faces that must form a tile.
+    excluded_faces : array_like (E,) of int, optional
+        Faces that take part in no tile (openings, areas laid by hand).
     progress : callable, optional
-        ``progress(stage, fraction)``; return True to cancel (raises ``TP_CANCELLED``).
+        ``progress(stage, fraction)`` with ``stage == "pattern"`` and the share of the time
+        limit used; return True to cancel (:class:`~tilepattern.CancelledError`). An
+        exception raised in it cancels the solve and is raised again by ``match``.
 
     Returns
     -------
     Pattern
+        Pairs, unpaired quads, objective, bound, gap and status.
+
+    Raises
+    ------
+    TilePatternError
+        ``InvalidMeshError``, ``InvalidArgumentError`` (a weight, a time limit, a face in
+        the options), ``SolverFailedError``, ``CancelledError``.
 
     Examples
     --------
+    A 4 x 4 grid of quads takes 8 tiles:
+
     >>> from tilepattern import match
     >>> V = [[i, j, 0.0] for j in range(5) for i in range(5)]
     >>> F = [[i + 5 * j, i + 1 + 5 * j, i + 6 + 5 * j, i + 5 + 5 * j] for j in range(4) for i in range(4)]
-    >>> p = match(V, F, time_limit=5)
-    >>> len(p.pairs), p.status
-    (8, 'optimal')
+    >>> pattern = match(V, F, time_limit=5)
+    >>> len(pattern.pairs), len(pattern.unpaired), pattern.status
+    (8, 0, 'optimal')
+
+    Keep face 0 out of the tiles and force faces 1 and 2 into one:
+
+    >>> pattern = match(V, F, bond="stack", excluded_faces=[0], forced_pairs=[[1, 2]], time_limit=5)
+    >>> pattern.excluded, [1, 2] in pattern.pairs.tolist()
+    (1, True)
     """
-    if bond not in nat.BONDS:
-        raise TilePatternError(2, "bond %r: choose one of %s" % (bond, ", ".join(sorted(nat.BONDS))))
-    options = nat.init(nat.PatternOptions, "tp_pattern_options_init")
-    options.bond = nat.BONDS[bond]
-    options.weight = weight
-    options.time_limit_seconds = time_limit
-    options.method = nat.METHODS[method]
-    options.formulation = nat.FORMULATIONS[formulation]
-    forced = np.ascontiguousarray(np.asarray(forced_pairs, dtype=np.int64).reshape(-1), dtype=np.uint32)
-    excluded = np.ascontiguousarray(np.asarray(excluded_faces, dtype=np.int64).reshape(-1), dtype=np.uint32)
-    options.forced_pairs = forced.ctypes.data_as(ctypes.POINTER(c_uint32))
-    options.forced_pair_count = len(forced) // 2
-    options.excluded_faces = excluded.ctypes.data_as(ctypes.POINTER(c_uint32))
-    options.excluded_face_count = len(excluded)
-    with _mesh(vertices, faces) as mesh:
-        out = nat.new_handle(nat._Pattern)
-        bridge = _Progress(progress)
-        status = nat.lib().tp_pattern_solve(mesh.pointer, ctypes.byref(options), bridge.callback, None, ctypes.byref(out))
-        bridge.finish(status)
-    handle = nat.PatternHandle(out)
-    summary = nat.PatternSummary()
-    nat.check(nat.lib().tp_pattern_summary(handle.pointer, ctypes.byref(summary)))
-    pairs = np.zeros(2 * summary.pairs, dtype=np.uint32)
-    unpaired = np.zeros(summary.unpaired, dtype=np.uint32)
-    nat.check(nat.lib().tp_pattern_copy_pairs(handle.pointer, pairs.ctypes.data_as(ctypes.POINTER(c_uint32)), len(pairs)))
-    nat.check(nat.lib().tp_pattern_copy_unpaired(handle.pointer, unpaired.ctypes.data_as(ctypes.POINTER(c_uint32)), len(unpaired)))
-    return Pattern(
-        pairs=pairs.astype(np.int64).reshape(-1, 2),
-        unpaired=unpaired.astype(np.int64),
-        faces=summary.faces,
-        excluded=summary.excluded,
-        non_quad=summary.non_quad,
-        continuous_joints=summary.continuous_joints,
-        shifted_pairs=summary.shifted_pairs,
-        objective=summary.objective,
-        bound=summary.bound,
-        gap=summary.gap,
-        status=nat.SOLVE_STATUS.get(summary.status, str(summary.status)),
-        seconds=summary.seconds,
-        _handle=handle,
-    )
+    options = nat.pattern_options()
+    options.bond = _choice(bond, BONDS, "bond")
+    options.method = _choice(method, METHODS, "method")
+    options.formulation = _choice(formulation, FORMULATIONS, "formulation")
+    options.weight = float(weight)
+    options.time_limit_seconds = float(time_limit)
+    forced = _index_array(forced_pairs, "forced_pairs", shape_last=2)
+    if forced.size % 2:
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "forced_pairs must be pairs of face indices")
+    excluded = _index_array(excluded_faces, "excluded_faces")
+    # The arrays stay referenced by these locals for the whole native call.
+    options.forced_pairs = nat.as_pointer(forced, nat.c_uint32)
+    options.forced_pair_count = forced.size // 2
+    options.excluded_faces = nat.as_pointer(excluded, nat.c_uint32)
+    options.excluded_face_count = excluded.size
+    with mesh_handle(vertices, faces) as mesh:
+        handle = mesh.solve(options, progress)
+    try:
+        return Pattern._from_handle(handle)
+    except BaseException:
+        handle.close()
+        raise
 
 
-@dataclass
+# ---------------------------------------------------------------------------------------
+# Stage 3: tiles
+# ---------------------------------------------------------------------------------------
+
+
+@dataclass(eq=False)
 class Tiles:
-    """Placed tiles (stage 3).
+    """Placed tiles: the result of :func:`tiles`. All arrays have one row per tile.
+
+    Tiles are full tiles in pair order, then half tiles in face order, then filler pieces
+    (when a surface is given); ``steps`` is their laying order.
 
     Attributes
     ----------
-    kinds : list of str
-        ``"full"``, ``"half"`` or ``"boundary"`` (cut to the surface's edge).
-    corners : ndarray (N, 8, 3)
-        Box corners: the bottom face counter-clockwise from (-x, -y), then the top face.
-    frames : ndarray (N, 4, 3)
-        Origin, length axis x, height axis y, thickness axis z. The box spans
-        ``[-L/2, L/2] x [-W/2, W/2] x [0, T]`` in this frame (origin at the bottom face's
-        centre, not the box centre).
-    sizes : ndarray (N, 3)
-        Length, width, thickness of each box.
+    kinds : ndarray (N,) str
+        ``"full"`` (over two faces), ``"half"`` (over one unmatched quad) or
+        ``"boundary"`` (a full or half tile cut to the surface's boundary).
+    corners : ndarray (N, 8, 3) float64
+        Box corners: the bottom face counter-clockwise from (-x, -y), then the top face in
+        the same order.
+    frames : ndarray (N, 4, 3) float64
+        Per tile: origin, length axis x, width axis y, thickness axis z (orthonormal,
+        right-handed). The box spans ``[-L/2, L/2] x [-W/2, W/2] x [0, T]`` in its frame:
+        the origin is the centre of the bottom face, not of the box (see ``centres``).
+    sizes : ndarray (N, 3) float64
+        Length, width, thickness of each box (the blank: a cut tile keeps its blank's).
     faces : ndarray (N, 2) int64
-        Faces under each tile; -1 where there is none (half tiles, filler pieces).
+        Faces under each tile; -1 in the second slot of a half tile and in both slots of a
+        filler piece beyond the quad mesh's boundary.
     steps : ndarray (N,) int64
-        Laying order, from 0.
-    kept_fractions : ndarray (N,)
-        Kept share of each tile's face (1 when uncut).
+        Step of each tile in the laying order, from 0.
+    kept_fractions : ndarray (N,) float64
+        Kept area over face area: 1 for uncut tiles.
     outlines : list of list of ndarray (k, 2)
-        For each tile, the loops of its kept part in its frame (empty when uncut).
+        Per tile, the loops of the part to keep, as (x, y) in the tile's frame (outer
+        loops counter-clockwise, holes clockwise); empty for uncut tiles.
     labels : list of str
-        Cut-list labels: ``F``, ``H``, ``B1``, ...
-    cut_list : list of dict
-        Cut shapes with counts (``cutlist.json``).
+        Cut-list label of each tile: ``"F"`` full, ``"H"`` half, ``"B1"``, ``"B2"``, ...
+        boundary shapes by falling count.
+    cutlist : list of dict
+        One entry per cut shape: ``label``, ``kind``, ``count``, ``blank``, ``area``,
+        ``outline`` (``cutlist.json``).
     report : dict
-        The report (``report.json``).
+        Counts, proof status, tile size, joint gaps, cutting and sequence
+        (``report.json`` of the command line, without ``units``).
     """
 
-    kinds: list
+    kinds: np.ndarray
     corners: np.ndarray
     frames: np.ndarray
     sizes: np.ndarray
     faces: np.ndarray
     steps: np.ndarray
     kept_fractions: np.ndarray
-    outlines: list
-    labels: list
-    cut_list: list
+    outlines: List[List[np.ndarray]]
+    labels: List[str]
+    cutlist: List[dict]
     report: dict
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.kinds)
 
+    @property
+    def centres(self) -> np.ndarray:
+        """``(N, 3)`` box centres: frame origin plus half the thickness along z."""
+        return self.frames[:, 0] + self.frames[:, 3] * (self.sizes[:, 2:3] / 2.0)
 
-def _copy(function, handle, count, dtype, ctype):
-    values = np.zeros(count, dtype=dtype)
-    nat.check(function(handle.pointer, values.ctypes.data_as(ctypes.POINTER(ctype)), count))
-    return values
+    @property
+    def blanks(self) -> np.ndarray:
+        """``(N,) str``: the blank each tile is cut from, ``"full"`` or ``"half"``."""
+        length = self.report.get("tile", {}).get("length")
+        if not length:
+            length = float(self.sizes[:, 0].max()) if len(self) else 1.0
+        return np.where(self.sizes[:, 0] > 0.75 * length, "full", "half")
+
+    def to_dict(self) -> dict:
+        """The tiles as plain (JSON-ready) data."""
+        return {
+            "kinds": self.kinds.tolist(),
+            "labels": list(self.labels),
+            "frames": self.frames.tolist(),
+            "sizes": self.sizes.tolist(),
+            "corners": self.corners.tolist(),
+            "faces": self.faces.tolist(),
+            "steps": self.steps.tolist(),
+            "kept_fractions": self.kept_fractions.tolist(),
+            "outlines": [[loop.tolist() for loop in loops] for loops in self.outlines],
+            "cutlist": self.cutlist,
+            "report": self.report,
+        }
 
 
-def tiles(vertices, faces, pattern, length=0.28, width=0.14, thickness=0.015, joint=0.01, surface=None, cut_tolerance=None, min_kept_width=None, up=(0.0, 0.0, 1.0), support_band=None):
-    """Place a box per matched pair and a half tile per unpaired quad (stage 3), cut to the
-    boundary of ``surface`` and numbered in laying order.
+def _read_tiles(handle) -> Tiles:
+    n = handle.count()
+    kinds = handle.kinds(n)
+    faces = handle.faces(n).astype(np.int64)
+    faces[faces == nat.TP_NO_FACE] = -1
+    return Tiles(
+        kinds=np.array([nat.TILE_KIND_NAMES.get(int(k), str(int(k))) for k in kinds], dtype="<U8").reshape(n),
+        corners=handle.corners(n),
+        frames=handle.frames(n),
+        sizes=handle.sizes(n),
+        faces=faces,
+        steps=handle.steps(n).astype(np.int64),
+        kept_fractions=handle.kept_fractions(n),
+        outlines=handle.outlines(n),
+        labels=handle.labels(),
+        cutlist=json.loads(handle.cutlist_json()),
+        report=json.loads(handle.report_json()),
+    )
+
+
+def _optional(value):
+    return -1.0 if value is None else float(value)
+
+
+def tiles(
+    vertices,
+    faces,
+    pattern: Pattern,
+    length: float = 0.28,
+    width: float = 0.14,
+    thickness: float = 0.015,
+    joint: float = 0.01,
+    surface=None,
+    cut_tolerance: Optional[float] = None,
+    min_kept_width: Optional[float] = None,
+    up: Sequence[float] = (0.0, 0.0, 1.0),
+    support_band: Optional[float] = None,
+) -> Tiles:
+    """Place a box per matched pair and a half tile per unpaired quad (stage 3).
+
+    Each box follows the paper's section 3.5: its origin at the midpoint of the two face
+    centroids, its length along the line between them, its thickness along the normal of
+    the least-squares plane of the pair's vertices, its bottom on that plane and the box
+    on the side the face normals point to. Tiles crossing the boundary (of ``surface``, or
+    of the quad mesh) are cut to it; the tiles are labelled and numbered in laying order.
 
     Parameters
     ----------
-    vertices, faces
-        The quad mesh the pattern was solved on.
+    vertices : array_like (V, 3)
+        Vertices of the quad mesh the pattern was solved on.
+    faces : list of list of int or array_like (F, k)
+        Its faces, in the same order as for :func:`match`.
     pattern : Pattern
-        From :func:`match`.
-    length, width, thickness, joint : float
-        Tile size and mortar joint in model units.
+        The result of :func:`match` on this mesh (not closed).
+    length, width, thickness, joint : float, optional
+        Tile size and mortar joint in model units; default 280 x 140 x 15 mm tiles with
+        10 mm joints, in metres.
     surface : tuple (vertices, faces), optional
-        The input surface the quads were made from: tiles are cut to its boundary and the
-        strip between the quads and its edge is filled (default: the quads' own boundary).
-    cut_tolerance, min_kept_width, support_band : float, optional
-        Cutting tolerance, sliver width and support band (default: derived from the tile).
-    up : array_like (3,)
-        Up direction for the laying order.
+        The input surface the quads were made from: tiles are cut to its outer edge and
+        openings, and pieces fill the strip between the quads and its edge.
+    cut_tolerance : float, optional
+        Tiles the boundary enters by no more than this stay whole (default 1 % of width).
+    min_kept_width : float, optional
+        Narrower pieces are slivers: reported, not placed (default a fifth of the width).
+    up : array_like (3,), optional
+        Up direction for the laying order; default ``(0, 0, 1)``.
+    support_band : float, optional
+        Tiles with a boundary edge this close above the lowest boundary point stand on the
+        supports (default one tile width).
 
     Returns
     -------
     Tiles
+        Kinds, corners ``(N, 8, 3)``, frames ``(N, 4, 3)``, sizes, faces, laying steps,
+        outlines of cut tiles, labels, cut list and the report.
+
+    Raises
+    ------
+    TilePatternError
+        ``InvalidArgumentError`` for a bad tile size, ``InvalidPatternError`` when the
+        pattern was solved on another mesh, ``InvalidMeshError``.
+    ValueError
+        When ``pattern`` was closed.
 
     Examples
     --------
     >>> from tilepattern import match, tiles
-    >>> V = [[0.145 * i, 0.145 * j, 0.0] for j in range(5) for i in range(5)]
-    >>> F = [[i + 5 * j, i + 1 + 5 * j, i + 6 + 5 * j, i + 5 + 5 * j] for j in range(4) for i in range(4)]
-    >>> t = tiles(V, F, match(V, F, time_limit=5))
-    >>> len(t), t.kinds[0]
-    (8, 'full')
+    >>> V = [[0.145 * i, 0.145 * j, 0.0] for j in range(5) for i in range(4)]
+    >>> F = [[i + 4 * j, i + 1 + 4 * j, i + 5 + 4 * j, i + 4 + 4 * j] for j in range(4) for i in range(3)]
+    >>> placed = tiles(V, F, match(V, F, time_limit=5))
+    >>> len(placed), placed.corners.shape, placed.report["full_tiles"]
+    (6, (6, 8, 3), 6)
+    >>> placed.sizes[0].tolist()
+    [0.28, 0.14, 0.015]
     """
-    if pattern._handle is None:
-        raise TilePatternError(2, "pattern has no native handle: pass the result of match()")
-    options = nat.init(nat.TileOptions, "tp_tile_options_init")
-    options.length, options.width, options.thickness, options.joint = length, width, thickness, joint
-    options.cut_tolerance = -1.0 if cut_tolerance is None else cut_tolerance
-    options.min_kept_width = -1.0 if min_kept_width is None else min_kept_width
-    options.support_band = -1.0 if support_band is None else support_band
-    options.up[:] = [float(c) for c in up]
-    with _mesh(vertices, faces) as quads:
-        out = nat.new_handle(nat._Tiles)
+    if not isinstance(pattern, Pattern):
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "pattern must be the Pattern returned by match(), got %s" % type(pattern).__name__)
+    if pattern.handle is None:
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "this Pattern has no native pattern; pass the result of match()")
+    options = nat.tile_options()
+    options.length = float(length)
+    options.width = float(width)
+    options.thickness = float(thickness)
+    options.joint = float(joint)
+    options.cut_tolerance = _optional(cut_tolerance)
+    options.min_kept_width = _optional(min_kept_width)
+    options.support_band = _optional(support_band)
+    u = np.asarray(up, dtype=np.float64).reshape(-1)
+    if u.shape != (3,):
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "up must be 3 numbers, got %r" % (up,))
+    options.up[:] = u.tolist()
+    pattern_pointer = pattern.handle  # raises ValueError below if closed
+    with mesh_handle(vertices, faces) as quads:
         if surface is None:
-            status = nat.lib().tp_tiles_build(quads.pointer, pattern._handle.pointer, ctypes.byref(options), ctypes.byref(out))
+            built = pattern_pointer.build_tiles(quads, options)
         else:
-            with _mesh(*surface) as reference:
-                status = nat.lib().tp_tiles_build_on_surface(
-                    quads.pointer, pattern._handle.pointer, reference.pointer, ctypes.byref(options), ctypes.byref(out)
-                )
-        nat.check(status)
-    with nat.TilesHandle(out) as handle:
-        return _read_tiles(handle)
-
-
-def _read_tiles(handle):
-    lib = nat.lib()
-    count = c_size_t()
-    nat.check(lib.tp_tiles_count(handle.pointer, ctypes.byref(count)))
-    n = count.value
-    kinds = _copy(lib.tp_tiles_copy_kinds, handle, n, np.int32, c_int32)
-    faces = _copy(lib.tp_tiles_copy_faces, handle, 2 * n, np.uint32, c_uint32).astype(np.int64).reshape(-1, 2)
-    faces[faces == nat.NO_FACE] = -1
-    loops, points = c_size_t(), c_size_t()
-    nat.check(lib.tp_tiles_outline_counts(handle.pointer, ctypes.byref(loops), ctypes.byref(points)))
-    loop_counts = _copy(lib.tp_tiles_copy_loop_counts, handle, n, np.uint32, c_uint32)
-    loop_sizes = _copy(lib.tp_tiles_copy_loop_sizes, handle, loops.value, np.uint32, c_uint32)
-    xy = _copy(lib.tp_tiles_copy_loop_points, handle, 2 * points.value, np.float64, c_double).reshape(-1, 2)
-    loop_arrays = np.split(xy, np.cumsum(loop_sizes)[:-1]) if loops.value else []
-    outlines, at = [], 0
-    for c in loop_counts:
-        outlines.append(loop_arrays[at : at + c])
-        at += c
-    return Tiles(
-        kinds=[nat.TILE_KINDS.get(int(k), str(k)) for k in kinds],
-        corners=_copy(lib.tp_tiles_copy_corners, handle, 24 * n, np.float64, c_double).reshape(-1, 8, 3),
-        frames=_copy(lib.tp_tiles_copy_frames, handle, 12 * n, np.float64, c_double).reshape(-1, 4, 3),
-        sizes=_copy(lib.tp_tiles_copy_sizes, handle, 3 * n, np.float64, c_double).reshape(-1, 3),
-        faces=faces,
-        steps=_copy(lib.tp_tiles_copy_steps, handle, n, np.uint32, c_uint32).astype(np.int64),
-        kept_fractions=_copy(lib.tp_tiles_copy_kept_fractions, handle, n, np.float64, c_double),
-        outlines=outlines,
-        labels=nat.text(lib.tp_tiles_labels, handle.pointer).splitlines(),
-        cut_list=json.loads(nat.text(lib.tp_tiles_cutlist_json, handle.pointer)),
-        report=json.loads(nat.text(lib.tp_tiles_report_json, handle.pointer)),
-    )
+            with mesh_handle(*surface) as reference:
+                built = pattern_pointer.build_tiles(quads, options, reference)
+    with built:
+        return _read_tiles(built)

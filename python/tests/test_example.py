@@ -1,0 +1,33 @@
+"""examples/compas_tiles.py runs end to end (when run from a source checkout)."""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "compas_tiles.py"
+
+pytest.importorskip("compas")
+pytest.importorskip("rhino3dm")
+
+
+@pytest.mark.skipif(not EXAMPLE.is_file(), reason="not in a source checkout")
+def test_the_compas_example(tmp_path):
+    result = subprocess.run(
+        [sys.executable, str(EXAMPLE), "--bond", "stack", "--time-limit", "2", "--out", str(tmp_path), "--json"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=dict(os.environ),
+        cwd=str(tmp_path),
+    )
+    assert result.returncode == 0, result.stderr
+    assert "remeshed into" in result.stdout and "cut list:" in result.stdout
+    report = json.loads((tmp_path / "report.json").read_text())
+    assert report["full_tiles"] > 500
+    assert (tmp_path / "tiles.3dm").stat().st_size > 0
+    boxes = json.loads((tmp_path / "boxes.json").read_text())
+    assert len(boxes) == report["full_tiles"] + report["half_tiles"]
