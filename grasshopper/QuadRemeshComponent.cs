@@ -9,7 +9,7 @@ namespace TilePattern.Gh
     {
         public QuadRemeshComponent()
             : base("Quad Remesh", "QRemesh",
-                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, aligned with the principal curvature, a direction or a rotated curvature field. Escape cancels before the remesh starts.",
+                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, aligned with the principal curvature, a direction or a rotated curvature field. Escape cancels it.",
                 "1 Mesh")
         {
         }

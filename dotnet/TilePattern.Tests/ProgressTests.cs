@@ -73,7 +73,7 @@ namespace TilePattern.Tests
         [Test]
         public void RemeshCancelledAtItsStart()
         {
-            // The remesh stage polls only at its start: a progress sink that cancels there works.
+            // A progress sink that cancels at the first report stops the stage at its start.
             using (var cts = new CancellationTokenSource())
             {
                 var progress = new SyncProgress(f => cts.Cancel());
@@ -81,6 +81,24 @@ namespace TilePattern.Tests
                     () => TilePatternEngine.Remesh(TestMeshes.CurvedTriangles(10, 1, 0.1), null, progress, cts.Token));
                 StringAssert.Contains("cancelled", e.NativeMessage);
             }
+        }
+
+        [Test]
+        public void RemeshCancelledMidwayAndItsTimeLimit()
+        {
+            // The remesh stage reports progress throughout: cancelling once past a third stops it.
+            PolyMesh surface = TestMeshes.CurvedTriangles(40, 1.5, 0.3);
+            var options = new RemeshOptions { TargetEdge = 0.05 };
+            using (var cts = new CancellationTokenSource())
+            {
+                double last = 0.0;
+                var progress = new SyncProgress(f => { last = f; if (f > 0.3) cts.Cancel(); });
+                Assert.Throws<TilePatternCanceledException>(() => TilePatternEngine.Remesh(surface, options, progress, cts.Token));
+                Assert.That(last, Is.InRange(0.3, 0.999), "cancelled during the stage, not at its end");
+            }
+            // A zero time limit leaves no time to build a quad mesh: a time-limit error, not a hang.
+            options.TimeLimitSeconds = 0.0;
+            Assert.Throws<SolverTimeLimitException>(() => TilePatternEngine.Remesh(surface, options));
         }
 
         [Test]
