@@ -102,6 +102,7 @@ pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bon
         }
     }
 
+    let (partners, per_partner) = bond_partners(graph, bond);
     let mut chosen = fixed.to_vec();
     let mut used = faces_of(graph, fixed);
     let mut walked = vec![false; faces];
@@ -121,10 +122,16 @@ pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bon
             walk.windows(2).skip(offset).step_by(2).filter_map(|w| graph.tile_between(w[0], w[1])).collect()
         };
         let (even, odd) = (phase(0), phase(1));
+        // What laying `tiles` adds: one per tile and the bond term of every pair they make
+        // with laid tiles or among themselves (counted once).
         let gain = |tiles: &[usize]| {
-            let mut trial = chosen.clone();
-            tiles.iter().for_each(|&t| trial[t] = true);
-            score(graph, &trial, bond).objective
+            let mut value = tiles.len() as f64;
+            for (k, &t) in tiles.iter().enumerate() {
+                let with_laid = partners[t].iter().filter(|&&u| chosen[u]).count();
+                let among = partners[t].iter().filter(|&&u| tiles[..k].contains(&u)).count();
+                value += per_partner * (with_laid + among) as f64;
+            }
+            value
         };
         let best = if gain(&odd) > gain(&even) { odd } else { even };
         for t in best {
@@ -142,33 +149,35 @@ pub(super) fn complete_greedily(graph: &DualGraph, bond: Bond, fixed: &[bool], c
     for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
         graph.tiles()[t].faces.iter().for_each(|&f| used[f] = true);
     }
-    let mut partners: Vec<Vec<usize>> = vec![Vec::new(); graph.tiles().len()];
-    let relation = match bond {
-        Bond::Stack => &[][..],
-        Bond::Staggered { .. } => graph.continuous_joints(),
-        Bond::RunningBond { .. } => graph.shifted_pairs(),
-    };
-    for &[a, b] in relation {
-        partners[a].push(b);
-        partners[b].push(a);
-    }
+    let (partners, per_partner) = bond_partners(graph, bond);
     for t in 0..graph.tiles().len() {
         let [a, b] = graph.tiles()[t].faces;
         if used[a] || used[b] {
             continue;
         }
         let on = partners[t].iter().filter(|&&u| chosen[u] || fixed[u]).count() as f64;
-        let gain = match bond {
-            Bond::Stack => 1.0,
-            Bond::Staggered { weight } => 1.0 - weight * on,
-            Bond::RunningBond { weight } => 1.0 + weight * on,
-        };
-        if gain > 0.0 {
+        if 1.0 + per_partner * on > 0.0 {
             used[a] = true;
             used[b] = true;
             chosen[t] = true;
         }
     }
+}
+
+/// Per tile its partners in the bond's relation (continuous joints or shifted pairs), and
+/// what each chosen partner adds to the objective (`-w` or `+w`; nothing for stack bond).
+pub(super) fn bond_partners(graph: &DualGraph, bond: Bond) -> (Vec<Vec<usize>>, f64) {
+    let (relation, per_partner) = match bond {
+        Bond::Stack => (&[][..], 0.0),
+        Bond::Staggered { weight } => (graph.continuous_joints(), -weight),
+        Bond::RunningBond { weight } => (graph.shifted_pairs(), weight),
+    };
+    let mut partners = vec![Vec::new(); graph.tiles().len()];
+    for &[a, b] in relation {
+        partners[a].push(b);
+        partners[b].push(a);
+    }
+    (partners, per_partner)
 }
 
 /// Faces covered by the tiles marked in `tiles`.

@@ -24,6 +24,23 @@ pub(super) struct Restriction<'a> {
     /// Tiles chosen and held fixed; they block their faces and enter the bond terms as
     /// constants.
     pub fixed: &'a [bool],
+    /// Solve the relaxation of one patch of a decomposition instead (see [`Patch`]).
+    pub patch: Option<Patch<'a>>,
+}
+
+/// The relaxed program of one patch of a partition of the faces, whose optima add up to an
+/// upper bound on the whole program's optimum (see `decompose`): only the patch's faces are
+/// constrained, each scores half a tile when covered (so a tile reaching out of the patch
+/// scores 1/2 and its outer face is free), and only the bond pairs the patch owns are
+/// counted. A penalty pair with a tile outside the patch is left out (which can only raise
+/// the bound); a reward pair with its second tile outside is bounded by the first tile alone.
+#[derive(Clone, Copy)]
+pub(super) struct Patch<'a> {
+    /// The patch's faces.
+    pub faces: &'a [bool],
+    /// `owned[i]`: the patch owns pair `i` of the bond's relation (continuous joints or
+    /// shifted pairs); every pair is owned by exactly one patch.
+    pub owned: &'a [bool],
 }
 
 /// What CBC returned.
@@ -58,16 +75,26 @@ pub(super) fn solve(
     for (t, _) in restriction.fixed.iter().enumerate().filter(|(_, on)| **on) {
         tiles[t].faces.iter().for_each(|&f| blocked[f] = true);
     }
-    let usable: Vec<bool> = (0..tiles.len()).map(|t| restriction.free[t] && !tiles[t].faces.iter().any(|&f| blocked[f])).collect();
+    let patch = restriction.patch;
+    let counted = |f: usize| patch.is_none_or(|p| p.faces[f]);
+    let owned = |i: usize| patch.is_none_or(|p| p.owned[i]);
+    let usable: Vec<bool> = (0..tiles.len())
+        .map(|t| restriction.free[t] && !tiles[t].faces.iter().any(|&f| blocked[f]) && tiles[t].faces.iter().any(|&f| counted(f)))
+        .collect();
     let constant = score(graph, restriction.fixed, bond).objective;
 
     let mut vars = ProblemVariables::new();
     let x: Vec<Option<Variable>> = usable.iter().map(|&u| u.then(|| vars.add(variable().binary()))).collect();
-    let mut objective: Expression = x.iter().flatten().sum();
+    // A tile scores one, or in a patch half per face of the patch it covers.
+    let mut objective: Expression = x
+        .iter()
+        .enumerate()
+        .filter_map(|(t, v)| v.map(|v| 0.5 * tiles[t].faces.iter().filter(|&&f| counted(f)).count() as f64 * v))
+        .sum();
     let mut rows = Vec::new();
 
     // Eq. (1): each face in at most one tile.
-    for f in 0..graph.face_count() {
+    for f in (0..graph.face_count()).filter(|&f| counted(f)) {
         let around: Vec<Variable> = graph.face_tiles(f).iter().filter_map(|&t| x[t]).collect();
         if around.len() > 1 {
             rows.push(constraint!(around.into_iter().sum::<Expression>() <= 1));
@@ -84,7 +111,7 @@ pub(super) fn solve(
         Bond::Staggered { weight } => {
             // Eq. (2): y >= x1 + x2 - 1 and a penalty w per continuous joint.
             let mut y_of = HashMap::new();
-            for &pair in graph.continuous_joints() {
+            for (_, &pair) in graph.continuous_joints().iter().enumerate().filter(|&(i, _)| owned(i)) {
                 if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
                     let y = vars.add(variable().binary());
                     objective -= weight * y;
@@ -96,7 +123,9 @@ pub(super) fn solve(
             }
             if formulation == Formulation::Strengthened {
                 let y = |a: usize, b: usize| y_of.get(&[a.min(b), a.max(b)]).copied();
-                for &[a, b, c, d] in graph.regular_vertex_stars() {
+                // Valid where the four faces around the vertex are constrained.
+                let inside = |t: usize| tiles[t].faces.iter().all(|&f| counted(f));
+                for &[a, b, c, d] in graph.regular_vertex_stars().iter().filter(|star| star.iter().all(|&t| inside(t))) {
                     if let (Some(xa), Some(xb), Some(xc), Some(xd), Some(yac), Some(ybd)) = (x[a], x[b], x[c], x[d], y(a, c), y(b, d)) {
                         rows.push(constraint!(xa + xb + xc + xd - yac - ybd <= 1));
                     }
@@ -105,13 +134,16 @@ pub(super) fn solve(
         }
         Bond::RunningBond { weight } => {
             // Eq. (3): z <= x1, z <= x2 and a reward w_R per shifted pair.
-            for &pair in graph.shifted_pairs() {
+            for (_, &pair) in graph.shifted_pairs().iter().enumerate().filter(|&(i, _)| owned(i)) {
                 if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
                     let z = vars.add(variable().binary());
                     objective += weight * z;
                     rows.push(constraint!(z <= a));
                     rows.push(constraint!(z <= b));
                 } else if let Some(v) = linear_partner(pair) {
+                    objective += weight * v;
+                } else if let (Some(v), true) = (x[pair[0]].or(x[pair[1]]), patch.is_some()) {
+                    // The partner lies outside the patch: it might be chosen.
                     objective += weight * v;
                 }
             }
@@ -173,6 +205,11 @@ pub(super) fn solve(
             Err(RecvTimeoutError::Disconnected) => return Err(PatternError::Solver("the solver thread stopped unexpectedly".into())),
         }
     };
+    // CBC stopped by its time limit before it had a solution may call the problem
+    // infeasible; every program here is feasible (no tiles at all).
+    if matches!(result, Err(ResolutionError::Infeasible)) {
+        return Ok(Outcome { chosen: None, bound: f64::INFINITY, timed_out: true });
+    }
     let (values, bound, timed_out) = result.map_err(|e| match e {
         ResolutionError::Other(message) => PatternError::Solver(message.to_string()),
         other => PatternError::Solver(other.to_string()),

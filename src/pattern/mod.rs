@@ -10,8 +10,10 @@
 //! The answer says honestly how good it is: the objective of the returned pattern, the
 //! solver's proven bound, and [`SolveStatus::Optimal`] only when the two meet.
 
+mod anneal;
 mod bound;
 mod construct;
+mod decompose;
 mod dual;
 mod error;
 mod mip;
@@ -102,9 +104,16 @@ pub enum Method {
     Mip,
 }
 
-/// Meshes up to this many faces get the whole program on CBC in [`Method::Auto`]: small
-/// enough for CBC to prove optimality quickly, where the window search cannot.
-const WHOLE_MODEL_FACES: usize = 2000;
+/// Faces per patch in the first decomposition bound of [`Method::Auto`]: patches this small
+/// take CBC some 50 ms each. Meshes this small get the whole program at once.
+const FIRST_PATCH_SIZE: usize = 200;
+/// Share of the time limit the first annealing run may take, and of the time left the
+/// later ones.
+const FIRST_ANNEAL_SHARE: f64 = 0.5;
+const ANNEAL_SHARE: f64 = 0.3;
+/// A start this far below the matching bound (or farther) is annealed from the full first
+/// temperature; closer starts from proportionally cooler ones.
+const MELT_GAP: f64 = 0.01;
 
 impl Default for PatternOptions {
     fn default() -> Self {
@@ -284,7 +293,7 @@ fn search_pattern(
     // The whole program on CBC for `limit`: keeps CBC's pattern if it beats `best`, and
     // returns CBC's bound and whether it stopped on time.
     let whole_model = |best: &mut Vec<bool>, limit: Duration, control: &mut Control<'_>| -> Result<(f64, bool), PatternError> {
-        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed }, limit, control, progress)?;
+        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed, patch: None }, limit, control, progress)?;
         if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
             if search::is_matching(graph, &found) && value(&found) > value(best) {
                 *best = found;
@@ -312,26 +321,48 @@ fn search_pattern(
         vec![courses, laid, matching]
     };
     starts.sort_by(|a, b| value(b).total_cmp(&value(a)));
-    let mut best = starts[0].clone();
+    let mut best = starts.swap_remove(0);
+    let faces = graph.face_count();
+    let left = || deadline.saturating_duration_since(Instant::now());
+    let anneal = |best: &mut Vec<bool>, share: f64, temperature: f64, seed: u64, control: &mut Control<'_>| -> Result<(), PatternError> {
+        let budget = left().mul_f64(share);
+        let schedule = anneal::Schedule::for_budget(faces, budget, temperature, seed);
+        let on = anneal::anneal(graph, bond, &fixed, best, &schedule, Instant::now() + budget, &mut || control.keep_going(progress()));
+        if on { Ok(()) } else { Err(PatternError::Cancelled) }
+    };
 
-    // Small meshes: the whole strengthened program gets half the time to prove optimality.
-    if graph.face_count() <= WHOLE_MODEL_FACES && !proven(&best, bound) {
-        let share = deadline.saturating_duration_since(Instant::now()) / 2;
-        let (cbc_bound, cbc_timed_out) = whole_model(&mut best, share, control)?;
-        bound = bound.min(cbc_bound);
-        timed_out = cbc_timed_out;
-    }
-    // Then windows around the defects: the best pattern first, the next start if time is left.
+    // Annealing moves the defects of the best start until most of them cancel.
     if !proven(&best, bound) {
-        search::improve(graph, bond, &fixed, &mut best, deadline, control, progress)?;
-        if let Some(second) = starts.get_mut(1) {
-            if !proven(&best, bound) && Instant::now() < deadline {
-                search::improve(graph, bond, &fixed, second, deadline, control, progress)?;
-                if value(second) > value(&best) {
-                    best = second.clone();
-                }
-            }
+        // A start already close to the bound (a regular mesh) is polished cool rather than
+        // melted: a full melt needs more moves than a large mesh gets to beat it again.
+        let gap = (bound - value(&best)) / bound.abs().max(1.0);
+        let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP).clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
+        anneal(&mut best, FIRST_ANNEAL_SHARE, temperature, 1, control)?;
+    }
+    // Then rounds of: a decomposition bound with patches twice as large as the round before
+    // (the last round, one patch, is the whole program), exact windows around the defects,
+    // annealing again from the best pattern, cooler.
+    let mut size = FIRST_PATCH_SIZE;
+    let mut round = 0;
+    while !proven(&best, bound) && Instant::now() < deadline {
+        let partition = decompose::partition(graph, size);
+        if partition.count == 1 {
+            let (cbc_bound, cbc_timed_out) = whole_model(&mut best, left(), control)?;
+            bound = bound.min(cbc_bound);
+            timed_out = cbc_timed_out;
+            break;
         }
+        let step_deadline = Instant::now() + left() / 2;
+        if let Some(patches) = decompose::bound(graph, bond, &partition, &best, step_deadline, control, progress)? {
+            bound = bound.min(patches);
+        }
+        if proven(&best, bound) {
+            break;
+        }
+        search::improve(graph, bond, &fixed, &mut best, Instant::now() + left() / 3, control, progress)?;
+        round += 1;
+        anneal(&mut best, ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 1 + round, control)?;
+        size *= 2;
     }
     Ok(Found { chosen: best, bound, timed_out })
 }

@@ -77,3 +77,28 @@ pub fn is_valid_matching(mesh: &PolyMesh, pairs: &[[usize; 2]]) -> bool {
         shared == 2 && !std::mem::replace(&mut used[a], true) && !std::mem::replace(&mut used[b], true)
     })
 }
+
+/// `split_into_quads` applied `times` times: a quad mesh with the singular vertices of
+/// `mesh`'s non-quad faces and vertices, each face split into `4^(times-1)` quads.
+pub fn subdivided(mesh: &PolyMesh, times: usize) -> PolyMesh {
+    (0..times).fold(mesh.clone(), |m, _| split_into_quads(&m))
+}
+
+/// Two pentagons and a triangle glued around a square: a disk whose split has interior
+/// vertices of valence 3, 5 and 6 and a boundary with corners.
+pub fn mixed_polygons() -> PolyMesh {
+    let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
+    let positions = vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0), p(0.5, -0.8), p(1.8, 0.5), p(0.5, 1.8), p(-0.5, 1.6), p(-0.7, 0.5)];
+    let faces = vec![vec![0, 1, 2, 3], vec![0, 4, 1], vec![1, 5, 2], vec![2, 6, 3], vec![3, 7, 8, 0]];
+    PolyMesh::new(positions, faces).unwrap()
+}
+
+/// An `n` x `n` grid with a ragged boundary: every boundary face whose index passes a fixed
+/// pseudo-random test is removed, as remeshers leave teeth along a shell's edge.
+pub fn ragged_grid(n: usize) -> PolyMesh {
+    let grid = tilepattern::mesh::generate::grid(n, n);
+    let on_boundary = |f: usize| f % n == 0 || f % n == n - 1 || f / n == 0 || f / n == n - 1;
+    let keep = |f: usize| !(on_boundary(f) && (f.wrapping_mul(2654435761) >> 7) % 3 == 0);
+    let faces: Vec<Vec<usize>> = (0..grid.face_count()).filter(|&f| keep(f)).map(|f| grid.faces()[f].clone()).collect();
+    PolyMesh::new(grid.positions().to_vec(), faces).unwrap()
+}
