@@ -81,6 +81,21 @@
 #define TP_SOLVE_FEASIBLE 2
 
 /**
+ * [`tp_pattern_bound_source`]: a maximum matching bounds the number of tiles.
+ */
+#define TP_BOUND_MATCHING 0
+
+/**
+ * [`tp_pattern_bound_source`]: the patch relaxations of a decomposition of the faces.
+ */
+#define TP_BOUND_PATCHES 1
+
+/**
+ * [`tp_pattern_bound_source`]: branch and bound on the whole program.
+ */
+#define TP_BOUND_WHOLE_PROGRAM 2
+
+/**
  * `direction`: follow the principal curvature (the paper's choice).
  */
 #define TP_DIRECTION_CURVATURE 0
@@ -516,6 +531,15 @@ void tp_pattern_free(struct TpPattern *pattern);
  * `pattern` must be a live pattern and `out` writable.
  */
 TpStatus tp_pattern_summary(const struct TpPattern *pattern, struct TpPatternSummary *out);
+
+/**
+ * Writes into `*out` which argument proved the pattern's bound (`TP_BOUND_*`): with
+ * `TP_SOLVE_OPTIMAL`, the one that closed the gap.
+ *
+ * # Safety
+ * `pattern` must be a live pattern and `out` writable.
+ */
+TpStatus tp_pattern_bound_source(const struct TpPattern *pattern, int32_t *out);
 
 /**
  * Copies the matched pairs as face-index pairs into `out` (capacity in `uint32_t`: 2 per

@@ -126,6 +126,9 @@ namespace TilePattern
         internal const int TP_SOLVE_OPTIMAL = 0;
         internal const int TP_SOLVE_TIME_LIMIT = 1;
         internal const int TP_SOLVE_FEASIBLE = 2;
+        internal const int TP_BOUND_MATCHING = 0;
+        internal const int TP_BOUND_PATCHES = 1;
+        internal const int TP_BOUND_WHOLE_PROGRAM = 2;
         internal const int TP_DIRECTION_CURVATURE = 0;
         internal const int TP_DIRECTION_VECTOR = 1;
         internal const int TP_DIRECTION_ANGLE = 2;
@@ -180,6 +183,9 @@ namespace TilePattern
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern int tp_pattern_summary(PatternHandle pattern, out TpPatternSummary summary);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_pattern_bound_source(PatternHandle pattern, out int source);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern int tp_pattern_copy_pairs(PatternHandle pattern, [Out] uint[] output, UIntPtr capacity);

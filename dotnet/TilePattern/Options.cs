@@ -58,6 +58,17 @@ namespace TilePattern
         Feasible = 2,
     }
 
+    /// <summary>TP_BOUND_*: which argument proved a pattern's bound.</summary>
+    public enum BoundSource
+    {
+        /// <summary>A maximum matching bounds the number of tiles.</summary>
+        Matching = 0,
+        /// <summary>The patch relaxations of a decomposition of the faces.</summary>
+        Patches = 1,
+        /// <summary>Branch and bound on the whole program.</summary>
+        WholeProgram = 2,
+    }
+
     /// <summary>TP_TILE_*.</summary>
     public enum TileKind
     {

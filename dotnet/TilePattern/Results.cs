@@ -33,6 +33,9 @@ namespace TilePattern
             Gap = s.gap;
             Seconds = s.seconds;
             Status = (SolveStatus)s.status;
+            int source;
+            Native.Check(NativeMethods.tp_pattern_bound_source(handle, out source));
+            BoundSource = (BoundSource)source;
 
             var flat = new uint[checked(2 * Native.Count(s.pairs))];
             Native.Check(NativeMethods.tp_pattern_copy_pairs(handle, flat, Native.Size(flat.Length)));
@@ -43,6 +46,9 @@ namespace TilePattern
             Native.Check(NativeMethods.tp_pattern_copy_unpaired(handle, unpaired, Native.Size(unpaired.Length)));
             Unpaired = PolyMesh.ToInt(unpaired);
         }
+
+        /// <summary>Which argument proved <see cref="Bound"/> (with an optimal status: which closed the gap).</summary>
+        public BoundSource BoundSource { get; private set; }
 
         /// <summary>The quad mesh the pattern was solved on.</summary>
         public PolyMesh QuadMesh { get; private set; }

@@ -65,6 +65,7 @@ def test_pipeline_on_a_curved_shell(curved):
     assert 2 * len(pattern.pairs) + len(pattern.unpaired) + pattern.excluded + pattern.non_quad == len(qf) == pattern.faces
     assert pattern.counts["pairs"] == len(pattern.pairs)
     assert pattern.to_dict()["pairs"] == pattern.pairs.tolist()
+    assert pattern.bound_source in ("matching", "patches", "whole_program")
 
     placed = tp.tiles(qv, qf, pattern, surface=(v, f))
     n = len(placed)
@@ -153,3 +154,13 @@ def test_tiles_cut_to_a_smaller_surface():
         for loop in loops:
             assert loop.shape[1] == 2 and len(loop) >= 3
             assert np.all(np.abs(loop) <= size[:2] / 2 + 1e-9)
+
+
+def test_a_branch_and_bound_proves_the_paper_figure_5():
+    # 10 x 10 grid, w = 2: 49 tiles and no joint, which no matching bound can prove.
+    n = 10
+    vertices = [(x, y, 0.0) for y in range(n + 1) for x in range(n + 1)]
+    faces = [(y * (n + 1) + x, y * (n + 1) + x + 1, (y + 1) * (n + 1) + x + 1, (y + 1) * (n + 1) + x) for y in range(n) for x in range(n)]
+    pattern = tp.match(vertices, faces, bond="staggered", weight=2.0, time_limit=30)
+    assert (pattern.objective, pattern.status, pattern.bound_source) == (49.0, "optimal", "whole_program")
+    assert pattern.to_dict()["bound_source"] == "whole_program"

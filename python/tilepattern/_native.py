@@ -66,6 +66,10 @@ TP_SOLVE_OPTIMAL = 0
 TP_SOLVE_TIME_LIMIT = 1
 TP_SOLVE_FEASIBLE = 2
 
+TP_BOUND_MATCHING = 0
+TP_BOUND_PATCHES = 1
+TP_BOUND_WHOLE_PROGRAM = 2
+
 TP_DIRECTION_CURVATURE = 0
 TP_DIRECTION_VECTOR = 1
 TP_DIRECTION_ANGLE = 2
@@ -110,6 +114,7 @@ STATUS_NAMES = {
 
 STAGE_NAMES = {TP_STAGE_REMESH: "remesh", TP_STAGE_PATTERN: "pattern"}
 SOLVE_STATUS_NAMES = {TP_SOLVE_OPTIMAL: "optimal", TP_SOLVE_TIME_LIMIT: "time_limit", TP_SOLVE_FEASIBLE: "feasible"}
+BOUND_SOURCE_NAMES = {TP_BOUND_MATCHING: "matching", TP_BOUND_PATCHES: "patches", TP_BOUND_WHOLE_PROGRAM: "whole_program"}
 TILE_KIND_NAMES = {TP_TILE_FULL: "full", TP_TILE_HALF: "half", TP_TILE_BOUNDARY: "boundary"}
 
 # ---------------------------------------------------------------------------------------
@@ -407,6 +412,7 @@ PROTOTYPES = {
     "tp_pattern_solve": (TpStatus, [TpMeshP, POINTER(TpPatternOptions), TpProgressCallback, c_void_p, POINTER(TpPatternP)]),
     "tp_pattern_free": (None, [TpPatternP]),
     "tp_pattern_summary": (TpStatus, [TpPatternP, POINTER(TpPatternSummary)]),
+    "tp_pattern_bound_source": (TpStatus, [TpPatternP, POINTER(c_int32)]),
     "tp_pattern_copy_pairs": (TpStatus, [TpPatternP, _u32p, c_size_t]),
     "tp_pattern_copy_unpaired": (TpStatus, [TpPatternP, _u32p, c_size_t]),
     "tp_remesh_options_default": (TpRemeshOptionsReturn, []),
@@ -868,6 +874,12 @@ class PatternHandle(Handle):
         summary = TpPatternSummary()
         check(lib().tp_pattern_summary(self.pointer, ctypes.byref(summary)))
         return summary
+
+    def bound_source(self):
+        """Which argument proved the bound (``TP_BOUND_*``)."""
+        source = c_int32()
+        check(lib().tp_pattern_bound_source(self.pointer, ctypes.byref(source)))
+        return source.value
 
     def pairs(self, count=None):
         """Matched pairs as an ``(P, 2)`` uint32 array."""

@@ -314,6 +314,10 @@ class Pattern:
         Wall-clock time of the solve.
     status_code : int
         ``TP_SOLVE_*``.
+    bound_source : str
+        Which argument proved ``bound`` (with an optimal status: which closed the gap):
+        ``"matching"`` (a maximum matching), ``"patches"`` (a decomposition's patch
+        relaxations) or ``"whole_program"`` (branch and bound on the whole program).
     """
 
     pairs: np.ndarray
@@ -329,6 +333,7 @@ class Pattern:
     status: str
     seconds: float
     status_code: int = 0
+    bound_source: str = "matching"
     handle: Optional[nat.PatternHandle] = field(default=None, repr=False)
 
     @property
@@ -359,6 +364,7 @@ class Pattern:
             bound=self.bound,
             gap=self.gap,
             status=self.status,
+            bound_source=self.bound_source,
             seconds=self.seconds,
         )
 
@@ -395,6 +401,7 @@ class Pattern:
             status=nat.SOLVE_STATUS_NAMES.get(s.status, str(s.status)),
             seconds=float(s.seconds),
             status_code=int(s.status),
+            bound_source=nat.BOUND_SOURCE_NAMES.get(handle.bound_source(), "unknown"),
             handle=handle,
         )
 

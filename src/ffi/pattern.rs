@@ -5,7 +5,7 @@ use std::ffi::c_void;
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
 use super::{TP_STAGE_PATTERN, TpMesh, TpProgressCallback, borrow, hand_over, init_options, input, output, progress_reporter, read_options, release, write_out};
 use crate::control::Control;
-use crate::pattern::{self, Bond, Formulation, Method, Pattern, PatternOptions, SolveStatus};
+use crate::pattern::{self, Bond, BoundSource, Formulation, Method, Pattern, PatternOptions, SolveStatus};
 
 /// `bond`: maximum matching, the paper's eq. (1).
 pub const TP_BOND_STACK: i32 = 0;
@@ -27,6 +27,13 @@ pub const TP_SOLVE_OPTIMAL: i32 = 0;
 pub const TP_SOLVE_TIME_LIMIT: i32 = 1;
 /// Summary `status`: the search ended with a valid pattern and a gap.
 pub const TP_SOLVE_FEASIBLE: i32 = 2;
+
+/// [`tp_pattern_bound_source`]: a maximum matching bounds the number of tiles.
+pub const TP_BOUND_MATCHING: i32 = 0;
+/// [`tp_pattern_bound_source`]: the patch relaxations of a decomposition of the faces.
+pub const TP_BOUND_PATCHES: i32 = 1;
+/// [`tp_pattern_bound_source`]: branch and bound on the whole program.
+pub const TP_BOUND_WHOLE_PROGRAM: i32 = 2;
 
 /// Options of [`tp_pattern_solve`]. Initialise with [`tp_pattern_options_default`].
 #[repr(C)]
@@ -228,6 +235,26 @@ pub unsafe extern "C" fn tp_pattern_summary(pattern: *const TpPattern, out: *mut
         };
         // SAFETY: writable by the caller's promise.
         unsafe { write_out(out, summary, "out") }
+    })
+}
+
+/// Writes into `*out` which argument proved the pattern's bound (`TP_BOUND_*`): with
+/// `TP_SOLVE_OPTIMAL`, the one that closed the gap.
+///
+/// # Safety
+/// `pattern` must be a live pattern and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_pattern_bound_source(pattern: *const TpPattern, out: *mut i32) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let p = &unsafe { borrow(pattern, "pattern") }?.pattern;
+        let source = match p.bound_source {
+            BoundSource::Matching => TP_BOUND_MATCHING,
+            BoundSource::Patches => TP_BOUND_PATCHES,
+            BoundSource::WholeProgram => TP_BOUND_WHOLE_PROGRAM,
+        };
+        // SAFETY: writable by the caller's promise.
+        unsafe { write_out(out, source, "out") }
     })
 }
 

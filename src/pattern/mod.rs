@@ -7,8 +7,14 @@
 //! * [`Bond::Staggered`]: eq. (2), each continuous joint costs `weight`;
 //! * [`Bond::RunningBond`]: eq. (3), each shifted pair earns `weight`.
 //!
-//! The answer says honestly how good it is: the objective of the returned pattern, the
-//! solver's proven bound, and [`SolveStatus::Optimal`] only when the two meet.
+//! The answer says honestly how good it is: the objective of the returned pattern, a
+//! proven bound and where it came from ([`BoundSource`]), and [`SolveStatus::Optimal`] only
+//! when the two meet.
+//!
+//! [`Method::Auto`] gets there much faster than the paper's whole program: patterns from
+//! constructive starts (`construct`) refined by simulated annealing (`anneal`) and exact
+//! windows (`search`), bounds from a maximum matching (`bound`) and from patch
+//! relaxations (`decompose`).
 
 mod anneal;
 mod bound;
@@ -95,9 +101,11 @@ pub struct PatternOptions {
 /// How the pattern stage searches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
-    /// The fastest route to a proven optimum: the whole program on CBC for small meshes;
-    /// otherwise a maximum-matching bound, a running bond laid along quad strips and exact
-    /// re-solves of small windows around its defects.
+    /// The fastest route to a proven optimum: a maximum-matching bound and three
+    /// constructive starts (courses along the boundary, a running bond along quad strips, the
+    /// maximum matching), simulated annealing from the best, then rounds of a decomposition
+    /// bound with ever larger patches, exact re-solves of windows around the defects and
+    /// cooler annealing; the last round solves the whole program on CBC.
     #[default]
     Auto,
     /// The whole program on CBC, as in the paper (slow on large meshes; a reference).
@@ -155,6 +163,20 @@ pub enum SolveStatus {
     Feasible,
 }
 
+/// Which argument gave a pattern's proven bound.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BoundSource {
+    /// A maximum-cardinality matching (blossom): no pattern has more tiles; for a running
+    /// bond with at most two shifted pairs per tile.
+    #[default]
+    Matching,
+    /// The sum of the patch relaxations of a decomposition of the faces.
+    Patches,
+    /// CBC's branch and bound on the whole program.
+    WholeProgram,
+}
+
 /// A matching of faces into tiles, with its quality and proof status. Serialised, it is the
 /// JSON that `tilepattern match` writes and `tilepattern tiles` reads.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -183,6 +205,9 @@ pub struct Pattern {
     pub gap: f64,
     /// Whether optimality was proven.
     pub status: SolveStatus,
+    /// Which argument gave `bound` (with `status` optimal: which one closed the gap).
+    #[serde(default)]
+    pub bound_source: BoundSource,
     /// Wall-clock seconds spent in this stage.
     pub seconds: f64,
 }
@@ -223,7 +248,7 @@ pub fn solve_with(mesh: &PolyMesh, options: &PatternOptions, control: &mut Contr
     control.keep_going(1.0);
     let chosen = &found.chosen;
     let s = score(&graph, chosen, options.bond);
-    let bound = found.bound.max(s.objective);
+    let bound = found.bound.value.max(s.objective);
     let gap = (bound - s.objective) / bound.abs().max(1.0);
     let status = if gap <= 1e-9 {
         SolveStatus::Optimal
@@ -256,14 +281,31 @@ pub fn solve_with(mesh: &PolyMesh, options: &PatternOptions, control: &mut Contr
         bound,
         gap,
         status,
+        bound_source: found.bound.source,
         seconds: started.elapsed().as_secs_f64(),
     })
+}
+
+/// A proven upper bound and where it came from.
+#[derive(Clone, Copy)]
+struct Bound {
+    value: f64,
+    source: BoundSource,
+}
+
+impl Bound {
+    /// Keeps `value` if it is tighter.
+    fn tighten(&mut self, value: f64, source: BoundSource) {
+        if value < self.value {
+            *self = Self { value, source };
+        }
+    }
 }
 
 /// A valid pattern and a proven bound on its objective.
 struct Found {
     chosen: Vec<bool>,
-    bound: f64,
+    bound: Bound,
     /// A solver stopped on the time limit (CBC stops a little before the caller's deadline).
     timed_out: bool,
 }
@@ -286,8 +328,8 @@ fn search_pattern(
     let value = |chosen: &[bool]| score(graph, chosen, bond).objective;
 
     let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
-    let mut bound = bound::from_tile_count(graph, bond, matching.iter().filter(|&&c| c).count());
-    let proven = |best: &[bool], bound: f64| bound - value(best) <= 1e-9;
+    let mut bound = Bound { value: bound::from_tile_count(graph, bond, matching.iter().filter(|&&c| c).count()), source: BoundSource::Matching };
+    let proven = |best: &[bool], bound: Bound| bound.value - value(best) <= 1e-9;
     let mut timed_out = false;
 
     // The whole program on CBC for `limit`: keeps CBC's pattern if it beats `best`, and
@@ -307,7 +349,8 @@ fn search_pattern(
         let mut best = fixed.clone();
         construct::complete_greedily(graph, bond, &fixed, &mut best);
         let (cbc_bound, timed_out) = whole_model(&mut best, deadline.saturating_duration_since(Instant::now()), control)?;
-        return Ok(Found { chosen: best, bound: bound.min(cbc_bound), timed_out });
+        bound.tighten(cbc_bound, BoundSource::WholeProgram);
+        return Ok(Found { chosen: best, bound, timed_out });
     }
 
     // Three cheap starts, each strong where the others are weak: courses parallel to the
@@ -335,7 +378,7 @@ fn search_pattern(
     if !proven(&best, bound) {
         // A start already close to the bound (a regular mesh) is polished cool rather than
         // melted: a full melt needs more moves than a large mesh gets to beat it again.
-        let gap = (bound - value(&best)) / bound.abs().max(1.0);
+        let gap = (bound.value - value(&best)) / bound.value.abs().max(1.0);
         let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP).clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
         anneal(&mut best, FIRST_ANNEAL_SHARE, temperature, 1, control)?;
     }
@@ -348,13 +391,13 @@ fn search_pattern(
         let partition = decompose::partition(graph, size);
         if partition.count == 1 {
             let (cbc_bound, cbc_timed_out) = whole_model(&mut best, left(), control)?;
-            bound = bound.min(cbc_bound);
+            bound.tighten(cbc_bound, BoundSource::WholeProgram);
             timed_out = cbc_timed_out;
             break;
         }
         let step_deadline = Instant::now() + left() / 2;
         if let Some(patches) = decompose::bound(graph, bond, &partition, &best, step_deadline, control, progress)? {
-            bound = bound.min(patches);
+            bound.tighten(patches, BoundSource::Patches);
         }
         if proven(&best, bound) {
             break;

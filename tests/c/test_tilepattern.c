@@ -152,6 +152,11 @@ static void test_pattern_and_tiles(void) {
   /* Paper, Figure 5: 49 tiles, no continuous joint, proven. */
   CHECK(summary.pairs == 49 && summary.unpaired == 2 && summary.continuous_joints == 0);
   CHECK(summary.status == TP_SOLVE_OPTIMAL && summary.objective == 49.0 && summary.bound == 49.0);
+  /* 49 < 50 tiles of a perfect matching: only a branch and bound proves it. */
+  int32_t source = -1;
+  CHECK(tp_pattern_bound_source(pattern, &source) == TP_OK && source == TP_BOUND_WHOLE_PROGRAM);
+  CHECK(tp_pattern_bound_source(NULL, &source) == TP_NULL_POINTER);
+  CHECK(tp_pattern_bound_source(pattern, NULL) == TP_NULL_POINTER);
   uint32_t pairs[98], unpaired[2];
   CHECK(tp_pattern_copy_pairs(pattern, pairs, 98) == TP_OK);
   CHECK(tp_pattern_copy_pairs(pattern, pairs, 97) == TP_BUFFER_TOO_SMALL);
