@@ -26,17 +26,24 @@ pub(super) struct Partition {
 }
 
 /// Splits the faces into patches of about `size` faces: seeds placed one by one at the face
-/// farthest (in steps between adjacent faces) from those placed so far, faces assigned to
+/// farthest (in steps between adjacent faces) from those placed so far (the first one at
+/// the first usable face, or for `variant > 0` at another face, so that partitions of the
+/// same size differ), faces assigned to
 /// their nearest seed (ties to the earlier seed), then [`LLOYD_ROUNDS`] times every seed
 /// moved to its patch's deepest face and the faces assigned again, which evens out the
 /// patches. Deterministic.
-pub(super) fn partition(graph: &DualGraph, size: usize) -> Partition {
+pub(super) fn partition(graph: &DualGraph, size: usize, variant: usize) -> Partition {
     let faces = graph.face_count();
     let usable: Vec<usize> = (0..faces).filter(|&f| !graph.face_tiles(f).is_empty()).collect();
     let wanted = usable.len().div_ceil(size.max(1)).max(1);
     let mut patch_of = vec![usize::MAX; faces];
     let mut distance = vec![usize::MAX; faces];
     let mut seeds = Vec::new();
+    if variant > 0 && !usable.is_empty() {
+        let first = usable[variant.wrapping_mul(7919) % usable.len()];
+        grow(graph, first, 0, &mut distance, &mut patch_of);
+        seeds.push(first);
+    }
     while seeds.len() < wanted || usable.iter().any(|&f| patch_of[f] == usize::MAX) {
         // The farthest face; unreached faces (another connected piece) first.
         let Some(seed) = usable.iter().copied().max_by_key(|&f| (distance[f], std::cmp::Reverse(f))) else { break };
@@ -238,7 +245,7 @@ mod tests {
                 // No incumbent: every patch is solved.
                 let nothing = vec![false; graph.tiles().len()];
                 for size in [6, 12, 25] {
-                    let partition = partition(&graph, size);
+                    let partition = partition(&graph, size, 0);
                     assert!(partition.count > 1);
                     let deadline = Instant::now() + std::time::Duration::from_secs(20);
                     let bound = super::bound(&graph, bond, &partition, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap().unwrap();
@@ -253,7 +260,7 @@ mod tests {
     fn partitions_cover_every_usable_face_with_patches_of_about_the_size_asked() {
         let mesh = generate::grid(30, 20);
         let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
-        let partition = partition(&graph, 100);
+        let partition = partition(&graph, 100, 0);
         assert_eq!(partition.count, 6);
         assert!(partition.patch_of.iter().all(|&p| p < partition.count));
         let mut sizes = vec![0; partition.count];

@@ -115,6 +115,12 @@ pub enum Method {
 /// Faces per patch in the first decomposition bound of [`Method::Auto`]: patches this small
 /// take CBC some 50 ms each. Meshes this small get the whole program at once.
 const FIRST_PATCH_SIZE: usize = 200;
+/// Largest patches: a few seconds each for CBC.
+const LAST_PATCH_SIZE: usize = 1600;
+/// Largest mesh [`Method::Auto`] gives to CBC whole. CBC cannot be stopped while Clp solves
+/// the root LP, which on larger staggered programs can take minutes (6589 faces: 110 s), and
+/// a solve past its time limit would keep the solver busy for later calls.
+const WHOLE_MODEL_FACES: usize = 2000;
 /// Share of the time limit the first annealing run may take, and of the time left the
 /// later ones.
 const FIRST_ANNEAL_SHARE: f64 = 0.5;
@@ -386,15 +392,16 @@ fn search_pattern(
     // (the last round, one patch, is the whole program), exact windows around the defects,
     // annealing again from the best pattern, cooler.
     let mut size = FIRST_PATCH_SIZE;
+    let mut variant = 0;
     let mut round = 0;
     while !proven(&best, bound) && Instant::now() < deadline {
-        let partition = decompose::partition(graph, size);
-        if partition.count == 1 {
+        if size >= faces && faces <= WHOLE_MODEL_FACES {
             let (cbc_bound, cbc_timed_out) = whole_model(&mut best, left(), control)?;
             bound.tighten(cbc_bound, BoundSource::WholeProgram);
             timed_out = cbc_timed_out;
             break;
         }
+        let partition = decompose::partition(graph, size, variant);
         let step_deadline = Instant::now() + left() / 2;
         if let Some(patches) = decompose::bound(graph, bond, &partition, &best, step_deadline, control, progress)? {
             bound.tighten(patches, BoundSource::Patches);
@@ -405,7 +412,12 @@ fn search_pattern(
         search::improve(graph, bond, &fixed, &mut best, Instant::now() + left() / 3, control, progress)?;
         round += 1;
         anneal(&mut best, ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 1 + round, control)?;
-        size *= 2;
+        // Patches grow to the largest size; from there on their partitions vary instead.
+        if size < LAST_PATCH_SIZE || (size < faces && faces <= WHOLE_MODEL_FACES) {
+            size *= 2;
+        } else {
+            variant += 1;
+        }
     }
     Ok(Found { chosen: best, bound, timed_out })
 }
