@@ -47,8 +47,14 @@ const ITERATIONS: usize = 150;
 /// Conjugate-gradient iterations of the last round.
 const LAST_ITERATIONS: usize = 300;
 
-/// Longest dual path (in triangles) for dislocation cancellation, boundary exits included.
-const CANCEL_DEPTH: usize = 150;
+/// Farthest (in quad lengths `t`) a dislocation is walked to cancel it against another or
+/// through the boundary. Farther apart, cancelling would strain every quad in between (a
+/// bend needs its extra rows), so the pair is kept as irregular vertices.
+const CANCEL_REACH: f64 = 5.0;
+
+/// Distance between the centroids of two triangles sharing an edge, per unit of mean edge
+/// length (equilateral triangles: 1 / sqrt 3).
+const TRIANGLE_STEP: f64 = 0.577;
 
 /// Cross frames `(o, n x o)` per vertex.
 fn bases(s: &Surface, frames: &[Vector3<f64>]) -> Vec<Matrix3x2<f64>> {
@@ -99,6 +105,9 @@ pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool], 
     let mut m = jumps(&u);
     let mut active = vec![false; 2 * n];
     let flow = Jumps::new(s, &transfer);
+    let mean_edge = s.edges.iter().map(|&[a, b]| s.edge_vec(a, b).norm()).sum::<f64>() / s.edges.len().max(1) as f64;
+    // The reach in steps between triangles.
+    let depth = (CANCEL_REACH * t / (TRIANGLE_STEP * mean_edge).max(f64::MIN_POSITIVE)).ceil().min(1e6) as usize;
     let mut pinned_normal = vec![false; n];
     let weight = edge_weights(s);
     let system = System { s, transfer: &transfer, delta: &delta, weight: &weight, t };
@@ -112,7 +121,7 @@ pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool], 
             return None;
         }
         let before = m.clone();
-        flow.cancel(m, CANCEL_DEPTH, CANCEL_DEPTH, pinned_normal, &mut || budget.poll(0.0));
+        flow.cancel(m, depth, depth, pinned_normal, &mut || budget.poll(0.0));
         Some(before)
     };
     for round in 0..ROUNDS {
