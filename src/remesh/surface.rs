@@ -377,6 +377,15 @@ const NARROW_RATIO: f64 = 2.5;
 /// Cosine of the turning angle (50 degrees) above which a boundary vertex is a corner.
 pub(crate) const CORNER_COS: f64 = 0.642_787_609_686_539_3;
 
+/// The midpoint of edge `a`-`b` of `surface` with its normal and cross frame (`frames[a]`
+/// averaged with `frames[b]` turned to match it), for refining the working surface.
+fn edge_midpoint(surface: &Surface, frames: &[Vector3<f64>], a: usize, b: usize) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    let n = (surface.normals[a] + surface.normals[b]).try_normalize(1e-300).unwrap_or(surface.normals[a]);
+    let o = frames[a] + super::field::match_rosy(&frames[a], &frames[b], &surface.normals[b]);
+    let o = (o - n * n.dot(&o)).try_normalize(1e-300).unwrap_or_else(|| any_tangent(&n));
+    ((surface.pos[a] + surface.pos[b]) * 0.5, n, o)
+}
+
 /// Midpoint-subdivides `base` (flat, so the surface does not move) until the mean edge is at
 /// most `t / 2`, interpolating the orientation field `frames` (one tangent vector per vertex,
 /// a 4-RoSy representative) and the normals onto the new vertices.
@@ -391,12 +400,9 @@ pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surfac
         let mut mid = vec![0usize; surface.edges.len()];
         for (e, &[a, b]) in surface.edges.iter().enumerate() {
             mid[e] = pos.len();
-            pos.push((surface.pos[a] + surface.pos[b]) * 0.5);
-            let n = (surface.normals[a] + surface.normals[b]).try_normalize(1e-300).unwrap_or(surface.normals[a]);
+            let (p, n, o) = edge_midpoint(&surface, &frames, a, b);
+            pos.push(p);
             normals.push(n);
-            let ob = super::field::match_rosy(&frames[a], &frames[b], &surface.normals[b]);
-            let o = frames[a] + ob;
-            let o = (o - n * n.dot(&o)).try_normalize(1e-300).unwrap_or_else(|| any_tangent(&n));
             fine_frames.push(o);
         }
         let edge_of = |a: usize, b: usize| -> usize {
@@ -433,12 +439,9 @@ pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surfac
                 continue;
             }
             mid[e] = pos.len();
-            pos.push((surface.pos[a] + surface.pos[b]) * 0.5);
-            let n = (surface.normals[a] + surface.normals[b]).try_normalize(1e-300).unwrap_or(surface.normals[a]);
+            let (p, n, o) = edge_midpoint(&surface, &frames, a, b);
+            pos.push(p);
             normals.push(n);
-            let ob = super::field::match_rosy(&frames[a], &frames[b], &surface.normals[b]);
-            let o = frames[a] + ob;
-            let o = (o - n * n.dot(&o)).try_normalize(1e-300).unwrap_or_else(|| any_tangent(&n));
             fine_frames.push(o);
         }
         let mid_of = |a: usize, b: usize| -> usize {
