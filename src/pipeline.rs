@@ -57,12 +57,16 @@ pub enum Error {
     },
 }
 
-/// Grid cells (of a tile's size) that cutting tiles to a boundary may take: every face is
-/// entered in each cell its bounding box meets, so a tile much smaller than the faces (a
-/// unit mistake) would need memory by the gigabyte. Meshes whose faces are about half a
-/// tile, as the remesher makes them, use at most 8 cells per face; the limit is this or 8
-/// per face, whichever is larger.
-pub const MAX_GRID_CELLS: f64 = 16e6;
+/// Grid cells (of a tile's size) that cutting tiles to a boundary may take: every face and
+/// every boundary edge is entered in each cell its bounding box meets, so a tile much smaller
+/// than the faces (a unit mistake) would need memory by the gigabyte and minutes of hashing.
+/// Meshes whose faces are about half a tile, as the remesher makes them, use at most 8 cells
+/// per face and as many per boundary edge; the limit is this or [`GRID_CELLS_PER_FACE`] per
+/// face, whichever is larger.
+pub const MAX_GRID_CELLS: f64 = 4e6;
+
+/// Grid cells per face always allowed (see [`MAX_GRID_CELLS`]).
+pub const GRID_CELLS_PER_FACE: f64 = 64.0;
 
 /// The result of the whole pipeline.
 #[derive(Debug, Clone)]
@@ -160,19 +164,29 @@ fn check_tile_scale(quads: Option<&PolyMesh>, surface: Option<&PolyMesh>, spec: 
     let cell = spec.length.max(spec.width);
     let meshes = [("quad mesh", quads), ("surface", surface)];
     let faces: usize = meshes.iter().filter_map(|(_, m)| m.map(PolyMesh::face_count)).sum();
-    let limit = MAX_GRID_CELLS.max(8.0 * faces as f64);
+    let limit = MAX_GRID_CELLS.max(GRID_CELLS_PER_FACE * faces as f64);
+    // Cells a box meets; NaN only when a ratio overflowed: as bad as it gets.
+    let cells_of = |points: &mut dyn Iterator<Item = nalgebra::Point3<f64>>| -> (f64, f64) {
+        let first = points.next().expect("faces and edges have points");
+        let (lo, hi) = points.fold((first, first), |(lo, hi), p| (lo.inf(&p), hi.sup(&p)));
+        let cells: f64 = (0..3).map(|k| (hi[k] / cell).floor() - (lo[k] / cell).floor() + 1.0).product();
+        (if cells.is_nan() { f64::INFINITY } else { cells }, (hi - lo).amax())
+    };
     let mut cells = 0.0;
     let mut worst = (0.0, "quad mesh", 0, 0.0);
     for (name, mesh) in meshes {
         let Some(mesh) = mesh else { continue };
+        let topology = crate::mesh::Topology::new(mesh).expect("a PolyMesh is manifold by construction");
         for f in 0..mesh.face_count() {
-            let (lo, hi) = mesh.face_points(f).fold((mesh.positions()[mesh.faces()[f][0]], mesh.positions()[mesh.faces()[f][0]]), |(lo, hi), p| (lo.inf(&p), hi.sup(&p)));
-            let per_axis = (0..3).map(|k| (hi[k] / cell).floor() - (lo[k] / cell).floor() + 1.0);
-            // NaN only when a ratio overflowed: as bad as it gets.
-            let here = Some(per_axis.product::<f64>()).filter(|c| !c.is_nan()).unwrap_or(f64::INFINITY);
+            let (mut here, span) = cells_of(&mut mesh.face_points(f));
+            // The face's boundary edges are entered in the boundary grid too.
+            for &e in topology.face_edges(f).iter().filter(|&&e| topology.edges()[e].is_boundary()) {
+                let [a, b] = topology.edges()[e].vertices;
+                here += cells_of(&mut [mesh.positions()[a], mesh.positions()[b]].into_iter()).0;
+            }
             cells += here;
             if here > worst.0 {
-                worst = (here, name, f, (hi - lo).amax());
+                worst = (here, name, f, span);
             }
         }
     }
