@@ -113,10 +113,17 @@ impl SurfaceBoundary {
         let r = Vector3::repeat(radius);
         let (lo, hi) = (cell_of(&(p - r), self.cell), cell_of(&(p + r), self.cell));
         let mut found = Vec::new();
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    found.extend(grid.get(&[x, y, z]).into_iter().flatten().copied());
+        let box_cells: f64 = (0..3).map(|k| (hi[k] as f64 - lo[k] as f64) + 1.0).product();
+        if box_cells > grid.len() as f64 {
+            // A box larger than the grid (a radius of many cells): read the grid instead.
+            let inside = |c: &[i64; 3]| (0..3).all(|k| (lo[k]..=hi[k]).contains(&c[k]));
+            found.extend(grid.iter().filter(|(c, _)| inside(c)).flat_map(|(_, items)| items.iter().copied()));
+        } else {
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        found.extend(grid.get(&[x, y, z]).into_iter().flatten().copied());
+                    }
                 }
             }
         }
