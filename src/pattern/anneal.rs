@@ -9,6 +9,8 @@
 //! * `f` is a half tile and its neighbour `g` lies in the tile `(g, h)`: shift that tile
 //!   onto `(f, g)`, which moves the half tile from `f` to `h`;
 //! * `f` lies in a tile: take the tile up (two half tiles);
+//!
+//! and at a random regular vertex:
 //! * the four faces around a regular vertex hold two parallel tiles: turn them by 90 degrees.
 //!
 //! Deterministic: a fixed-seed generator, no threads.
@@ -161,7 +163,8 @@ pub(super) fn anneal(
                     return true;
                 }
             }
-            // Half the moves start at a half tile, where most of the change happens.
+            // Three moves in eight start at a half tile, where most of the change happens;
+            // one in eight turns two tiles.
             let delta = match rng.below(8) {
                 0 if !stars.is_empty() => try_turn(&mut state, stars[rng.below(stars.len())], temperature, &mut rng),
                 1..4 if !state.half_tiles.is_empty() => {
