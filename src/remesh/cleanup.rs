@@ -115,6 +115,8 @@ pub(crate) fn pure_quads(raw: Raw, locator: &Locator, t: f64, budget: &mut Budge
             break;
         }
     }
+    let anchors = Anchors::new(&mut pos, &faces, locator, t);
+    fit::shorten_boundary_chords(&mut pos, &faces, &anchors, locator, FINAL * t);
     drop_unfit_rim_faces(&mut pos, &mut faces, locator, t);
     drop_rim_slivers(&pos, &mut faces, locator, t);
     split_pinched_vertices(&mut pos, &mut faces);

@@ -229,3 +229,59 @@ pub(crate) fn conform(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], anchors: &
 
 /// Rounds of [`conform`].
 const CONFORM_ROUNDS: usize = 40;
+
+/// Rounds of [`shorten_boundary_chords`].
+const CHORD_ROUNDS: usize = 3;
+
+/// Boundary edges whose midpoint leaves the surface by more than `limit` cut across an
+/// inward curve of the input boundary; the chord's sagitta grows with its length squared, so
+/// its two ends slide towards each other along the boundary until it keeps to `limit`
+/// (neighbouring chords grow a little, where the boundary is straighter). A move is kept only
+/// if it lowers the worst deviation of the faces around the two ends. Corners stay.
+pub(crate) fn shorten_boundary_chords(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], anchors: &Anchors, locator: &Locator, limit: f64) {
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); pos.len()];
+    for (fi, f) in faces.iter().enumerate() {
+        f.iter().for_each(|&v| incident[v].push(fi));
+    }
+    let worst_around = |pos: &[Vector3<f64>], ends: [usize; 2]| -> f64 {
+        ends.iter().flat_map(|&v| incident[v].iter()).map(|&fi| deviation(pos, &faces[fi], locator)).fold(0.0, f64::max)
+    };
+    for _ in 0..CHORD_ROUNDS {
+        let mut moved = false;
+        for a in 0..pos.len() {
+            for &b in anchors.bnbrs[a].iter().filter(|&&b| b > a) {
+                let off = locator.distance(&((pos[a] + pos[b]) * 0.5));
+                if off <= limit || (anchors.pinned[a] && anchors.pinned[b]) {
+                    continue;
+                }
+                let (Some(pa), Some(pb)) = (locator.closest_boundary_at(&pos[a]), locator.closest_boundary_at(&pos[b])) else { continue };
+                if pa.lp != pb.lp {
+                    continue;
+                }
+                let length = locator.loop_length(pa.lp);
+                // Along the loop from `a` to `b` the short way (`sign` -1 when that runs backwards).
+                let forward = (pb.arc - pa.arc).rem_euclid(length);
+                let (span, sign) = if forward <= length / 2.0 { (forward, 1.0) } else { (length - forward, -1.0) };
+                // Sagitta ~ span^2: the span that keeps to the limit, with a small margin.
+                let shrink = span * (1.0 - 0.97 * (limit / off).sqrt());
+                let (step_a, step_b) = match (anchors.pinned[a], anchors.pinned[b]) {
+                    (true, _) => (0.0, shrink),
+                    (_, true) => (shrink, 0.0),
+                    _ => (shrink / 2.0, shrink / 2.0),
+                };
+                let before = (pos[a], pos[b]);
+                let worst_before = worst_around(pos, [a, b]);
+                pos[a] = locator.boundary_point(pa.lp, pa.arc + sign * step_a);
+                pos[b] = locator.boundary_point(pb.lp, pb.arc - sign * step_b);
+                if worst_around(pos, [a, b]) < worst_before {
+                    moved = true;
+                } else {
+                    (pos[a], pos[b]) = before;
+                }
+            }
+        }
+        if !moved {
+            break;
+        }
+    }
+}
