@@ -5,18 +5,24 @@
 //! fit of a reference square). Global step: every vertex moves to the mean of its corners'
 //! targets. Unlike the paper's libigl run, every vertex is then projected back onto the input
 //! surface (boundary vertices onto the input boundary, corners stay put), so the shell's
-//! shape never changes; the tolerance is checked at the end and the step is undone if it
-//! was ever exceeded.
+//! shape never changes; faces that still leave it are pulled back as in the fitting, and
+//! the move is cut back (halved, up to four times, then undone) until edge midpoints and
+//! centroids keep within the tolerance too.
 
 use nalgebra::{Matrix3, Vector3};
 
 use super::budget::{Budget, Stop};
 use super::cleanup::{Anchors, Quads};
+use super::fit;
 use super::RemeshError;
 use super::surface::{Locator, point};
 
-/// Runs `iterations` local-global rounds on `quads`; returns the input unchanged if the
-/// result would leave the surface by more than `tolerance * t`. When the time limit passes
+/// Shares of the shape-up move tried, each half the one before.
+const SHARE_HALVINGS: i32 = 4;
+
+/// Runs `iterations` local-global rounds on `quads` and keeps the largest share of the move
+/// that leaves the surface (at vertices, edge midpoints or centroids) by no more than
+/// `tolerance * t`, or than the input did; the input unchanged if none does. When the time limit passes
 /// the rounds done so far stand; a cancel is an error.
 pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usize, tolerance: f64, budget: &mut Budget) -> Result<Quads, RemeshError> {
     let mut pos: Vec<Vector3<f64>> = quads.positions.iter().map(|p| p.coords).collect();
@@ -59,9 +65,22 @@ pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usiz
             pos[v] = anchors.project(locator, v, &(sum[v] / count[v]));
         }
     }
-    let worst = pos.iter().map(|p| locator.distance(p)).fold(0.0, f64::max);
-    if worst > tolerance * t {
-        return Ok(quads.clone());
+    // Vertices are on the surface; edges and faces between them may have left it. The
+    // largest share of the shape-up move (all, half, a quarter, ...) whose faces, pulled back
+    // as the fitting does, keep within the tolerance (or within the input's own deviation)
+    // is kept.
+    let worst = |pos: &[Vector3<f64>]| faces.iter().map(|f| fit::deviation(pos, f, locator)).fold(0.0, f64::max);
+    let before: Vec<Vector3<f64>> = quads.positions.iter().map(|p| p.coords).collect();
+    let allowed = (tolerance * t).max(worst(&before));
+    for halvings in 0..SHARE_HALVINGS {
+        let share = 0.5f64.powi(halvings);
+        let mut trial: Vec<Vector3<f64>> =
+            (0..pos.len()).map(|v| if anchors.pinned[v] { before[v] } else { anchors.project(locator, v, &(before[v] + (pos[v] - before[v]) * share)) }).collect();
+        fit::conform(&mut trial, faces, &anchors, locator, t);
+        fit::shorten_boundary_chords(&mut trial, faces, &anchors, locator, tolerance * t);
+        if worst(&trial) <= allowed {
+            return Ok(Quads { positions: trial.iter().map(point).collect(), faces: faces.clone() });
+        }
     }
-    Ok(Quads { positions: pos.iter().map(point).collect(), faces: faces.clone() })
+    Ok(quads.clone())
 }
