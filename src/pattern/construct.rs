@@ -77,7 +77,6 @@ fn strip_pairs(graph: &DualGraph, topology: &Topology, fixed: &[bool], seed_slot
 /// kept, which staggers neighbouring courses. Closed meshes start from their first face.
 pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bond, fixed: &[bool]) -> Vec<bool> {
     let faces = graph.face_count();
-    let neighbours = |f: usize| graph.face_tiles(f).iter().map(move |&t| graph.tiles()[t].faces).map(move |[a, b]| if a == f { b } else { a });
     let mut ring = vec![usize::MAX; faces];
     let mut queue = VecDeque::new();
     for f in 0..faces {
@@ -94,7 +93,7 @@ pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bon
         }
     }
     while let Some(f) = queue.pop_front() {
-        for g in neighbours(f) {
+        for g in graph.neighbours(f) {
             if ring[g] == usize::MAX {
                 ring[g] = ring[f] + 1;
                 queue.push_back(g);
@@ -114,7 +113,7 @@ pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bon
         }
         let mut walk = vec![start];
         walked[start] = true;
-        while let Some(next) = neighbours(*walk.last().expect("non-empty")).filter(|&g| ring[g] == ring[start] && !walked[g] && !used[g]).min() {
+        while let Some(next) = graph.neighbours(*walk.last().expect("non-empty")).filter(|&g| ring[g] == ring[start] && !walked[g] && !used[g]).min() {
             walked[next] = true;
             walk.push(next);
         }
@@ -167,11 +166,7 @@ pub(super) fn complete_greedily(graph: &DualGraph, bond: Bond, fixed: &[bool], c
 /// Per tile its partners in the bond's relation (continuous joints or shifted pairs), and
 /// what each chosen partner adds to the objective (`-w` or `+w`; nothing for stack bond).
 pub(super) fn bond_partners(graph: &DualGraph, bond: Bond) -> (Vec<Vec<usize>>, f64) {
-    let (relation, per_partner) = match bond {
-        Bond::Stack => (&[][..], 0.0),
-        Bond::Staggered { weight } => (graph.continuous_joints(), -weight),
-        Bond::RunningBond { weight } => (graph.shifted_pairs(), weight),
-    };
+    let (relation, per_partner) = graph.bond_pairs(bond);
     let mut partners = vec![Vec::new(); graph.tiles().len()];
     for &[a, b] in relation {
         partners[a].push(b);

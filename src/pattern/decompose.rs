@@ -5,7 +5,6 @@
 //! optimum. Unlike the maximum matching, the bound sees the half tiles and continuous
 //! joints that singularities and ragged boundaries force within a patch, which is where
 //! the optimum of such meshes falls short of the matching (issue: certified matching).
-//!
 
 use std::collections::VecDeque;
 use std::time::Instant;
@@ -28,10 +27,9 @@ pub(super) struct Partition {
 /// Splits the faces into patches of about `size` faces: seeds placed one by one at the face
 /// farthest (in steps between adjacent faces) from those placed so far (the first one at
 /// the first usable face, or for `variant > 0` at another face, so that partitions of the
-/// same size differ), faces assigned to
-/// their nearest seed (ties to the earlier seed), then [`LLOYD_ROUNDS`] times every seed
-/// moved to its patch's deepest face and the faces assigned again, which evens out the
-/// patches. Deterministic.
+/// same size differ), faces assigned to their nearest seed (ties to the earlier seed), then
+/// [`LLOYD_ROUNDS`] times every seed moved to its patch's deepest face and the faces
+/// assigned again, which evens out the patches. Deterministic.
 pub(super) fn partition(graph: &DualGraph, size: usize, variant: usize) -> Partition {
     let faces = graph.face_count();
     let usable: Vec<usize> = (0..faces).filter(|&f| !graph.face_tiles(f).is_empty()).collect();
@@ -78,7 +76,7 @@ fn grow(graph: &DualGraph, seed: usize, patch: usize, distance: &mut [usize], pa
     distance[seed] = 0;
     patch_of[seed] = patch;
     while let Some(f) = queue.pop_front() {
-        for g in neighbours(graph, f) {
+        for g in graph.neighbours(f) {
             if distance[f] + 1 < distance[g] {
                 distance[g] = distance[f] + 1;
                 patch_of[g] = patch;
@@ -92,7 +90,7 @@ fn grow(graph: &DualGraph, seed: usize, patch: usize, distance: &mut [usize], pa
 /// to the mesh boundary), the lowest index among equals.
 fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usize> {
     let faces = graph.face_count();
-    let edge = |f: usize| graph.face_tiles(f).len() < 4 || neighbours(graph, f).any(|g| patch_of[g] != patch_of[f]);
+    let edge = |f: usize| graph.face_tiles(f).len() < 4 || graph.neighbours(f).any(|g| patch_of[g] != patch_of[f]);
     let mut depth = vec![usize::MAX; faces];
     let mut queue = VecDeque::new();
     for f in (0..faces).filter(|&f| patch_of[f] != usize::MAX && edge(f)) {
@@ -100,7 +98,7 @@ fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usi
         queue.push_back(f);
     }
     while let Some(f) = queue.pop_front() {
-        for g in neighbours(graph, f) {
+        for g in graph.neighbours(f) {
             if patch_of[g] == patch_of[f] && depth[g] == usize::MAX {
                 depth[g] = depth[f] + 1;
                 queue.push_back(g);
@@ -115,14 +113,6 @@ fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usi
         }
     }
     deepest
-}
-
-/// Faces sharing a candidate tile with `f`.
-fn neighbours(graph: &DualGraph, f: usize) -> impl Iterator<Item = usize> + '_ {
-    graph.face_tiles(f).iter().map(move |&t| {
-        let [a, b] = graph.tiles()[t].faces;
-        if a == f { b } else { a }
-    })
 }
 
 /// Upper bound on the objective of `bond` from the patches of `partition`, or `None` when
@@ -145,21 +135,13 @@ pub(super) fn bound(
     progress: &impl Fn() -> f64,
 ) -> Result<Option<f64>, PatternError> {
     let tiles = graph.tiles();
-    let relation = match bond {
-        Bond::Stack => &[][..],
-        Bond::Staggered { .. } => graph.continuous_joints(),
-        Bond::RunningBond { .. } => graph.shifted_pairs(),
-    };
+    let (relation, per_pair) = graph.bond_pairs(bond);
     // Each pair belongs to the first patch both its tiles reach, else to the patch of its
     // first tile's first face (a reward pair must be counted somewhere).
     let reaches = |t: usize, p: usize| tiles[t].faces.iter().any(|&f| partition.patch_of[f] == p);
     let owner: Vec<usize> = relation
         .iter()
-        .map(|&[a, b]| {
-            let mut candidates: Vec<usize> = tiles[a].faces.iter().map(|&f| partition.patch_of[f]).filter(|&p| reaches(b, p)).collect();
-            candidates.sort_unstable();
-            candidates.first().copied().unwrap_or(partition.patch_of[tiles[a].faces[0]])
-        })
+        .map(|&[a, b]| tiles[a].faces.iter().map(|&f| partition.patch_of[f]).filter(|&p| reaches(b, p)).min().unwrap_or(partition.patch_of[tiles[a].faces[0]]))
         .collect();
 
     let mut members = vec![Vec::new(); partition.count];
@@ -173,10 +155,6 @@ pub(super) fn bound(
     let mut shortfall = vec![0.0; partition.count];
     if !running {
         // The incumbent's share in each patch: half per covered face, minus owned joints.
-        let weight = match bond {
-            Bond::Staggered { weight } => weight,
-            _ => 0.0,
-        };
         let mut covered = vec![false; graph.face_count()];
         for (t, _) in incumbent.iter().enumerate().filter(|(_, on)| **on) {
             tiles[t].faces.iter().for_each(|&f| covered[f] = true);
@@ -186,7 +164,7 @@ pub(super) fn bound(
         }
         for (i, &[a, b]) in relation.iter().enumerate() {
             if incumbent[a] && incumbent[b] && owner[i] != usize::MAX {
-                shortfall[owner[i]] += weight;
+                shortfall[owner[i]] -= per_pair;
             }
         }
         order.retain(|&p| shortfall[p] > 1e-9);

@@ -2,6 +2,7 @@
 //! (two quads sharing an edge) are dual edges, and two relations between candidate tiles
 //! carry the bond terms of the integer models.
 
+use super::Bond;
 use crate::mesh::{PolyMesh, Topology};
 
 /// Two adjacent quads that may become one tile. The mesh edge between them is the tile's
@@ -86,6 +87,25 @@ impl DualGraph {
     /// continuous-joint pairs, and at most one of the two pairs fits in a matching.
     pub fn regular_vertex_stars(&self) -> &[[usize; 4]] {
         &self.regular_vertex_stars
+    }
+
+    /// Faces sharing a candidate tile with face `f`.
+    pub fn neighbours(&self, f: usize) -> impl Iterator<Item = usize> + '_ {
+        self.face_tiles[f].iter().map(move |&t| {
+            let [a, b] = self.tiles[t].faces;
+            if a == f { b } else { a }
+        })
+    }
+
+    /// The pairs of candidate tiles that `bond`'s objective scores, and what each pair of
+    /// chosen tiles adds to it: continuous joints at `-w` (eq. 2), shifted pairs at `+w`
+    /// (eq. 3), none for the stack bond (eq. 1).
+    pub fn bond_pairs(&self, bond: Bond) -> (&[[usize; 2]], f64) {
+        match bond {
+            Bond::Stack => (&[], 0.0),
+            Bond::Staggered { weight } => (&self.continuous_joints, -weight),
+            Bond::RunningBond { weight } => (&self.shifted_pairs, weight),
+        }
     }
 
     /// The candidate tile made of faces `a` and `b`, if they are adjacent usable quads.

@@ -111,7 +111,7 @@ pub(super) fn solve(
         Bond::Staggered { weight } => {
             // Eq. (2): y >= x1 + x2 - 1 and a penalty w per continuous joint.
             let mut y_of = HashMap::new();
-            for (_, &pair) in graph.continuous_joints().iter().enumerate().filter(|&(i, _)| owned(i)) {
+            for pair in graph.continuous_joints().iter().enumerate().filter(|&(i, _)| owned(i)).map(|(_, &pair)| pair) {
                 if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
                     let y = vars.add(variable().binary());
                     objective -= weight * y;
@@ -134,7 +134,7 @@ pub(super) fn solve(
         }
         Bond::RunningBond { weight } => {
             // Eq. (3): z <= x1, z <= x2 and a reward w_R per shifted pair.
-            for (_, &pair) in graph.shifted_pairs().iter().enumerate().filter(|&(i, _)| owned(i)) {
+            for pair in graph.shifted_pairs().iter().enumerate().filter(|&(i, _)| owned(i)).map(|(_, &pair)| pair) {
                 if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
                     let z = vars.add(variable().binary());
                     objective += weight * z;

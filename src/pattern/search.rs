@@ -117,9 +117,7 @@ fn ball(graph: &DualGraph, seed: usize, size: usize) -> Vec<usize> {
         if order.len() == size {
             break;
         }
-        for &t in graph.face_tiles(f) {
-            let [a, b] = graph.tiles()[t].faces;
-            let g = if a == f { b } else { a };
+        for g in graph.neighbours(f) {
             if !std::mem::replace(&mut seen[g], true) {
                 queue.push_back(g);
             }
