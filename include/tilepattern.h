@@ -594,6 +594,9 @@ TpStatus tp_remesh(const struct TpMesh *mesh,
  * Copies the message of this thread's last failed call (empty after a success) into `buf`
  * as a NUL-terminated string, truncated to `len - 1` bytes. Returns the message's full
  * length in bytes without the NUL, so `tp_last_error_message(NULL, 0)` asks for the size.
+ *
+ * # Safety
+ * `buf` is null or points to at least `len` writable bytes.
  */
 size_t tp_last_error_message(char *buf, size_t len);
 

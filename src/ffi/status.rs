@@ -144,8 +144,11 @@ pub(super) fn guard(body: impl FnOnce() -> Result<(), Failure>) -> TpStatus {
 /// Copies the message of this thread's last failed call (empty after a success) into `buf`
 /// as a NUL-terminated string, truncated to `len - 1` bytes. Returns the message's full
 /// length in bytes without the NUL, so `tp_last_error_message(NULL, 0)` asks for the size.
+///
+/// # Safety
+/// `buf` is null or points to at least `len` writable bytes.
 #[unsafe(no_mangle)]
-pub extern "C" fn tp_last_error_message(buf: *mut c_char, len: usize) -> usize {
+pub unsafe extern "C" fn tp_last_error_message(buf: *mut c_char, len: usize) -> usize {
     catch_unwind(|| {
         LAST_ERROR.with(|last| {
             let bytes = last.borrow().as_bytes().to_vec();
