@@ -42,3 +42,66 @@ pub(super) fn from_tile_count(graph: &DualGraph, bond: Bond, max_tiles: usize) -
         Bond::RunningBond { weight } => tiles + weight * (2.0 * tiles).min(graph.shifted_pairs().len() as f64),
     }
 }
+
+/// Most values of the joint count `b` that [`round_down`] tries before it gives up rounding
+/// (only a tiny weight needs more).
+const MOST_JOINT_COUNTS: usize = 100_000;
+
+/// The largest objective value at most `bound` that a stack or staggered pattern can take.
+///
+/// Such objectives are `step * a - weight * b` for whole numbers `a` (tiles, `step` = 1; or
+/// in a patch relaxation faces covered, `step` = 1/2) with `step * a <= most`, and `b >= 0`
+/// (continuous joints). A solver's bound lies between the optimum and the next value of this
+/// form (CBC reports e.g. 96.6 where the optimum 96.5 is proven), so rounding it down
+/// to the form keeps it valid and tightens it by up to one step. A running bond, whose bond
+/// term is a reward, keeps its bound as it is.
+pub(super) fn round_down(bound: f64, bond: Bond, step: f64, most: f64) -> f64 {
+    let weight = match bond {
+        Bond::Stack => 0.0,
+        Bond::Staggered { weight } => weight,
+        Bond::RunningBond { .. } => return bound,
+    };
+    if !bound.is_finite() {
+        return bound;
+    }
+    // Room for the solver's tolerances, which can leave its bound a hair below the optimum.
+    let tolerance = 1e-6 + 1e-9 * bound.abs();
+    let largest_a = (most / step + 1e-9).floor();
+    let mut best = f64::NEG_INFINITY;
+    for b in 0..=MOST_JOINT_COUNTS {
+        let penalty = weight * b as f64;
+        if largest_a * step - penalty < best || (b > 0 && weight == 0.0) {
+            return best;
+        }
+        let a = ((bound + tolerance + penalty) / step).floor().min(largest_a);
+        best = best.max(a * step - penalty);
+    }
+    bound
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_round_down_to_values_a_pattern_can_take() {
+        let staggered = |weight| Bond::Staggered { weight };
+        // Half steps: 96.6 cannot be reached, 96.5 can.
+        assert_eq!(round_down(96.6, staggered(0.5), 1.0, 100.0), 96.5);
+        assert_eq!(round_down(96.5, staggered(0.5), 1.0, 100.0), 96.5);
+        assert_eq!(round_down(96.4999999, staggered(0.5), 1.0, 100.0), 96.5);
+        // w = 0.3 and at most 97 tiles: 97 - 0.3 = 96.7 is too much, 97 - 0.6 = 96.4 fits; with
+        // 99 tiles allowed, 99 - 8 * 0.3 = 96.6 is reached exactly.
+        assert!((round_down(96.6, staggered(0.3), 1.0, 97.0) - 96.4).abs() < 1e-9);
+        assert!((round_down(96.6, staggered(0.3), 1.0, 100.0) - 96.6).abs() < 1e-9);
+        // More tiles than `most` are impossible.
+        assert_eq!(round_down(120.2, staggered(0.5), 1.0, 100.0), 100.0);
+        assert_eq!(round_down(96.7, Bond::Stack, 1.0, 100.0), 96.0);
+        // Patch relaxations count half a tile per face.
+        assert_eq!(round_down(10.4, staggered(0.5), 0.5, 12.0), 10.0);
+        assert!((round_down(10.4, staggered(0.7), 0.5, 12.0) - 10.3).abs() < 1e-9);
+        let running = Bond::RunningBond { weight: 0.5 };
+        assert_eq!(round_down(10.4, running, 1.0, 12.0), 10.4);
+        assert_eq!(round_down(f64::INFINITY, staggered(0.5), 1.0, 12.0), f64::INFINITY);
+    }
+}

@@ -104,8 +104,10 @@ pub enum Method {
     /// The fastest route to a proven optimum: a maximum-matching bound and three
     /// constructive starts (courses along the boundary, a running bond along quad strips, the
     /// maximum matching), simulated annealing from the best, then rounds of a decomposition
-    /// bound with ever larger patches, exact re-solves of windows around the defects and
-    /// cooler annealing; the last round solves the whole program on CBC.
+    /// bound with ever larger patches (each round's made of the last one's and centred on the
+    /// forced defects it found), exact re-solves of windows around the defects and cooler
+    /// annealing; the last round solves the whole program on CBC. Every bound is rounded
+    /// down to the next objective value a pattern can take.
     #[default]
     Auto,
     /// The whole program on CBC, as in the paper (slow on large meshes; a reference).
@@ -125,6 +127,9 @@ const WHOLE_MODEL_FACES: usize = 2000;
 /// later ones.
 const FIRST_ANNEAL_SHARE: f64 = 0.5;
 const ANNEAL_SHARE: f64 = 0.3;
+/// Each round's exact windows get the time left divided by this: after annealing they
+/// rarely improve the pattern, and the bound needs the time more.
+const WINDOW_SHARE: u32 = 6;
 /// A start this far below the matching bound (or farther) is annealed from the full first
 /// temperature; closer starts from proportionally cooler ones.
 const MELT_GAP: f64 = 0.01;
@@ -334,7 +339,10 @@ fn search_pattern(
     let value = |chosen: &[bool]| score(graph, chosen, bond).objective;
 
     let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
-    let mut bound = Bound { value: bound::from_tile_count(graph, bond, matching.iter().filter(|&&c| c).count()), source: BoundSource::Matching };
+    let most_tiles = matching.iter().filter(|&&c| c).count();
+    let mut bound = Bound { value: bound::from_tile_count(graph, bond, most_tiles), source: BoundSource::Matching };
+    // Every bound is rounded down to the next objective value a pattern can take.
+    let rounded = |value: f64| bound::round_down(value, bond, 1.0, most_tiles as f64);
     let proven = |best: &[bool], bound: Bound| bound.value - value(best) <= 1e-9;
     let mut timed_out = false;
 
@@ -355,7 +363,7 @@ fn search_pattern(
         let mut best = fixed.clone();
         construct::complete_greedily(graph, bond, &fixed, &mut best);
         let (cbc_bound, timed_out) = whole_model(&mut best, deadline.saturating_duration_since(Instant::now()), control)?;
-        bound.tighten(cbc_bound, BoundSource::WholeProgram);
+        bound.tighten(rounded(cbc_bound), BoundSource::WholeProgram);
         return Ok(Found { chosen: best, bound, timed_out });
     }
 
@@ -388,28 +396,43 @@ fn search_pattern(
         let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP).clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
         anneal(&mut best, FIRST_ANNEAL_SHARE, temperature, 1, control)?;
     }
-    // Then rounds of: a decomposition bound with patches twice as large as the round before
-    // (the last round, one patch, is the whole program), exact windows around the defects,
-    // annealing again from the best pattern, cooler.
+    // Then rounds of: a decomposition bound with patches twice as large as the round before,
+    // made of its patches (so nothing proven is lost when the deadline cuts a round short)
+    // and centred on the forced defects it found (the last round, one patch, is the whole
+    // program); exact windows around the defects; annealing again from the best pattern,
+    // cooler.
     let mut size = FIRST_PATCH_SIZE;
     let mut variant = 0;
     let mut round = 0;
+    // Faces where patch relaxations found forced defects: the next patches are centred there.
+    let mut sources: Vec<usize> = Vec::new();
+    // The last round's partition and what it proved.
+    let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
     while !proven(&best, bound) && Instant::now() < deadline {
         if size >= faces && faces <= WHOLE_MODEL_FACES {
             let (cbc_bound, cbc_timed_out) = whole_model(&mut best, left(), control)?;
-            bound.tighten(cbc_bound, BoundSource::WholeProgram);
+            bound.tighten(rounded(cbc_bound), BoundSource::WholeProgram);
             timed_out = cbc_timed_out;
             break;
         }
-        let partition = decompose::partition(graph, size, variant);
+        let fresh = decompose::partition(graph, size, variant, &sources);
+        // Larger patches are unions of the last round's, which keeps what that round proved.
+        let partition = match finer.take() {
+            Some((last, proven)) if variant == 0 => decompose::coarsen(&fresh, &last, &proven),
+            _ => fresh,
+        };
         let step_deadline = Instant::now() + left() / 2;
-        if let Some(patches) = decompose::bound(graph, bond, &partition, &best, step_deadline, control, progress)? {
-            bound.tighten(patches, BoundSource::Patches);
+        let proven_here = decompose::bound(graph, bond, &partition, &best, step_deadline, control, progress)?;
+        if let Some(patches) = proven_here.value {
+            bound.tighten(rounded(patches), BoundSource::Patches);
         }
+        // This round's sources (from larger patches, so more telling) first, then earlier ones.
+        sources = proven_here.sources.iter().map(|s| s.face).chain(sources).collect();
+        finer = Some((partition, proven_here));
         if proven(&best, bound) {
             break;
         }
-        search::improve(graph, bond, &fixed, &mut best, Instant::now() + left() / 3, control, progress)?;
+        search::improve(graph, bond, &fixed, &mut best, Instant::now() + left() / WINDOW_SHARE, control, progress)?;
         round += 1;
         anneal(&mut best, ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 1 + round, control)?;
         // Patches grow to the largest size; from there on their partitions vary instead.
