@@ -198,9 +198,14 @@ fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usi
 /// that: such patches are not solved. The others are solved those centred on sources first,
 /// then by how far the incumbent falls short of their starting bound, the largest first. A
 /// patch cut short by the deadline contributes its solver bound.
+///
+/// With `linear`, each patch's linear relaxation is solved instead: a weaker bound, found
+/// far sooner, so that patches can be larger (and no sources are reported).
+#[expect(clippy::too_many_arguments, reason = "the stage's inputs, its limits and its control")]
 pub(super) fn bound(
     graph: &DualGraph,
     bond: Bond,
+    linear: bool,
     partition: &Partition,
     incumbent: &[bool],
     deadline: Instant,
@@ -266,7 +271,7 @@ pub(super) fn bound(
         let share = (deadline - now).mul_f64(PATCH_SHARE / (order.len() - k) as f64).min(deadline - now);
         members[p].iter().for_each(|&f| faces[f] = true);
         let owned: Vec<bool> = owner.iter().map(|&o| o == p).collect();
-        let restriction = Restriction { free: &free, fixed: &fixed, patch: Some(Patch { faces: &faces, owned: &owned }) };
+        let restriction = Restriction { free: &free, fixed: &fixed, patch: Some(Patch { faces: &faces, owned: &owned }), linear };
         let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, share, control, progress)?;
         let before = patch_bound[p];
         let solved = if running { outcome.bound } else { bound::round_down(outcome.bound, bond, 0.5, 0.5 * members[p].len() as f64) };
@@ -366,23 +371,24 @@ mod tests {
                 assert_eq!(optimum.status, SolveStatus::Optimal);
                 // No incumbent: every patch is solved.
                 let nothing = vec![false; graph.tiles().len()];
-                for size in [6, 12, 25] {
+                for (size, linear) in [6, 12, 25].into_iter().flat_map(|size| [(size, false), (size, true)]) {
                     let partition = partition(&graph, size, 0, &[]);
                     assert!(partition.count > 1);
                     let deadline = Instant::now() + std::time::Duration::from_secs(20);
-                    let bound = super::bound(&graph, bond, &partition, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap().value.unwrap();
-                    assert!(bound >= optimum.objective - 1e-6, "{bond:?}, patches of {size}: bound {bound} < optimum {}", optimum.objective);
+                    let bound = super::bound(&graph, bond, linear, &partition, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap().value.unwrap();
+                    let what = if linear { "linear relaxations" } else { "patches" };
+                    assert!(bound >= optimum.objective - 1e-6, "{bond:?}, {what} of {size}: bound {bound} < optimum {}", optimum.objective);
                     assert!(bound <= 0.5 * mesh.face_count() as f64 + 1e-6 || matches!(bond, Bond::RunningBond { .. }));
                 }
                 // Coarser patches built from finer ones, centred on the finer round's sources:
                 // never weaker than the finer bound, never below the optimum.
                 let finer_partition = partition(&graph, 6, 0, &[]);
                 let deadline = Instant::now() + std::time::Duration::from_secs(20);
-                let finer = super::bound(&graph, bond, &finer_partition, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap();
+                let finer = super::bound(&graph, bond, false, &finer_partition, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap();
                 let sources: Vec<usize> = finer.sources.iter().map(|s| s.face).collect();
                 let coarse = coarsen(&partition(&graph, 20, 0, &sources), &finer_partition, &finer);
                 assert!(coarse.count < finer_partition.count);
-                let refined = super::bound(&graph, bond, &coarse, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap();
+                let refined = super::bound(&graph, bond, false, &coarse, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap();
                 let (finer, refined) = (finer.value.unwrap(), refined.value.unwrap());
                 assert!(refined <= finer + 1e-9, "{bond:?}: coarser bound {refined} above the finer {finer}");
                 assert!(refined >= optimum.objective - 1e-6, "{bond:?}: coarser bound {refined} < optimum {}", optimum.objective);

@@ -103,11 +103,12 @@ pub struct PatternOptions {
 pub enum Method {
     /// The fastest route to a proven optimum: a maximum-matching bound and three
     /// constructive starts (courses along the boundary, a running bond along quad strips, the
-    /// maximum matching), simulated annealing from the best, then rounds of a decomposition
-    /// bound with ever larger patches (each round's made of the last one's and centred on the
-    /// forced defects it found), exact re-solves of windows around the defects and cooler
-    /// annealing; the last round solves the whole program on CBC. Every bound is rounded
-    /// down to the next objective value a pattern can take.
+    /// maximum matching), simulated annealing from the best, a decomposition bound from the
+    /// linear relaxations of ever larger patches, then rounds of a decomposition bound from
+    /// exactly solved patches, ever larger (each round's made of the last one's and centred
+    /// on the forced defects it found), exact re-solves of windows around the defects and
+    /// cooler annealing; the last round solves the whole program on CBC. Every bound is
+    /// rounded down to the next objective value a pattern can take.
     #[default]
     Auto,
     /// The whole program on CBC, as in the paper (slow on large meshes; a reference).
@@ -117,6 +118,11 @@ pub enum Method {
 /// Faces per patch in the first decomposition bound of [`Method::Auto`]: patches this small
 /// take CBC some 50 ms each. Meshes this small get the whole program at once.
 const FIRST_PATCH_SIZE: usize = 200;
+/// Faces per patch in the first round of linear patch relaxations: some 20 ms each.
+const FIRST_LINEAR_PATCH_SIZE: usize = 200;
+/// How much longer a round of linear patch relaxations takes than the round before, with
+/// patches twice as large and half as many (Clp's time grows about as size^2.5 here).
+const LINEAR_ROUND_GROWTH: f64 = 3.0;
 /// Largest patches: a few seconds each for CBC.
 const LAST_PATCH_SIZE: usize = 1600;
 /// Largest mesh [`Method::Auto`] gives to CBC whole. CBC cannot be stopped while Clp solves
@@ -182,7 +188,8 @@ pub enum BoundSource {
     /// bond with at most two shifted pairs per tile.
     #[default]
     Matching,
-    /// The sum of the patch relaxations of a decomposition of the faces.
+    /// The sum of the patch relaxations of a decomposition of the faces (each solved exactly,
+    /// or as a linear program).
     Patches,
     /// CBC's branch and bound on the whole program.
     WholeProgram,
@@ -349,7 +356,7 @@ fn search_pattern(
     // The whole program on CBC for `limit`: keeps CBC's pattern if it beats `best`, and
     // returns CBC's bound and whether it stopped on time.
     let whole_model = |best: &mut Vec<bool>, limit: Duration, control: &mut Control<'_>| -> Result<(f64, bool), PatternError> {
-        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed, patch: None }, limit, control, progress)?;
+        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed, patch: None, linear: false }, limit, control, progress)?;
         if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
             if search::is_matching(graph, &found) && value(&found) > value(best) {
                 *best = found;
@@ -396,6 +403,31 @@ fn search_pattern(
         let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP).clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
         anneal(&mut best, FIRST_ANNEAL_SHARE, temperature, 1, control)?;
     }
+    // Linear relaxations of patches next: with the star rows they come within about half a
+    // tile per patch of the integer patches' bound in a small part of the time, so patches
+    // can be larger. Patches double, each round made of the last one's, while the last
+    // round's time, grown as a linear program's does with its size, fits the time left.
+    if bond != Bond::Stack {
+        let mut size = FIRST_LINEAR_PATCH_SIZE;
+        let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
+        while !proven(&best, bound) && Instant::now() < deadline {
+            let fresh = decompose::partition(graph, size, 0, &[]);
+            let partition = match finer.take() {
+                Some((last, proven)) => decompose::coarsen(&fresh, &last, &proven),
+                None => fresh,
+            };
+            let started = Instant::now();
+            let proven_here = decompose::bound(graph, bond, true, &partition, &best, started + left() / 2, control, progress)?;
+            if let Some(patches) = proven_here.value {
+                bound.tighten(rounded(patches), BoundSource::Patches);
+            }
+            if partition.count <= 1 || started.elapsed().mul_f64(LINEAR_ROUND_GROWTH) > left() / 3 {
+                break;
+            }
+            finer = Some((partition, proven_here));
+            size *= 2;
+        }
+    }
     // Then rounds of: a decomposition bound with patches twice as large as the round before,
     // made of its patches (so nothing proven is lost when the deadline cuts a round short)
     // and centred on the forced defects it found (the last round, one patch, is the whole
@@ -422,7 +454,7 @@ fn search_pattern(
             _ => fresh,
         };
         let step_deadline = Instant::now() + left() / 2;
-        let proven_here = decompose::bound(graph, bond, &partition, &best, step_deadline, control, progress)?;
+        let proven_here = decompose::bound(graph, bond, false, &partition, &best, step_deadline, control, progress)?;
         if let Some(patches) = proven_here.value {
             bound.tighten(rounded(patches), BoundSource::Patches);
         }
