@@ -137,10 +137,15 @@ namespace TilePattern.Tests
                 Assert.AreEqual(2, pattern.Unpaired.Length);
                 Assert.AreEqual(0, pattern.ContinuousJoints);
                 Assert.AreEqual(SolveStatus.Optimal, pattern.Status);
-                Assert.AreEqual(BoundSource.WholeProgram, pattern.BoundSource, "only a branch and bound proves 49.5 < 50");
+                Assert.AreEqual(BoundSource.Patches, pattern.BoundSource, "no matching proves 49 < 50; the star rows' linear relaxation does");
                 Assert.AreEqual(49.0, pattern.Objective);
                 Assert.AreEqual(49.0, pattern.Bound);
                 Assert.IsTrue(pattern.Pairs.All(p => (p.B == p.A + 1 && p.A % 10 != 9) || p.B == p.A + 10));
+                using (Pattern paper = TilePatternEngine.Match(grid, new PatternOptions { Weight = 2.0, Method = SolveMethod.Mip }))
+                {
+                    Assert.AreEqual(BoundSource.WholeProgram, paper.BoundSource, "the paper's route proves it by branch and bound");
+                    Assert.AreEqual(49.0, paper.Objective);
+                }
 
                 var tile = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1 };
                 Tiling tiling = TilePatternEngine.Tiles(pattern, tile);

@@ -63,7 +63,7 @@ namespace TilePattern
     {
         /// <summary>A maximum matching bounds the number of tiles.</summary>
         Matching = 0,
-        /// <summary>The patch relaxations of a decomposition of the faces.</summary>
+        /// <summary>The patch relaxations of a decomposition of the faces (linear or integer).</summary>
         Patches = 1,
         /// <summary>Branch and bound on the whole program.</summary>
         WholeProgram = 2,

@@ -317,7 +317,7 @@ class Pattern:
     bound_source : str
         Which argument proved ``bound`` (with an optimal status: which closed the gap):
         ``"matching"`` (a maximum matching), ``"patches"`` (a decomposition's patch
-        relaxations) or ``"whole_program"`` (branch and bound on the whole program).
+        relaxations, linear or integer) or ``"whole_program"`` (branch and bound on the whole program).
     """
 
     pairs: np.ndarray
