@@ -196,7 +196,8 @@ fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usi
 ///
 /// A patch where the `incumbent` already scores its starting bound would return exactly
 /// that: such patches are not solved. The others are solved those centred on sources first,
-/// then by how far the incumbent falls short of their starting bound, the largest first. A
+/// then by how far the incumbent falls short of their starting bound, the largest first,
+/// each if its linear program is expected to finish within its share of the time left. A
 /// patch cut short by the deadline contributes its solver bound.
 ///
 /// With `linear`, each patch's linear relaxation is solved instead: a weaker bound, found
@@ -269,6 +270,9 @@ pub(super) fn bound(
         // A fair share of the time left, so one hard patch cannot starve the others; a patch
         // cut short still gives its solver's bound.
         let share = (deadline - now).mul_f64(PATCH_SHARE / (order.len() - k) as f64).min(deadline - now);
+        if mip::expected_linear_seconds(members[p].len()) > share.as_secs_f64() {
+            continue;
+        }
         members[p].iter().for_each(|&f| faces[f] = true);
         let owned: Vec<bool> = owner.iter().map(|&o| o == p).collect();
         let restriction = Restriction { free: &free, fixed: &fixed, patch: Some(Patch { faces: &faces, owned: &owned }), linear };

@@ -441,7 +441,7 @@ fn search_pattern(
     // The last round's partition and what it proved.
     let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
     while !proven(&best, bound) && Instant::now() < deadline {
-        if size >= faces && faces <= WHOLE_MODEL_FACES {
+        if size >= faces && faces <= WHOLE_MODEL_FACES && mip::expected_linear_seconds(faces) <= left().as_secs_f64() {
             let (cbc_bound, cbc_timed_out) = whole_model(&mut best, left(), control)?;
             bound.tighten(rounded(cbc_bound), BoundSource::WholeProgram);
             timed_out = cbc_timed_out;
