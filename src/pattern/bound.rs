@@ -43,23 +43,23 @@ pub(super) fn from_tile_count(graph: &DualGraph, bond: Bond, max_tiles: usize) -
     }
 }
 
-/// Most values of the joint count `b` that [`round_down`] tries before it gives up rounding
+/// Most values of the pair count `b` that [`round_down`] tries before it gives up rounding
 /// (only a tiny weight needs more).
-const MOST_JOINT_COUNTS: usize = 100_000;
+const MOST_PAIR_COUNTS: usize = 100_000;
 
-/// The largest objective value at most `bound` that a stack or staggered pattern can take.
+/// The largest objective value at most `bound` that a pattern can take.
 ///
-/// Such objectives are `step * a - weight * b` for whole numbers `a` (tiles, `step` = 1; or
-/// in a patch relaxation faces covered, `step` = 1/2) with `step * a <= most`, and `b >= 0`
-/// (continuous joints). A solver's bound lies between the optimum and the next value of this
-/// form (CBC reports e.g. 96.6 where the optimum 96.5 is proven), so rounding it down
-/// to the form keeps it valid and tightens it by up to one step. A running bond, whose bond
-/// term is a reward, keeps its bound as it is.
+/// Objectives are `step * a - weight * b` (stack, staggered: `b` continuous joints) or
+/// `step * a + weight * b` (running bond: `b` shifted pairs) for whole numbers `a >= 0`
+/// (tiles, `step` = 1; or in a patch relaxation faces covered, `step` = 1/2) with
+/// `step * a <= most`, and `b >= 0`. A solver's bound lies between the optimum and the next
+/// value of this form (CBC reports e.g. 96.6 where the optimum 96.5 is proven), so rounding
+/// it down to the form keeps it valid and tightens it by up to one step.
 pub(super) fn round_down(bound: f64, bond: Bond, step: f64, most: f64) -> f64 {
-    let weight = match bond {
-        Bond::Stack => 0.0,
-        Bond::Staggered { weight } => weight,
-        Bond::RunningBond { .. } => return bound,
+    let (weight, reward) = match bond {
+        Bond::Stack => (0.0, false),
+        Bond::Staggered { weight } => (weight, false),
+        Bond::RunningBond { weight } => (weight, true),
     };
     if !bound.is_finite() {
         return bound;
@@ -68,13 +68,18 @@ pub(super) fn round_down(bound: f64, bond: Bond, step: f64, most: f64) -> f64 {
     let tolerance = 1e-6 + 1e-9 * bound.abs();
     let largest_a = (most / step + 1e-9).floor();
     let mut best = f64::NEG_INFINITY;
-    for b in 0..=MOST_JOINT_COUNTS {
-        let penalty = weight * b as f64;
-        if largest_a * step - penalty < best || (b > 0 && weight == 0.0) {
+    for b in 0..=MOST_PAIR_COUNTS {
+        let term = if reward { weight * b as f64 } else { -weight * b as f64 };
+        // No larger b can do better: a penalty only lowers what the tiles reach, and a
+        // reward beyond the bound leaves no room for them.
+        let exhausted = if reward { term > bound + tolerance } else { largest_a * step + term < best };
+        if exhausted || (b > 0 && weight == 0.0) {
             return best;
         }
-        let a = ((bound + tolerance + penalty) / step).floor().min(largest_a);
-        best = best.max(a * step - penalty);
+        let a = ((bound + tolerance - term) / step).floor().min(largest_a);
+        if a >= 0.0 {
+            best = best.max(a * step + term);
+        }
     }
     bound
 }
@@ -100,8 +105,11 @@ mod tests {
         // Patch relaxations count half a tile per face.
         assert_eq!(round_down(10.4, staggered(0.5), 0.5, 12.0), 10.0);
         assert!((round_down(10.4, staggered(0.7), 0.5, 12.0) - 10.3).abs() < 1e-9);
-        let running = Bond::RunningBond { weight: 0.5 };
-        assert_eq!(round_down(10.4, running, 1.0, 12.0), 10.4);
+        // Running bond: tiles plus w per shifted pair; 8 + 8 * 0.3 = 10.4 is reached exactly.
+        let running = |weight| Bond::RunningBond { weight };
+        assert_eq!(round_down(10.4, running(0.5), 1.0, 12.0), 10.0);
+        assert!((round_down(10.45, running(0.3), 1.0, 12.0) - 10.4).abs() < 1e-9);
+        assert_eq!(round_down(0.4, running(0.5), 1.0, 12.0), 0.0);
         assert_eq!(round_down(f64::INFINITY, staggered(0.5), 1.0, 12.0), f64::INFINITY);
     }
 }

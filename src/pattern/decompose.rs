@@ -277,9 +277,8 @@ pub(super) fn bound(
         let owned: Vec<bool> = owner.iter().map(|&o| o == p).collect();
         let restriction = Restriction { free: &free, fixed: &fixed, patch: Some(Patch { faces: &faces, owned: &owned }), linear };
         let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, share, control, progress)?;
-        let before = patch_bound[p];
-        let solved = if running { outcome.bound } else { bound::round_down(outcome.bound, bond, 0.5, 0.5 * members[p].len() as f64) };
-        patch_bound[p] = solved.min(before);
+        let solved = bound::round_down(outcome.bound, bond, 0.5, 0.5 * members[p].len() as f64);
+        patch_bound[p] = patch_bound[p].min(solved);
         if let (Some(chosen), false) = (&outcome.chosen, running) {
             let shortfall = 0.5 * members[p].len() as f64 - patch_bound[p];
             if shortfall > 1e-9 {
