@@ -189,10 +189,10 @@ fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usi
 /// tiles and the bound holds for them too.
 ///
 /// On a partition made by [`coarsen`], every patch starts from the sum of its parts' bounds
-/// proven on the finer partition and the pairs keep their owners, so the result is never weaker than `finer`'s and a patch the deadline
-/// leaves unsolved loses nothing. Without it a stack or staggered patch starts from half a
-/// tile per face; a running-bond patch has no such simple bound, and the deadline then gives
-/// `None`.
+/// proven on the finer partition and the pairs keep their owners, so the result is never
+/// weaker than the finer partition's and a patch the deadline leaves unsolved loses nothing.
+/// On a fresh partition a stack or staggered patch starts from half a tile per face; a
+/// running-bond patch has no such simple bound, and the deadline then gives `None`.
 ///
 /// A patch where the `incumbent` already scores its starting bound would return exactly
 /// that: such patches are not solved. The others are solved those centred on sources first,
