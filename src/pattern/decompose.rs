@@ -53,7 +53,7 @@ struct Carried {
 /// seed (ties to the earlier seed); then [`LLOYD_ROUNDS`] times every seed but the sources
 /// moves to its patch's deepest face and the faces are assigned again, which evens out the
 /// patches. Deterministic.
-pub(super) fn partition(graph: &DualGraph, size: usize, variant: usize, sources: &[usize]) -> Partition {
+fn partition(graph: &DualGraph, size: usize, variant: usize, sources: &[usize]) -> Partition {
     let faces = graph.face_count();
     let usable: Vec<usize> = (0..faces).filter(|&f| !graph.face_tiles(f).is_empty()).collect();
     let wanted = usable.len().div_ceil(size.max(1)).max(1);
@@ -101,11 +101,21 @@ pub(super) fn partition(graph: &DualGraph, size: usize, variant: usize, sources:
     Partition { patch_of, count: seeds.len(), centred: pinned, carried: None }
 }
 
+/// A round's partition: [`partition`] of `size`, made of the patches of the last round's
+/// (`finer`, with what it proved) when there is one, so that its bounds carry over.
+pub(super) fn next_partition(graph: &DualGraph, size: usize, variant: usize, sources: &[usize], finer: Option<(Partition, Proven)>) -> Partition {
+    let fresh = partition(graph, size, variant, sources);
+    match finer {
+        Some((last, proven)) => coarsen(&fresh, &last, &proven),
+        None => fresh,
+    }
+}
+
 /// `coarse` rounded to unions of the patches of `finer`, carrying over what was `proven` on
 /// `finer` (see [`bound`]): every patch of `finer` goes whole to the patch of `coarse` that
 /// holds most of its faces (the lowest index among equals); patches left empty are dropped,
 /// the others keep their order, so the centred ones stay first.
-pub(super) fn coarsen(coarse: &Partition, finer: &Partition, proven: &Proven) -> Partition {
+fn coarsen(coarse: &Partition, finer: &Partition, proven: &Proven) -> Partition {
     let mut overlaps: Vec<(usize, usize)> =
         finer.patch_of.iter().zip(&coarse.patch_of).filter(|(q, p)| **q != usize::MAX && **p != usize::MAX).map(|(&q, &p)| (q, p)).collect();
     overlaps.sort_unstable();
@@ -336,11 +346,11 @@ fn defect_faces(graph: &DualGraph, relation: &[[usize; 2]], owned: &[bool], patc
 /// equals), or `None` for no faces.
 fn middle(graph: &DualGraph, faces: &[usize]) -> Option<usize> {
     let mut distance = vec![usize::MAX; graph.face_count()];
+    let mut claimed = vec![0; graph.face_count()];
     let mut best: Option<(usize, usize)> = None;
     for &from in faces {
         distance.iter_mut().for_each(|d| *d = usize::MAX);
-        let mut patch_of = vec![0; graph.face_count()];
-        grow(graph, from, 0, &mut distance, &mut patch_of);
+        grow(graph, from, 0, &mut distance, &mut claimed);
         let total: usize = faces.iter().map(|&f| distance[f].min(graph.face_count())).sum();
         if best.is_none_or(|(_, b)| total < b) {
             best = Some((from, total));

@@ -411,11 +411,7 @@ fn search_pattern(
         let mut size = FIRST_LINEAR_PATCH_SIZE;
         let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
         while !proven(&best, bound) && Instant::now() < deadline {
-            let fresh = decompose::partition(graph, size, 0, &[]);
-            let partition = match finer.take() {
-                Some((last, proven)) => decompose::coarsen(&fresh, &last, &proven),
-                None => fresh,
-            };
+            let partition = decompose::next_partition(graph, size, 0, &[], finer.take());
             let started = Instant::now();
             let proven_here = decompose::bound(graph, bond, true, &partition, &best, started + left() / 2, control, progress)?;
             if let Some(patches) = proven_here.value {
@@ -447,12 +443,9 @@ fn search_pattern(
             timed_out = cbc_timed_out;
             break;
         }
-        let fresh = decompose::partition(graph, size, variant, &sources);
-        // Larger patches are unions of the last round's, which keeps what that round proved.
-        let partition = match finer.take() {
-            Some((last, proven)) if variant == 0 => decompose::coarsen(&fresh, &last, &proven),
-            _ => fresh,
-        };
+        // Larger patches are unions of the last round's, which keeps what that round proved;
+        // varied partitions of the largest size start afresh.
+        let partition = decompose::next_partition(graph, size, variant, &sources, finer.take().filter(|_| variant == 0));
         let step_deadline = Instant::now() + left() / 2;
         let proven_here = decompose::bound(graph, bond, false, &partition, &best, step_deadline, control, progress)?;
         if let Some(patches) = proven_here.value {
