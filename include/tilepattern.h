@@ -96,6 +96,12 @@
 #define TP_BOUND_WHOLE_PROGRAM 2
 
 /**
+ * [`tp_pattern_bound_source`]: the linear relaxation of the whole program, from its row
+ * prices.
+ */
+#define TP_BOUND_LINEAR_RELAXATION 3
+
+/**
  * `direction`: follow the principal curvature (the paper's choice).
  */
 #define TP_DIRECTION_CURVATURE 0

@@ -98,6 +98,7 @@ namespace TilePattern.Tests
             Assert.AreEqual(NativeMethods.TP_FORMULATION_PAPER, (int)Formulation.Paper);
             Assert.AreEqual(NativeMethods.TP_SOLVE_FEASIBLE, (int)SolveStatus.Feasible);
             Assert.AreEqual(NativeMethods.TP_BOUND_WHOLE_PROGRAM, (int)BoundSource.WholeProgram);
+            Assert.AreEqual(NativeMethods.TP_BOUND_LINEAR_RELAXATION, (int)BoundSource.LinearRelaxation);
             Assert.AreEqual(NativeMethods.TP_DIRECTION_ANGLE, (int)FieldDirection.Angle);
             Assert.AreEqual(NativeMethods.TP_TILE_HALF, (int)TileKind.Half);
         }

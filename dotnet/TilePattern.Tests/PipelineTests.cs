@@ -137,7 +137,7 @@ namespace TilePattern.Tests
                 Assert.AreEqual(2, pattern.Unpaired.Length);
                 Assert.AreEqual(0, pattern.ContinuousJoints);
                 Assert.AreEqual(SolveStatus.Optimal, pattern.Status);
-                Assert.AreEqual(BoundSource.Patches, pattern.BoundSource, "no matching proves 49 < 50; the star rows' linear relaxation does");
+                Assert.AreEqual(BoundSource.LinearRelaxation, pattern.BoundSource, "no matching proves 49 < 50; the star rows' linear relaxation does");
                 Assert.AreEqual(49.0, pattern.Objective);
                 Assert.AreEqual(49.0, pattern.Bound);
                 Assert.IsTrue(pattern.Pairs.All(p => (p.B == p.A + 1 && p.A % 10 != 9) || p.B == p.A + 10));

@@ -129,6 +129,7 @@ namespace TilePattern
         internal const int TP_BOUND_MATCHING = 0;
         internal const int TP_BOUND_PATCHES = 1;
         internal const int TP_BOUND_WHOLE_PROGRAM = 2;
+        internal const int TP_BOUND_LINEAR_RELAXATION = 3;
         internal const int TP_DIRECTION_CURVATURE = 0;
         internal const int TP_DIRECTION_VECTOR = 1;
         internal const int TP_DIRECTION_ANGLE = 2;

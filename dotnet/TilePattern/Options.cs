@@ -67,6 +67,8 @@ namespace TilePattern
         Patches = 1,
         /// <summary>Branch and bound on the whole program.</summary>
         WholeProgram = 2,
+        /// <summary>The linear relaxation of the whole program, from its row prices.</summary>
+        LinearRelaxation = 3,
     }
 
     /// <summary>TP_TILE_*.</summary>

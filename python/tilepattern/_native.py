@@ -69,6 +69,7 @@ TP_SOLVE_FEASIBLE = 2
 TP_BOUND_MATCHING = 0
 TP_BOUND_PATCHES = 1
 TP_BOUND_WHOLE_PROGRAM = 2
+TP_BOUND_LINEAR_RELAXATION = 3
 
 TP_DIRECTION_CURVATURE = 0
 TP_DIRECTION_VECTOR = 1
@@ -114,7 +115,7 @@ STATUS_NAMES = {
 
 STAGE_NAMES = {TP_STAGE_REMESH: "remesh", TP_STAGE_PATTERN: "pattern"}
 SOLVE_STATUS_NAMES = {TP_SOLVE_OPTIMAL: "optimal", TP_SOLVE_TIME_LIMIT: "time_limit", TP_SOLVE_FEASIBLE: "feasible"}
-BOUND_SOURCE_NAMES = {TP_BOUND_MATCHING: "matching", TP_BOUND_PATCHES: "patches", TP_BOUND_WHOLE_PROGRAM: "whole_program"}
+BOUND_SOURCE_NAMES = {TP_BOUND_MATCHING: "matching", TP_BOUND_PATCHES: "patches", TP_BOUND_WHOLE_PROGRAM: "whole_program", TP_BOUND_LINEAR_RELAXATION: "linear_relaxation"}
 TILE_KIND_NAMES = {TP_TILE_FULL: "full", TP_TILE_HALF: "half", TP_TILE_BOUNDARY: "boundary"}
 
 # ---------------------------------------------------------------------------------------

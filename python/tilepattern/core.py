@@ -317,7 +317,8 @@ class Pattern:
     bound_source : str
         Which argument proved ``bound`` (with an optimal status: which closed the gap):
         ``"matching"`` (a maximum matching), ``"patches"`` (a decomposition's patch
-        relaxations, linear or integer) or ``"whole_program"`` (branch and bound on the whole program).
+        relaxations, linear or integer), ``"whole_program"`` (branch and bound on the whole program)
+        or ``"linear_relaxation"`` (the whole program's linear relaxation, from its row prices).
     """
 
     pairs: np.ndarray

@@ -17,6 +17,7 @@
 #![allow(unsafe_code)]
 #![allow(non_camel_case_types)]
 
+pub(crate) mod clp;
 mod mesh;
 mod pattern;
 mod remesh;

@@ -34,6 +34,9 @@ pub const TP_BOUND_MATCHING: i32 = 0;
 pub const TP_BOUND_PATCHES: i32 = 1;
 /// [`tp_pattern_bound_source`]: branch and bound on the whole program.
 pub const TP_BOUND_WHOLE_PROGRAM: i32 = 2;
+/// [`tp_pattern_bound_source`]: the linear relaxation of the whole program, from its row
+/// prices.
+pub const TP_BOUND_LINEAR_RELAXATION: i32 = 3;
 
 /// Options of [`tp_pattern_solve`]. Initialise with [`tp_pattern_options_default`].
 #[repr(C)]
@@ -252,6 +255,7 @@ pub unsafe extern "C" fn tp_pattern_bound_source(pattern: *const TpPattern, out:
             BoundSource::Matching => TP_BOUND_MATCHING,
             BoundSource::Patches => TP_BOUND_PATCHES,
             BoundSource::WholeProgram => TP_BOUND_WHOLE_PROGRAM,
+            BoundSource::LinearRelaxation => TP_BOUND_LINEAR_RELAXATION,
         };
         // SAFETY: writable by the caller's promise.
         unsafe { write_out(out, source, "out") }

@@ -360,13 +360,13 @@ fn middle(graph: &DualGraph, faces: &[usize]) -> Option<usize> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::mesh::{PolyMesh, Topology, generate};
     use crate::pattern::{Method, PatternOptions, SolveStatus, solve};
 
     /// A grid with every third boundary face (by a fixed hash) removed.
-    fn ragged(n: usize) -> PolyMesh {
+    pub(in crate::pattern) fn ragged(n: usize) -> PolyMesh {
         let grid = generate::grid(n, n);
         let edge = |f: usize| f % n == 0 || f % n == n - 1 || f / n == 0 || f / n == n - 1;
         let faces = (0..grid.face_count()).filter(|&f| !(edge(f) && f.wrapping_mul(2654435761) % 3 == 0)).map(|f| grid.faces()[f].clone());

@@ -2,15 +2,14 @@
 //! whole dual graph or on a window of it with the rest of the pattern held fixed.
 
 use std::collections::HashMap;
-use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use good_lp::solvers::coin_cbc::coin_cbc;
 use good_lp::{
     Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel, Variable, constraint, variable,
 };
 
-use super::{Bond, DualGraph, Formulation, PatternError, score};
+use super::{Bond, DualGraph, Formulation, PatternError, score, worker};
 use crate::control::Control;
 
 /// CBC gets this share of the time limit, so that it can stop and hand over its incumbent
@@ -69,12 +68,6 @@ const LINEAR_TIME_EXPONENT: f64 = 2.5;
 pub(super) fn expected_linear_seconds(faces: usize) -> f64 {
     LINEAR_SECONDS_AT_1000_FACES * (faces as f64 / 1000.0).powf(LINEAR_TIME_EXPONENT)
 }
-
-/// How often the calling thread asks its [`Control`] whether to go on while CBC works.
-const POLL: Duration = Duration::from_millis(50);
-/// After a cancel, how long to wait for CBC to finish its current solve (window solves take
-/// milliseconds), so that nothing is left running in the common case.
-const CANCEL_GRACE: Duration = Duration::from_secs(1);
 
 /// Solves the bond's program over the free tiles of `restriction`.
 pub(super) fn solve(
@@ -187,9 +180,8 @@ pub(super) fn solve(
     // the caller gets what is known at the deadline; a worker that outlives it stops at CBC's
     // own limit right after its LP and is discarded. The engine keeps windows small so this
     // only happens when a caller asks for the whole model on a large mesh.
-    let (sender, receiver) = mpsc::channel();
     let worker = move || {
-        let result = problem.solve().map(|solution| {
+        problem.solve().map(|solution| {
             let values: Vec<(usize, f64)> = columns.iter().map(|&(t, v)| (t, solution.value(v))).collect();
             let timed_out = matches!(solution.status(), SolutionStatus::TimeLimit);
             // A linear program's optimum is its bound; a cut-short one proves nothing.
@@ -199,36 +191,10 @@ pub(super) fn solve(
                 None => solution.model().best_possible_value(),
             };
             (values, bound, timed_out)
-        });
-        let _ = sender.send(result);
+        })
     };
-    let handle = std::thread::Builder::new()
-        .name("tilepattern-cbc".into())
-        .spawn(worker)
-        .map_err(|e| PatternError::Solver(format!("cannot start the solver thread: {e}")))?;
-    // A worker that has sent its result is finished: join it so its resources go at once.
-    let finished = |handle: std::thread::JoinHandle<()>| {
-        let _ = handle.join();
-    };
-    let deadline = Instant::now() + time_limit;
-    let result = loop {
-        let wait = deadline.saturating_duration_since(Instant::now()).min(POLL);
-        match receiver.recv_timeout(wait) {
-            Ok(result) => {
-                finished(handle);
-                break result;
-            }
-            Err(RecvTimeoutError::Timeout) if Instant::now() < deadline => {
-                if !control.keep_going(progress()) {
-                    if receiver.recv_timeout(CANCEL_GRACE).is_ok() {
-                        finished(handle);
-                    }
-                    return Err(PatternError::Cancelled);
-                }
-            }
-            Err(RecvTimeoutError::Timeout) => return Ok(Outcome { chosen: None, bound: f64::INFINITY, timed_out: true }),
-            Err(RecvTimeoutError::Disconnected) => return Err(PatternError::Solver("the solver thread stopped unexpectedly".into())),
-        }
+    let Some(result) = worker::run(worker, time_limit, control, progress)? else {
+        return Ok(Outcome { chosen: None, bound: f64::INFINITY, timed_out: true });
     };
     // CBC stopped by its time limit before it had a solution may call the problem
     // infeasible; every program here is feasible (no tiles at all).

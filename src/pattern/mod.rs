@@ -13,8 +13,8 @@
 //!
 //! [`Method::Auto`] gets there much faster than the paper's whole program: patterns from
 //! constructive starts (`construct`) refined by simulated annealing (`anneal`) and exact
-//! windows (`search`), bounds from a maximum matching (`bound`) and from patch
-//! relaxations (`decompose`).
+//! windows (`search`), bounds from a maximum matching (`bound`), from the linear relaxation
+//! of the whole program (`linear`) and from patch relaxations (`decompose`).
 
 mod anneal;
 mod bound;
@@ -22,9 +22,11 @@ mod construct;
 mod decompose;
 mod dual;
 mod error;
+mod linear;
 mod mip;
 mod score;
 mod search;
+mod worker;
 
 pub use dual::{CandidateTile, DualGraph};
 pub use error::PatternError;
@@ -103,8 +105,9 @@ pub struct PatternOptions {
 pub enum Method {
     /// The fastest route to a proven optimum: a maximum-matching bound and three
     /// constructive starts (courses along the boundary, a running bond along quad strips, the
-    /// maximum matching), simulated annealing from the best, a decomposition bound from the
-    /// linear relaxations of ever larger patches, then rounds of a decomposition bound from
+    /// maximum matching), simulated annealing from the best, the linear relaxation of the
+    /// whole program by Clp's barrier when it is expected to finish in the time left (else a
+    /// decomposition bound from the linear relaxations of ever larger patches), then rounds of a decomposition bound from
     /// exactly solved patches, ever larger (each round's made of the last one's and centred
     /// on the forced defects it found), exact re-solves of windows around the defects and
     /// cooler annealing; the last round solves the whole program on CBC. Every bound is
@@ -129,6 +132,9 @@ const LAST_PATCH_SIZE: usize = 1600;
 /// the root LP, which on larger staggered programs can take minutes (6589 faces: 110 s), and
 /// a solve past its time limit would keep the solver busy for later calls.
 const WHOLE_MODEL_FACES: usize = 2000;
+/// Share of the time left after the first annealing run that the linear relaxation of the
+/// whole program may take; it is solved only if expected to finish in that time.
+const LINEAR_SHARE: f64 = 0.9;
 /// Share of the time limit the first annealing run may take, and of the time left the
 /// later ones.
 const FIRST_ANNEAL_SHARE: f64 = 0.5;
@@ -193,6 +199,9 @@ pub enum BoundSource {
     Patches,
     /// CBC's branch and bound on the whole program.
     WholeProgram,
+    /// The linear relaxation of the whole program (with the star rows), from the prices
+    /// Clp's barrier found for its rows.
+    LinearRelaxation,
 }
 
 /// A matching of faces into tiles, with its quality and proof status. Serialised, it is the
@@ -403,11 +412,20 @@ fn search_pattern(
         let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP).clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
         anneal(&mut best, FIRST_ANNEAL_SHARE, temperature, 1, control)?;
     }
-    // Linear relaxations of patches next: with the star rows they come within about half a
-    // tile per patch of the integer patches' bound in a small part of the time, so patches
-    // can be larger. Patches double, each round made of the last one's, while the last
-    // round's time, grown as a linear program's does with its size, fits the time left.
-    if bond != Bond::Stack {
+    // The linear relaxation of the whole program next, if the barrier is expected to finish
+    // in the time left: it sees across the seams between forced defects that patches cut.
+    let mut relaxation_solved = false;
+    if bond != Bond::Stack && !proven(&best, bound) && linear::expected_seconds(faces) <= left().as_secs_f64() * LINEAR_SHARE {
+        if let Some(found) = linear::bound(graph, bond, left().mul_f64(LINEAR_SHARE), control, progress)? {
+            bound.tighten(rounded(found.value), BoundSource::LinearRelaxation);
+            relaxation_solved = found.converged;
+        }
+    }
+    // Otherwise linear relaxations of patches: with the star rows they come within about
+    // half a tile per patch of the integer patches' bound in a small part of the time, so
+    // patches can be larger. Patches double, each round made of the last one's, while the
+    // last round's time, grown as a linear program's does with its size, fits the time left.
+    if bond != Bond::Stack && !relaxation_solved {
         let mut size = FIRST_LINEAR_PATCH_SIZE;
         let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
         while !proven(&best, bound) && Instant::now() < deadline {

@@ -155,7 +155,7 @@ static void test_pattern_and_tiles(void) {
   /* 49 < 50 tiles of a perfect matching: no matching proves it, the star rows' linear
      relaxation does (the paper's route, TP_METHOD_MIP, proves it by branch and bound). */
   int32_t source = -1;
-  CHECK(tp_pattern_bound_source(pattern, &source) == TP_OK && source == TP_BOUND_PATCHES);
+  CHECK(tp_pattern_bound_source(pattern, &source) == TP_OK && source == TP_BOUND_LINEAR_RELAXATION);
   TpPatternOptions paper = options;
   paper.method = TP_METHOD_MIP;
   TpPattern *by_paper = NULL;

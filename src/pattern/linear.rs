@@ -1,0 +1,186 @@
+//! Bound from the linear relaxation of the whole program (eqs. 1-3, with the star rows for
+//! eq. 2), solved by Clp's interior-point method.
+//!
+//! For the relaxation `max c.x` subject to `A x <= b` and `0 <= x <= 1`, any prices `p >= 0`
+//! on the rows bound the optimum, and so the integer optimum (weak duality):
+//! `L(p) = b.p + sum_j max(0, c_j - A_j.p)`. The bound is computed here from the prices the
+//! barrier leaves, whether it converged or the time limit stopped it, so it holds whatever
+//! the solver's tolerances and status; at convergence it is the relaxation's optimum.
+//!
+//! With the star rows this optimum is within a few tiles of the integer optimum on meshes
+//! whose singularities and ragged boundaries force defects (the QuadriFlow hypar: 691.51
+//! against 688.5 found), where a patch decomposition has to cut across the seams that join
+//! them; and the barrier reaches it in a fraction of the simplex method's time.
+
+use std::collections::HashMap;
+use std::time::Duration;
+
+use super::{Bond, DualGraph, PatternError, worker};
+use crate::control::Control;
+use crate::ffi::clp::{self, LinearProgram};
+
+/// Share of its time limit Clp is given, so that it stops and hands over its duals before
+/// the caller's deadline (it counts processor time and checks it between iterations).
+const CLP_SHARE_OF_LIMIT: f64 = 0.9;
+
+/// Seconds the barrier needs on a 1400-face staggered relaxation here (2 cores, 2026;
+/// 2591 faces: 1.3 s), and how that time grows with size (conservatively).
+const SECONDS_AT_1400_FACES: f64 = 0.45;
+const TIME_EXPONENT: f64 = 2.0;
+
+/// About how long the barrier needs to converge on a mesh of `faces` faces.
+pub(super) fn expected_seconds(faces: usize) -> f64 {
+    SECONDS_AT_1400_FACES * (faces as f64 / 1400.0).powf(TIME_EXPONENT)
+}
+
+/// The relaxation of the whole program over every candidate tile: one column per tile, then
+/// one per pair of the bond's relation (eq. 2's y or eq. 3's z).
+pub(super) struct Relaxation {
+    program: LinearProgram,
+}
+
+impl Relaxation {
+    /// The relaxation of `bond` on `graph`. Forced pairs are left out: the bound holds for
+    /// the unrestricted program and so for the restricted one.
+    pub fn new(graph: &DualGraph, bond: Bond) -> Self {
+        let tiles = graph.tiles();
+        let (relation, per_pair) = graph.bond_pairs(bond);
+        let mut rows: Vec<(Vec<(usize, f64)>, f64)> = Vec::new();
+        // Eq. (1): each face in at most one tile.
+        for f in (0..graph.face_count()).filter(|&f| !graph.face_tiles(f).is_empty()) {
+            rows.push((graph.face_tiles(f).iter().map(|&t| (t, 1.0)).collect(), 1.0));
+        }
+        let pair_column = |i: usize| tiles.len() + i;
+        for (i, &[a, b]) in relation.iter().enumerate() {
+            match bond {
+                Bond::Stack => {}
+                // Eq. (2): y >= x_a + x_b - 1.
+                Bond::Staggered { .. } => rows.push((vec![(a, 1.0), (b, 1.0), (pair_column(i), -1.0)], 1.0)),
+                // Eq. (3): z <= x_a and z <= x_b.
+                Bond::RunningBond { .. } => {
+                    rows.push((vec![(pair_column(i), 1.0), (a, -1.0)], 0.0));
+                    rows.push((vec![(pair_column(i), 1.0), (b, -1.0)], 0.0));
+                }
+            }
+        }
+        if let Bond::Staggered { .. } = bond {
+            // The star rows (see `Formulation::Strengthened`).
+            let column_of: HashMap<[usize; 2], usize> = relation.iter().enumerate().map(|(i, &pair)| (pair, pair_column(i))).collect();
+            let joint = |a: usize, b: usize| column_of.get(&[a.min(b), a.max(b)]).copied();
+            for &[a, b, c, d] in graph.regular_vertex_stars() {
+                if let (Some(ac), Some(bd)) = (joint(a, c), joint(b, d)) {
+                    rows.push((vec![(a, 1.0), (b, 1.0), (c, 1.0), (d, 1.0), (ac, -1.0), (bd, -1.0)], 1.0));
+                }
+            }
+        }
+        let columns = tiles.len() + relation.len();
+        let mut entries: Vec<Vec<(i32, f64)>> = vec![Vec::new(); columns];
+        for (r, (row, _)) in rows.iter().enumerate() {
+            let r = i32::try_from(r).unwrap_or(i32::MAX);
+            row.iter().for_each(|&(j, a)| entries[j].push((r, a)));
+        }
+        let mut program = LinearProgram {
+            starts: vec![0],
+            rows: Vec::new(),
+            values: Vec::new(),
+            objective: (0..columns).map(|j| if j < tiles.len() { 1.0 } else { per_pair }).collect(),
+            column_upper: vec![1.0; columns],
+            row_upper: rows.iter().map(|(_, rhs)| *rhs).collect(),
+        };
+        for column in entries {
+            for (r, a) in column {
+                program.rows.push(r);
+                program.values.push(a);
+            }
+            program.starts.push(i32::try_from(program.rows.len()).unwrap_or(i32::MAX));
+        }
+        Self { program }
+    }
+
+    /// `L(prices)`: an upper bound on the relaxation's optimum for any prices, negative ones
+    /// counting as zero.
+    pub fn bound(&self, prices: &[f64]) -> f64 {
+        let program = &self.program;
+        let price = |r: i32| prices[r as usize].max(0.0);
+        let rows: f64 = program.row_upper.iter().zip(prices).map(|(b, p)| b * p.max(0.0)).sum();
+        let columns: f64 = (0..program.objective.len())
+            .map(|j| {
+                let entries = program.starts[j] as usize..program.starts[j + 1] as usize;
+                let priced: f64 = entries.map(|k| program.values[k] * price(program.rows[k])).sum();
+                program.column_upper[j] * (program.objective[j] - priced).max(0.0)
+            })
+            .sum();
+        rows + columns
+    }
+}
+
+/// What the barrier proved.
+pub(super) struct LinearBound {
+    /// `L` at the barrier's last prices: an upper bound on the optimum.
+    pub value: f64,
+    /// The barrier converged, so `value` is the relaxation's optimum (up to its tolerance).
+    pub converged: bool,
+}
+
+/// The bound of the relaxation of `bond` from Clp's barrier within `time_limit`; `None` when
+/// Clp gave nothing in time.
+///
+/// # Errors
+/// [`PatternError::Cancelled`] when `control` asks to stop.
+pub(super) fn bound(graph: &DualGraph, bond: Bond, time_limit: Duration, control: &mut Control<'_>, progress: impl Fn() -> f64) -> Result<Option<LinearBound>, PatternError> {
+    let relaxation = Relaxation::new(graph, bond);
+    let seconds = time_limit.as_secs_f64() * CLP_SHARE_OF_LIMIT;
+    let work = move || clp::barrier(&relaxation.program, seconds).map(|duals| LinearBound { value: relaxation.bound(&duals.row_duals), converged: duals.converged });
+    Ok(worker::run(work, time_limit, control, progress)?.flatten())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{Topology, generate};
+    use crate::pattern::decompose::tests::ragged;
+    use crate::pattern::mip::{self, Restriction};
+    use crate::pattern::{Formulation, Method, PatternOptions, SolveStatus, solve};
+
+    #[test]
+    fn any_prices_bound_the_optimum_and_the_barriers_meet_the_relaxation() {
+        for mesh in [ragged(7), ragged(8), generate::grid(6, 7)] {
+            let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
+            for bond in [Bond::Staggered { weight: 0.5 }, Bond::Staggered { weight: 2.0 }, Bond::RunningBond { weight: 0.5 }] {
+                let options = PatternOptions { bond, method: Method::Mip, time_limit: Duration::from_secs(20), ..PatternOptions::default() };
+                let optimum = solve(&mesh, &options).unwrap();
+                assert_eq!(optimum.status, SolveStatus::Optimal);
+                let relaxation = Relaxation::new(&graph, bond);
+                let rows = relaxation.program.row_upper.len();
+                // Prices of every kind, negative ones included (they count as zero).
+                let arbitrary = [vec![0.0; rows], vec![0.5; rows], (0..rows).map(|r| ((r * 7919) % 13) as f64 / 6.0 - 0.5).collect()];
+                for prices in arbitrary {
+                    let value = relaxation.bound(&prices);
+                    assert!(value >= optimum.objective - 1e-9, "{bond:?}: L = {value} < optimum {}", optimum.objective);
+                }
+                // The barrier's prices at convergence give the relaxation's optimum, which CBC
+                // finds for the same program by the simplex method; cut short, still a bound.
+                let all = vec![true; graph.tiles().len()];
+                let none = vec![false; graph.tiles().len()];
+                let restriction = Restriction { free: &all, fixed: &none, patch: None, linear: true };
+                let simplex = mip::solve(&graph, bond, Formulation::Strengthened, &restriction, Duration::from_secs(20), &mut Control::none(), || 0.0).unwrap().bound;
+                let converged = bound(&graph, bond, Duration::from_secs(20), &mut Control::none(), || 0.0).unwrap().unwrap();
+                assert!(converged.converged);
+                assert!((converged.value - simplex).abs() < 1e-5, "{bond:?}: barrier {} against simplex {simplex}", converged.value);
+                assert!(converged.value >= optimum.objective - 1e-9);
+                let cut_short = clp::barrier(&relaxation.program, 1e-4).unwrap();
+                assert!(relaxation.bound(&cut_short.row_duals) >= optimum.objective - 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn malformed_programs_are_refused() {
+        let program = |starts: Vec<i32>, rows: Vec<i32>| LinearProgram { starts, rows, values: vec![1.0], objective: vec![1.0], column_upper: vec![2.0], row_upper: vec![1.0] };
+        // max x, x <= 1, 0 <= x <= 2: the row is binding, its dual is 1.
+        assert!(clp::barrier(&program(vec![0, 1], vec![0]), 1.0).is_some_and(|d| d.converged && (d.row_duals[0] - 1.0).abs() < 1e-6));
+        assert!(clp::barrier(&program(vec![0, 1], vec![1]), 1.0).is_none(), "row out of range");
+        assert!(clp::barrier(&program(vec![0, 2], vec![0]), 1.0).is_none(), "column past the entries");
+        assert!(clp::barrier(&program(vec![0], vec![0]), 1.0).is_none(), "starts too short");
+    }
+}
