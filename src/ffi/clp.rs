@@ -80,6 +80,10 @@ pub(crate) fn barrier(program: &LinearProgram, seconds: f64) -> Option<BarrierDu
     if !well_formed {
         return None;
     }
+    if columns == 0 || row_count == 0 {
+        // Nothing for Clp to do: no row needs a price.
+        return Some(BarrierDuals { row_duals: vec![0.0; row_count], converged: true });
+    }
     // SAFETY: the model is created, used and deleted here; every array passed has the
     // length Clp reads from it (checked above: `starts` has columns + 1 entries ending at
     // the entry count, every row index is in range, the column and row arrays have

@@ -183,5 +183,7 @@ mod tests {
         assert!(clp::barrier(&program(vec![0, 1], vec![1]), 1.0).is_none(), "row out of range");
         assert!(clp::barrier(&program(vec![0, 2], vec![0]), 1.0).is_none(), "column past the entries");
         assert!(clp::barrier(&program(vec![0], vec![0]), 1.0).is_none(), "starts too short");
+        let empty = LinearProgram { starts: vec![0], rows: vec![], values: vec![], objective: vec![], column_upper: vec![], row_upper: vec![] };
+        assert!(clp::barrier(&empty, 1.0).is_some_and(|d| d.converged && d.row_duals.is_empty()));
     }
 }
