@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use super::mip::{self, Patch, Restriction};
 use super::bound;
-use super::{Bond, DualGraph, Formulation, PatternError};
+use super::{Bond, DualGraph, Formulation, PatternError, linear};
 use crate::control::Control;
 
 /// A patch may take this many times its even share of the time left.
@@ -210,8 +210,9 @@ fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usi
 /// each if its linear program is expected to finish within its share of the time left. A
 /// patch cut short by the deadline contributes its solver bound.
 ///
-/// With `linear`, each patch's linear relaxation is solved instead: a weaker bound, found
-/// far sooner, so that patches can be larger (and no sources are reported).
+/// With `linear`, each patch's linear relaxation is solved instead, by Clp's barrier (see
+/// `linear`): a weaker bound, found far sooner, so that patches can be larger (and no
+/// sources are reported).
 #[expect(clippy::too_many_arguments, reason = "the stage's inputs, its limits and its control")]
 pub(super) fn bound(
     graph: &DualGraph,
@@ -280,13 +281,20 @@ pub(super) fn bound(
         // A fair share of the time left, so one hard patch cannot starve the others; a patch
         // cut short still gives its solver's bound.
         let share = (deadline - now).mul_f64(PATCH_SHARE / (order.len() - k) as f64).min(deadline - now);
-        if mip::expected_linear_seconds(members[p].len()) > share.as_secs_f64() {
+        let expected = if linear { linear::expected_seconds(members[p].len()) } else { mip::expected_linear_seconds(members[p].len()) };
+        if expected > share.as_secs_f64() {
             continue;
         }
         members[p].iter().for_each(|&f| faces[f] = true);
         let owned: Vec<bool> = owner.iter().map(|&o| o == p).collect();
-        let restriction = Restriction { free: &free, fixed: &fixed, patch: Some(Patch { faces: &faces, owned: &owned }), linear };
-        let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, share, control, progress)?;
+        let patch = Patch { faces: &faces, owned: &owned };
+        let outcome = if linear {
+            let found = linear::bound(graph, bond, Some(patch), share, control, progress)?;
+            mip::Outcome { chosen: None, bound: found.map_or(f64::INFINITY, |found| found.value), timed_out: false }
+        } else {
+            let restriction = Restriction { free: &free, fixed: &fixed, patch: Some(patch) };
+            mip::solve(graph, bond, Formulation::Strengthened, &restriction, share, control, progress)?
+        };
         let solved = bound::round_down(outcome.bound, bond, 0.5, 0.5 * members[p].len() as f64);
         patch_bound[p] = patch_bound[p].min(solved);
         if let (Some(chosen), false) = (&outcome.chosen, running) {

@@ -25,9 +25,6 @@ pub(super) struct Restriction<'a> {
     pub fixed: &'a [bool],
     /// Solve the relaxation of one patch of a decomposition instead (see [`Patch`]).
     pub patch: Option<Patch<'a>>,
-    /// Solve the linear relaxation (every variable in [0, 1]) for its bound alone: with the
-    /// star rows it comes close to the integer optimum at a small part of the time.
-    pub linear: bool,
 }
 
 /// The relaxed program of one patch of a partition of the faces, whose optima add up to an
@@ -56,13 +53,14 @@ pub(super) struct Outcome {
     pub timed_out: bool,
 }
 
-/// Seconds Clp takes for the linear relaxation of a 1000-face staggered program here (2
-/// cores, 2026; 300 faces: 0.05 s, 1399 faces: 2.9 s), and how that time grows with size.
+/// Seconds Clp's simplex method takes for the linear relaxation of a 1000-face staggered
+/// program here (2 cores, 2026; 300 faces: 0.05 s, 1399 faces: 2.9 s), the root of CBC's
+/// search, and how that time grows with size.
 const LINEAR_SECONDS_AT_1000_FACES: f64 = 1.0;
 const LINEAR_TIME_EXPONENT: f64 = 2.5;
 
-/// About how long Clp needs for the linear relaxation of a program over `faces` faces,
-/// which is also the root of CBC's search. Clp does not check the clock, and a solve that
+/// About how long CBC's root linear program takes on a program over `faces` faces. Clp's
+/// simplex method does not check the clock, and a solve that
 /// outlives its deadline keeps CBC's process-wide lock until it ends, so the engine starts
 /// none it does not expect to finish in time.
 pub(super) fn expected_linear_seconds(faces: usize) -> f64 {
@@ -93,7 +91,7 @@ pub(super) fn solve(
     let constant = score(graph, restriction.fixed, bond).objective;
 
     let mut vars = ProblemVariables::new();
-    let kind = || if restriction.linear { variable().min(0.0).max(1.0) } else { variable().binary() };
+    let kind = || variable().binary();
     let x: Vec<Option<Variable>> = usable.iter().map(|&u| u.then(|| vars.add(kind()))).collect();
     // A tile scores one, or in a patch half per face of the patch it covers.
     let mut objective: Expression = x
@@ -164,8 +162,6 @@ pub(super) fn solve(
         return Ok(Outcome { chosen: Some(vec![false; tiles.len()]), bound: constant, timed_out: false });
     }
 
-    let linear = restriction.linear;
-    let relaxed_objective = linear.then(|| objective.clone());
     let mut problem = vars.maximise(objective).using(coin_cbc);
     problem.set_parameter("log", "0");
     problem.set_parameter("slog", "0");
@@ -184,13 +180,7 @@ pub(super) fn solve(
         problem.solve().map(|solution| {
             let values: Vec<(usize, f64)> = columns.iter().map(|&(t, v)| (t, solution.value(v))).collect();
             let timed_out = matches!(solution.status(), SolutionStatus::TimeLimit);
-            // A linear program's optimum is its bound; a cut-short one proves nothing.
-            let bound = match &relaxed_objective {
-                Some(objective) if matches!(solution.status(), SolutionStatus::Optimal) => solution.eval(objective),
-                Some(_) => f64::INFINITY,
-                None => solution.model().best_possible_value(),
-            };
-            (values, bound, timed_out)
+            (values, solution.model().best_possible_value(), timed_out)
         })
     };
     let Some(result) = worker::run(worker, time_limit, control, progress)? else {
@@ -206,9 +196,6 @@ pub(super) fn solve(
         other => PatternError::Solver(other.to_string()),
     })?;
     let bound = if bound.is_finite() { bound + constant } else { f64::INFINITY };
-    if linear {
-        return Ok(Outcome { chosen: None, bound, timed_out });
-    }
     let mut chosen = vec![false; tiles.len()];
     for (t, value) in values {
         chosen[t] = value > 0.5;

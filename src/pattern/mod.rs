@@ -365,7 +365,7 @@ fn search_pattern(
     // The whole program on CBC for `limit`: keeps CBC's pattern if it beats `best`, and
     // returns CBC's bound and whether it stopped on time.
     let whole_model = |best: &mut Vec<bool>, limit: Duration, control: &mut Control<'_>| -> Result<(f64, bool), PatternError> {
-        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed, patch: None, linear: false }, limit, control, progress)?;
+        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed, patch: None }, limit, control, progress)?;
         if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
             if search::is_matching(graph, &found) && value(&found) > value(best) {
                 *best = found;
@@ -416,7 +416,7 @@ fn search_pattern(
     // in the time left: it sees across the seams between forced defects that patches cut.
     let mut relaxation_solved = false;
     if bond != Bond::Stack && !proven(&best, bound) && linear::expected_seconds(faces) <= left().as_secs_f64() * LINEAR_SHARE {
-        if let Some(found) = linear::bound(graph, bond, left().mul_f64(LINEAR_SHARE), control, progress)? {
+        if let Some(found) = linear::bound(graph, bond, None, left().mul_f64(LINEAR_SHARE), control, progress)? {
             bound.tighten(rounded(found.value), BoundSource::LinearRelaxation);
             relaxation_solved = found.converged;
         }

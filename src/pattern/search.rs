@@ -50,7 +50,7 @@ pub(super) fn improve(
             window.iter().for_each(|&f| inside[f] = true);
             let free: Vec<bool> = graph.tiles().iter().enumerate().map(|(t, tile)| !fixed[t] && tile.faces.iter().all(|&f| inside[f])).collect();
             let held: Vec<bool> = chosen.iter().zip(&free).map(|(&on, &f)| on && !f).collect();
-            let restriction = Restriction { free: &free, fixed: &held, patch: None, linear: false };
+            let restriction = Restriction { free: &free, fixed: &held, patch: None };
             let limit = (deadline - now).min(WINDOW_TIME);
             let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, limit, control, progress)?;
             let Some(window_choice) = outcome.chosen else { continue };
