@@ -25,10 +25,11 @@ use crate::ffi::clp::{self, LinearProgram};
 const CLP_SHARE_OF_LIMIT: f64 = 0.9;
 
 /// Seconds the barrier needs on a 1400-face staggered relaxation here (2 cores, 2026), and
-/// how that time grows with size, fitted to the larger meshes (2753 faces: 0.8 s, 3580:
-/// 1.8 s, 6589: 13.5 s, 7272: 19.2 s), so that it errs on the safe side below.
-const SECONDS_AT_1400_FACES: f64 = 0.45;
-const TIME_EXPONENT: f64 = 2.3;
+/// how that time grows with size, fitted with room to spare to the larger meshes (2591
+/// faces: 0.28 s, 3580: 0.37 s, 6589: 1.9 s, 7272: 2.5 s). Regular grids take longer (100 x
+/// 100: 29 s, against 6 s expected); the barrier then stops at its time limit.
+const SECONDS_AT_1400_FACES: f64 = 0.12;
+const TIME_EXPONENT: f64 = 2.0;
 
 /// About how long the barrier needs to converge on a mesh of `faces` faces.
 pub(super) fn expected_seconds(faces: usize) -> f64 {
@@ -66,13 +67,43 @@ impl Relaxation {
         for f in (0..graph.face_count()).filter(|&f| counted(f) && !graph.face_tiles(f).is_empty()) {
             rows.push((graph.face_tiles(f).iter().filter_map(|&t| tile_column[t]).map(|j| (j, 1.0)).collect(), 1.0));
         }
-        let mut pair_column = HashMap::new();
-        for &[a, b] in relation.iter().enumerate().filter(|&(i, _)| owned(i)).map(|(_, pair)| pair) {
+        // Eq. (2) with the star rows (see `Formulation::Strengthened`) at a regular vertex
+        // whose four tiles lie in the patch and whose two joints are both counted: the
+        // joints' y appear in no other row, and the set {y_ac, y_bd in [0, 1] : y_ac >= x_a +
+        // x_c - 1, y_bd >= x_b + x_d - 1, y_ac + y_bd >= x_a + x_b + x_c + x_d - 1} projects
+        // onto s = y_ac + y_bd as exactly s >= x_a + x_b + x_c + x_d - 1, s >= 0 (the face
+        // rows keep the sum of the four x at most 2). So one column s, costing w, and one
+        // row stand for two columns and three rows, with the same optimum; for integer x, s
+        // is the number of joints at the vertex. The barrier's time falls with the size.
+        let counted_pair = |i: usize| owned(i) && relation[i].iter().all(|&t| tile_column[t].is_some());
+        let mut starred = vec![false; relation.len()];
+        if let Bond::Staggered { .. } = bond {
+            let index_of: HashMap<[usize; 2], usize> = relation.iter().enumerate().map(|(i, &pair)| (pair, i)).collect();
+            let joint = |a: usize, b: usize| index_of.get(&[a.min(b), a.max(b)]).copied().filter(|&i| counted_pair(i));
+            let inside = |t: usize| tiles[t].faces.iter().all(|&f| counted(f));
+            for &star in graph.regular_vertex_stars().iter().filter(|star| star.iter().all(|&t| inside(t))) {
+                let [a, b, c, d] = star;
+                // Every joint belongs to one vertex; were one shared, counting it at two
+                // vertices would overstate its cost, so such a star is left out.
+                if let (Some(ac), Some(bd)) = (joint(a, c), joint(b, d))
+                    && !starred[ac]
+                    && !starred[bd]
+                {
+                    starred[ac] = true;
+                    starred[bd] = true;
+                    let joints = objective.len();
+                    objective.push(per_pair);
+                    let mut row: Vec<(usize, f64)> = star.iter().filter_map(|&t| tile_column[t]).map(|x| (x, 1.0)).collect();
+                    row.push((joints, -1.0));
+                    rows.push((row, 1.0));
+                }
+            }
+        }
+        for &[a, b] in relation.iter().enumerate().filter(|&(i, _)| owned(i) && !starred[i]).map(|(_, pair)| pair) {
             match (tile_column[a], tile_column[b]) {
                 (Some(xa), Some(xb)) => {
                     let pair = objective.len();
                     objective.push(per_pair);
-                    pair_column.insert([a, b], pair);
                     match bond {
                         Bond::Stack => {}
                         // Eq. (2): y >= x_a + x_b - 1.
@@ -88,17 +119,6 @@ impl Relaxation {
                 // raise the bound; a reward pair is bounded by its tile in the patch alone.
                 (Some(x), None) | (None, Some(x)) if per_pair > 0.0 => objective[x] += per_pair,
                 _ => {}
-            }
-        }
-        if let Bond::Staggered { .. } = bond {
-            // The star rows (see `Formulation::Strengthened`), where all four tiles lie in
-            // the patch.
-            let joint = |a: usize, b: usize| pair_column.get(&[a.min(b), a.max(b)]).copied();
-            let inside = |t: usize| tiles[t].faces.iter().all(|&f| counted(f));
-            for &[a, b, c, d] in graph.regular_vertex_stars().iter().filter(|star| star.iter().all(|&t| inside(t))) {
-                if let (Some(xa), Some(xb), Some(xc), Some(xd), Some(ac), Some(bd)) = (tile_column[a], tile_column[b], tile_column[c], tile_column[d], joint(a, c), joint(b, d)) {
-                    rows.push((vec![(xa, 1.0), (xb, 1.0), (xc, 1.0), (xd, 1.0), (ac, -1.0), (bd, -1.0)], 1.0));
-                }
             }
         }
         let columns = objective.len();
