@@ -106,8 +106,9 @@ pub enum Method {
     /// The fastest route to a proven optimum: a maximum-matching bound and three
     /// constructive starts (courses along the boundary, a running bond along quad strips, the
     /// maximum matching), simulated annealing from the best, the linear relaxation of the
-    /// whole program by Clp's barrier when it is expected to finish in the time left (else a
-    /// decomposition bound from the linear relaxations of ever larger patches), then rounds of a decomposition bound from
+    /// whole program by Clp's barrier when it is expected to finish in the time left (then,
+    /// if solved, annealing again with most of the time; else a decomposition bound from the
+    /// linear relaxations of ever larger patches), then rounds of a decomposition bound from
     /// exactly solved patches, ever larger (each round's made of the last one's and centred
     /// on the forced defects it found), exact re-solves of windows around the defects and
     /// cooler annealing; the last round solves the whole program on CBC. Every bound is
@@ -139,6 +140,9 @@ const LINEAR_SHARE: f64 = 0.9;
 /// later ones.
 const FIRST_ANNEAL_SHARE: f64 = 0.5;
 const ANNEAL_SHARE: f64 = 0.3;
+/// Share of the time left that annealing may take once the whole linear relaxation is
+/// solved (the run ends sooner on small meshes, whose moves are capped per face).
+const SOLVED_ANNEAL_SHARE: f64 = 0.9;
 /// Each round's exact windows get the time left divided by this: after annealing they
 /// rarely improve the pattern, and the bound needs the time more.
 const WINDOW_SHARE: u32 = 6;
@@ -420,6 +424,11 @@ fn search_pattern(
             bound.tighten(rounded(found.value), BoundSource::LinearRelaxation);
             relaxation_solved = found.converged;
         }
+    }
+    // With the whole relaxation solved, the rounds below rarely tighten the bound soon, and
+    // what is left is mostly the pattern's: anneal again, cooler, with most of the time.
+    if relaxation_solved && !proven(&best, bound) {
+        anneal(&mut best, SOLVED_ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 0, control)?;
     }
     // Otherwise linear relaxations of patches: with the star rows they come within about
     // half a tile per patch of the integer patches' bound in a small part of the time, so
