@@ -122,10 +122,11 @@ pub enum Method {
 /// Faces per patch in the first decomposition bound of [`Method::Auto`]: patches this small
 /// take CBC some 50 ms each. Meshes this small get the whole program at once.
 const FIRST_PATCH_SIZE: usize = 200;
-/// Faces per patch in the first round of linear patch relaxations: some 20 ms each.
+/// Faces per patch in the first round of linear patch relaxations: a few milliseconds each.
 const FIRST_LINEAR_PATCH_SIZE: usize = 200;
 /// How much longer a round of linear patch relaxations takes than the round before, with
-/// patches twice as large and half as many (Clp's time grows about as size^2.5 here).
+/// patches twice as large and half as many (the barrier's time grows about as size^2 here,
+/// plus room for the patches it skips in the smaller rounds).
 const LINEAR_ROUND_GROWTH: f64 = 3.0;
 /// Largest patches: a few seconds each for CBC.
 const LAST_PATCH_SIZE: usize = 1600;
