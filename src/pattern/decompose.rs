@@ -288,16 +288,18 @@ pub(super) fn bound(
         members[p].iter().for_each(|&f| faces[f] = true);
         let owned: Vec<bool> = owner.iter().map(|&o| o == p).collect();
         let patch = Patch { faces: &faces, owned: &owned };
-        let outcome = if linear {
+        // The solver's bound, and for an integer program the relaxed pattern it found.
+        let (solver_bound, chosen) = if linear {
             let found = linear::bound(graph, bond, Some(patch), share, control, progress)?;
-            mip::Outcome { chosen: None, bound: found.map_or(f64::INFINITY, |found| found.value), timed_out: false }
+            (found.map_or(f64::INFINITY, |found| found.value), None)
         } else {
             let restriction = Restriction { free: &free, fixed: &fixed, patch: Some(patch) };
-            mip::solve(graph, bond, Formulation::Strengthened, &restriction, share, control, progress)?
+            let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, share, control, progress)?;
+            (outcome.bound, outcome.chosen)
         };
-        let solved = bound::round_down(outcome.bound, bond, 0.5, 0.5 * members[p].len() as f64);
+        let solved = bound::round_down(solver_bound, bond, 0.5, 0.5 * members[p].len() as f64);
         patch_bound[p] = patch_bound[p].min(solved);
-        if let (Some(chosen), false) = (&outcome.chosen, running) {
+        if let (Some(chosen), false) = (&chosen, running) {
             let shortfall = 0.5 * members[p].len() as f64 - patch_bound[p];
             if shortfall > 1e-9 {
                 let defects = defect_faces(graph, relation, &owned, &faces, chosen);

@@ -123,28 +123,7 @@ impl Relaxation {
                 _ => {}
             }
         }
-        let columns = objective.len();
-        let mut entries: Vec<Vec<(i32, f64)>> = vec![Vec::new(); columns];
-        for (r, (row, _)) in rows.iter().enumerate() {
-            let r = i32::try_from(r).unwrap_or(i32::MAX);
-            row.iter().for_each(|&(j, a)| entries[j].push((r, a)));
-        }
-        let mut program = LinearProgram {
-            starts: vec![0],
-            rows: Vec::new(),
-            values: Vec::new(),
-            objective,
-            column_upper: vec![1.0; columns],
-            row_upper: rows.iter().map(|(_, rhs)| *rhs).collect(),
-        };
-        for column in entries {
-            for (r, a) in column {
-                program.rows.push(r);
-                program.values.push(a);
-            }
-            program.starts.push(i32::try_from(program.rows.len()).unwrap_or(i32::MAX));
-        }
-        Self { program }
+        Self { program: column_major(&rows, objective) }
     }
 
     /// `L(prices)`: an upper bound on the relaxation's optimum for any prices, negative ones
@@ -162,6 +141,33 @@ impl Relaxation {
             .sum();
         rows + columns
     }
+}
+
+/// The program with these rows (entries `(column, value)` and right-hand side) and columns
+/// in `[0, 1]`, stored column by column as Clp takes it.
+fn column_major(rows: &[(Vec<(usize, f64)>, f64)], objective: Vec<f64>) -> LinearProgram {
+    let columns = objective.len();
+    let mut entries: Vec<Vec<(i32, f64)>> = vec![Vec::new(); columns];
+    for (r, (row, _)) in rows.iter().enumerate() {
+        let r = i32::try_from(r).unwrap_or(i32::MAX);
+        row.iter().for_each(|&(j, a)| entries[j].push((r, a)));
+    }
+    let mut program = LinearProgram {
+        starts: vec![0],
+        rows: Vec::new(),
+        values: Vec::new(),
+        objective,
+        column_upper: vec![1.0; columns],
+        row_upper: rows.iter().map(|(_, rhs)| *rhs).collect(),
+    };
+    for column in entries {
+        for (r, a) in column {
+            program.rows.push(r);
+            program.values.push(a);
+        }
+        program.starts.push(i32::try_from(program.rows.len()).unwrap_or(i32::MAX));
+    }
+    program
 }
 
 /// What the barrier proved.

@@ -60,9 +60,9 @@ const LINEAR_SECONDS_AT_1000_FACES: f64 = 1.0;
 const LINEAR_TIME_EXPONENT: f64 = 2.5;
 
 /// About how long CBC's root linear program takes on a program over `faces` faces. Clp's
-/// simplex method does not check the clock, and a solve that
-/// outlives its deadline keeps CBC's process-wide lock until it ends, so the engine starts
-/// none it does not expect to finish in time.
+/// simplex method does not check the clock, and a solve that outlives its deadline keeps
+/// CBC's process-wide lock until it ends, so the engine starts none it does not expect to
+/// finish in time.
 pub(super) fn expected_linear_seconds(faces: usize) -> f64 {
     LINEAR_SECONDS_AT_1000_FACES * (faces as f64 / 1000.0).powf(LINEAR_TIME_EXPONENT)
 }
@@ -91,8 +91,7 @@ pub(super) fn solve(
     let constant = score(graph, restriction.fixed, bond).objective;
 
     let mut vars = ProblemVariables::new();
-    let kind = || variable().binary();
-    let x: Vec<Option<Variable>> = usable.iter().map(|&u| u.then(|| vars.add(kind()))).collect();
+    let x: Vec<Option<Variable>> = usable.iter().map(|&u| u.then(|| vars.add(variable().binary()))).collect();
     // A tile scores one, or in a patch half per face of the patch it covers.
     let mut objective: Expression = x
         .iter()
@@ -121,7 +120,7 @@ pub(super) fn solve(
             let mut y_of = HashMap::new();
             for pair in graph.continuous_joints().iter().enumerate().filter(|&(i, _)| owned(i)).map(|(_, &pair)| pair) {
                 if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
-                    let y = vars.add(kind());
+                    let y = vars.add(variable().binary());
                     objective -= weight * y;
                     rows.push(constraint!(a + b - y <= 1));
                     y_of.insert(pair, y);
@@ -144,7 +143,7 @@ pub(super) fn solve(
             // Eq. (3): z <= x1, z <= x2 and a reward w_R per shifted pair.
             for pair in graph.shifted_pairs().iter().enumerate().filter(|&(i, _)| owned(i)).map(|(_, &pair)| pair) {
                 if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
-                    let z = vars.add(kind());
+                    let z = vars.add(variable().binary());
                     objective += weight * z;
                     rows.push(constraint!(z <= a));
                     rows.push(constraint!(z <= b));
