@@ -27,6 +27,7 @@
 
 pub mod control;
 pub mod ffi;
+pub(crate) mod geom;
 pub mod mesh;
 pub mod pattern;
 pub mod pipeline;

@@ -1,0 +1,160 @@
+//! A bounding volume hierarchy over axis-aligned boxes, for nearest-primitive queries that
+//! stay fast on slivers (whose boxes would fill many cells of a grid).
+
+use nalgebra::Vector3;
+
+/// A bounding volume hierarchy over the boxes of primitives (triangles, segments, ...).
+#[derive(Debug, Clone)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+#[derive(Debug, Clone)]
+struct Node {
+    lo: Vector3<f64>,
+    hi: Vector3<f64>,
+    /// Leaf: range in `order`; inner: `start` is the second child (the first follows).
+    start: u32,
+    count: u32,
+}
+
+/// Most primitives in a leaf.
+const LEAF: usize = 4;
+
+impl Bvh {
+    /// Builds the hierarchy over `boxes` (lower, upper corner), splitting at the median of the
+    /// widest spread of the boxes' centres; ties go by index, so the tree is deterministic.
+    pub fn new(boxes: &[(Vector3<f64>, Vector3<f64>)]) -> Self {
+        let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
+        let centres: Vec<Vector3<f64>> = boxes.iter().map(|(lo, hi)| (lo + hi) * 0.5).collect();
+        let mut bvh = Self { nodes: Vec::with_capacity(2 * boxes.len() / LEAF + 1), order: Vec::new() };
+        if !boxes.is_empty() {
+            bvh.build(boxes, &centres, &mut order, 0);
+        }
+        bvh.order = order;
+        bvh
+    }
+
+    /// Number of primitives.
+    pub fn len(&self) -> usize {
+        self.order.len()
+    }
+
+    /// Whether it holds no primitive.
+    pub fn is_empty(&self) -> bool {
+        self.order.is_empty()
+    }
+
+    fn build(&mut self, boxes: &[(Vector3<f64>, Vector3<f64>)], centres: &[Vector3<f64>], order: &mut [u32], offset: usize) -> usize {
+        let mut lo = Vector3::repeat(f64::INFINITY);
+        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
+        let mut clo = Vector3::repeat(f64::INFINITY);
+        let mut chi = Vector3::repeat(f64::NEG_INFINITY);
+        for &i in order.iter() {
+            let (a, b) = &boxes[i as usize];
+            lo = lo.inf(a);
+            hi = hi.sup(b);
+            clo = clo.inf(&centres[i as usize]);
+            chi = chi.sup(&centres[i as usize]);
+        }
+        let id = self.nodes.len();
+        self.nodes.push(Node { lo, hi, start: offset as u32, count: order.len() as u32 });
+        if order.len() <= LEAF {
+            return id;
+        }
+        let extent = chi - clo;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z { 0 } else if extent.y >= extent.z { 1 } else { 2 };
+        let mid = order.len() / 2;
+        order.select_nth_unstable_by(mid, |&a, &b| centres[a as usize][axis].total_cmp(&centres[b as usize][axis]).then(a.cmp(&b)));
+        let (left, right) = order.split_at_mut(mid);
+        self.build(boxes, centres, left, offset);
+        let second = self.build(boxes, centres, right, offset + mid);
+        self.nodes[id].start = second as u32;
+        self.nodes[id].count = 0;
+        id
+    }
+
+    /// Nearest primitive to `p` by `dist2` (squared distance to primitive `i` and its closest
+    /// point), as (primitive, squared distance, point); ties go to the smaller index.
+    pub fn nearest(&self, p: &Vector3<f64>, dist2: impl Fn(usize) -> (f64, Vector3<f64>)) -> Option<(usize, f64, Vector3<f64>)> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let box_d2 = |n: &Node| -> f64 {
+            let mut d2 = 0.0;
+            for k in 0..3 {
+                let d = (n.lo[k] - p[k]).max(p[k] - n.hi[k]).max(0.0);
+                d2 += d * d;
+            }
+            d2
+        };
+        let mut best: Option<(usize, f64, Vector3<f64>)> = None;
+        let mut stack: Vec<(f64, usize)> = Vec::with_capacity(64);
+        stack.push((box_d2(&self.nodes[0]), 0));
+        while let Some((d2, id)) = stack.pop() {
+            if best.is_some_and(|(_, bd, _)| d2 > bd) {
+                continue;
+            }
+            let node = &self.nodes[id];
+            if node.count > 0 {
+                let start = node.start as usize;
+                for &i in &self.order[start..start + node.count as usize] {
+                    let i = i as usize;
+                    let (d2, q) = dist2(i);
+                    if best.is_none_or(|(bi, bd, _)| d2 < bd || (d2 == bd && i < bi)) {
+                        best = Some((i, d2, q));
+                    }
+                }
+            } else {
+                let (a, b) = (id + 1, node.start as usize);
+                let (da, db) = (box_d2(&self.nodes[a]), box_d2(&self.nodes[b]));
+                // Nearer child on top of the stack.
+                if da <= db {
+                    stack.push((db, b));
+                    stack.push((da, a));
+                } else {
+                    stack.push((da, a));
+                    stack.push((db, b));
+                }
+            }
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic pseudo-random numbers in [0, 1).
+    fn numbers(seed: u64) -> impl FnMut() -> f64 {
+        let mut s = seed;
+        move || {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    #[test]
+    fn nearest_point_agrees_with_a_scan() {
+        let mut rnd = numbers(7);
+        let points: Vec<Vector3<f64>> = (0..500).map(|_| Vector3::new(rnd(), rnd(), rnd() * 0.1)).collect();
+        let bvh = Bvh::new(&points.iter().map(|p| (*p, *p)).collect::<Vec<_>>());
+        assert_eq!(bvh.len(), 500);
+        for _ in 0..200 {
+            let q = Vector3::new(rnd() * 1.4 - 0.2, rnd() * 1.4 - 0.2, rnd() - 0.5);
+            let (i, d2, _) = bvh.nearest(&q, |i| ((points[i] - q).norm_squared(), points[i])).unwrap();
+            let scan = (0..points.len()).min_by(|&a, &b| (points[a] - q).norm_squared().total_cmp(&(points[b] - q).norm_squared())).unwrap();
+            assert_eq!(i, scan);
+            assert!((d2 - (points[scan] - q).norm_squared()).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn empty_hierarchy_finds_nothing() {
+        let bvh = Bvh::new(&[]);
+        assert!(bvh.is_empty());
+        assert!(bvh.nearest(&Vector3::zeros(), |_| unreachable!()).is_none());
+    }
+}
