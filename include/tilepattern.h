@@ -17,8 +17,10 @@
  * Version of this ABI: raised when an existing function or struct changes incompatibly.
  * 2: `TpTileOptions` grew (boundary tiles); the `tp_*_options_init` functions were added so
  * that options structs can grow again without breaking callers built against older headers.
+ * 3: `TpTileOptions` grew (the fit stage) and `TpPatternOptions` too (courses); callers
+ * that initialise with `tp_*_options_init` keep working unchanged.
  */
-#define TP_ABI_VERSION 2
+#define TP_ABI_VERSION 3
 
 /**
  * Stage numbers passed to a progress callback.
@@ -29,6 +31,11 @@
  * The pattern (matching) stage.
  */
 #define TP_STAGE_PATTERN 2
+
+/**
+ * The tile stage (placing, the fit of joints, cutting).
+ */
+#define TP_STAGE_TILES 3
 
 /**
  * `bond`: maximum matching, the paper's eq. (1).
@@ -102,6 +109,16 @@
 #define TP_BOUND_LINEAR_RELAXATION 3
 
 /**
+ * Tiles may lie either way across any quad (the paper's eqs. 1-3).
+ */
+#define TP_COURSES_FREE 0
+
+/**
+ * Tiles lie along level courses (see `Courses::Level`).
+ */
+#define TP_COURSES_LEVEL 1
+
+/**
  * `direction`: follow the principal curvature (the paper's choice).
  */
 #define TP_DIRECTION_CURVATURE 0
@@ -131,6 +148,12 @@
  * [`tp_tiles_copy_loop_points`]).
  */
 #define TP_TILE_BOUNDARY 2
+
+/**
+ * Tile kind: a full or half tile cut by the fit stage where it could not be made to fit its
+ * neighbours (its outline is read like a boundary tile's).
+ */
+#define TP_TILE_FIT_CUT 3
 
 /**
  * Face slot of a half tile's missing second face in [`tp_tiles_copy_faces`].
@@ -256,6 +279,16 @@ typedef struct TpPatternOptions {
    * Number of excluded faces.
    */
   size_t excluded_face_count;
+  /**
+   * `TP_COURSES_*`: tiles either way (`TP_COURSES_FREE`, default, the paper's model) or
+   * all along level courses (`TP_COURSES_LEVEL`), which fit far better where the tile's
+   * length plus a joint is not twice its width plus a joint. Since ABI 3.
+   */
+  int32_t courses;
+  /**
+   * Up direction for level courses, xyz; default (0, 0, 1). Since ABI 3.
+   */
+  double up[3];
 } TpPatternOptions;
 
 /**
@@ -398,6 +431,32 @@ typedef struct TpTileOptions {
    * the supports. Negative (default): one tile width.
    */
   double support_band;
+  /**
+   * Non-zero (default): the fit stage moves the tiles on the surface so that joints come
+   * close to `joint`, and cuts what cannot fit; zero keeps the paper's placement (section
+   * 3.5). Since ABI 3.
+   */
+  int32_t fit;
+  /**
+   * Wall-clock limit of the fit stage in seconds; default 10. When it passes the best
+   * placement so far is kept (the report's `fit.status` says `time_limit`). Since ABI 3.
+   */
+  double fit_time_limit_seconds;
+  /**
+   * Overlaps the fit stage leaves; deeper ones are cut. Negative (default): a twentieth of
+   * the joint. Since ABI 3.
+   */
+  double fit_overlap_tolerance;
+  /**
+   * How far the fit may move a running bond's half offset or an aligned joint. Negative
+   * (default): a tenth of the tile length. Since ABI 3.
+   */
+  double fit_bond_tolerance;
+  /**
+   * Model units per millimetre, for the report's figures in millimetres (the share of
+   * joints within 2 and 5 mm); default 0.001 (a model in metres). Since ABI 3.
+   */
+  double units_per_mm;
 } TpTileOptions;
 
 #ifdef __cplusplus
@@ -650,6 +709,33 @@ TpStatus tp_tiles_build_on_surface(const struct TpMesh *mesh,
                                    const struct TpMesh *surface,
                                    const struct TpTileOptions *options,
                                    struct TpTiles **out);
+
+/**
+ * [`tp_tiles_build_on_surface`] reporting the fit stage's progress: `progress` (may be NULL)
+ * is called with `TP_STAGE_TILES` and the share of the fit's step limit used; a non-zero
+ * return cancels the fit (the placement so far is kept, the report's `fit.status` is
+ * `cancelled`) and the call returns `TP_CANCELLED` without tiles.
+ *
+ * # Safety
+ * As [`tp_tiles_build_on_surface`]; `user` is passed to `progress` untouched.
+ */
+TpStatus tp_tiles_build_with_progress(const struct TpMesh *mesh,
+                                      const struct TpPattern *pattern,
+                                      const struct TpMesh *surface,
+                                      const struct TpTileOptions *options,
+                                      TpProgressCallback progress,
+                                      void *user,
+                                      struct TpTiles **out);
+
+/**
+ * Copies each tile's worst joint: the largest `|gap - joint|` over the joints it takes
+ * part in (0 for a tile with none), in model units (capacity: tile count). For a colour
+ * preview of the joints.
+ *
+ * # Safety
+ * `tiles` must be a live handle and `out` hold `capacity` items.
+ */
+TpStatus tp_tiles_copy_joint_deviations(const struct TpTiles *tiles, double *out, size_t capacity);
 
 /**
  * Releases tiles. NULL is accepted.

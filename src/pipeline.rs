@@ -9,7 +9,7 @@ use crate::control::Control;
 use crate::mesh::{MeshError, PolyMesh};
 use crate::pattern::{self, Pattern, PatternError, PatternOptions};
 use crate::remesh::{self, RemeshError, RemeshOptions, Remeshed};
-use crate::report::Report;
+use crate::report::{self, Joint, JointSummary, Report};
 use crate::tiles::{self, CutGroup, DroppedTile, FinishOptions, Tile, TileError, TileSpec};
 
 /// Any stage's error.
@@ -80,8 +80,25 @@ pub struct Tiling {
     pub dropped: Vec<DroppedTile>,
     /// Cut shapes with counts and labels.
     pub cut_list: Vec<CutGroup>,
+    /// Every joint between neighbouring tiles (indices into `tiles`), as the report measures
+    /// them.
+    pub joints: Vec<Joint>,
     /// Counts, proof status, joint gaps, cutting, laying order, timings.
     pub report: Report,
+}
+
+impl Tiling {
+    /// Each tile's worst joint: the largest `|gap - joint|` over the joints it takes part in
+    /// (0 for a tile with none).
+    pub fn joint_deviations(&self) -> Vec<f64> {
+        let mut worst = vec![0.0_f64; self.tiles.len()];
+        for j in &self.joints {
+            for t in j.tiles {
+                worst[t] = worst[t].max((j.gap - self.report.tile.joint).abs());
+            }
+        }
+        worst
+    }
 }
 
 /// All three stages: quadrangulates `surface` with quads of edge `remesh.target_edge`, then
@@ -111,7 +128,10 @@ pub fn tile_surface(
         let mut second_half = |fraction: f64| control.keep_going(0.5 + 0.5 * fraction);
         pattern::solve_with(&remeshed.quads, options, &mut Control::with_progress(&mut second_half))?
     };
-    let tiling = tiles_for_pattern(&remeshed.quads, Some(surface), pattern, spec, finish)?;
+    // The fit stage is fast next to the others: it reports as done, and can still cancel.
+    let mut last = |_: f64| control.keep_going(1.0);
+    let finish = with_bond(finish, options.bond);
+    let tiling = tiles_for_pattern_with(&remeshed.quads, Some(surface), pattern, spec, &finish, &mut Control::with_progress(&mut last))?;
     Ok((remeshed, tiling))
 }
 
@@ -130,7 +150,8 @@ pub fn tile_quad_mesh(
 ) -> Result<Tiling, Error> {
     spec.validate()?;
     let pattern = pattern::solve_with(quads, options, control)?;
-    tiles_for_pattern(quads, surface, pattern, spec, finish)
+    let mut last = |_: f64| control.keep_going(1.0);
+    tiles_for_pattern_with(quads, surface, pattern, spec, &with_bond(finish, options.bond), &mut Control::with_progress(&mut last))
 }
 
 /// Builds the tiles and report for a matching found earlier (e.g. read from `match` JSON),
@@ -141,6 +162,22 @@ pub fn tile_quad_mesh(
 /// ([`Error::PatternMismatch`], [`TileError`]), a tile far too small for the meshes
 /// ([`Error::TileTooSmall`]).
 pub fn tiles_for_pattern(quads: &PolyMesh, surface: Option<&PolyMesh>, pattern: Pattern, spec: &TileSpec, finish: &FinishOptions) -> Result<Tiling, Error> {
+    tiles_for_pattern_with(quads, surface, pattern, spec, finish, &mut Control::none())
+}
+
+/// [`tiles_for_pattern`], reporting the fit stage's progress to `control`, which can cancel
+/// it (the placement so far is kept and the report's `fit.status` says so).
+///
+/// # Errors
+/// As [`tiles_for_pattern`].
+pub fn tiles_for_pattern_with(
+    quads: &PolyMesh,
+    surface: Option<&PolyMesh>,
+    pattern: Pattern,
+    spec: &TileSpec,
+    finish: &FinishOptions,
+    control: &mut Control<'_>,
+) -> Result<Tiling, Error> {
     let started = Instant::now();
     // The tile first: finishing options default to fractions of it.
     spec.validate()?;
@@ -150,11 +187,37 @@ pub fn tiles_for_pattern(quads: &PolyMesh, surface: Option<&PolyMesh>, pattern: 
     }
     check_tile_scale(Some(quads), surface, spec)?;
     let boxes = tiles::build(quads, &pattern, spec)?;
+    let mm = finish.millimetre;
+    let (boxes, fitted) = match &finish.fit {
+        Some(options) => {
+            let before = JointSummary::of(&report::gaps::joints(quads, &boxes), spec.joint, mm);
+            let fit_started = Instant::now();
+            let (moved, summary) = tiles::fit::fit(quads, surface, boxes, spec, options, control)?;
+            (moved, Some((before, summary, fit_started.elapsed().as_secs_f64())))
+        }
+        None => (boxes, None),
+    };
     let (tiles, finished) = tiles::finish(quads, surface, boxes, spec, finish);
-    let mut report = Report::new(quads, &pattern, &tiles, spec);
+    let joints = report::gaps::joints(quads, &tiles);
+    let mut report = Report::measured(quads, &pattern, &tiles, &joints, spec, mm);
+    if let Some((before, summary, seconds)) = fitted {
+        report.joints.before_fit = Some(Box::new(before));
+        report.joints.fit_cuts = tiles.iter().filter(|t| t.fit_cut).count();
+        report.fit = Some(summary);
+        report.seconds.fit = seconds;
+    }
     report.add_finish(&tiles, &finished, surface.unwrap_or(quads));
     report.seconds.tiles = started.elapsed().as_secs_f64();
-    Ok(Tiling { pattern, tiles, dropped: finished.dropped, cut_list: finished.cut_list, report })
+    Ok(Tiling { pattern, tiles, dropped: finished.dropped, cut_list: finished.cut_list, joints, report })
+}
+
+/// `finish` with its fit keeping `bond`, the bond the pattern was matched for.
+fn with_bond(finish: &FinishOptions, bond: pattern::Bond) -> FinishOptions {
+    let mut finish = *finish;
+    if let Some(fit) = finish.fit.as_mut() {
+        fit.bond = bond;
+    }
+    finish
 }
 
 /// Refuses a tile far smaller than the faces of `quads` or `surface` before cutting builds its

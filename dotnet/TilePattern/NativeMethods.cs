@@ -113,7 +113,7 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 2;
+        internal const int TP_ABI_VERSION = 3;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const int TP_BOND_STACK = 0;

@@ -1,4 +1,4 @@
-"""Low-level ctypes binding of ``include/tilepattern.h`` (ABI 2).
+"""Low-level ctypes binding of ``include/tilepattern.h`` (ABI 3).
 
 This module mirrors the C header one to one: the constants, the status codes (as
 exception classes), the option and summary structs, the progress callback type and the
@@ -47,7 +47,7 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 2
+ABI_VERSION = 3
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2

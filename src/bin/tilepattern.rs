@@ -8,12 +8,12 @@ use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use serde::Serialize;
 use tilepattern::mesh::{self, MeshError, PolyMesh};
-use tilepattern::pattern::{self, Bond, Formulation, Method, Pattern, PatternOptions};
+use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, PatternOptions};
 use tilepattern::control::Control;
 use tilepattern::pipeline::{self, Tiling};
 use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
-use tilepattern::report::{self, Report, svg};
-use tilepattern::tiles::{self, CutGroup, FinishOptions, Sequence, SequenceOptions, Tile, TileSpec};
+use tilepattern::report::{self, JointSummary, Report, svg};
+use tilepattern::tiles::{self, CutGroup, FinishOptions, FitOptions, Sequence, SequenceOptions, Tile, TileSpec};
 
 #[derive(Parser)]
 #[command(name = "tilepattern", version, about = "Tile laying patterns for free-form shells that need little cutting")]
@@ -30,6 +30,9 @@ enum Command {
         quads: PathBuf,
         #[command(flatten)]
         pattern: PatternArgs,
+        /// Up direction x,y,z for level courses (`--courses level`).
+        #[arg(long, value_parser = parse_vector, default_value = "0,0,1")]
+        up: [f64; 3],
         /// Where to write the result JSON (stdout when omitted).
         #[arg(long)]
         json: Option<PathBuf>,
@@ -60,6 +63,9 @@ enum Command {
         /// gaps.svg.
         #[arg(long)]
         fabrication: Option<PathBuf>,
+        /// The bond the pairs were matched for (`match --pattern`): the fit stage keeps it.
+        #[arg(long, value_enum, default_value_t = BondArg::Staggered)]
+        pattern: BondArg,
     },
     /// Quadrangulate a triangle (or polygon) mesh into near-square quads of edge T (stage 1).
     Remesh {
@@ -165,6 +171,17 @@ struct PatternArgs {
     /// Faces to leave out (openings, areas laid by hand), comma separated.
     #[arg(long, value_delimiter = ',')]
     exclude: Vec<usize>,
+    /// Which way tiles may lie: level = all along level courses (default of run and demo:
+    /// tiles that fit), free = either way across any quad (the paper's eqs. 1-3, default of
+    /// match).
+    #[arg(long, value_enum)]
+    courses: Option<CoursesArg>,
+}
+
+#[derive(Clone, Copy, PartialEq, ValueEnum)]
+enum CoursesArg {
+    Level,
+    Free,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -213,6 +230,21 @@ struct TileArgs {
     /// point stand on the supports (default: one tile width).
     #[arg(long, value_parser = parse_mm)]
     support_band: Option<f64>,
+    /// Keep the paper's placement (section 3.5): no fit stage moving tiles to even joints.
+    #[arg(long)]
+    no_fit: bool,
+    /// Wall-clock limit of the fit stage in seconds; when it passes, the best placement so far
+    /// is kept.
+    #[arg(long, default_value_t = 10.0)]
+    fit_time_limit: f64,
+    /// Overlaps the fit leaves (millimetres); deeper ones are cut (default: a twentieth of
+    /// the joint).
+    #[arg(long, value_parser = parse_mm)]
+    overlap_tolerance: Option<f64>,
+    /// How far (millimetres) the fit may move a running bond's half offset or an aligned
+    /// joint (default: a tenth of the tile length).
+    #[arg(long, value_parser = parse_mm)]
+    bond_tolerance: Option<f64>,
 }
 
 #[derive(Clone, Copy, PartialEq, ValueEnum)]
@@ -235,26 +267,30 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Match { quads, pattern, json } => {
+        Command::Match { quads, pattern, up, json } => {
             let mesh = read_mesh(&quads)?;
-            let found = pattern::solve(&mesh, &pattern.options()?)?;
+            let found = pattern::solve(&mesh, &pattern.options(false, up)?)?;
             eprintln!("{}", pattern_summary(&found));
             write_json(json.as_deref(), &found)
         }
-        Command::Tiles { quads, pairs, tile, output, json, svg, surface, fabrication } => {
+        Command::Tiles { quads, pairs, tile, output, json, svg, surface, fabrication, pattern } => {
             let mesh = read_mesh(&quads)?;
             let surface = surface.map(|path| read_mesh(&path)).transpose()?;
             let text = std::fs::read_to_string(&pairs).with_context(|| format!("cannot read {}", pairs.display()))?;
             let found: Pattern = serde_json::from_str(&text)
                 .with_context(|| format!("{} is not the JSON written by `tilepattern match`", pairs.display()))?;
             let (spec, units) = tile.spec(&mesh);
-            let tiling = pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &tile.finish(&spec, units))?;
+            let mut finish = tile.finish(&spec, units);
+            if let Some(fit) = finish.fit.as_mut() {
+                fit.bond = pattern.bond(pattern::DEFAULT_WEIGHT);
+            }
+            let tiling = pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &finish)?;
             write_text(&output, &tiles::to_obj(&tiling.tiles))?;
             if let Some(svg_path) = svg {
                 write_text(&svg_path, &svg::pattern_svg(&mesh, &tiling.tiles))?;
             }
             if let Some(dir) = fabrication {
-                write_fabrication(&dir, &mesh, &tiling)?;
+                write_fabrication(&dir, &mesh, &tiling, units.per_mm())?;
             }
             eprintln!("{}", tiling_summary(&tiling, units));
             json.map_or(Ok(()), |path| write_json(Some(&path), &ReportFile { units: units.name(), remesh: None, report: &tiling.report }))
@@ -271,9 +307,10 @@ fn run(cli: Cli) -> Result<()> {
             let surface = read_mesh(&input)?;
             let (spec, units) = tile.spec(&surface);
             let finish = tile.finish(&spec, units);
-            let remesh =
-                RemeshOptions { time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?, ..field.options(spec.target_edge()) };
-            let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &pattern.options()?, &spec, &finish, &mut Control::none())?;
+            let options = pattern.options(true, tile.up)?;
+            let edge = spec.quad_edge(options.courses != Courses::Free);
+            let remesh = RemeshOptions { time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?, ..field.options(edge) };
+            let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &options, &spec, &finish, &mut Control::none())?;
             write_outputs(&out, &remeshed.quads, &tiling, units, Some(&remeshed.metrics))?;
             println!("{}", remesh_summary(&remeshed.metrics));
             println!("{}", tiling_summary(&tiling, units));
@@ -290,9 +327,10 @@ fn demo(out: &Path, span: f64, args: &PatternArgs) -> Result<()> {
     let spec = TileSpec { length: 0.280, width: 0.140, thickness: 0.015, joint: 0.010 };
     // The surface a designer would export: the shell as a fine triangle mesh.
     let surface = mesh::generate::triangulate_quads(&mesh::generate::corner_supported_shell(span, spec.target_edge() / 3.0));
-    let remesh = RemeshOptions { target_edge: spec.target_edge(), ..RemeshOptions::default() };
+    let options = args.options(true, [0.0, 0.0, 1.0])?;
+    let remesh = RemeshOptions { target_edge: spec.quad_edge(options.courses != Courses::Free), ..RemeshOptions::default() };
     let finish = FinishOptions::for_spec(&spec);
-    let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &args.options()?, &spec, &finish, &mut Control::none())?;
+    let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &options, &spec, &finish, &mut Control::none())?;
     write_outputs(out, &remeshed.quads, &tiling, Units::M, Some(&remeshed.metrics))?;
     println!("demo: {span} m corner-supported shell, {} triangles", surface.face_count());
     println!("{}", remesh_summary(&remeshed.metrics));
@@ -309,11 +347,11 @@ fn write_outputs(out: &Path, quads: &PolyMesh, tiling: &Tiling, units: Units, re
     write_text(&out.join("tiles.obj"), &tiles::to_obj(&tiling.tiles))?;
     write_text(&out.join("pattern.svg"), &svg::pattern_svg(quads, &tiling.tiles))?;
     write_json(Some(&out.join("report.json")), &ReportFile { units: units.name(), remesh, report: &tiling.report })?;
-    write_fabrication(out, quads, tiling)
+    write_fabrication(out, quads, tiling, units.per_mm())
 }
 
 /// Writes cutlist.csv, cutlist.json, sequence.json and gaps.svg into `dir`.
-fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling) -> Result<()> {
+fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: f64) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     write_text(&dir.join("cutlist.csv"), &cutlist_csv(&tiling.cut_list))?;
     write_json(Some(&dir.join("cutlist.json")), &tiling.cut_list)?;
@@ -322,8 +360,7 @@ fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling) -> Result<()
     let steps: Vec<SequenceStep> = order.iter().map(|t| SequenceStep { step: t.step, label: &t.label, faces: &t.faces, origin: t.frame.origin.into() }).collect();
     let summary = tiling.report.sequence.as_ref();
     write_json(Some(&dir.join("sequence.json")), &SequenceFile { summary, steps })?;
-    let contacts = report::gaps::contacts(quads, &tiling.tiles);
-    write_text(&dir.join("gaps.svg"), &svg::gaps_svg(quads, &tiling.tiles, &contacts, tiling.report.tile.joint))
+    write_text(&dir.join("gaps.svg"), &svg::gaps_svg(quads, &tiling.tiles, &tiling.joints, tiling.report.tile.joint, millimetre))
 }
 
 /// `cutlist.csv`: one row per cut shape; outlines (boundary shapes) as loops separated by
@@ -365,13 +402,22 @@ struct ReportFile<'a> {
     report: &'a Report,
 }
 
-impl PatternArgs {
-    fn options(&self) -> Result<PatternOptions> {
-        let bond = match self.pattern {
+impl BondArg {
+    fn bond(self, weight: f64) -> Bond {
+        match self {
             BondArg::Stack => Bond::Stack,
-            BondArg::Staggered => Bond::Staggered { weight: self.weight },
-            BondArg::RunningBond => Bond::RunningBond { weight: self.weight },
-        };
+            BondArg::Staggered => Bond::Staggered { weight },
+            BondArg::RunningBond => Bond::RunningBond { weight },
+        }
+    }
+}
+
+impl PatternArgs {
+    /// The options, with tiles in level courses (with respect to `up`) unless `--courses`
+    /// says otherwise and `level_by_default` is false.
+    fn options(&self, level_by_default: bool, up: [f64; 3]) -> Result<PatternOptions> {
+        let level = self.courses.map_or(level_by_default, |c| c == CoursesArg::Level);
+        let bond = self.pattern.bond(self.weight);
         let formulation = match self.formulation {
             FormulationArg::Paper => Formulation::Paper,
             FormulationArg::Strengthened => Formulation::Strengthened,
@@ -386,6 +432,7 @@ impl PatternArgs {
                 MethodArg::Auto => Method::Auto,
                 MethodArg::Mip => Method::Mip,
             },
+            courses: if level { Courses::Level { up } } else { Courses::Free },
         })
     }
 }
@@ -402,6 +449,13 @@ impl TileArgs {
                 up: nalgebra::Vector3::from(self.up),
                 support_band: self.support_band.map_or(auto.sequence.support_band, |v| v * scale),
             },
+            fit: auto.fit.filter(|_| !self.no_fit).map(|fit| FitOptions {
+                overlap_tolerance: self.overlap_tolerance.map_or(fit.overlap_tolerance, |v| v * scale),
+                bond_tolerance: self.bond_tolerance.map_or(fit.bond_tolerance, |v| v * scale),
+                time_limit: self.fit_time_limit,
+                ..fit
+            }),
+            millimetre: scale,
         }
     }
 
@@ -540,7 +594,6 @@ fn remesh_summary(m: &Metrics) -> String {
 }
 
 fn tiling_summary(t: &Tiling, units: Units) -> String {
-    let j = &t.report.joints;
     let cutting = t.report.cutting.as_ref().map_or(String::new(), |c| {
         format!(
             "; {} filler pieces; {} cut shapes, {} slivers and {} tiles off the surface left out, coverage {:.3}",
@@ -552,17 +605,37 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
         )
     });
     let laying = t.report.sequence.as_ref().map_or(String::new(), |s| format!("\nlaying order: {} tiles on the supports, {} need a prop", s.support_tiles, s.unsupported));
+    let mm = units.per_mm();
+    let figures = |j: &JointSummary| {
+        format!(
+            "p95 |gap - joint| {:.1} mm, {:.0} % within 2 mm, {} of {} pairs overlapping (deepest {:.1} mm), widest {:.1} mm",
+            j.p95_deviation / mm,
+            100.0 * j.within_2mm,
+            j.overlaps,
+            j.contacts,
+            j.max_overlap / mm,
+            j.max_gap / mm
+        )
+    };
+    let j = &t.report.joints;
+    let joints = match (&j.before_fit, &t.report.fit) {
+        (Some(before), Some(fit)) => format!(
+            "joints (nominal {:.1} mm) before the fit: {}\nafter the fit ({:?}, {} steps, {:.2} s): {}; {} tiles cut to fit",
+            j.joint / mm,
+            figures(before),
+            fit.status,
+            fit.iterations,
+            t.report.seconds.fit,
+            figures(j),
+            j.fit_cuts
+        ),
+        _ => format!("joints (nominal {:.1} mm, placement of section 3.5): {}", j.joint / mm, figures(j)),
+    };
     format!(
-        "{}\n{} full tiles, {} half tiles ({} of them cut to the boundary){cutting}{laying}\njoints ({}): nominal {}, gap {:.4}..{:.4}, p95 deviation {:.4}, {} overlaps",
+        "{}\n{} full tiles, {} half tiles ({} of them cut to the boundary){cutting}{laying}\n{joints}",
         pattern_summary(&t.pattern),
         t.report.full_tiles,
         t.report.half_tiles,
         t.report.boundary_tiles,
-        units.name(),
-        j.joint,
-        j.min_gap,
-        j.max_gap,
-        j.p95_deviation,
-        j.overlaps
     )
 }

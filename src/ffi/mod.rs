@@ -37,12 +37,16 @@ use status::{Failure, TpStatus::*};
 /// Version of this ABI: raised when an existing function or struct changes incompatibly.
 /// 2: `TpTileOptions` grew (boundary tiles); the `tp_*_options_init` functions were added so
 /// that options structs can grow again without breaking callers built against older headers.
-pub const TP_ABI_VERSION: u32 = 2;
+/// 3: `TpTileOptions` grew (the fit stage) and `TpPatternOptions` too (courses); callers
+/// that initialise with `tp_*_options_init` keep working unchanged.
+pub const TP_ABI_VERSION: u32 = 3;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;
 /// The pattern (matching) stage.
 pub const TP_STAGE_PATTERN: u32 = 2;
+/// The tile stage (placing, the fit of joints, cutting).
+pub const TP_STAGE_TILES: u32 = 3;
 
 /// A progress callback: `fraction` in `[0, 1]` of `stage` (a `TP_STAGE_*`) is done; return
 /// non-zero to cancel. Called on the thread that called the stage.

@@ -5,7 +5,7 @@ use std::ffi::c_void;
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
 use super::{TP_STAGE_PATTERN, TpMesh, TpProgressCallback, borrow, hand_over, init_options, input, output, progress_reporter, read_options, release, write_out};
 use crate::control::Control;
-use crate::pattern::{self, Bond, BoundSource, Formulation, Method, Pattern, PatternOptions, SolveStatus};
+use crate::pattern::{self, Bond, BoundSource, Courses, Formulation, Method, Pattern, PatternOptions, SolveStatus};
 
 /// `bond`: maximum matching, the paper's eq. (1).
 pub const TP_BOND_STACK: i32 = 0;
@@ -63,7 +63,18 @@ pub struct TpPatternOptions {
     pub excluded_faces: *const u32,
     /// Number of excluded faces.
     pub excluded_face_count: usize,
+    /// `TP_COURSES_*`: tiles either way (`TP_COURSES_FREE`, default, the paper's model) or
+    /// all along level courses (`TP_COURSES_LEVEL`), which fit far better where the tile's
+    /// length plus a joint is not twice its width plus a joint. Since ABI 3.
+    pub courses: i32,
+    /// Up direction for level courses, xyz; default (0, 0, 1). Since ABI 3.
+    pub up: [f64; 3],
 }
+
+/// Tiles may lie either way across any quad (the paper's eqs. 1-3).
+pub const TP_COURSES_FREE: i32 = 0;
+/// Tiles lie along level courses (see `Courses::Level`).
+pub const TP_COURSES_LEVEL: i32 = 1;
 
 /// Numbers describing a solved pattern.
 #[repr(C)]
@@ -98,6 +109,8 @@ pub struct TpPatternSummary {
 /// A solved pattern (opaque).
 pub struct TpPattern {
     pub(super) pattern: Pattern,
+    /// The bond it was solved for (the fit stage keeps it).
+    pub(super) bond: Bond,
 }
 
 /// The default pattern options.
@@ -114,6 +127,8 @@ pub extern "C" fn tp_pattern_options_default() -> TpPatternOptions {
         forced_pair_count: 0,
         excluded_faces: std::ptr::null(),
         excluded_face_count: 0,
+        courses: TP_COURSES_FREE,
+        up: [0.0, 0.0, 1.0],
     }
 }
 
@@ -155,7 +170,7 @@ pub unsafe extern "C" fn tp_pattern_solve(
         let mut report = progress_reporter(progress, user, TP_STAGE_PATTERN);
         let pattern = pattern::solve_with(mesh, &options, &mut Control::with_progress(&mut report))?;
         // SAFETY: checked non-null above.
-        unsafe { hand_over(out, TpPattern { pattern }, "out") }
+        unsafe { hand_over(out, TpPattern { pattern, bond: options.bond }, "out") }
     })
 }
 
@@ -195,6 +210,11 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
         excluded_faces: excluded.iter().map(|&f| f as usize).collect(),
         formulation,
         method,
+        courses: match raw.courses {
+            TP_COURSES_FREE => Courses::Free,
+            TP_COURSES_LEVEL => Courses::Level { up: raw.up },
+            other => return Err(invalid(format!("courses {other} is not one of TP_COURSES_FREE, TP_COURSES_LEVEL"))),
+        },
     })
 }
 

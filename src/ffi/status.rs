@@ -76,7 +76,9 @@ impl From<PatternError> for Failure {
             | PatternError::ForcedNotAdjacent { .. }
             | PatternError::ForcedTwice { .. }
             | PatternError::ForcedExcluded { .. }
-            | PatternError::ForcedNonQuad { .. } => TpStatus::TP_INVALID_ARGUMENT,
+            | PatternError::ForcedNonQuad { .. }
+            | PatternError::InvalidUp { .. }
+            | PatternError::ForcedAcrossCourses { .. } => TpStatus::TP_INVALID_ARGUMENT,
         };
         Self::new(status, e.to_string())
     }

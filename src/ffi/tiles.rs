@@ -1,11 +1,13 @@
 //! Stage 3 and the report through the C ABI.
 
-use std::ffi::c_char;
+use std::ffi::{c_char, c_void};
 
 use super::status::{Failure, TpStatus, guard};
-use super::{TpMesh, TpPattern, borrow, hand_over, init_options, output, output_text, read_options, release, write_out};
+use super::{TP_STAGE_TILES, TpMesh, TpPattern, TpProgressCallback, borrow, progress_reporter, hand_over, init_options, output, output_text, read_options, release, write_out};
 use crate::pipeline::{self, Tiling};
-use crate::tiles::{FinishOptions, SequenceOptions, Tile, TileKind, TileSpec};
+use crate::control::Control;
+use crate::pattern::Bond;
+use crate::tiles::{FinishOptions, FitOptions, FitStatus, SequenceOptions, Tile, TileKind, TileSpec};
 
 /// Tile kind: a standard tile over two faces.
 pub const TP_TILE_FULL: i32 = 0;
@@ -14,6 +16,9 @@ pub const TP_TILE_HALF: i32 = 1;
 /// Tile kind: a full or half tile cut to the surface's boundary (see
 /// [`tp_tiles_copy_loop_points`]).
 pub const TP_TILE_BOUNDARY: i32 = 2;
+/// Tile kind: a full or half tile cut by the fit stage where it could not be made to fit its
+/// neighbours (its outline is read like a boundary tile's).
+pub const TP_TILE_FIT_CUT: i32 = 3;
 /// Face slot of a half tile's missing second face in [`tp_tiles_copy_faces`].
 pub const TP_NO_FACE: u32 = u32::MAX;
 
@@ -42,6 +47,22 @@ pub struct TpTileOptions {
     /// Tiles with a boundary edge within this height of the lowest boundary point stand on
     /// the supports. Negative (default): one tile width.
     pub support_band: f64,
+    /// Non-zero (default): the fit stage moves the tiles on the surface so that joints come
+    /// close to `joint`, and cuts what cannot fit; zero keeps the paper's placement (section
+    /// 3.5). Since ABI 3.
+    pub fit: i32,
+    /// Wall-clock limit of the fit stage in seconds; default 10. When it passes the best
+    /// placement so far is kept (the report's `fit.status` says `time_limit`). Since ABI 3.
+    pub fit_time_limit_seconds: f64,
+    /// Overlaps the fit stage leaves; deeper ones are cut. Negative (default): a twentieth of
+    /// the joint. Since ABI 3.
+    pub fit_overlap_tolerance: f64,
+    /// How far the fit may move a running bond's half offset or an aligned joint. Negative
+    /// (default): a tenth of the tile length. Since ABI 3.
+    pub fit_bond_tolerance: f64,
+    /// Model units per millimetre, for the report's figures in millimetres (the share of
+    /// joints within 2 and 5 mm); default 0.001 (a model in metres). Since ABI 3.
+    pub units_per_mm: f64,
 }
 
 impl TpTileOptions {
@@ -49,10 +70,18 @@ impl TpTileOptions {
         TileSpec { length: self.length, width: self.width, thickness: self.thickness, joint: self.joint }
     }
 
-    /// The finishing options, negative values replaced by their defaults for the tile.
-    fn finish(&self) -> FinishOptions {
+    /// The finishing options, negative values replaced by their defaults for the tile; the fit
+    /// keeps `bond`.
+    fn finish(&self, bond: Bond) -> FinishOptions {
         let auto = FinishOptions::for_spec(&self.spec());
         let or_auto = |value: f64, default: f64| if value < 0.0 { default } else { value };
+        let fit = auto.fit.filter(|_| self.fit != 0).map(|fit| FitOptions {
+            bond,
+            time_limit: self.fit_time_limit_seconds,
+            overlap_tolerance: or_auto(self.fit_overlap_tolerance, fit.overlap_tolerance),
+            bond_tolerance: or_auto(self.fit_bond_tolerance, fit.bond_tolerance),
+            ..fit
+        });
         FinishOptions {
             tolerance: or_auto(self.cut_tolerance, auto.tolerance),
             min_kept_width: or_auto(self.min_kept_width, auto.min_kept_width),
@@ -60,6 +89,8 @@ impl TpTileOptions {
                 up: nalgebra::Vector3::from(self.up),
                 support_band: or_auto(self.support_band, auto.sequence.support_band),
             },
+            fit,
+            millimetre: self.units_per_mm,
         }
     }
 }
@@ -82,6 +113,11 @@ pub extern "C" fn tp_tile_options_default() -> TpTileOptions {
         min_kept_width: -1.0,
         up: [0.0, 0.0, 1.0],
         support_band: -1.0,
+        fit: 1,
+        fit_time_limit_seconds: 10.0,
+        fit_overlap_tolerance: -1.0,
+        fit_bond_tolerance: -1.0,
+        units_per_mm: 0.001,
     }
 }
 
@@ -126,18 +162,60 @@ pub unsafe extern "C" fn tp_tiles_build_on_surface(
     options: *const TpTileOptions,
     out: *mut *mut TpTiles,
 ) -> TpStatus {
+    // SAFETY: forwarded.
+    unsafe { tp_tiles_build_with_progress(mesh, pattern, surface, options, None, std::ptr::null_mut(), out) }
+}
+
+/// [`tp_tiles_build_on_surface`] reporting the fit stage's progress: `progress` (may be NULL)
+/// is called with `TP_STAGE_TILES` and the share of the fit's step limit used; a non-zero
+/// return cancels the fit (the placement so far is kept, the report's `fit.status` is
+/// `cancelled`) and the call returns `TP_CANCELLED` without tiles.
+///
+/// # Safety
+/// As [`tp_tiles_build_on_surface`]; `user` is passed to `progress` untouched.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_build_with_progress(
+    mesh: *const TpMesh,
+    pattern: *const TpPattern,
+    surface: *const TpMesh,
+    options: *const TpTileOptions,
+    progress: TpProgressCallback,
+    user: *mut c_void,
+    out: *mut *mut TpTiles,
+) -> TpStatus {
     guard(|| {
         if out.is_null() {
             return Err(Failure::null("out"));
         }
         // SAFETY: live handles and valid options by the caller's promise.
-        let (mesh, pattern, raw) =
-            unsafe { (&borrow(mesh, "mesh")?.mesh, &borrow(pattern, "pattern")?.pattern, read_options(options, tp_tile_options_default(), "options")?) };
+        let (mesh, pattern, raw) = unsafe { (&borrow(mesh, "mesh")?.mesh, borrow(pattern, "pattern")?, read_options(options, tp_tile_options_default(), "options")?) };
         // SAFETY: NULL or a live handle by the caller's promise.
         let surface = if surface.is_null() { None } else { Some(&unsafe { borrow(surface, "surface") }?.mesh) };
-        let tiling = pipeline::tiles_for_pattern(mesh, surface, pattern.clone(), &raw.spec(), &raw.finish())?;
+        let mut report = progress_reporter(progress, user, TP_STAGE_TILES);
+        let mut control = Control::with_progress(&mut report);
+        let tiling = pipeline::tiles_for_pattern_with(mesh, surface, pattern.pattern.clone(), &raw.spec(), &raw.finish(pattern.bond), &mut control)?;
+        if tiling.report.fit.is_some_and(|f| f.status == FitStatus::Cancelled) {
+            return Err(Failure::new(TpStatus::TP_CANCELLED, "cancelled by the progress callback during the fit stage"));
+        }
         // SAFETY: checked non-null above.
         unsafe { hand_over(out, TpTiles { tiling }, "out") }
+    })
+}
+
+/// Copies each tile's worst joint: the largest `|gap - joint|` over the joints it takes
+/// part in (0 for a tile with none), in model units (capacity: tile count). For a colour
+/// preview of the joints.
+///
+/// # Safety
+/// `tiles` must be a live handle and `out` hold `capacity` items.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_copy_joint_deviations(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let tiles = unsafe { borrow(tiles, "tiles") }?;
+        let deviations = tiles.tiling.joint_deviations();
+        // SAFETY: forwarded.
+        unsafe { output(&deviations, out, capacity, "out") }
     })
 }
 
@@ -188,6 +266,7 @@ pub unsafe extern "C" fn tp_tiles_copy_kinds(tiles: *const TpTiles, out: *mut i3
             TileKind::Full => TP_TILE_FULL,
             TileKind::Half => TP_TILE_HALF,
             TileKind::Boundary => TP_TILE_BOUNDARY,
+            TileKind::FitCut => TP_TILE_FIT_CUT,
         }]
     };
     // SAFETY: forwarded.

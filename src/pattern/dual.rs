@@ -30,12 +30,17 @@ impl DualGraph {
     /// Builds the dual graph. Faces that are not quads, or are `excluded` (openings, areas
     /// laid by hand), take part in no candidate tile.
     pub fn new(mesh: &PolyMesh, topology: &Topology, excluded: &[bool]) -> Self {
+        Self::restricted(mesh, topology, excluded, None)
+    }
+
+    /// [`DualGraph::new`] with candidate tiles only across the mesh edges `middle` allows.
+    pub fn restricted(mesh: &PolyMesh, topology: &Topology, excluded: &[bool], middle: Option<&[bool]>) -> Self {
         let usable = |f: usize| mesh.is_quad(f) && !excluded.get(f).copied().unwrap_or(false);
         let mut tiles = Vec::new();
         let mut edge_tile = vec![None; topology.edges().len()];
         for (e, edge) in topology.edges().iter().enumerate() {
             if let [a, b] = edge.faces[..] {
-                if usable(a) && usable(b) {
+                if usable(a) && usable(b) && middle.is_none_or(|m| m[e]) {
                     edge_tile[e] = Some(tiles.len());
                     tiles.push(CandidateTile { faces: [a.min(b), a.max(b)], middle_edge: e });
                 }

@@ -60,6 +60,20 @@ pub enum PatternError {
         /// The limit given.
         seconds: f64,
     },
+    /// The up direction of level courses is not a finite non-zero vector.
+    #[error("courses up direction {up:?} is not a finite non-zero vector")]
+    InvalidUp {
+        /// The direction given.
+        up: [f64; 3],
+    },
+    /// A forced pair lies across two courses when tiles are laid in courses.
+    #[error("forced pair [{a}, {b}]: the faces lie in two courses (their shared edge runs along the courses), so in courses they cannot form one tile; force pairs along a course or lay tiles either way")]
+    ForcedAcrossCourses {
+        /// First face.
+        a: usize,
+        /// Second face.
+        b: usize,
+    },
     /// The caller cancelled the stage through its [`crate::control::Control`].
     #[error("cancelled by the caller")]
     Cancelled,

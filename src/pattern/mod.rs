@@ -19,6 +19,7 @@
 mod anneal;
 mod bound;
 mod construct;
+mod courses;
 mod decompose;
 mod dual;
 mod error;
@@ -28,6 +29,7 @@ mod score;
 mod search;
 mod worker;
 
+pub use courses::Courses;
 pub use dual::{CandidateTile, DualGraph};
 pub use error::PatternError;
 pub use score::{Score, score};
@@ -98,6 +100,8 @@ pub struct PatternOptions {
     pub formulation: Formulation,
     /// Which route to the optimum.
     pub method: Method,
+    /// Which way tiles may lie: any way (the paper's model) or only along courses.
+    pub courses: Courses,
 }
 
 /// How the pattern stage searches.
@@ -160,6 +164,7 @@ impl Default for PatternOptions {
             excluded_faces: Vec::new(),
             formulation: Formulation::default(),
             method: Method::default(),
+            courses: Courses::Free,
         }
     }
 }
@@ -265,8 +270,12 @@ pub fn solve_with(mesh: &PolyMesh, options: &PatternOptions, control: &mut Contr
         *excluded.get_mut(f).ok_or(PatternError::FaceOutOfRange { face: f, face_count: mesh.face_count() })? = true;
     }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
-    let graph = DualGraph::new(mesh, &topology, &excluded);
-    let forced = forced_tiles(mesh, &graph, &excluded, &options.forced_pairs)?;
+    let middle = match options.courses {
+        Courses::Free => None,
+        Courses::Level { up } => Some(courses::middle_edges(mesh, &topology, up)?),
+    };
+    let graph = DualGraph::restricted(mesh, &topology, &excluded, middle.as_deref());
+    let forced = forced_tiles(mesh, &topology, &graph, &excluded, &options.forced_pairs)?;
 
     // A longer limit (e.g. `Duration::MAX` from a Rust caller) would overflow the deadline.
     let time_limit = options.time_limit.min(Duration::from_secs(MAX_TIME_LIMIT_SECONDS));
@@ -509,7 +518,7 @@ fn validate_weights(bond: Bond) -> Result<(), PatternError> {
 }
 
 /// Candidate-tile indices of the forced pairs, checked against the mesh.
-fn forced_tiles(mesh: &PolyMesh, graph: &DualGraph, excluded: &[bool], pairs: &[[usize; 2]]) -> Result<Vec<usize>, PatternError> {
+fn forced_tiles(mesh: &PolyMesh, topology: &Topology, graph: &DualGraph, excluded: &[bool], pairs: &[[usize; 2]]) -> Result<Vec<usize>, PatternError> {
     let mut used = vec![false; mesh.face_count()];
     let mut tiles = Vec::with_capacity(pairs.len());
     for &[a, b] in pairs {
@@ -527,7 +536,10 @@ fn forced_tiles(mesh: &PolyMesh, graph: &DualGraph, excluded: &[bool], pairs: &[
                 return Err(PatternError::ForcedTwice { face: f });
             }
         }
-        tiles.push(graph.tile_between(a, b).ok_or(PatternError::ForcedNotAdjacent { a, b })?);
+        let adjacent = || topology.face_edges(a).iter().any(|&e| topology.edges()[e].other_face(a) == Some(b));
+        let tile = graph.tile_between(a, b).ok_or_else(|| if adjacent() { PatternError::ForcedAcrossCourses { a, b } } else { PatternError::ForcedNotAdjacent { a, b } })?;
+        tiles.push(tile);
     }
     Ok(tiles)
 }
+

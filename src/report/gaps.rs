@@ -1,101 +1,124 @@
-//! Gaps and overlaps between neighbouring tiles (paper section 4.1, Figure 8: gaps grow with
-//! curvature, because flat boxes cannot follow a doubly curved surface).
-//!
-//! Every mesh edge between faces of two different tiles is a contact. At the edge's two ends
-//! and its midpoint, the gap is the distance from the edge point to the facing side plane of
-//! one tile plus the same for the other (positive outside a tile): two tiles laid exactly
-//! with the nominal joint show `gap = joint`, and a negative gap is an overlap.
+//! Joints between neighbouring tiles, as a mason meets them: for every pair of tiles that
+//! meet (their faces share a mesh edge) and every other pair whose outlines overlap, the
+//! signed separation of their outlines in their mean plane
+//! ([`crate::tiles::outline::separation`]): the joint's width where positive, the depth of
+//! an overlap where negative. Paper section 4.1, Figure 8: with the section 3.5 placement
+//! gaps grow with curvature and quads off the half tile's size make tiles overlap; the fit
+//! stage ([`crate::tiles::fit`]) brings them back to the nominal joint.
 
+use std::collections::BTreeSet;
+
+use nalgebra::Point3;
 use serde::Serialize;
 
+use crate::geom::HashGrid;
 use crate::mesh::{PolyMesh, Topology};
-use crate::tiles::Tile;
+use crate::tiles::{Tile, outline};
 
-/// One contact between two tiles across a mesh edge.
+/// The joint between two neighbouring tiles.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Contact {
-    /// The two tiles (indices into the tile list).
+pub struct Joint {
+    /// The two tiles (indices into the tile list), the smaller first.
     pub tiles: [usize; 2],
-    /// The mesh edge's vertices.
-    pub edge: [usize; 2],
-    /// Gaps at the edge's first end, midpoint and second end.
-    pub gaps: [f64; 3],
+    /// Signed separation of their outlines: the joint's width, or an overlap when negative.
+    pub gap: f64,
 }
 
-impl Contact {
-    /// Smallest gap along the contact (negative: overlap).
-    pub fn min_gap(&self) -> f64 {
-        self.gaps.iter().copied().fold(f64::INFINITY, f64::min)
-    }
-
-    /// Largest gap along the contact.
-    pub fn max_gap(&self) -> f64 {
-        self.gaps.iter().copied().fold(f64::NEG_INFINITY, f64::max)
-    }
-}
-
-/// Summary of all contacts.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// Summary of all joints against the nominal joint width.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct JointSummary {
-    /// Mesh edges between two different tiles.
+    /// Neighbouring pairs of tiles (see [`joints`]).
     pub contacts: usize,
     /// Nominal joint width.
     pub joint: f64,
-    /// Smallest gap at any sample point (negative: overlap).
+    /// Narrowest joint (negative: an overlap).
     pub min_gap: f64,
-    /// Largest gap at any sample point.
+    /// Widest joint.
     pub max_gap: f64,
-    /// Mean gap at the edge midpoints.
+    /// Mean joint.
     pub mean_gap: f64,
-    /// 95th percentile of the gap over all sample points.
+    /// 95th percentile of the joints.
     pub p95_gap: f64,
-    /// 95th percentile of `|gap - joint|` over all sample points.
+    /// 95th percentile of `|gap - joint|`.
     pub p95_deviation: f64,
     /// Deepest overlap (0 when no tiles overlap).
     pub max_overlap: f64,
-    /// Contacts where the tiles overlap somewhere.
+    /// Pairs of tiles that overlap.
     pub overlaps: usize,
+    /// Share of pairs with `|gap - joint|` at most 2 mm.
+    pub within_2mm: f64,
+    /// Share of pairs with `|gap - joint|` at most 5 mm.
+    pub within_5mm: f64,
+    /// Tiles the fit stage cut because they could not be made to fit.
+    pub fit_cuts: usize,
+    /// The same figures for the section 3.5 placement, before the fit stage moved the tiles
+    /// (absent when the fit stage did not run).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub before_fit: Option<Box<JointSummary>>,
 }
 
-/// Measures every tile-to-tile contact, in edge order.
-pub fn contacts(mesh: &PolyMesh, tiles: &[Tile]) -> Vec<Contact> {
+/// Every joint of `tiles` placed on `mesh`: pairs of tiles whose faces share a mesh edge, and
+/// pairs of any tiles (filler pieces too) whose outlines overlap, in index order.
+pub fn joints(mesh: &PolyMesh, tiles: &[Tile]) -> Vec<Joint> {
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
-    let mut tile_of = vec![None; mesh.face_count()];
+    let mut tile_of = vec![usize::MAX; mesh.face_count()];
     for (t, tile) in tiles.iter().enumerate() {
-        tile.faces.iter().for_each(|&f| tile_of[f] = Some(t));
+        tile.faces.iter().for_each(|&f| tile_of[f] = t);
     }
-    let mut found = Vec::new();
+    let mut meeting: BTreeSet<[usize; 2]> = BTreeSet::new();
     for edge in topology.edges() {
-        let [f, g] = edge.faces[..] else { continue };
-        let (Some(a), Some(b)) = (tile_of[f], tile_of[g]) else { continue };
-        if a == b {
-            continue;
+        if let [f, g] = edge.faces[..] {
+            let (a, b) = (tile_of[f], tile_of[g]);
+            if a != usize::MAX && b != usize::MAX && a != b {
+                meeting.insert([a.min(b), a.max(b)]);
+            }
         }
-        let [p, q] = edge.vertices.map(|v| mesh.positions()[v]);
-        let gaps = [p, nalgebra::center(&p, &q), q].map(|s| outside_distance(&tiles[a], &s) + outside_distance(&tiles[b], &s));
-        found.push(Contact { tiles: [a, b], edge: edge.vertices, gaps });
     }
+    let outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_outline).collect();
+    let reach = tiles.iter().map(|t| t.size[0].hypot(t.size[1])).fold(0.0, f64::max);
+    let gap = |a: usize, b: usize| outline::separation_of(&tiles[a], &outlines[a], &tiles[b], &outlines[b]).gap;
+    let mut found: Vec<Joint> = Vec::with_capacity(meeting.len());
+    if reach > 0.0 {
+        let grid = HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
+        for a in 0..tiles.len() {
+            for b in grid.near(&tiles[a].frame.origin, reach) {
+                if b > a && !meeting.contains(&[a, b]) {
+                    let g = gap(a, b);
+                    if g < 0.0 {
+                        found.push(Joint { tiles: [a, b], gap: g });
+                    }
+                }
+            }
+        }
+    }
+    found.extend(meeting.iter().map(|&[a, b]| Joint { tiles: [a, b], gap: gap(a, b) }));
+    found.sort_by_key(|j| j.tiles);
     found
 }
 
 impl JointSummary {
-    /// Summarises `contacts` against the nominal `joint`.
-    pub fn of(contacts: &[Contact], joint: f64) -> Self {
-        let mut samples: Vec<f64> = contacts.iter().flat_map(|c| c.gaps).collect();
-        let mut deviations: Vec<f64> = samples.iter().map(|g| (g - joint).abs()).collect();
-        samples.sort_by(f64::total_cmp);
+    /// Summarises `joints` against the nominal `joint`, with `mm` model units per millimetre.
+    pub fn of(joints: &[Joint], joint: f64, mm: f64) -> Self {
+        let mut gaps: Vec<f64> = joints.iter().map(|j| j.gap).collect();
+        let mut deviations: Vec<f64> = gaps.iter().map(|g| (g - joint).abs()).collect();
+        gaps.sort_by(f64::total_cmp);
         deviations.sort_by(f64::total_cmp);
-        let (min_gap, max_gap) = (samples.first().copied().unwrap_or(0.0), samples.last().copied().unwrap_or(0.0));
+        let share = |limit: f64| deviations.partition_point(|&d| d <= limit) as f64 / deviations.len().max(1) as f64;
+        let (min_gap, max_gap) = (gaps.first().copied().unwrap_or(0.0), gaps.last().copied().unwrap_or(0.0));
         Self {
-            contacts: contacts.len(),
+            contacts: joints.len(),
             joint,
             min_gap,
             max_gap,
-            mean_gap: contacts.iter().map(|c| c.gaps[1]).sum::<f64>() / contacts.len().max(1) as f64,
-            p95_gap: percentile(&samples, 95),
+            mean_gap: gaps.iter().sum::<f64>() / gaps.len().max(1) as f64,
+            p95_gap: percentile(&gaps, 95),
             p95_deviation: percentile(&deviations, 95),
             max_overlap: (-min_gap).max(0.0),
-            overlaps: contacts.iter().filter(|c| c.min_gap() < 0.0).count(),
+            overlaps: gaps.iter().filter(|&&g| g < 0.0).count(),
+            within_2mm: share(2.0 * mm),
+            within_5mm: share(5.0 * mm),
+            fit_cuts: 0,
+            before_fit: None,
         }
     }
 }
@@ -103,12 +126,4 @@ impl JointSummary {
 /// The `p`-th percentile of sorted values (nearest rank), 0 for none.
 fn percentile(sorted: &[f64], p: usize) -> f64 {
     sorted.get((sorted.len() * p).div_ceil(100).saturating_sub(1)).copied().unwrap_or(0.0)
-}
-
-/// Signed distance from `point` to the side plane of `tile` that faces it (positive outside).
-/// The facing side is the one the point lies furthest beyond, relative to the half-extents.
-fn outside_distance(tile: &Tile, point: &nalgebra::Point3<f64>) -> f64 {
-    let local = tile.frame.to_local(point);
-    let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
-    if local.x.abs() / hx >= local.y.abs() / hy { local.x.abs() - hx } else { local.y.abs() - hy }
 }

@@ -6,21 +6,23 @@ pub mod coverage;
 pub mod gaps;
 pub mod svg;
 
-pub use gaps::{Contact, JointSummary};
+pub use gaps::{Joint, JointSummary};
 
 use serde::Serialize;
 
 use crate::mesh::PolyMesh;
 use crate::pattern::{Pattern, SolveStatus};
-use crate::tiles::{DropReason, DroppedTile, Finished, Sequence, Tile, TileKind, TileSpec};
+use crate::tiles::{DropReason, DroppedTile, FitSummary, Finished, Sequence, Tile, TileKind, TileSpec};
 
 /// Wall-clock seconds per stage.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct StageSeconds {
     /// Pattern (matching) stage.
     pub pattern: f64,
-    /// Tile stage.
+    /// Tile stage (the fit included).
     pub tiles: f64,
+    /// The fit stage alone (0 when it did not run).
+    pub fit: f64,
 }
 
 /// Everything a designer wants to know about a tiling, serialised as `report.json`.
@@ -52,8 +54,11 @@ pub struct Report {
     pub status: SolveStatus,
     /// Tile size used.
     pub tile: TileSpec,
-    /// Joint gaps and overlaps.
+    /// Joint gaps and overlaps, with the figures before the fit stage when it ran.
     pub joints: JointSummary,
+    /// What the fit stage did, when it ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fit: Option<FitSummary>,
     /// Cutting to the boundary and coverage of the surface, once the tiles are finished.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cutting: Option<CuttingSummary>,
@@ -90,8 +95,15 @@ pub struct CuttingSummary {
 }
 
 impl Report {
-    /// Summarises a tiling built from `pattern` on `mesh`.
+    /// Summarises a tiling built from `pattern` on `mesh`, in metres (see [`Report::measured`]).
     pub fn new(mesh: &PolyMesh, pattern: &Pattern, tiles: &[Tile], spec: &TileSpec) -> Self {
+        Self::measured(mesh, pattern, tiles, &gaps::joints(mesh, tiles), spec, 0.001)
+    }
+
+    /// Summarises a tiling built from `pattern` on `mesh`, whose `joints` were measured with
+    /// [`gaps::joints`], in a model with `mm` model units per millimetre (for the joint
+    /// figures stated in millimetres).
+    pub fn measured(mesh: &PolyMesh, pattern: &Pattern, tiles: &[Tile], joints: &[Joint], spec: &TileSpec, mm: f64) -> Self {
         let count = |kind| tiles.iter().filter(|t| t.kind == kind).count();
         let blanks = |faces: usize| tiles.iter().filter(|t| t.faces.len() == faces).count();
         Self {
@@ -108,10 +120,11 @@ impl Report {
             gap: pattern.gap,
             status: pattern.status,
             tile: *spec,
-            joints: JointSummary::of(&gaps::contacts(mesh, tiles), spec.joint),
+            joints: JointSummary::of(joints, spec.joint, mm),
+            fit: None,
             cutting: None,
             sequence: None,
-            seconds: StageSeconds { pattern: pattern.seconds, tiles: 0.0 },
+            seconds: StageSeconds { pattern: pattern.seconds, tiles: 0.0, fit: 0.0 },
         }
     }
 

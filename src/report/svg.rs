@@ -1,26 +1,27 @@
 //! Pictures of a tiling seen along the shell's mean normal (a top view for a vault).
 //!
-//! `pattern.svg`: full, half and boundary tiles and faces without a tile get different fills;
-//! joints between tiles are drawn, joints inside a tile are not; the kept outline of each
-//! boundary tile is dashed; continuous joints are red, irregular vertices are blue dots.
+//! `pattern.svg`: every tile as laid (after the fit stage, off its quads), filled by its kind
+//! (full, half, cut to the boundary, cut to fit) with the kept outline of a cut tile dashed;
+//! faces without a tile are grey; continuous joints are red, irregular vertices blue dots.
 //!
-//! `gaps.svg`: every tile-to-tile contact coloured by its gap against the nominal joint
-//! (paper Figure 8), blue where tiles press together or overlap, red where the joint opens.
+//! `gaps.svg`: every tile coloured by its worst joint against the nominal joint (paper
+//! Figure 8), blue where tiles press together or overlap, red where the joint opens.
 
 use std::fmt::Write as _;
 
 use nalgebra::{Point3, Vector3};
 
 use crate::mesh::{PolyMesh, Topology};
-use super::gaps::Contact;
+use super::gaps::Joint;
 use crate::pattern::DualGraph;
-use crate::tiles::{Tile, TileKind};
+use crate::tiles::{Tile, TileKind, outline};
 
 const WIDTH: f64 = 1000.0;
 const MARGIN: f64 = 20.0;
 const FULL_FILL: &str = "#e8c9a0";
 const HALF_FILL: &str = "#f08a5d";
 const BOUNDARY_FILL: &str = "#a6cee3";
+const FIT_CUT_FILL: &str = "#b589d6";
 const CUT_COLOUR: &str = "#1f4e79";
 const NO_TILE_FILL: &str = "#c8c8c8";
 const JOINT_COLOUR: &str = "#5a4632";
@@ -32,30 +33,28 @@ pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let view = View::fit(mesh);
     let tile_of = tile_of_face(mesh, tiles);
-    let mut body = faces_by_kind(mesh, &view, tiles, &tile_of);
-    for edge in topology.edges() {
-        let inside_one_tile = match edge.faces[..] {
-            [f, g] => tile_of[f].is_some() && tile_of[f] == tile_of[g],
-            _ => false,
-        };
-        if !inside_one_tile {
-            body.push_str(&view.line(mesh, edge.vertices, JOINT_COLOUR, 1.0));
-        }
+    // Faces without a tile (excluded, not quads) stay grey underneath.
+    let mut body = String::new();
+    for (f, face) in mesh.faces().iter().enumerate().filter(|(f, _)| tile_of[*f].is_none()) {
+        let _ = f;
+        let points: Vec<String> = face.iter().map(|&v| view.xy(&mesh.positions()[v])).collect();
+        let _ = writeln!(body, r#"<polygon points="{}" fill="{NO_TILE_FILL}" stroke="{NO_TILE_FILL}" stroke-width="0.5"/>"#, points.join(" "));
     }
-    for tile in tiles.iter().filter(|t| t.faces.is_empty()) {
-        // Filler pieces beyond the quad mesh: drawn from their kept outline.
+    // Every tile as laid: its kept outline (all loops of a cut tile) filled by its kind.
+    for tile in tiles {
+        let fill = kind_fill(tile.kind);
         let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
         let whole = vec![vec![[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]]];
-        for outline in tile.cut.as_ref().map_or(&whole, |c| &c.loops) {
-            let points: Vec<String> = outline.iter().map(|p| view.xy(&tile.to_world(Vector3::new(p[0], p[1], 0.0)))).collect();
-            let _ = writeln!(body, r#"<polygon points="{}" fill="{BOUNDARY_FILL}" stroke="{JOINT_COLOUR}" stroke-width="0.5"/>"#, points.join(" "));
-        }
-    }
-    for tile in tiles {
-        for outline in tile.cut.iter().flat_map(|c| &c.loops) {
-            let points: Vec<String> = outline.iter().map(|p| view.xy(&tile.to_world(Vector3::new(p[0], p[1], 0.0)))).collect();
-            let _ = writeln!(body, r#"<polygon points="{}" fill="none" stroke="{CUT_COLOUR}" stroke-width="1" stroke-dasharray="3,2"/>"#, points.join(" "));
-        }
+        let loops = tile.cut.as_ref().map_or(&whole, |c| &c.loops);
+        let path: String = loops
+            .iter()
+            .map(|l| {
+                let points: Vec<String> = l.iter().map(|p| view.xy(&tile.to_world(Vector3::new(p[0], p[1], 0.0)))).collect();
+                format!("M{}Z", points.join("L"))
+            })
+            .collect();
+        let dash = if tile.cut.is_some() { format!(r#" stroke-dasharray="3,2" stroke="{CUT_COLOUR}""#) } else { format!(r#" stroke="{JOINT_COLOUR}""#) };
+        let _ = writeln!(body, r#"<path d="{path}" fill="{fill}" fill-rule="evenodd"{dash} stroke-width="0.5"/>"#);
     }
     for [a, b] in continuous_joints(mesh, &topology, tiles) {
         for t in [a, b] {
@@ -74,31 +73,43 @@ pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
         Legend::Swatch(FULL_FILL.into(), "full tile".into()),
         Legend::Swatch(HALF_FILL.into(), "half tile (cut)".into()),
         Legend::Swatch(BOUNDARY_FILL.into(), "boundary tile (cut)".into()),
+        Legend::Swatch(FIT_CUT_FILL.into(), "cut to fit".into()),
         Legend::Line(CONTINUOUS_COLOUR.into(), "continuous joint".into()),
         Legend::Dot(SINGULAR_COLOUR.into(), "irregular vertex".into()),
     ];
     document(&view, &body, &legend)
 }
 
-/// Draws every contact of `contacts` coloured by its gap against the nominal `joint`; the
-/// colour saturates at the 95th percentile of the deviation so one outlier does not wash out
-/// the picture.
-pub fn gaps_svg(mesh: &PolyMesh, tiles: &[Tile], contacts: &[Contact], joint: f64) -> String {
+/// Draws every tile's kept outline coloured by its worst joint against the nominal `joint`
+/// (the joint of `joints` that strays furthest from it: blue where it is tighter or the
+/// tiles overlap, red where it is wider), with `mm` model units per millimetre for the
+/// legend. The colour saturates at the 95th percentile of the deviation, at least a tenth
+/// of the joint, so one outlier does not wash out the picture.
+pub fn gaps_svg(mesh: &PolyMesh, tiles: &[Tile], joints: &[Joint], joint: f64, mm: f64) -> String {
     let view = View::fit(mesh);
-    let tile_of = tile_of_face(mesh, tiles);
-    let mut body = faces_by_kind(mesh, &view, tiles, &tile_of).replace("fill-opacity=\"1\"", "fill-opacity=\"0.35\"");
-    let mut deviations: Vec<f64> = contacts.iter().flat_map(|c| c.gaps.map(|g| (g - joint).abs())).collect();
+    let mut worst: Vec<Option<f64>> = vec![None; tiles.len()];
+    for j in joints {
+        for t in j.tiles {
+            if worst[t].is_none_or(|w| (j.gap - joint).abs() > (w - joint).abs()) {
+                worst[t] = Some(j.gap);
+            }
+        }
+    }
+    let mut deviations: Vec<f64> = joints.iter().map(|j| (j.gap - joint).abs()).collect();
     deviations.sort_by(f64::total_cmp);
     let p95 = deviations.get((deviations.len() * 95).div_ceil(100).saturating_sub(1)).copied().unwrap_or(0.0);
     let scale = p95.max(joint * 0.1).max(1e-12);
-    for contact in contacts {
-        let worst = contact.gaps.iter().copied().max_by(|a, b| (a - joint).abs().total_cmp(&(b - joint).abs())).unwrap_or(joint);
-        body.push_str(&view.line(mesh, contact.edge, &gap_colour((worst - joint) / scale), 2.5));
+    let mut body = String::new();
+    for (tile, worst) in tiles.iter().zip(&worst) {
+        let fill = worst.map_or_else(|| gap_colour(0.0), |g| gap_colour((g - joint) / scale));
+        let points: Vec<String> =
+            outline::world_outline(tile).iter().map(|p| view.xy(p)).collect();
+        let _ = writeln!(body, r#"<polygon points="{}" fill="{fill}" stroke="{JOINT_COLOUR}" stroke-width="0.3"/>"#, points.join(" "));
     }
     let legend = [
-        Legend::Line(gap_colour(-1.0), format!("gap {:.1} mm or less", (joint - scale) * 1000.0)),
-        Legend::Line(gap_colour(0.0), format!("nominal joint {:.1} mm", joint * 1000.0)),
-        Legend::Line(gap_colour(1.0), format!("gap {:.1} mm or more", (joint + scale) * 1000.0)),
+        Legend::Swatch(gap_colour(-1.0), format!("joint {:.1} mm or less", (joint - scale) / mm)),
+        Legend::Swatch(gap_colour(0.0), format!("nominal joint {:.1} mm", joint / mm)),
+        Legend::Swatch(gap_colour(1.0), format!("joint {:.1} mm or more", (joint + scale) / mm)),
     ];
     document(&view, &body, &legend)
 }
@@ -121,20 +132,14 @@ fn tile_of_face(mesh: &PolyMesh, tiles: &[Tile]) -> Vec<Option<usize>> {
     tile_of
 }
 
-/// Every face filled by the kind of tile on it.
-fn faces_by_kind(mesh: &PolyMesh, view: &View, tiles: &[Tile], tile_of: &[Option<usize>]) -> String {
-    let mut body = String::new();
-    for (f, face) in mesh.faces().iter().enumerate() {
-        let fill = match tile_of[f].map(|t| tiles[t].kind) {
-            Some(TileKind::Full) => FULL_FILL,
-            Some(TileKind::Half) => HALF_FILL,
-            Some(TileKind::Boundary) => BOUNDARY_FILL,
-            None => NO_TILE_FILL,
-        };
-        let points: Vec<String> = face.iter().map(|&v| view.xy(&mesh.positions()[v])).collect();
-        let _ = writeln!(body, r#"<polygon points="{}" fill="{fill}" fill-opacity="1" stroke="{fill}" stroke-width="0.5"/>"#, points.join(" "));
+/// The fill of a tile of `kind`.
+fn kind_fill(kind: TileKind) -> &'static str {
+    match kind {
+        TileKind::Full => FULL_FILL,
+        TileKind::Half => HALF_FILL,
+        TileKind::Boundary => BOUNDARY_FILL,
+        TileKind::FitCut => FIT_CUT_FILL,
     }
-    body
 }
 
 /// One entry of a picture's legend.

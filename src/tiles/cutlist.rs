@@ -14,8 +14,8 @@ use super::{Tile, TileKind};
 /// Tiles that share one cut shape.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CutGroup {
-    /// `F` (full tiles), `H` (half tiles) or `B1`, `B2`, ... (boundary shapes, most common
-    /// first).
+    /// `F` (full tiles), `H` (half tiles), `B1`, `B2`, ... (boundary shapes, most common
+    /// first) or `C1`, `C2`, ... (shapes cut by the fit stage, most common first).
     pub label: String,
     /// Kind of the tiles in the group.
     pub kind: TileKind,
@@ -31,7 +31,8 @@ pub struct CutGroup {
 }
 
 /// Groups `tiles` by cut shape (within `tolerance`, model units), labels every tile with its
-/// group's label, and returns the groups: `F`, `H`, then boundary shapes by falling count.
+/// group's label, and returns the groups: `F`, `H`, then boundary shapes and fit-cut shapes,
+/// each by falling count.
 pub fn cut_list(tiles: &mut [Tile], tolerance: f64) -> Vec<CutGroup> {
     // Representative tile and members of each group, in order of first appearance.
     let mut groups: Vec<(usize, Vec<usize>)> = Vec::new();
@@ -46,9 +47,10 @@ pub fn cut_list(tiles: &mut [Tile], tolerance: f64) -> Vec<CutGroup> {
         TileKind::Full => 0,
         TileKind::Half => 1,
         TileKind::Boundary => 2,
+        TileKind::FitCut => 3,
     };
     groups.sort_by(|(a, am), (b, bm)| rank(tiles[*a].kind).cmp(&rank(tiles[*b].kind)).then(bm.len().cmp(&am.len())).then(a.cmp(b)));
-    let mut boundary_shapes = 0;
+    let (mut boundary_shapes, mut fit_shapes) = (0, 0);
     groups
         .into_iter()
         .map(|(rep, members)| {
@@ -59,6 +61,10 @@ pub fn cut_list(tiles: &mut [Tile], tolerance: f64) -> Vec<CutGroup> {
                 TileKind::Boundary => {
                     boundary_shapes += 1;
                     format!("B{boundary_shapes}")
+                }
+                TileKind::FitCut => {
+                    fit_shapes += 1;
+                    format!("C{fit_shapes}")
                 }
             };
             let group = CutGroup {

@@ -7,6 +7,11 @@
 //! into a square cell, unless that cell would land on a cell already there; each new cell
 //! gets a half-tile blank, which is then cut to the surface like any boundary tile. Rings
 //! stop where no new cell touches the surface.
+//!
+//! After the fit stage the tiles no longer sit on their quads (a course may end short of the
+//! quad mesh's edge, where its leftover went), so the fill then starts from the tiles
+//! themselves: each tile's footprint (its face grown by half a joint, long sides split in
+//! two) is a cell, and the footprint's sides on the quad mesh's boundary are the open edges.
 
 use std::collections::HashMap;
 
@@ -42,24 +47,25 @@ struct OpenEdge {
     parent: usize,
 }
 
-/// A placed cell: corners and unit normal.
+/// A placed cell: corners (a convex polygon) and unit normal.
 struct Cell {
-    corners: [Point3<f64>; 4],
+    corners: Vec<Point3<f64>>,
     normal: Vector3<f64>,
 }
 
 impl Cell {
     /// Whether `p` lies over the cell, within half its size of its plane.
     fn covers(&self, p: &Point3<f64>) -> bool {
-        let size = (self.corners[2] - self.corners[0]).norm();
+        let n = self.corners.len();
+        let size = (self.corners[n / 2] - self.corners[0]).norm();
         if (p - self.corners[0]).dot(&self.normal).abs() > size / 2.0 {
             return false;
         }
-        (0..4).all(|i| (self.corners[(i + 1) % 4] - self.corners[i]).cross(&(p - self.corners[i])).dot(&self.normal) >= 0.0)
+        (0..n).all(|i| (self.corners[(i + 1) % n] - self.corners[i]).cross(&(p - self.corners[i])).dot(&self.normal) >= 0.0)
     }
 
     fn centroid(&self) -> Point3<f64> {
-        Point3::from(self.corners.iter().map(|c| c.coords).sum::<Vector3<f64>>() / 4.0)
+        Point3::from(self.corners.iter().map(|c| c.coords).sum::<Vector3<f64>>() / self.corners.len() as f64)
     }
 }
 
@@ -91,10 +97,24 @@ impl Cells {
     }
 }
 
+/// What the fill grows from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Seeds {
+    /// The quads: tiles sit on them (the section 3.5 placement).
+    Quads,
+    /// The tiles' footprints, each grown by half of `joint`: the tiles were moved off their
+    /// quads by the fit stage.
+    Tiles {
+        /// The mortar joint.
+        joint: f64,
+    },
+}
+
 /// Filler cells beyond the boundary of `quads`, each with a half blank of `blank` size
 /// (length, width, thickness), kept where they reach onto the surface behind `boundary`.
-/// `tiles` are the tiles on the quads (for the fillers' parents).
-pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary, blank: [f64; 3]) -> Vec<Filler> {
+/// `tiles` are the tiles on the quads (for the fillers' parents); `seeds` says whether the
+/// lattice continues from the quads or from the tiles.
+pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary, blank: [f64; 3], seeds: Seeds) -> Vec<Filler> {
     let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
     let mut tile_of = vec![usize::MAX; quads.face_count()];
     for (t, tile) in tiles.iter().enumerate() {
@@ -105,10 +125,12 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
     for f in 0..quads.face_count() {
         let corners: Vec<Point3<f64>> = quads.face_points(f).collect();
         let normal = quads.face_area_vector(f).try_normalize(0.0).unwrap_or_else(Vector3::z);
-        if let [a, b, c, d] = corners[..] {
-            cells.add(Cell { corners: [a, b, c, d], normal });
+        // Quads without a tile block the fill either way; with tiles as seeds, the tiles'
+        // footprints stand for their quads.
+        if corners.len() == 4 && (seeds == Seeds::Quads || tile_of[f] == usize::MAX) {
+            cells.add(Cell { corners: corners.clone(), normal });
         }
-        if tile_of[f] == usize::MAX {
+        if tile_of[f] == usize::MAX || seeds != Seeds::Quads {
             continue;
         }
         for (i, &e) in topology.face_edges(f).iter().enumerate() {
@@ -116,6 +138,18 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
                 let n = corners.len();
                 open.push(OpenEdge { a: corners[i], b: corners[(i + 1) % n], normal, parent: tile_of[f] });
             }
+        }
+    }
+    if let Seeds::Tiles { joint } = seeds {
+        for (t, tile) in tiles.iter().enumerate() {
+            let (corners, open_sides) = footprint(quads, &topology, tile, joint);
+            let n = corners.len();
+            for (i, open_side) in open_sides.iter().enumerate() {
+                if *open_side {
+                    open.push(OpenEdge { a: corners[i], b: corners[(i + 1) % n], normal: tile.frame.z, parent: t });
+                }
+            }
+            cells.add(Cell { corners, normal: tile.frame.z });
         }
     }
 
@@ -143,18 +177,19 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
             }
             let normal = area_vector.normalize();
             // Counter-clockwise seen along the normal, the open edge traversed backwards.
-            let cell = Cell { corners: [edge.b, edge.a, a2, b2], normal };
+            let square = [edge.b, edge.a, a2, b2];
+            let cell = Cell { corners: square.to_vec(), normal };
             let centre = cell.centroid();
             // Cells may not overlap beyond a sliver: the centre must be free, and at most two
             // of the probes a fifth of the way in from the corners and edge middles may lie
             // on other cells (on a curved surface neighbouring rows of cells fan in and out).
             let probe = |p: Point3<f64>| p + (centre - p) * 0.2;
-            let mids = [0, 1, 2, 3].map(|i| nalgebra::center(&cell.corners[i], &cell.corners[(i + 1) % 4]));
-            let probes = cell.corners.iter().chain(&mids).map(|&p| probe(p));
+            let mids = [0, 1, 2, 3].map(|i| nalgebra::center(&square[i], &square[(i + 1) % 4]));
+            let probes = square.iter().chain(&mids).map(|&p| probe(p));
             if cells.covered(&centre) || probes.filter(|p| cells.covered(p)).count() >= 3 {
                 continue;
             }
-            let frame = Frame::for_corners(&cell.corners, normal);
+            let frame = Frame::for_corners(&square, normal);
             let tile = Tile::new(TileKind::Half, Vec::new(), frame, blank);
             if matches!(boundary.clip(&tile, 0.0), super::clip::Clipped::Outside) {
                 continue;
@@ -163,7 +198,7 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
             for (a, b) in [(edge.a, a2), (a2, b2), (b2, edge.b)] {
                 next.push(OpenEdge { a, b, normal, parent: index });
             }
-            let local = cell.corners.map(|c| {
+            let local = square.map(|c| {
                 let v = tile.frame.to_local(&c);
                 [v.x, v.y]
             });
@@ -176,4 +211,39 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
         open = next;
     }
     fillers
+}
+
+/// A tile's footprint, its face grown by half a joint, as corners counter-clockwise seen
+/// from its `z` (a full tile's long sides split in the middle, so each side of the footprint
+/// is about one quad long), and for each side from corner `i` to `i + 1` whether it lies on
+/// the quad mesh's boundary: whether the quads of the tile have no neighbour across it.
+fn footprint(quads: &PolyMesh, topology: &Topology, tile: &Tile, joint: f64) -> (Vec<Point3<f64>>, Vec<bool>) {
+    use super::fit::contacts::{Side, side_of};
+    let (x, y) = (tile.size[0] / 2.0 + joint / 2.0, tile.size[1] / 2.0 + joint / 2.0);
+    let full = tile.faces.len() == 2;
+    // Corners, and the side and half (-1: x < 0, 1: x > 0, 0: whole) of each edge.
+    let (local, edges): (Vec<[f64; 2]>, Vec<(Side, i8)>) = if full {
+        (
+            vec![[-x, -y], [0.0, -y], [x, -y], [x, y], [0.0, y], [-x, y]],
+            vec![(Side::NegY, -1), (Side::NegY, 1), (Side::PosX, 0), (Side::PosY, 1), (Side::PosY, -1), (Side::NegX, 0)],
+        )
+    } else {
+        (vec![[-x, -y], [x, -y], [x, y], [-x, y]], vec![(Side::NegY, 0), (Side::PosX, 0), (Side::PosY, 0), (Side::NegX, 0)])
+    };
+    let corners = local.iter().map(|p| tile.to_world(Vector3::new(p[0], p[1], 0.0))).collect();
+    let mut open = vec![false; edges.len()];
+    for (k, &f) in tile.faces.iter().enumerate() {
+        // A full tile's first face is its `x < 0` half.
+        let half = if full { if k == 0 { -1 } else { 1 } } else { 0 };
+        for (i, &e) in topology.face_edges(f).iter().enumerate() {
+            if !topology.edges()[e].is_boundary() {
+                continue;
+            }
+            let Some(side) = side_of(quads, topology, tile, f, i) else { continue };
+            if let Some(slot) = edges.iter().position(|&(s, h)| s == side && (h == 0 || h == half)) {
+                open[slot] = true;
+            }
+        }
+    }
+    (corners, open)
 }

@@ -18,11 +18,14 @@
 pub mod clip;
 pub mod cutlist;
 mod fill;
+pub mod fit;
 mod frame;
+pub mod outline;
 pub mod sequence;
 
 pub use clip::{Cut, SurfaceBoundary};
 pub use cutlist::CutGroup;
+pub use fit::{FitOptions, FitStatus, FitSummary};
 pub use frame::Frame;
 pub use sequence::{Sequence, SequenceOptions};
 
@@ -50,6 +53,20 @@ impl TileSpec {
     /// Target quad edge for this tile: half a tile plus half a joint, `(L + joint) / 2`.
     pub fn target_edge(&self) -> f64 {
         (self.length + self.joint) / 2.0
+    }
+
+    /// Distance between neighbouring courses: a tile's width plus a joint, `W + joint`.
+    pub fn course_pitch(&self) -> f64 {
+        self.width + self.joint
+    }
+
+    /// The quad edge to remesh with. Tiles laid either way across square quads sit best on
+    /// quads of [`TileSpec::target_edge`] (the paper's choice). In courses, the quads'
+    /// height across the courses is what no placement can change, so they are made as high
+    /// as a course ([`TileSpec::course_pitch`]) where that is larger, and the fit stage
+    /// closes the head joints along each course (see [`fit`]).
+    pub fn quad_edge(&self, in_courses: bool) -> f64 {
+        if in_courses { self.target_edge().max(self.course_pitch()) } else { self.target_edge() }
     }
 
     /// Checks that every dimension is a finite positive number (the joint may be zero).
@@ -80,6 +97,10 @@ pub enum TileKind {
     Half,
     /// A full or half tile cut to the surface's boundary (its [`Tile::cut`] says how).
     Boundary,
+    /// A full or half tile cut by the fit stage where it could not be made to fit its
+    /// neighbours (its [`Tile::cut`] says how); a boundary tile also cut by the fit stays
+    /// [`TileKind::Boundary`] with [`Tile::fit_cut`] set.
+    FitCut,
 }
 
 /// One placed tile.
@@ -104,6 +125,9 @@ pub struct Tile {
     pub label: String,
     /// Its place in the laying order, from 0; set by [`finish`].
     pub step: usize,
+    /// Whether the fit stage cut it (see [`fit::resolve_overlaps`]).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub fit_cut: bool,
 }
 
 /// How tiles are made buildable: cutting, grouping and ordering.
@@ -116,16 +140,25 @@ pub struct FinishOptions {
     pub min_kept_width: f64,
     /// Where the vault stands, for the laying order.
     pub sequence: SequenceOptions,
+    /// The fit of joints (stage 3b) between placing and cutting; `None` keeps the section
+    /// 3.5 placement.
+    pub fit: Option<FitOptions>,
+    /// Model units per millimetre, for figures stated in millimetres (the report's share of
+    /// joints within 2 and 5 mm); 0.001 for a model in metres.
+    pub millimetre: f64,
 }
 
 impl FinishOptions {
     /// Defaults for a tile: tolerance 1 % of its width, slivers below a fifth of its width,
-    /// `+z` up, supports within one tile width of the lowest boundary point.
+    /// `+z` up, supports within one tile width of the lowest boundary point, the fit stage
+    /// with [`FitOptions::for_spec`], a model in metres.
     pub fn for_spec(spec: &TileSpec) -> Self {
         Self {
             tolerance: spec.width / 100.0,
             min_kept_width: spec.width / 5.0,
             sequence: SequenceOptions { up: Vector3::z(), support_band: spec.width },
+            fit: Some(FitOptions::for_spec(spec)),
+            millimetre: 0.001,
         }
     }
 
@@ -139,6 +172,12 @@ impl FinishOptions {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(TileError::InvalidSpec { name, value });
             }
+        }
+        if !(self.millimetre.is_finite() && self.millimetre > 0.0) {
+            return Err(TileError::InvalidSpec { name: "millimetre", value: self.millimetre });
+        }
+        if let Some(fit) = &self.fit {
+            fit.validate()?;
         }
         let up = self.sequence.up;
         if !(up.iter().all(|c| c.is_finite()) && up.norm() > 0.0) {
@@ -192,7 +231,8 @@ pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, sp
     let reference = surface.unwrap_or(quads);
     let boundary = SurfaceBoundary::new(reference, spec.length.max(spec.width));
     let half_blank = [spec.length / 2.0, spec.width, spec.thickness];
-    let fillers = fill::fill(quads, &tiles, &boundary, half_blank);
+    let seeds = if options.fit.is_some() { fill::Seeds::Tiles { joint: spec.joint } } else { fill::Seeds::Quads };
+    let fillers = fill::fill(quads, &tiles, &boundary, half_blank, seeds);
     let fillers_from = tiles.len();
     let mut parents = vec![None; tiles.len()];
     parents.extend(fillers.iter().map(|f| Some(f.parent)));
@@ -246,6 +286,39 @@ pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, sp
         }
         kept_index[i] = Some(kept.len());
         kept.push(tile);
+    }
+    // What the fit could not make fit is cut (after the boundary cut, so that filler pieces
+    // and cut outlines take part); a piece left too narrow is a sliver like any other.
+    if let Some(fit) = &options.fit {
+        let cut = fit::resolve_overlaps(&mut kept, spec.joint, fit.overlap_tolerance);
+        let slivers: Vec<usize> = cut.into_iter().filter(|&t| kept[t].cut.as_ref().is_some_and(|c| c.kept_width() < options.min_kept_width)).collect();
+        if !slivers.is_empty() {
+            let mut keep = vec![true; kept.len()];
+            for &t in &slivers {
+                keep[t] = false;
+                let c = kept[t].cut.as_ref().expect("cut");
+                if !kept[t].faces.is_empty() {
+                    dropped.push(DroppedTile { faces: kept[t].faces.clone(), reason: DropReason::Sliver, kept_area: c.area(), kept_width: c.kept_width() });
+                }
+            }
+            // Renumber: parents and kept indices refer to positions in `kept`.
+            let mut renumber = vec![None; kept.len()];
+            let mut next = 0;
+            for (t, k) in keep.iter().enumerate() {
+                if *k {
+                    renumber[t] = Some(next);
+                    next += 1;
+                }
+            }
+            for slot in kept_index.iter_mut() {
+                *slot = slot.and_then(|k| renumber[k]);
+            }
+            let mut t = 0;
+            kept.retain(|_| {
+                t += 1;
+                keep[t - 1]
+            });
+        }
     }
     let mut links: Vec<[usize; 2]> =
         parents.iter().enumerate().filter_map(|(i, p)| Some([kept_index[i]?, kept_index[(*p)?]?])).collect();
@@ -393,7 +466,7 @@ impl Tile {
             corners[k] = corner(*sx, *sy, 0.0);
             corners[k + 4] = corner(*sx, *sy, t);
         }
-        Self { kind, faces, frame, size, corners, cut: None, label: String::new(), step: 0 }
+        Self { kind, faces, frame, size, corners, cut: None, label: String::new(), step: 0, fit_cut: false }
     }
 
     /// Area of the tile's face that is kept: all of it unless it was cut.
@@ -418,6 +491,7 @@ pub fn to_obj(tiles: &[Tile]) -> String {
             TileKind::Full => "full",
             TileKind::Half => "half",
             TileKind::Boundary => "boundary",
+            TileKind::FitCut => "fitcut",
         };
         let _ = writeln!(out, "o {kind}_{i}");
         for c in &tile.corners {

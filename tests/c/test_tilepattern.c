@@ -175,9 +175,10 @@ static void test_pattern_and_tiles(void) {
   }
   CHECK(adjacent);
 
-  /* Tiles: 1.9 x 0.95 x 0.1 on unit quads. */
+  /* Tiles: 1.9 x 0.95 x 0.1 on unit quads, placed as in the paper (section 3.5). */
   TpTileOptions tile = tp_tile_options_default();
-  CHECK(tile.length == 0.28);
+  CHECK(tile.length == 0.28 && tile.fit == 1);
+  tile.fit = 0;
   tile.length = 1.9;
   tile.width = 0.95;
   tile.thickness = 0.1;

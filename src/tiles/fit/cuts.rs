@@ -1,0 +1,141 @@
+//! What the placement could not fit is cut, not left overlapping: every pair of tiles whose
+//! outlines still overlap by more than the tolerance loses, on one of the two, the strip
+//! beyond the other tile's outline plus a joint, with one straight cut along the axis that
+//! separates them ([`crate::tiles::outline::separation`]), as a mason would saw it.
+
+use nalgebra::Point3;
+
+use crate::geom::{HashGrid, polygon};
+use crate::tiles::outline::{self, Separation};
+use crate::tiles::{Cut, Tile, TileKind};
+
+/// Cuts tiles until no two overlap by more than `tolerance`, leaving a `joint` between each
+/// cut tile and the tile it was cut against. Of two overlapping tiles the one cut is a filler
+/// piece if either is (it is cut anyway), else one already cut (a boundary or half tile),
+/// else the one that loses less area. Returns the indices of the tiles cut, in order.
+pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<usize> {
+    let mut outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_outline).collect();
+    let reach = tiles.iter().map(|t| t.size[0].hypot(t.size[1])).fold(0.0, f64::max);
+    if reach <= 0.0 {
+        return Vec::new();
+    }
+    let grid = HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
+    let mut cut: Vec<usize> = Vec::new();
+    for a in 0..tiles.len() {
+        for b in grid.near(&tiles[a].frame.origin, reach) {
+            if b <= a {
+                continue;
+            }
+            let s = outline::separation_of(&tiles[a], &outlines[a], &tiles[b], &outlines[b]);
+            if s.gap >= -tolerance {
+                continue;
+            }
+            // The cut that each choice would make, and what it would keep.
+            let keep_b = beyond(&tiles[b], &outlines[a], &s, joint);
+            let flipped = Separation { gap: s.gap, axis: -s.axis };
+            let keep_a = beyond(&tiles[a], &outlines[b], &flipped, joint);
+            let area = |c: &Option<Cut>| c.as_ref().map_or(0.0, Cut::area);
+            let rank = |t: &Tile| match (t.faces.is_empty(), t.cut.is_some() || t.kind == TileKind::Half) {
+                (true, _) => 0,
+                (false, true) => 1,
+                (false, false) => 2,
+            };
+            let loss_a = tiles[a].kept_area() - area(&keep_a);
+            let loss_b = tiles[b].kept_area() - area(&keep_b);
+            let cut_b = (rank(&tiles[b]), loss_b) <= (rank(&tiles[a]), loss_a);
+            let (victim, kept) = if cut_b { (b, keep_b) } else { (a, keep_a) };
+            let tile = &mut tiles[victim];
+            tile.fit_cut = true;
+            if tile.kind != TileKind::Boundary {
+                tile.kind = TileKind::FitCut;
+            }
+            tile.cut = Some(kept.unwrap_or(Cut { loops: Vec::new(), kept_fraction: 0.0 }));
+            outlines[victim] = outline::world_outline(tile);
+            if !cut.contains(&victim) {
+                cut.push(victim);
+            }
+        }
+    }
+    cut
+}
+
+/// What remains of `tile` beyond `other` (an outline) along `s.axis` (pointing from `other`
+/// towards `tile`) plus `joint`: `None` when nothing does.
+fn beyond(tile: &Tile, other: &[Point3<f64>], s: &Separation, joint: f64) -> Option<Cut> {
+    let n = s.axis;
+    let reach = other.iter().map(|p| n.dot(&p.coords)).fold(f64::NEG_INFINITY, f64::max) + joint;
+    // In the tile's frame the kept side is k . (x, y) >= c.
+    let k = [n.dot(&tile.frame.x), n.dot(&tile.frame.y)];
+    let c = reach - n.dot(&tile.frame.origin.coords);
+    let k2 = k[0] * k[0] + k[1] * k[1];
+    if k2 <= 1e-24 {
+        return None;
+    }
+    let on_line = [k[0] * c / k2, k[1] * c / k2];
+    let along = [k[1], -k[0]];
+    let loops: Vec<Vec<polygon::Point2>> = match &tile.cut {
+        Some(cut) => cut.loops.clone(),
+        None => vec![outline::local_outline(tile)],
+    };
+    let full = tile.size[0] * tile.size[1];
+    let kept: Vec<Vec<polygon::Point2>> = loops
+        .iter()
+        .map(|l| polygon::clip_left_of(l, on_line, [on_line[0] + along[0], on_line[1] + along[1]]))
+        .filter(|l| l.len() >= 3 && polygon::signed_area(l).abs() > full * 1e-12)
+        .collect();
+    let area: f64 = kept.iter().map(|l| polygon::signed_area(l)).sum();
+    (area > 0.0).then(|| Cut { loops: kept, kept_fraction: (area / full).min(1.0) })
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Vector3;
+
+    use super::*;
+    use crate::tiles::Frame;
+
+    fn tile(x: f64, y: f64, angle: f64, faces: Vec<usize>) -> Tile {
+        let xa = Vector3::new(angle.cos(), angle.sin(), 0.0);
+        let frame = Frame { origin: Point3::new(x, y, 0.0), x: xa, y: Vector3::z().cross(&xa), z: Vector3::z() };
+        let kind = if faces.len() == 1 { TileKind::Half } else { TileKind::Full };
+        let size = if faces.len() == 1 { [0.14, 0.14, 0.015] } else { [0.28, 0.14, 0.015] };
+        Tile::new(kind, faces, frame, size)
+    }
+
+    #[test]
+    fn an_overlap_is_cut_back_to_a_joint_on_the_cheaper_tile() {
+        // A full tile and a half tile overlapping by 30 mm end to end: the half tile is cut.
+        let mut tiles = vec![tile(0.0, 0.0, 0.0, vec![0, 1]), tile(0.18, 0.0, 0.0, vec![2])];
+        let cut = resolve_overlaps(&mut tiles, 0.01, 0.0005);
+        assert_eq!(cut, vec![1]);
+        assert!(tiles[1].fit_cut && tiles[1].kind == TileKind::FitCut && tiles[0].cut.is_none());
+        let gap = outline::separation(&tiles[0], &tiles[1]).gap;
+        assert!((gap - 0.01).abs() < 1e-9, "{gap}");
+        // 140 mm wide half tile keeps 140 - 30 - 10 = 100 mm.
+        assert!((tiles[1].kept_area() - 0.10 * 0.14).abs() < 1e-9);
+    }
+
+    #[test]
+    fn shallow_overlaps_and_joints_are_left_alone() {
+        let mut tiles = vec![tile(0.0, 0.0, 0.0, vec![0, 1]), tile(0.2898, 0.0, 0.01, vec![2, 3]), tile(0.0, 0.1502, 0.0, vec![4, 5])];
+        assert!(resolve_overlaps(&mut tiles, 0.01, 0.0005).is_empty());
+        assert!(tiles.iter().all(|t| t.cut.is_none()));
+    }
+
+    #[test]
+    fn after_resolving_no_pair_overlaps() {
+        // A jumble of tiles pushed into each other.
+        let mut tiles: Vec<Tile> = (0..30).map(|i| {
+            let k = i as f64;
+            tile((k % 6.0) * 0.25, (k / 6.0).floor() * 0.13, 0.2 * (k * 1.3).sin(), vec![2 * i, 2 * i + 1])
+        }).collect();
+        let cut = resolve_overlaps(&mut tiles, 0.01, 0.0005);
+        assert!(!cut.is_empty());
+        for a in 0..tiles.len() {
+            for b in a + 1..tiles.len() {
+                let gap = outline::separation(&tiles[a], &tiles[b]).gap;
+                assert!(gap >= -0.0005 - 1e-12 || tiles[a].kept_area() == 0.0 || tiles[b].kept_area() == 0.0, "{a} {b} {gap}");
+            }
+        }
+    }
+}

@@ -1,0 +1,206 @@
+//! Stage 3b: the fit. Moves every placed tile as a rigid body on the surface so that the
+//! joints between neighbours come close to the mortar joint, keeping the bond.
+//!
+//! The paper places each tile on its pair of quads (section 3.5) and notes what follows
+//! where quads are not the half tile's size (section 3.1, Figure 3): "overlapping tiles", and
+//! gaps that grow with curvature (section 4.1, Figure 8). Its cure, "an optimisation step
+//! after the variable quadrangulation to find a tileable mesh" (section 4.3), is this stage,
+//! done on the tiles instead of the mesh: a tile is rigid, so it is the tiles that must fit,
+//! and a mason adjusts the same way, sliding tiles along their course and spreading a
+//! course's leftover over its head joints.
+//!
+//! Each tile keeps its origin on the surface (the closest point) and its thickness axis
+//! along the surface's normal there, and may slide and turn in its tangent plane
+//! ([`solve`]). What cannot be made to fit is not left overlapping: after the tiles are cut
+//! to the boundary, [`resolve_overlaps`] cuts the rest (rarely: the method's aim is to cut
+//! little).
+
+pub(crate) mod contacts;
+mod cuts;
+mod solve;
+
+pub use cuts::resolve_overlaps;
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::control::Control;
+use crate::geom::SurfaceIndex;
+use crate::mesh::{PolyMesh, Topology};
+use crate::pattern::Bond;
+use crate::tiles::{Tile, TileError, TileSpec};
+
+use self::solve::{BondBand, Problem, Weights};
+
+/// How the fit stage places tiles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitOptions {
+    /// The bond to keep: its offsets between courses bound how far tiles may slide.
+    pub bond: Bond,
+    /// For the running bond, how far the half offset between courses may stray; for stack
+    /// bond (and continuous joints of the others), how far aligned joints may; model units.
+    pub bond_tolerance: f64,
+    /// Overlaps up to this depth are left (the mortar takes them); deeper ones are cut.
+    /// Model units.
+    pub overlap_tolerance: f64,
+    /// Wall-clock seconds for the placement; when they run out the best placement so far is
+    /// kept and the status says so.
+    pub time_limit: f64,
+    /// Most Levenberg-Marquardt steps.
+    pub max_iterations: usize,
+}
+
+impl FitOptions {
+    /// Defaults for a tile: the staggered bond, a bond tolerance of a tenth of the tile's
+    /// length, overlaps up to a twentieth of the joint left (0.5 mm on a 10 mm joint; a
+    /// thousandth of the width without a joint), 10 s, 60 steps.
+    pub fn for_spec(spec: &TileSpec) -> Self {
+        let overlap_tolerance = if spec.joint > 0.0 { spec.joint / 20.0 } else { spec.width / 1000.0 };
+        Self {
+            bond: Bond::Staggered { weight: crate::pattern::DEFAULT_WEIGHT },
+            bond_tolerance: spec.length / 10.0,
+            overlap_tolerance,
+            time_limit: 10.0,
+            max_iterations: 60,
+        }
+    }
+
+    /// Checks that tolerances and the time limit are finite and not negative.
+    ///
+    /// # Errors
+    /// [`TileError::InvalidSpec`] naming the first bad value.
+    pub fn validate(&self) -> Result<(), TileError> {
+        let values = [("fit bond_tolerance", self.bond_tolerance), ("fit overlap_tolerance", self.overlap_tolerance), ("fit time_limit", self.time_limit)];
+        for (name, value) in values {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(TileError::InvalidSpec { name, value });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How the fit ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FitStatus {
+    /// Further steps no longer improved the joints.
+    Converged,
+    /// The step limit was reached first.
+    IterationLimit,
+    /// The time limit was reached first: the best placement so far is kept.
+    TimeLimit,
+    /// The caller cancelled: the best placement so far is kept.
+    Cancelled,
+}
+
+/// What the fit did.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FitSummary {
+    /// How it ended.
+    pub status: FitStatus,
+    /// Levenberg-Marquardt steps taken.
+    pub iterations: usize,
+    /// Sum of squared joint, bond and anchor residuals (model units squared) before and
+    /// after.
+    pub objective_before: f64,
+    /// The same after the fit.
+    pub objective_after: f64,
+    /// Mean distance a tile's origin moved from the section 3.5 placement.
+    pub mean_move: f64,
+    /// Largest such distance.
+    pub max_move: f64,
+}
+
+/// Moves `tiles` (as built by [`crate::tiles::build`] on `quads`) to fit their joints,
+/// keeping them on `surface` (the quad mesh when `None`). Every tile keeps its faces, kind
+/// and size; only its frame and corners change. `control` hears the share of the step limit
+/// used and may cancel (the placement so far is returned).
+///
+/// # Errors
+/// Invalid options, or tiles that do not belong to `quads`.
+pub fn fit(
+    quads: &PolyMesh,
+    surface: Option<&PolyMesh>,
+    tiles: Vec<Tile>,
+    spec: &TileSpec,
+    options: &FitOptions,
+    control: &mut Control<'_>,
+) -> Result<(Vec<Tile>, FitSummary), TileError> {
+    let started = Instant::now();
+    spec.validate()?;
+    options.validate()?;
+    for tile in &tiles {
+        if let Some(&face) = tile.faces.iter().find(|&&f| f >= quads.face_count()) {
+            return Err(TileError::FaceOutOfRange { face, face_count: quads.face_count() });
+        }
+    }
+    let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
+    let found = contacts::contacts(quads, &topology, &tiles);
+    let index = SurfaceIndex::from_polymesh(surface.unwrap_or(quads));
+    let anchors: Vec<_> =
+        tiles.iter().map(|t| solve::place_on(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z)).collect();
+    let sizes: Vec<[f64; 3]> = tiles.iter().map(|t| t.size).collect();
+    let bands: Vec<Option<BondBand>> = found.iter().map(|c| bond_band(c, &tiles, &anchors, spec, options)).collect();
+    let problem = Problem {
+        sizes: &sizes,
+        contacts: &found,
+        bands: &bands,
+        anchors: &anchors,
+        joint: spec.joint,
+        weights: Weights { overlap_slope: env("TP_SLOPE", 4.0), bond: env("TP_BOND", 1.0), anchor: env("TP_ANCHOR", 1e-3) },
+        surface: &index,
+    };
+    let mut frames = anchors.clone();
+    let mut timed_out = false;
+    let outcome = problem.solve(&mut frames, env("TP_ITER", options.max_iterations as f64) as usize, &mut |fraction| {
+        if started.elapsed().as_secs_f64() > options.time_limit {
+            timed_out = true;
+            return false;
+        }
+        control.keep_going(fraction)
+    });
+    let status = match (outcome.stopped, timed_out, outcome.converged) {
+        (true, true, _) => FitStatus::TimeLimit,
+        (true, false, _) => FitStatus::Cancelled,
+        (false, _, true) => FitStatus::Converged,
+        (false, _, false) => FitStatus::IterationLimit,
+    };
+    let moves: Vec<f64> = tiles.iter().zip(&frames).map(|(t, f)| (f.origin - t.frame.origin).norm()).collect();
+    let placed: Vec<Tile> = tiles.into_iter().zip(frames).map(|(t, frame)| Tile::new(t.kind, t.faces, frame, t.size)).collect();
+    let summary = FitSummary {
+        status,
+        iterations: outcome.iterations,
+        objective_before: outcome.start,
+        objective_after: outcome.end,
+        mean_move: moves.iter().sum::<f64>() / moves.len().max(1) as f64,
+        max_move: moves.iter().copied().fold(0.0, f64::max),
+    };
+    Ok((placed, summary))
+}
+
+/// The band of centre offsets a bed joint between two full tiles may take: around the
+/// offset the quads give it (none, or half a tile), a quarter tile either way in a
+/// staggered bond (head joints of neighbouring courses stay a quarter tile apart),
+/// `bond_tolerance` for the running bond's half offset and for aligned joints.
+fn bond_band(contact: &contacts::Contact, tiles: &[Tile], frames: &[crate::tiles::Frame], spec: &TileSpec, options: &FitOptions) -> Option<BondBand> {
+    let [a, b] = contact.tiles;
+    let full = |t: usize| tiles[t].faces.len() == 2;
+    if !(contact.sides[0].is_long() && contact.sides[1].is_long() && full(a) && full(b)) {
+        return None;
+    }
+    let along = frames[a].z.cross(&contact.sides[0].normal(&frames[a]));
+    let offset = along.dot(&(frames[b].origin - frames[a].origin));
+    let half = (spec.length + spec.joint) / 2.0;
+    let nominal = (offset / half).round().clamp(-1.0, 1.0) * half;
+    let tolerance = match (options.bond, nominal == 0.0) {
+        (_, true) | (Bond::RunningBond { .. }, false) | (Bond::Stack, false) => options.bond_tolerance,
+        (Bond::Staggered { .. }, false) => half - spec.length / 4.0,
+    };
+    Some(BondBand { nominal, tolerance })
+}
+
+fn env(name: &str, default: f64) -> f64 {
+    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
+}

@@ -1,0 +1,401 @@
+//! The least-squares placement of the fit stage: every tile a rigid body on the surface
+//! (a tangent step `u, v` and a turn `phi` about its normal), joints pulled towards the
+//! nominal width, by Levenberg-Marquardt steps whose linear systems are solved by
+//! conjugate gradients with a block-Jacobi preconditioner.
+//!
+//! Residuals, each with its gradient over the (at most two) tiles it involves:
+//! - **joints**: for every [`Contact`], the distance from each corner of either facing side
+//!   to the other tile's side plane, minus the joint, for corners along the other side
+//!   (fading out just beyond its ends);
+//!   an overlap (negative distance) counts `overlap_slope` times as much per unit, so the
+//!   stage would rather open a joint than press two tiles into each other;
+//! - **bond**: for two full tiles side by side (a bed joint), the offset of their centres
+//!   along the joint, where it leaves the band the bond allows ([`BondBand`]);
+//! - **anchors**: a weak pull of each tile towards where the section 3.5 placement put it,
+//!   which only fixes what the joints leave free (sliding the whole layout).
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::contacts::{Contact, Side};
+use crate::geom::SurfaceIndex;
+use crate::tiles::Frame;
+
+/// Where the centre offset along a bed joint may lie: `nominal +- tolerance`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct BondBand {
+    /// Offset of the second tile's centre from the first's along the first's side.
+    pub nominal: f64,
+    /// Allowed deviation either way.
+    pub tolerance: f64,
+}
+
+/// The weights of the residuals.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Weights {
+    /// Slope of the joint residual where the tiles overlap, relative to 1 where they do not.
+    pub overlap_slope: f64,
+    /// Weight of the bond residual.
+    pub bond: f64,
+    /// Weight of the anchor residuals.
+    pub anchor: f64,
+}
+
+/// The placement problem.
+pub(crate) struct Problem<'a> {
+    /// Box sizes per tile.
+    pub sizes: &'a [[f64; 3]],
+    /// Facing sides.
+    pub contacts: &'a [Contact],
+    /// Per contact, the band of a bed joint between full tiles.
+    pub bands: &'a [Option<BondBand>],
+    /// Frames of the starting placement.
+    pub anchors: &'a [Frame],
+    /// Nominal joint.
+    pub joint: f64,
+    /// Residual weights.
+    pub weights: Weights,
+    /// The surface the tiles stay on.
+    pub surface: &'a SurfaceIndex,
+}
+
+/// A residual's gradient on one tile: the step `u` (along `x`), `v` (along `y`), `phi`.
+type Grad = Vector3<f64>;
+
+/// The normal equations of one linearisation: `H` in 3 x 3 blocks (one on the diagonal per
+/// tile, one per contact) and the gradient `g`.
+struct Normal {
+    diag: Vec<Matrix3<f64>>,
+    off: Vec<Matrix3<f64>>,
+    g: Vec<Vector3<f64>>,
+    value: f64,
+}
+
+/// How a point attached to tile `frame` moves with its step: columns `u`, `v`, `phi`.
+fn point_motion(frame: &Frame, p: &Vector3<f64>) -> [Vector3<f64>; 3] {
+    [frame.x, frame.y, frame.z.cross(&(p - frame.origin.coords))]
+}
+
+/// Signed distance `m . (p - c)` from point `p` of one tile to the side plane `(m, c)` of
+/// another, with its gradients on the point's tile and on the plane's tile.
+fn plane_distance(point_tile: &Frame, p: &Vector3<f64>, plane_tile: &Frame, m: &Vector3<f64>, c: &Vector3<f64>) -> (f64, Grad, Grad) {
+    let d = m.dot(&(p - c));
+    let [px, py, pr] = point_motion(point_tile, p);
+    let [cx, cy, cr] = point_motion(plane_tile, c);
+    let on_point = Vector3::new(m.dot(&px), m.dot(&py), m.dot(&pr));
+    let turn = plane_tile.z.cross(m).dot(&(p - c)) - m.dot(&cr);
+    let on_plane = Vector3::new(-m.dot(&cx), -m.dot(&cy), turn);
+    (d, on_point, on_plane)
+}
+
+/// A side of a tile placed by `frame`: outward normal, centre, direction along it, half
+/// length.
+fn side_line(frame: &Frame, size: &[f64; 3], side: Side) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, f64) {
+    let m = side.normal(frame);
+    let (reach, half) = side.extents(size);
+    (m, frame.origin.coords + m * reach, frame.z.cross(&m), half)
+}
+
+impl Problem<'_> {
+    /// Calls `row(tile_a, grad_a, tile_b, grad_b, value)` for every residual at `frames`
+    /// (`tile_b` is `usize::MAX` for a residual of one tile), contact residuals first, in
+    /// contact order, with the contact's index.
+    fn residuals(&self, frames: &[Frame], mut row: impl FnMut(Option<usize>, usize, Grad, usize, Grad, f64)) {
+        let j = self.joint;
+        let k = self.weights.overlap_slope;
+        for (ci, c) in self.contacts.iter().enumerate() {
+            let [a, b] = c.tiles;
+            let (fa, fb) = (&frames[a], &frames[b]);
+            let (ma, ca, ta, la) = side_line(fa, &self.sizes[a], c.sides[0]);
+            let (mb, cb, tb, lb) = side_line(fb, &self.sizes[b], c.sides[1]);
+            // Each corner of either facing side against the other tile's side plane, weighted
+            // by how far it lies along the other side: fully where the sides run along each
+            // other, fading to nothing within `fade` beyond the other side's end, so that the
+            // residuals stay continuous as tiles slide.
+            let fade = 0.25 * la.min(lb);
+            for (point_tile, fp, t_own, c_own, l_own, plane_tile, fq, m_other, t_other, c_other, l_other) in
+                [(a, fa, ta, ca, la, b, fb, mb, tb, cb, lb), (b, fb, tb, cb, lb, a, fa, ma, ta, ca, la)]
+            {
+                for sign in [-1.0, 1.0] {
+                    let corner = c_own + t_own * (sign * l_own);
+                    let (along, g_along_point, g_along_plane) = plane_distance(fp, &corner, fq, &t_other, &c_other);
+                    let weight = ((l_other + fade - along.abs()) / fade).clamp(0.0, 1.0);
+                    if weight == 0.0 {
+                        continue;
+                    }
+                    let (d, g_point, g_plane) = plane_distance(fp, &corner, fq, &m_other, &c_other);
+                    let slope = if d < 0.0 { k } else { 1.0 };
+                    let excess = d - j + (k - 1.0) * d.min(0.0);
+                    // d(weight)/d(along): -sign(along) / fade on the fading stretch.
+                    let dw = if weight < 1.0 { -along.signum() / fade } else { 0.0 };
+                    let g_point = g_point * (slope * weight) + g_along_point * (dw * excess);
+                    let g_plane = g_plane * (slope * weight) + g_along_plane * (dw * excess);
+                    row(Some(ci), point_tile, g_point, plane_tile, g_plane, weight * excess);
+                }
+            }
+            if let Some(band) = self.bands[ci] {
+                let offset = ta.dot(&(fb.origin - fa.origin));
+                let (low, high) = (band.nominal - band.tolerance, band.nominal + band.tolerance);
+                let excess = offset - offset.clamp(low, high);
+                if excess != 0.0 {
+                    let w = self.weights.bond;
+                    let on_b = Vector3::new(ta.dot(&fb.x), ta.dot(&fb.y), 0.0) * w;
+                    let on_a = Vector3::new(-ta.dot(&fa.x), -ta.dot(&fa.y), fa.z.cross(&ta).dot(&(fb.origin - fa.origin))) * w;
+                    row(Some(ci), a, on_a, b, on_b, w * excess);
+                }
+            }
+        }
+        let w = self.weights.anchor;
+        for (t, (frame, anchor)) in frames.iter().zip(self.anchors).enumerate() {
+            let moved = frame.origin - anchor.origin;
+            let lever = self.sizes[t][0] / 2.0;
+            let turn = anchor.x.cross(&frame.x).dot(&frame.z).atan2(anchor.x.dot(&frame.x));
+            row(None, t, Vector3::new(w, 0.0, 0.0), usize::MAX, Grad::zeros(), w * moved.dot(&frame.x));
+            row(None, t, Vector3::new(0.0, w, 0.0), usize::MAX, Grad::zeros(), w * moved.dot(&frame.y));
+            row(None, t, Vector3::new(0.0, 0.0, w * lever), usize::MAX, Grad::zeros(), w * lever * turn);
+        }
+    }
+
+    /// The sum of squared residuals at `frames`.
+    pub fn value(&self, frames: &[Frame]) -> f64 {
+        let mut value = 0.0;
+        self.residuals(frames, |_, _, _, _, _, r| value += r * r);
+        value
+    }
+
+    fn normal_equations(&self, frames: &[Frame]) -> Normal {
+        let n = frames.len();
+        let mut eq = Normal { diag: vec![Matrix3::zeros(); n], off: vec![Matrix3::zeros(); self.contacts.len()], g: vec![Vector3::zeros(); n], value: 0.0 };
+        self.residuals(frames, |contact, a, ga, b, gb, r| {
+            eq.value += r * r;
+            eq.diag[a] += ga * ga.transpose();
+            eq.g[a] += ga * r;
+            if b != usize::MAX {
+                eq.diag[b] += gb * gb.transpose();
+                eq.g[b] += gb * r;
+                let c = contact.expect("two-tile residuals belong to a contact");
+                // Blocks are stored as (first tile of the contact, second tile).
+                if a == self.contacts[c].tiles[0] {
+                    eq.off[c] += ga * gb.transpose();
+                } else {
+                    eq.off[c] += gb * ga.transpose();
+                }
+            }
+        });
+        eq
+    }
+}
+
+/// `y = (H + damping) x` for the block matrix of `eq`.
+fn multiply(eq: &Normal, damped: &[Matrix3<f64>], contacts: &[Contact], x: &[Vector3<f64>], y: &mut [Vector3<f64>]) {
+    for (t, out) in y.iter_mut().enumerate() {
+        *out = damped[t] * x[t];
+    }
+    for (c, block) in contacts.iter().zip(&eq.off) {
+        let [a, b] = c.tiles;
+        y[a] += block * x[b];
+        y[b] += block.transpose() * x[a];
+    }
+}
+
+fn dot(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x.dot(y)).sum()
+}
+
+/// What one run of [`Problem::solve`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Progress {
+    /// Steps taken (accepted or not).
+    pub iterations: usize,
+    /// Whether the last steps no longer lowered the objective noticeably.
+    pub converged: bool,
+    /// Whether `keep_going` asked to stop.
+    pub stopped: bool,
+    /// Objective at the start and at the end.
+    pub start: f64,
+    /// Objective at the end.
+    pub end: f64,
+}
+
+impl Problem<'_> {
+    /// Levenberg-Marquardt from `frames` (changed in place) for at most `max_iterations`
+    /// steps, asking `keep_going(fraction of iterations done)` between conjugate-gradient
+    /// rounds; returns as soon as it answers `false`, with the best placement so far.
+    pub fn solve(&self, frames: &mut [Frame], max_iterations: usize, keep_going: &mut dyn FnMut(f64) -> bool) -> Progress {
+        let n = frames.len();
+        let start = self.value(frames);
+        let mut progress = Progress { iterations: 0, converged: false, stopped: false, start, end: start };
+        let mut mu = 1e-4;
+        let mut current = start;
+        let mut calm = 0;
+        while progress.iterations < max_iterations {
+            progress.iterations += 1;
+            let eq = self.normal_equations(frames);
+            current = eq.value;
+            let damped: Vec<Matrix3<f64>> = eq.diag.iter().map(|d| d + Matrix3::from_diagonal(&d.diagonal()) * mu + Matrix3::identity() * 1e-12).collect();
+            let inverse: Vec<Matrix3<f64>> = damped.iter().map(|d| d.try_inverse().unwrap_or_else(Matrix3::identity)).collect();
+            // Conjugate gradients on (H + damping) step = -g.
+            let mut step = vec![Vector3::zeros(); n];
+            let mut r: Vec<Vector3<f64>> = eq.g.iter().map(|g| -g).collect();
+            let mut z: Vec<Vector3<f64>> = r.iter().zip(&inverse).map(|(r, m)| m * r).collect();
+            let mut p = z.clone();
+            let mut rz = dot(&r, &z);
+            let target = rz.abs() * 1e-10;
+            let mut ap = vec![Vector3::zeros(); n];
+            for round in 0..CG_ROUNDS {
+                if rz.abs() <= target {
+                    break;
+                }
+                if round % 32 == 31 && !keep_going(progress.iterations as f64 / max_iterations as f64) {
+                    progress.stopped = true;
+                    break;
+                }
+                multiply(&eq, &damped, self.contacts, &p, &mut ap);
+                let pap = dot(&p, &ap);
+                if pap <= 0.0 {
+                    break;
+                }
+                let alpha = rz / pap;
+                for t in 0..n {
+                    step[t] += p[t] * alpha;
+                    r[t] -= ap[t] * alpha;
+                    z[t] = inverse[t] * r[t];
+                }
+                let next = dot(&r, &z);
+                let beta = next / rz;
+                rz = next;
+                for t in 0..n {
+                    p[t] = z[t] + p[t] * beta;
+                }
+            }
+            if progress.stopped {
+                break;
+            }
+            let before: Vec<Frame> = frames.to_vec();
+            for t in 0..n {
+                frames[t] = self.moved(&frames[t], &step[t]);
+            }
+            let value = self.value(frames);
+            if std::env::var("TP_TRACE").is_ok() { eprintln!("it {} mu {mu:.2e} current {current:.6} value {value:.6}", progress.iterations); }
+            if value < current {
+                calm = if current - value < 1e-6 * current.max(1e-300) { calm + 1 } else { 0 };
+                current = value;
+                mu = (mu / 3.0).max(1e-9);
+                if calm >= 2 {
+                    progress.converged = true;
+                    break;
+                }
+            } else {
+                frames.copy_from_slice(&before);
+                mu *= 8.0;
+                if mu > 1e6 {
+                    progress.converged = true;
+                    break;
+                }
+            }
+            if !keep_going(progress.iterations as f64 / max_iterations as f64) {
+                progress.stopped = true;
+                break;
+            }
+        }
+        progress.end = current.min(self.value(frames));
+        progress
+    }
+
+    /// `frame` after the step `(u, v, phi)`, put back on the surface: origin at the closest
+    /// surface point, `z` the surface's normal there, `x` turned by `phi` and laid into the
+    /// new tangent plane.
+    fn moved(&self, frame: &Frame, step: &Vector3<f64>) -> Frame {
+        let origin = frame.origin.coords + frame.x * step.x + frame.y * step.y;
+        let (s, c) = step.z.sin_cos();
+        let x = frame.x * c + frame.y * s;
+        place_on(self.surface, &origin, &x, &frame.z)
+    }
+}
+
+/// A frame with its origin at the surface point closest to `origin`, `z` the surface normal
+/// there (turned to agree with `up`), and `x` the direction `along` laid into that plane.
+/// Beyond the surface's edge the surface is continued by its tangent plane at the edge, so
+/// that tiles of the outer courses can move out past it (they are cut to it later).
+pub(crate) fn place_on(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vector3<f64>, up: &Vector3<f64>) -> Frame {
+    let (point, mut z) = match surface.closest(origin) {
+        Some(sp) if sp.on_boundary => {
+            let off = origin - sp.point;
+            (sp.point + off - sp.normal * sp.normal.dot(&off), sp.normal)
+        }
+        Some(sp) => (sp.point, sp.normal),
+        None => (*origin, *up),
+    };
+    if z.dot(up) < 0.0 {
+        z = -z;
+    }
+    let x = (along - z * along.dot(&z)).try_normalize(1e-12).unwrap_or_else(|| {
+        let other = if z.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+        (other - z * other.dot(&z)).normalize()
+    });
+    Frame { origin: point.into(), x, y: z.cross(&x), z }
+}
+
+/// Most conjugate-gradient rounds per step.
+const CG_ROUNDS: usize = 4000;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{Topology, generate};
+    use crate::tiles::fit::contacts;
+    use crate::tiles::{TileSpec, build};
+
+    /// A staggered 6 x 4 grid of unit quads with tiles jittered off their places.
+    fn setup() -> (Vec<[f64; 3]>, Vec<Contact>, Vec<Frame>, SurfaceIndex) {
+        let mesh = generate::grid(6, 4);
+        let pattern = crate::pattern::solve(&mesh, &crate::pattern::PatternOptions::default()).unwrap();
+        let spec = TileSpec { length: 1.9, width: 0.95, thickness: 0.1, joint: 0.1 };
+        let tiles = build(&mesh, &pattern, &spec).unwrap();
+        let topology = Topology::new(&mesh).unwrap();
+        let found = contacts::contacts(&mesh, &topology, &tiles);
+        let surface = SurfaceIndex::from_polymesh(&generate::grid(12, 8));
+        let frames: Vec<Frame> = tiles
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let k = i as f64;
+                let mut f = t.frame;
+                f.origin += Vector3::new(0.03 * (k * 1.7).sin(), 0.04 * (k * 2.3).cos(), 0.0);
+                let a: f64 = 0.05 * (k * 0.9).sin();
+                let x = f.x * a.cos() + f.y * a.sin();
+                place_on(&surface, &f.origin.coords, &x, &f.z)
+            })
+            .collect();
+        (tiles.iter().map(|t| t.size).collect(), found, frames, surface)
+    }
+
+    #[test]
+    fn gradient_matches_finite_differences() {
+        let (sizes, found, frames, surface) = setup();
+        let bands: Vec<Option<BondBand>> = found.iter().map(|c| (c.sides[0].is_long()).then_some(BondBand { nominal: 0.2, tolerance: 0.1 })).collect();
+        let anchors: Vec<Frame> = frames.iter().map(|f| Frame { origin: f.origin + Vector3::new(0.1, -0.05, 0.0), ..*f }).collect();
+        let problem = Problem {
+            sizes: &sizes,
+            contacts: &found,
+            bands: &bands,
+            anchors: &anchors,
+            joint: 0.1,
+            weights: Weights { overlap_slope: 4.0, bond: 1.0, anchor: 0.1 },
+            surface: &surface,
+        };
+        let eq = problem.normal_equations(&frames);
+        let h = 1e-7;
+        for t in 0..frames.len() {
+            for k in 0..3 {
+                let mut step = Vector3::zeros();
+                step[k] = h;
+                let mut plus = frames.clone();
+                plus[t] = problem.moved(&frames[t], &step);
+                let mut minus = frames.clone();
+                minus[t] = problem.moved(&frames[t], &(-step));
+                let numeric = (problem.value(&plus) - problem.value(&minus)) / (4.0 * h);
+                assert!((numeric - eq.g[t][k]).abs() < 1e-5 * (1.0 + numeric.abs()), "tile {t} axis {k}: {numeric} vs {}", eq.g[t][k]);
+            }
+        }
+    }
+}

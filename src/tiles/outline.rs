@@ -1,0 +1,114 @@
+//! The joint between two tiles, measured on their outlines: the one rule by which the fit
+//! stage places tiles, the report judges joints and the overlap check finds overlaps.
+//!
+//! Both tiles' kept faces (the bottom face; for a cut tile the hull of its kept loops) are
+//! projected onto their mean plane (the plane through the midpoint of their origins, normal
+//! to the mean of their normals) and separated by separating axes
+//! ([`crate::geom::polygon::separation`]): a positive value is the width of the joint
+//! between them, a negative one how deep they overlap.
+
+use nalgebra::{Point3, Vector3};
+
+use super::Tile;
+use crate::geom::polygon::{self, Point2};
+
+/// The kept face of `tile` in its own frame, counter-clockwise: its rectangle, or the convex
+/// hull of a cut tile's kept loops.
+pub fn local_outline(tile: &Tile) -> Vec<Point2> {
+    match &tile.cut {
+        Some(cut) => polygon::convex_hull(&cut.loops.iter().flatten().copied().collect::<Vec<_>>()),
+        None => {
+            let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
+            vec![[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]]
+        }
+    }
+}
+
+/// The kept face of `tile` in world coordinates, counter-clockwise seen from its `z`.
+pub fn world_outline(tile: &Tile) -> Vec<Point3<f64>> {
+    local_outline(tile).iter().map(|p| tile.frame.origin + tile.frame.x * p[0] + tile.frame.y * p[1]).collect()
+}
+
+/// How two tiles meet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Separation {
+    /// Signed separation: the joint width when positive, the overlap depth when negative.
+    pub gap: f64,
+    /// Unit direction (in the mean plane) along which it was measured, from the first tile
+    /// towards the second.
+    pub axis: Vector3<f64>,
+}
+
+/// Separation of the outlines of `a` and `b` projected onto their mean plane.
+pub fn separation(a: &Tile, b: &Tile) -> Separation {
+    separation_of(a, &world_outline(a), b, &world_outline(b))
+}
+
+/// [`separation`] with the world outlines given (to reuse them over many pairs).
+pub fn separation_of(a: &Tile, outline_a: &[Point3<f64>], b: &Tile, outline_b: &[Point3<f64>]) -> Separation {
+    let mut n = a.frame.z + b.frame.z;
+    if n.norm() < 1e-9 {
+        n = a.frame.z;
+    }
+    let n = n.normalize();
+    let origin = nalgebra::center(&a.frame.origin, &b.frame.origin);
+    let mut e1 = a.frame.x - n * a.frame.x.dot(&n);
+    if e1.norm() < 1e-9 {
+        e1 = a.frame.y - n * a.frame.y.dot(&n);
+    }
+    let e1 = e1.normalize();
+    let e2 = n.cross(&e1);
+    let project = |outline: &[Point3<f64>]| -> Vec<Point2> {
+        let pts: Vec<Point2> = outline.iter().map(|p| [(p - origin).dot(&e1), (p - origin).dot(&e2)]).collect();
+        // A tile tilted past the mean plane would come out clockwise.
+        if polygon::signed_area(&pts) < 0.0 { pts.into_iter().rev().collect() } else { pts }
+    };
+    let (gap, axis) = polygon::separation(&project(outline_a), &project(outline_b));
+    Separation { gap, axis: e1 * axis[0] + e2 * axis[1] }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tiles::{Frame, TileKind};
+
+    fn tile_at(x: f64, y: f64, angle: f64, tilt: f64) -> Tile {
+        let z = Vector3::new(tilt.sin(), 0.0, tilt.cos());
+        let along = Vector3::new(angle.cos(), angle.sin(), 0.0);
+        let xa = (along - z * along.dot(&z)).normalize();
+        let frame = Frame { origin: Point3::new(x, y, 0.0), x: xa, y: z.cross(&xa), z };
+        Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
+    }
+
+    #[test]
+    fn head_and_bed_joints_of_known_width() {
+        let a = tile_at(0.0, 0.0, 0.0, 0.0);
+        // End to end, 10 mm apart.
+        let s = separation(&a, &tile_at(0.29, 0.0, 0.0, 0.0));
+        assert!((s.gap - 0.01).abs() < 1e-12 && (s.axis.x - 1.0).abs() < 1e-12);
+        // Side by side, offset by half a tile, 7 mm apart.
+        assert!((separation(&a, &tile_at(0.145, 0.147, 0.0, 0.0)).gap - 0.007).abs() < 1e-12);
+        // Overlapping by 20 mm.
+        assert!((separation(&a, &tile_at(0.26, 0.0, 0.0, 0.0)).gap + 0.02).abs() < 1e-12);
+        // Symmetric.
+        let b = tile_at(0.2, 0.13, 0.1, 0.02);
+        assert!((separation(&a, &b).gap - separation(&b, &a).gap).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tilted_neighbours_measure_in_their_mean_plane() {
+        // Two tiles tangent to a cylinder of radius 3 about the y axis, 10 mm apart along it.
+        let r: f64 = 3.0;
+        let half = (0.145 / r).asin();
+        let at = |s: f64| {
+            let z = Vector3::new((s * half).sin(), 0.0, (s * half).cos());
+            let x = Vector3::new((s * half).cos(), 0.0, -(s * half).sin());
+            let frame = Frame { origin: Point3::from(z * r), x, y: z.cross(&x), z };
+            Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
+        };
+        let gap = separation(&at(-1.0), &at(1.0)).gap;
+        // In the mean (horizontal) plane the origins are 290 mm apart and each tile, tilted by
+        // `half`, reaches 140 cos(half) mm towards the other.
+        assert!((gap - (0.29 - 0.28 * half.cos())).abs() < 1e-12, "{gap}");
+    }
+}
