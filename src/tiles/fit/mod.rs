@@ -33,6 +33,11 @@ use crate::tiles::{Tile, TileError, TileSpec};
 
 use self::solve::{BondBand, Problem, Weights};
 
+/// Residual weights: an overlap counts four times a gap of the same size per millimetre
+/// (sixteen times squared); a bond band as much as a joint; the anchor a thousandth, so that
+/// it only settles what the joints leave free.
+const WEIGHTS: Weights = Weights { overlap_slope: 4.0, bond: 1.0, anchor: 1e-3 };
+
 /// How the fit stage places tiles.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FitOptions {
@@ -149,12 +154,12 @@ pub fn fit(
         bands: &bands,
         anchors: &anchors,
         joint: spec.joint,
-        weights: Weights { overlap_slope: env("TP_SLOPE", 4.0), bond: env("TP_BOND", 1.0), anchor: env("TP_ANCHOR", 1e-3) },
+        weights: WEIGHTS,
         surface: &index,
     };
     let mut frames = anchors.clone();
     let mut timed_out = false;
-    let outcome = problem.solve(&mut frames, env("TP_ITER", options.max_iterations as f64) as usize, &mut |fraction| {
+    let outcome = problem.solve(&mut frames, options.max_iterations, &mut |fraction| {
         if started.elapsed().as_secs_f64() > options.time_limit {
             timed_out = true;
             return false;
@@ -201,6 +206,3 @@ fn bond_band(contact: &contacts::Contact, tiles: &[Tile], frames: &[crate::tiles
     Some(BondBand { nominal, tolerance })
 }
 
-fn env(name: &str, default: f64) -> f64 {
-    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
-}

@@ -275,7 +275,6 @@ impl Problem<'_> {
                 frames[t] = self.moved(&frames[t], &step[t]);
             }
             let value = self.value(frames);
-            if std::env::var("TP_TRACE").is_ok() { eprintln!("it {} mu {mu:.2e} current {current:.6} value {value:.6}", progress.iterations); }
             if value < current {
                 calm = if current - value < 1e-6 * current.max(1e-300) { calm + 1 } else { 0 };
                 current = value;
