@@ -8,10 +8,12 @@ namespace TilePattern.Gh
 {
     public abstract class ComponentBase : GH_Component
     {
-        public const string Category = "TilePattern";
+        /// <summary>The ribbon tab of every TilePattern component. (Not named Category: that
+        /// would hide GH_InstanceDescription.Category, warning CS0108.)</summary>
+        internal const string Tab = "TilePattern";
 
         protected ComponentBase(string name, string nickname, string description, string subcategory)
-            : base(name, nickname, description, Category, subcategory)
+            : base(name, nickname, description, Tab, subcategory)
         {
         }
 
@@ -97,8 +99,10 @@ namespace TilePattern.Gh
             object value = null;
             if (!access.GetData(index, ref value) || value == null)
                 return null;
-            var wrapper = value as Grasshopper.Kernel.Types.GH_ObjectWrapper;
-            return (wrapper != null ? wrapper.Value : value) as T;
+            // A generic parameter hands over its items wrapped (GH_ObjectWrapper): the wrapped
+            // object is the goo's script variable.
+            var goo = value as Grasshopper.Kernel.Types.IGH_Goo;
+            return (goo != null ? goo.ScriptVariable() : value) as T;
         }
     }
 }

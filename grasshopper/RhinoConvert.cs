@@ -95,17 +95,19 @@ namespace TilePattern.Gh
             for (int l = 0; l < tile.Outline.Length; l++)
             {
                 double[] xyz = tile.OutlineInModel(l);
-                var polyline = new Polyline();
+                var points = new List<Point3d>();
                 for (int p = 0; p < xyz.Length; p += 3)
-                    polyline.Add(xyz[p], xyz[p + 1], xyz[p + 2]);
-                polyline.Add(polyline[0]);
-                loops.Add(new PolylineCurve(polyline));
+                    points.Add(new Point3d(xyz[p], xyz[p + 1], xyz[p + 2]));
+                points.Add(points[0]);
+                loops.Add(new PolylineCurve(points));
             }
             Brep[] faces = Brep.CreatePlanarBreps(loops, tolerance);
             if (faces == null || faces.Length == 0)
                 return null;
             Point3d origin = ToPoint(tile.Origin);
-            var path = new LineCurve(origin, origin + ToVector(tile.ZAxis) * tile.Thickness);
+            double[] z = tile.ZAxis;
+            var top = new Point3d(origin.X + z[0] * tile.Thickness, origin.Y + z[1] * tile.Thickness, origin.Z + z[2] * tile.Thickness);
+            var path = new LineCurve(origin, top);
             return faces[0].Faces[0].CreateExtrusion(path, true);
         }
     }
