@@ -116,7 +116,7 @@ expect_failure wrong-parameter-type RhinoCommon/Rhino.Geometry.cs \
 expect_failure wrong-return-type RhinoCommon/Rhino.Geometry.cs \
   "public bool Compact()" "public int Compact()" "no published overload matches"
 expect_failure made-static Grasshopper/Grasshopper.Kernel.cs \
-  "public GH_Document OnPingDocument()" "public static GH_Document OnPingDocument()" "no published overload matches"
+  "public void ScheduleSolution(" "public static void ScheduleSolution(" "no published overload matches"
 expect_failure invented-setter RhinoCommon/Rhino.Geometry.cs \
   "public bool IsQuad { get { throw null; } }" "public bool IsQuad { get { throw null; } set { } }" "the 8.20 typed stubs have none"
 expect_failure wrong-enum-value Grasshopper/Grasshopper.Kernel.cs \

@@ -8,6 +8,7 @@ using System;
 using System.Collections;
 using System.Collections.Generic;
 using System.Drawing;
+using System.Windows.Forms;
 using Rhino.Geometry;
 
 namespace Grasshopper.Kernel
@@ -33,11 +34,19 @@ namespace Grasshopper.Kernel
         tree = 2,
     }
 
-    public enum GH_LoadingInstruction
+    public enum GH_DocumentContext
     {
-        Proceed = 0,
-        Abort = 1,
+        Unknown = 0,
+        None = 1,
+        Open = 2,
+        Close = 3,
+        Loaded = 4,
+        Unloaded = 5,
+        Lock = 6,
+        Unlock = 7,
     }
+
+    public delegate void GH_ScheduleDelegate(GH_Document doc);
 
     public abstract class GH_InstanceDescription
     {
@@ -51,6 +60,11 @@ namespace Grasshopper.Kernel
         public virtual GH_Exposure Exposure { get { throw null; } }
         protected virtual Bitmap Icon { get { throw null; } }
         public GH_Document OnPingDocument() { throw null; }
+        public void ExpireSolution(bool recompute) { }
+        public void OnDisplayExpired(bool redraw) { }
+        public virtual void RemovedFromDocument(GH_Document document) { }
+        public virtual void DocumentContextChanged(GH_Document document, GH_DocumentContext context) { }
+        public static ToolStripMenuItem Menu_AppendItem(ToolStrip menu, string text, EventHandler click, bool enabled) { throw null; }
     }
 
     public abstract class GH_ActiveObject : GH_DocumentObject
@@ -66,8 +80,15 @@ namespace Grasshopper.Kernel
         protected abstract void RegisterOutputParams(GH_OutputParamManager pManager);
         protected abstract void SolveInstance(IGH_DataAccess DA);
         protected virtual void BeforeSolveInstance() { }
+        protected virtual void AfterSolveInstance() { }
+        protected virtual void AppendAdditionalComponentMenuItems(ToolStripDropDown menu) { }
+        protected static double DocumentTolerance() { throw null; }
         public virtual BoundingBox ClippingBox { get { throw null; } }
         public virtual void DrawViewportMeshes(IGH_PreviewArgs args) { }
+        public override void RemovedFromDocument(GH_Document document) { }
+        public override void DocumentContextChanged(GH_Document document, GH_DocumentContext context) { }
+        public string Message { get { throw null; } set { } }
+        public GH_ComponentParamServer Params { get { throw null; } }
 
         public class GH_InputParamManager
         {
@@ -96,6 +117,12 @@ namespace Grasshopper.Kernel
         }
     }
 
+    public class GH_ComponentParamServer
+    {
+        internal GH_ComponentParamServer() { }
+        public List<IGH_Param> Input { get { throw null; } }
+    }
+
     public interface IGH_Param
     {
         bool Optional { get; set; }
@@ -103,6 +130,9 @@ namespace Grasshopper.Kernel
 
     public interface IGH_DataAccess
     {
+        int Iteration { get; }
+        Grasshopper.Kernel.Data.GH_Path ParameterTargetPath(int paramIndex);
+        int ParameterTargetIndex(int paramIndex);
         bool GetData<T>(int index, ref T destination);
         bool GetDataList<T>(int index, List<T> list);
         bool SetData(int paramIndex, object data);
@@ -118,8 +148,13 @@ namespace Grasshopper.Kernel
     public class GH_Document
     {
         internal GH_Document() { }
-        public static bool IsEscapeKeyDown() { throw null; }
-        public void RequestAbortSolution() { }
+        public void ScheduleSolution(int delay, GH_ScheduleDelegate callback) { }
+    }
+
+    public class GH_ComponentServer
+    {
+        internal GH_ComponentServer() { }
+        public GH_AssemblyInfo FindAssembly(Guid libraryId) { throw null; }
     }
 
     public abstract class GH_AssemblyInfo
@@ -132,12 +167,23 @@ namespace Grasshopper.Kernel
         public virtual string AuthorName { get { throw null; } }
         public virtual string AuthorContact { get { throw null; } }
         public virtual string Version { get { throw null; } }
+        public string Location { get { throw null; } }
+    }
+}
+
+namespace Grasshopper.Kernel.Parameters
+{
+    public class Param_Number
+    {
+        public Param_Number() { }
+        public bool AngleParameter { get { throw null; } set { } }
+        public bool UseDegrees { get { throw null; } }
     }
 
-    public abstract class GH_AssemblyPriority
+    public class Param_Integer
     {
-        protected GH_AssemblyPriority() { }
-        public abstract GH_LoadingInstruction PriorityLoad();
+        public Param_Integer() { }
+        public void AddNamedValue(string name, int value) { }
     }
 }
 
@@ -147,9 +193,10 @@ namespace Grasshopper.Kernel.Data
     {
     }
 
-    public sealed class GH_Path
+    public class GH_Path
     {
-        public GH_Path(int index) { }
+        public GH_Path(params int[] args) { }
+        public int[] Indices { get { throw null; } }
     }
 }
 
@@ -163,6 +210,12 @@ namespace Grasshopper.Kernel.Types
 
 namespace Grasshopper
 {
+    public class Instances
+    {
+        Instances() { }
+        public static Grasshopper.Kernel.GH_ComponentServer ComponentServer { get { throw null; } }
+    }
+
     public class DataTree<T> : Grasshopper.Kernel.Data.IGH_DataTree
     {
         public DataTree() { }

@@ -72,6 +72,7 @@ namespace Rhino.Geometry
         public static Brep CreateFromBox(IEnumerable<Point3d> corners) { throw null; }
         public static Brep[] CreatePlanarBreps(IEnumerable<Curve> inputLoops, double tolerance) { throw null; }
         public Rhino.Geometry.Collections.BrepFaceList Faces { get { throw null; } }
+        public void Append(Brep other) { }
     }
 
     public abstract class Surface : GeometryBase

@@ -99,7 +99,7 @@ static class DumpApi
         bool isOverride = mi != null && mi.IsVirtual && mi.GetBaseDefinition().DeclaringType != mi.DeclaringType;
         string modifier = m.IsAbstract ? "abstract" : isOverride ? (m.IsFinal ? "sealed override" : "override")
             : m.IsVirtual && !m.IsFinal && !type.IsInterface ? "virtual" : "";
-        if (type.IsInterface)
+        if (type.IsInterface || typeof(Delegate).IsAssignableFrom(type))
             modifier = "";
         return new Obj().Add("kind", kind).Add("type", TypeKey(type)).Add("name", name)
             .Add("access", m.IsPublic ? "public" : "protected").Add("static", m.IsStatic).Add("modifier", modifier)
