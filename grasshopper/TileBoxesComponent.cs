@@ -97,7 +97,14 @@ namespace TilePattern.Gh
             }))
                 return;
             var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint };
-            var key = new InputKey().AddIdentity(pattern).Add(quads).Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(tolerance);
+            // The pattern by identity and by content (identity hashes alone may collide).
+            var flatPairs = new List<int>(2 * pattern.Pairs.Length);
+            foreach (FacePair pair in pattern.Pairs)
+            {
+                flatPairs.Add(pair.A);
+                flatPairs.Add(pair.B);
+            }
+            var key = new InputKey().AddIdentity(pattern).Add(pattern.QuadMesh).Add(flatPairs).Add(pattern.Unpaired).Add(quads).Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(tolerance);
             TileBoxesResult result = Solve(DA, key, (token, progress) =>
             {
                 Tiling tiling = quads != null ? TilePatternEngine.Tiles(quads, pattern, options, surface) : TilePatternEngine.Tiles(pattern, options, surface);
