@@ -6,7 +6,7 @@ LIB_DIR := target/release
 C_FLAGS := -Wall -Wextra -Werror -DTP_TEST_PANIC -Iinclude
 C_LINK := -L$(LIB_DIR) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(LIB_DIR)
 
-.PHONY: demo test setup build bench header header-check rust-test c-test asan-test dotnet-test python-test
+.PHONY: demo test setup build bench header header-check rust-test c-test asan-test dotnet-test gh-compile python-test
 
 setup:
 	@scripts/setup.sh
@@ -18,10 +18,11 @@ demo: build
 	./target/release/tilepattern demo --out demo
 
 # Every test: the header matches the code, the Rust tests, the C tests under valgrind, the C#
-# wrapper's NUnit tests under mono, the Python package's pytest suite.
+# wrapper's NUnit tests under mono, the Grasshopper components compiled against checked
+# RhinoCommon/Grasshopper stubs, the Python package's pytest suite.
 test: setup
 	scripts/check-header.sh
-	$(MAKE) rust-test c-test dotnet-test python-test
+	$(MAKE) rust-test c-test dotnet-test gh-compile python-test
 
 rust-test:
 	$(CARGO) test --release
@@ -61,6 +62,12 @@ asan-test:
 dotnet-test:
 	$(CARGO) build --release --lib
 	scripts/test-dotnet.sh
+
+# The Grasshopper components (grasshopper/) compiled with mcs, warnings as errors, against
+# reference stubs of RhinoCommon and Grasshopper that scripts/check-gh-stubs.py checks member by
+# member against the published type stubs (PyPI); plus a self-test that broken stubs fail.
+gh-compile:
+	scripts/gh-compile.sh
 
 # The Python package (python/) in a venv under target/, tested with pytest.
 python-test:

@@ -1,22 +1,33 @@
-// What every TilePattern component shares: the category, error reporting, and Escape-key
-// cancellation of the long native calls.
+// What every TilePattern component shares: the ribbon tab, error reporting (the wording lives
+// in the wrapper, TilePattern.UserMessage), the document's units and tolerance, finding the
+// native library, and solving in the background.
 using System;
 using System.Threading;
+using System.Windows.Forms;
 using Grasshopper.Kernel;
 
 namespace TilePattern.Gh
 {
     public abstract class ComponentBase : GH_Component
     {
-        public const string Category = "TilePattern";
+        /// <summary>The ribbon tab of every TilePattern component. (Not named Category: that
+        /// would hide GH_InstanceDescription.Category, warning CS0108.)</summary>
+        internal const string Tab = "TilePattern";
 
         protected ComponentBase(string name, string nickname, string description, string subcategory)
-            : base(name, nickname, description, Category, subcategory)
+            : base(name, nickname, description, Tab, subcategory)
         {
         }
 
-        /// <summary>Runs a step, turning every failure into a runtime message on the component.
-        /// Returns false if it failed.</summary>
+        /// <summary>Shows a message from the wrapper as a runtime message.</summary>
+        protected void Show(UserMessage message)
+        {
+            GH_RuntimeMessageLevel level = message.Level == MessageLevel.Error ? GH_RuntimeMessageLevel.Error
+                : message.Level == MessageLevel.Warning ? GH_RuntimeMessageLevel.Warning : GH_RuntimeMessageLevel.Remark;
+            AddRuntimeMessage(level, message.Text);
+        }
+
+        /// <summary>Runs a step on the UI thread, turning a failure into a runtime message.</summary>
         protected bool Run(Action step)
         {
             try
@@ -24,72 +35,30 @@ namespace TilePattern.Gh
                 step();
                 return true;
             }
-            catch (TilePatternCanceledException)
+            catch (Exception e)
             {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "Cancelled (Escape).");
-                AbortSolution();
-            }
-            catch (InvalidMeshException e)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "The mesh was refused: " + e.NativeMessage);
-            }
-            catch (InvalidPatternException e)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "The pattern does not fit this quad mesh (was it solved on another one?): " + e.NativeMessage);
-            }
-            catch (InvalidArgumentException e)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Invalid input: " + e.NativeMessage);
-            }
-            catch (NativePanicException e)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Internal error in the TilePattern library (please report it): " + e.NativeMessage);
-            }
-            catch (TilePatternException e)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e.Status + ": " + e.NativeMessage);
-            }
-            catch (DllNotFoundException e)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e.Message);
-            }
-            catch (ArgumentException e)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e.Message);
-            }
-            catch (ObjectDisposedException e)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "The input was released: " + e.Message);
-            }
-            return false;
-        }
-
-        /// <summary>Progress sink for the native calls: polls the Escape key (the library calls
-        /// back on this, the UI, thread) and turns a press into a cancellation.</summary>
-        protected sealed class EscapeWatcher : IProgress<double>, IDisposable
-        {
-            readonly CancellationTokenSource source = new CancellationTokenSource();
-
-            public CancellationToken Token { get { return source.Token; } }
-
-            public void Report(double fraction)
-            {
-                if (GH_Document.IsEscapeKeyDown())
-                    source.Cancel();
-            }
-
-            public void Dispose()
-            {
-                source.Dispose();
+                Show(UserMessage.For(e));
+                return false;
             }
         }
 
-        /// <summary>After a cancelled step: stops the rest of the solution too.</summary>
-        protected void AbortSolution()
+        /// <summary>The tile defaults (280 x 140 x 15 mm, joint 10 mm) in the active document's
+        /// units; read on the UI thread. Without a document or with units of no fixed length they
+        /// are millimetres, and a remark says so.</summary>
+        protected TileDefaults Defaults()
         {
-            GH_Document document = OnPingDocument();
-            if (document != null)
-                document.RequestAbortSolution();
+            Rhino.RhinoDoc doc = Rhino.RhinoDoc.ActiveDoc;
+            TileDefaults defaults = TileDefaults.For(doc == null ? null : doc.ModelUnitSystem.ToString());
+            if (!defaults.UnitsKnown)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "The document's units have no fixed length: the default tile sizes are taken as millimetres.");
+            return defaults;
+        }
+
+        /// <summary>The document's absolute tolerance (read on the UI thread).</summary>
+        protected static double Tolerance()
+        {
+            double tolerance = DocumentTolerance();
+            return tolerance > 0 ? tolerance : 1e-6;
         }
 
         protected static T Unwrap<T>(IGH_DataAccess access, int index) where T : class
@@ -97,8 +66,147 @@ namespace TilePattern.Gh
             object value = null;
             if (!access.GetData(index, ref value) || value == null)
                 return null;
-            var wrapper = value as Grasshopper.Kernel.Types.GH_ObjectWrapper;
-            return (wrapper != null ? wrapper.Value : value) as T;
+            // A generic parameter hands over its items wrapped (GH_ObjectWrapper): the wrapped
+            // object is the goo's script variable.
+            var goo = value as Grasshopper.Kernel.Types.IGH_Goo;
+            return (goo != null ? goo.ScriptVariable() : value) as T;
+        }
+    }
+
+    /// <summary>A component whose solve runs on a background thread, one job per iteration,
+    /// keyed by its inputs (BackgroundJobs in the wrapper). While a job runs, the outputs are
+    /// empty and the component's message shows the progress; when it ends, a new solution is
+    /// scheduled and the outputs are set from the result. Changed inputs cancel the old job;
+    /// the context menu cancels or restarts. Worker threads never touch the Rhino or
+    /// Grasshopper document: the work gets copies made on the UI thread.</summary>
+    public abstract class BackgroundComponent<TResult> : ComponentBase where TResult : class
+    {
+        readonly BackgroundJobs<TResult> jobs;
+
+        protected BackgroundComponent(string name, string nickname, string description, string subcategory)
+            : base(name, nickname, description, subcategory)
+        {
+            jobs = new BackgroundJobs<TResult>(Finished, Progressed, 0.25);
+        }
+
+        protected override void BeforeSolveInstance()
+        {
+            NativeSetup.Ensure();
+            jobs.BeginPass();
+            base.BeforeSolveInstance();
+        }
+
+        protected override void AfterSolveInstance()
+        {
+            jobs.EndPass();
+            Message = jobs.Summary;
+            base.AfterSolveInstance();
+        }
+
+        /// <summary>The result for this iteration's inputs, or null while it is being solved,
+        /// cancelled or failed (each with a runtime message).</summary>
+        protected TResult Solve(IGH_DataAccess access, InputKey key, Func<CancellationToken, IProgress<double>, TResult> work)
+        {
+            JobStatus<TResult> status = jobs.Request(access.Iteration, key.ToString(), work);
+            switch (status.State)
+            {
+                case JobState.Running:
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Solving in the background; the outputs follow when it is done (right-click: Cancel solve).");
+                    return null;
+                case JobState.Cancelled:
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "Cancelled: change an input, or right-click: Solve again.");
+                    return null;
+                case JobState.Failed:
+                    Show(UserMessage.For(status.Error));
+                    return null;
+                default:
+                    return status.Result;
+            }
+        }
+
+        // Worker thread: a job ended. On the UI thread, schedule a solution that re-solves this
+        // component (it then reads the result).
+        void Finished()
+        {
+            Rhino.RhinoApp.InvokeOnUiThread(new Action(() =>
+            {
+                GH_Document document = OnPingDocument();
+                if (document != null)
+                    document.ScheduleSolution(5, d => ExpireSolution(false));
+            }));
+        }
+
+        // Worker thread: progress. On the UI thread, show it under the component.
+        void Progressed()
+        {
+            Rhino.RhinoApp.InvokeOnUiThread(new Action(() =>
+            {
+                Message = jobs.Summary;
+                OnDisplayExpired(true);
+            }));
+        }
+
+        protected override void AppendAdditionalComponentMenuItems(ToolStripDropDown menu)
+        {
+            Menu_AppendItem(menu, "Cancel solve", (sender, e) =>
+            {
+                if (jobs.CancelAll() > 0)
+                    ExpireSolution(true);
+            }, jobs.RunningCount > 0);
+            Menu_AppendItem(menu, "Solve again", (sender, e) =>
+            {
+                jobs.Restart();
+                ExpireSolution(true);
+            }, true);
+            base.AppendAdditionalComponentMenuItems(menu);
+        }
+
+        public override void RemovedFromDocument(GH_Document document)
+        {
+            jobs.CancelAll();
+            jobs.Restart();
+            base.RemovedFromDocument(document);
+        }
+
+        public override void DocumentContextChanged(GH_Document document, GH_DocumentContext context)
+        {
+            if (context == GH_DocumentContext.Close || context == GH_DocumentContext.Unloaded)
+            {
+                jobs.CancelAll();
+                jobs.Restart();
+            }
+            base.DocumentContextChanged(document, context);
+        }
+    }
+
+    /// <summary>Points the wrapper at the plug-in's folder before the first native call: the
+    /// .gha's path as Grasshopper's component server knows it (it knows it even when the
+    /// assemblies were loaded from bytes, COFF loading, where Assembly.Location is empty), else
+    /// the assembly's own location. TILEPATTERN_LIB, if set, wins.</summary>
+    internal static class NativeSetup
+    {
+        static int done;
+
+        public static void Ensure()
+        {
+            if (Interlocked.Exchange(ref done, 1) != 0)
+                return;
+            try
+            {
+                if (!string.IsNullOrEmpty(Environment.GetEnvironmentVariable("TILEPATTERN_LIB")))
+                    return;
+                string gha = null;
+                GH_AssemblyInfo info = Grasshopper.Instances.ComponentServer.FindAssembly(TilePatternInfo.AssemblyId);
+                if (info != null)
+                    gha = info.Location;
+                string folder = PluginLocation.Folder(gha, typeof(NativeSetup).Assembly.Location);
+                if (folder != null)
+                    TilePatternEngine.UseNativeLibrary(folder);
+            }
+            catch (Exception)
+            {
+                // The wrapper's own search still applies; a missing library is reported by the solve.
+            }
         }
     }
 }

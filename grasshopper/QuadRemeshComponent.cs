@@ -1,15 +1,16 @@
 // Stage 1: a triangle (or polygon) surface mesh to near-square quads of half a tile plus a joint.
 using System;
 using Grasshopper.Kernel;
+using Grasshopper.Kernel.Parameters;
 using Rhino.Geometry;
 
 namespace TilePattern.Gh
 {
-    public class QuadRemeshComponent : ComponentBase
+    public class QuadRemeshComponent : BackgroundComponent<PolyMesh>
     {
         public QuadRemeshComponent()
             : base("Quad Remesh", "QRemesh",
-                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, aligned with the principal curvature, a direction or a rotated curvature field. Escape cancels it.",
+                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, aligned with the principal curvature, a direction or a rotated curvature field. Solves in the background; right-click to cancel.",
                 "1 Mesh")
         {
         }
@@ -23,13 +24,14 @@ namespace TilePattern.Gh
         protected override void RegisterInputParams(GH_InputParamManager pManager)
         {
             pManager.AddMeshParameter("Mesh", "M", "The shell's surface: a triangle, quad or mixed mesh, in model units", GH_ParamAccess.item);
-            pManager.AddNumberParameter("Tile length", "L", "Length of a full tile in model units (0.28 = 280 mm in a metre model)", GH_ParamAccess.item, 0.28);
-            pManager.AddNumberParameter("Joint", "J", "Mortar joint in model units", GH_ParamAccess.item, 0.01);
+            pManager.AddNumberParameter("Tile length", "L", "Length of a full tile in model units (default: 280 mm in the document's units)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Joint", "J", "Mortar joint in model units (default: 10 mm in the document's units)", GH_ParamAccess.item);
             pManager.AddVectorParameter("Direction", "D", "Optional: align the quads with this direction (projected onto the surface) instead of the curvature", GH_ParamAccess.item);
-            pManager.AddNumberParameter("Angle", "A", "Optional: rotate the curvature field by this many degrees", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Angle", "A", "Optional: rotate the curvature field by this angle", GH_ParamAccess.item);
             pManager.AddBooleanParameter("Shape-up", "S", "Pull faces towards squares without leaving the surface", GH_ParamAccess.item, false);
-            pManager[3].Optional = true;
-            pManager[4].Optional = true;
+            for (int i = 1; i <= 4; i++)
+                pManager[i].Optional = true;
+            ((Param_Number)pManager[4]).AngleParameter = true;
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
@@ -41,41 +43,46 @@ namespace TilePattern.Gh
         protected override void SolveInstance(IGH_DataAccess DA)
         {
             Mesh mesh = null;
-            double length = 0.28, joint = 0.01, angle = 0.0;
-            Vector3d direction = Vector3d.Unset;
-            bool shapeUp = false;
             if (!DA.GetData(0, ref mesh) || mesh == null)
                 return;
+            TileDefaults defaults = Defaults();
+            double length = defaults.Length, joint = defaults.Joint, angle = 0.0;
+            Vector3d direction = Vector3d.Unset;
+            bool shapeUp = false;
             DA.GetData(1, ref length);
             DA.GetData(2, ref joint);
             bool hasDirection = DA.GetData(3, ref direction) && direction.IsValid && !direction.IsZero;
             bool hasAngle = DA.GetData(4, ref angle);
             DA.GetData(5, ref shapeUp);
+            // An angle parameter gives radians unless the user switched it to degrees.
+            if (hasAngle && !((Param_Number)Params.Input[4]).UseDegrees)
+                angle = angle * 180.0 / Math.PI;
             if (hasDirection && hasAngle)
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "Both a direction and an angle are given: the direction is used.");
 
-            Run(() =>
+            var options = new RemeshOptions { TargetEdge = (length + joint) / 2.0, ShapeUp = shapeUp };
+            if (hasDirection)
             {
-                var options = new RemeshOptions { TargetEdge = (length + joint) / 2.0, ShapeUp = shapeUp };
-                if (hasDirection)
-                {
-                    options.Direction = FieldDirection.Vector;
-                    options.DirectionVector = new[] { direction.X, direction.Y, direction.Z };
-                }
-                else if (hasAngle)
-                {
-                    options.Direction = FieldDirection.Angle;
-                    options.AngleDegrees = angle;
-                }
-                using (var escape = new EscapeWatcher())
-                {
-                    PolyMesh quads = TilePatternEngine.Remesh(RhinoConvert.ToPolyMesh(mesh), options, escape, escape.Token);
-                    if (!quads.IsQuadMesh)
-                        AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Some faces are not quads; they get no tile.");
-                    DA.SetData(0, RhinoConvert.ToRhinoMesh(quads));
-                    DA.SetData(1, options.TargetEdge);
-                }
-            });
+                options.Direction = FieldDirection.Vector;
+                options.DirectionVector = new[] { direction.X, direction.Y, direction.Z };
+            }
+            else if (hasAngle)
+            {
+                options.Direction = FieldDirection.Angle;
+                options.AngleDegrees = angle;
+            }
+            PolyMesh surface = null;
+            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh)))
+                return;
+            var key = new InputKey().Add(surface).Add(options.TargetEdge).Add(shapeUp).Add((int)options.Direction)
+                .Add(options.AngleDegrees).Add(hasDirection ? direction.X : 0).Add(hasDirection ? direction.Y : 0).Add(hasDirection ? direction.Z : 0);
+            PolyMesh quads = Solve(DA, key, (token, progress) => TilePatternEngine.Remesh(surface, options, progress, token));
+            if (quads == null)
+                return;
+            if (!quads.IsQuadMesh)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Some faces are not quads; they get no tile.");
+            DA.SetData(0, RhinoConvert.ToRhinoMesh(quads));
+            DA.SetData(1, options.TargetEdge);
         }
     }
 }

@@ -1,4 +1,6 @@
-// Every conversion between Rhino geometry and the wrapper's plain arrays, in one place.
+// Every conversion between Rhino geometry and the wrapper's plain arrays, in one place. The
+// decisions (which loops make which piece, closing points, frames) are the wrapper's
+// (TilePieces, TileOutputs); this file only builds the Rhino objects.
 using System;
 using System.Collections.Generic;
 using Rhino.Geometry;
@@ -57,56 +59,56 @@ namespace TilePattern.Gh
             return mesh;
         }
 
-        public static Point3d ToPoint(double[] xyz)
+        static Point3d Point(double[] xyz, int at)
         {
-            return new Point3d(xyz[0], xyz[1], xyz[2]);
-        }
-
-        public static Vector3d ToVector(double[] xyz)
-        {
-            return new Vector3d(xyz[0], xyz[1], xyz[2]);
+            return new Point3d(xyz[at], xyz[at + 1], xyz[at + 2]);
         }
 
         /// <summary>The tile's frame: origin, length axis x, width axis y (thickness along z).</summary>
-        public static Plane ToPlane(Tile tile)
+        public static Plane ToPlane(TileFrame frame)
         {
-            return new Plane(ToPoint(tile.Origin), ToVector(tile.XAxis), ToVector(tile.YAxis));
+            return new Plane(Point(frame.Origin, 0), new Vector3d(frame.XAxis[0], frame.XAxis[1], frame.XAxis[2]),
+                new Vector3d(frame.YAxis[0], frame.YAxis[1], frame.YAxis[2]));
         }
 
-        /// <summary>The tile as a solid: its box from the library's 8 corners, or for a boundary
-        /// tile its kept outline extruded by the thickness.</summary>
-        public static Brep ToBrep(Tile tile, double tolerance)
+        /// <summary>The tile as a solid: its box, or for a cut tile every piece (outer loop and
+        /// holes) extruded by the thickness, all pieces in one Brep. Null when a piece cannot be
+        /// made: the caller reports it and never falls back to the uncut box.</summary>
+        public static Brep ToBrep(Tile tile, TilePiece[] pieces, double tolerance)
         {
-            if (tile.Outline.Length > 0)
+            if (tile.Outline.Length == 0)
             {
-                Brep cut = CutSolid(tile, tolerance);
-                if (cut != null)
-                    return cut;
+                var corners = new List<Point3d>(8);
+                foreach (double[] c in TilePieces.BoxCorners(tile))
+                    corners.Add(Point(c, 0));
+                return Brep.CreateFromBox(corners);
             }
-            var corners = new Point3d[8];
-            for (int i = 0; i < 8; i++)
-                corners[i] = ToPoint(tile.Corner(i));
-            return Brep.CreateFromBox(corners);
-        }
-
-        static Brep CutSolid(Tile tile, double tolerance)
-        {
-            var loops = new List<Curve>();
-            for (int l = 0; l < tile.Outline.Length; l++)
+            double[] up = TilePieces.Extrusion(tile);
+            Brep solid = null;
+            foreach (TilePiece piece in pieces)
             {
-                double[] xyz = tile.OutlineInModel(l);
-                var polyline = new Polyline();
-                for (int p = 0; p < xyz.Length; p += 3)
-                    polyline.Add(xyz[p], xyz[p + 1], xyz[p + 2]);
-                polyline.Add(polyline[0]);
-                loops.Add(new PolylineCurve(polyline));
+                var loops = new List<Curve>();
+                foreach (double[] loop in piece.Loops)
+                {
+                    var points = new List<Point3d>(loop.Length / 3);
+                    for (int p = 0; p < loop.Length; p += 3)
+                        points.Add(Point(loop, p));
+                    loops.Add(new PolylineCurve(points));
+                }
+                Brep[] faces = Brep.CreatePlanarBreps(loops, tolerance);
+                if (faces == null || faces.Length != 1)
+                    return null;
+                Point3d start = Point(piece.Outer, 0);
+                var path = new LineCurve(start, new Point3d(start.X + up[0], start.Y + up[1], start.Z + up[2]));
+                Brep extruded = faces[0].Faces[0].CreateExtrusion(path, true);
+                if (extruded == null)
+                    return null;
+                if (solid == null)
+                    solid = extruded;
+                else
+                    solid.Append(extruded);
             }
-            Brep[] faces = Brep.CreatePlanarBreps(loops, tolerance);
-            if (faces == null || faces.Length == 0)
-                return null;
-            Point3d origin = ToPoint(tile.Origin);
-            var path = new LineCurve(origin, origin + ToVector(tile.ZAxis) * tile.Thickness);
-            return faces[0].Faces[0].CreateExtrusion(path, true);
+            return solid;
         }
     }
 }

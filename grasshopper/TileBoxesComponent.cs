@@ -1,5 +1,6 @@
 // Stage 3: a box per matched pair, a half tile per unpaired quad, boundary tiles cut to the
-// surface; previewed with full, half and cut tiles in different colours.
+// surface; one list of tiles parallel to their labels, frames, laying steps and kinds;
+// previewed with full, half and cut tiles in different colours.
 using System;
 using System.Collections.Generic;
 using System.Drawing;
@@ -9,19 +10,26 @@ using Rhino.Geometry;
 
 namespace TilePattern.Gh
 {
-    public class TileBoxesComponent : ComponentBase
+    /// <summary>What a Tile Boxes solve makes on its worker: the tiling and its tiles as Breps.</summary>
+    public sealed class TileBoxesResult
+    {
+        public Tiling Tiling;
+        public TileOutputs<Brep> Outputs;
+    }
+
+    public class TileBoxesComponent : BackgroundComponent<TileBoxesResult>
     {
         static readonly DisplayMaterial FullMaterial = new DisplayMaterial(Color.FromArgb(200, 96, 48));
         static readonly DisplayMaterial HalfMaterial = new DisplayMaterial(Color.FromArgb(60, 120, 200));
         static readonly DisplayMaterial BoundaryMaterial = new DisplayMaterial(Color.FromArgb(230, 190, 40));
 
-        // What the preview draws: the breps of the last solution, by kind.
-        readonly List<KeyValuePair<Brep, TileKind>> preview = new List<KeyValuePair<Brep, TileKind>>();
+        // What the preview draws: the breps of the last solution, by kind (UI thread only).
+        readonly List<KeyValuePair<Brep, string>> preview = new List<KeyValuePair<Brep, string>>();
         BoundingBox previewBox = BoundingBox.Empty;
 
         public TileBoxesComponent()
             : base("Tile Boxes", "TBoxes",
-                "Builds the tiles of a pattern: a box per matched pair (full tile), a half tile per unpaired quad, tiles cut to the surface's boundary; with cut-list labels, frames and laying order. Preview: full tiles terracotta, half tiles blue, cut tiles yellow.",
+                "Builds the tiles of a pattern: a box per matched pair (full tile), a half tile per unpaired quad, tiles cut to the surface's boundary (every piece); one list of tiles with their cut-list labels, frames, laying order and kinds. Preview: full tiles terracotta, half tiles blue, cut tiles yellow.",
                 "3 Tiles")
         {
         }
@@ -36,24 +44,23 @@ namespace TilePattern.Gh
         {
             pManager.AddGenericParameter("Pattern", "P", "Pattern from Tile Pattern", GH_ParamAccess.item);
             pManager.AddMeshParameter("Quad mesh", "Q", "Optional: the quad mesh (default: the one the pattern was solved on)", GH_ParamAccess.item);
-            pManager.AddNumberParameter("Length", "L", "Tile length in model units", GH_ParamAccess.item, 0.28);
-            pManager.AddNumberParameter("Width", "W", "Tile width in model units", GH_ParamAccess.item, 0.14);
-            pManager.AddNumberParameter("Thickness", "T", "Tile thickness in model units", GH_ParamAccess.item, 0.015);
-            pManager.AddNumberParameter("Joint", "J", "Mortar joint in model units", GH_ParamAccess.item, 0.01);
+            pManager.AddNumberParameter("Length", "L", "Tile length in model units (default: 280 mm in the document's units)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Width", "W", "Tile width in model units (default: 140 mm)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Thickness", "T", "Tile thickness in model units (default: 15 mm)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Joint", "J", "Mortar joint in model units (default: 10 mm)", GH_ParamAccess.item);
             pManager.AddMeshParameter("Surface", "S", "Optional: the input surface; tiles are cut to its boundary (default: the quad mesh's boundary)", GH_ParamAccess.item);
-            pManager[1].Optional = true;
-            pManager[6].Optional = true;
+            for (int i = 1; i <= 6; i++)
+                pManager[i].Optional = true;
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
         {
-            pManager.AddBrepParameter("Full tiles", "F", "Standard tiles over two quads", GH_ParamAccess.list);
-            pManager.AddBrepParameter("Half tiles", "H", "Half tiles over one unpaired quad (each needs a cut)", GH_ParamAccess.list);
-            pManager.AddBrepParameter("Cut tiles", "C", "Full or half tiles cut to the surface's boundary", GH_ParamAccess.list);
-            pManager.AddTextParameter("Labels", "Lb", "Cut-list label of every tile (F, H, B1, ...), in tile order", GH_ParamAccess.list);
-            pManager.AddPlaneParameter("Planes", "Pl", "Frame of every tile: origin, length axis x, width axis y", GH_ParamAccess.list);
-            pManager.AddIntegerParameter("Steps", "N", "Laying order of every tile, from 0", GH_ParamAccess.list);
-            pManager.AddGenericParameter("Tiling", "T", "All tiles and the report, for Tile Report", GH_ParamAccess.item);
+            pManager.AddBrepParameter("Tiles", "T", "Every tile as a solid, in tile order; a cut tile that splits is one Brep holding all its pieces; null where the solid could not be made (see the warnings)", GH_ParamAccess.list);
+            pManager.AddTextParameter("Labels", "Lb", "Cut-list label of every tile (F, H, B1, ...), parallel to Tiles", GH_ParamAccess.list);
+            pManager.AddPlaneParameter("Planes", "Pl", "Frame of every tile (origin, length axis x, width axis y), parallel to Tiles", GH_ParamAccess.list);
+            pManager.AddIntegerParameter("Steps", "N", "Laying order of every tile, from 0, parallel to Tiles", GH_ParamAccess.list);
+            pManager.AddTextParameter("Kinds", "K", "full, half or boundary (cut), parallel to Tiles", GH_ParamAccess.list);
+            pManager.AddGenericParameter("Tiling", "Tg", "All tiles and the report, for Tile Report", GH_ParamAccess.item);
         }
 
         protected override void BeforeSolveInstance()
@@ -71,56 +78,75 @@ namespace TilePattern.Gh
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Pattern must come from a Tile Pattern component.");
                 return;
             }
-            Mesh quads = null, surface = null;
-            double length = 0.28, width = 0.14, thickness = 0.015, joint = 0.01;
-            bool hasQuads = DA.GetData(1, ref quads) && quads != null;
+            TileDefaults defaults = Defaults();
+            Mesh quadsMesh = null, surfaceMesh = null;
+            double length = defaults.Length, width = defaults.Width, thickness = defaults.Thickness, joint = defaults.Joint;
+            bool hasQuads = DA.GetData(1, ref quadsMesh) && quadsMesh != null;
             DA.GetData(2, ref length);
             DA.GetData(3, ref width);
             DA.GetData(4, ref thickness);
             DA.GetData(5, ref joint);
-            bool hasSurface = DA.GetData(6, ref surface) && surface != null;
+            bool hasSurface = DA.GetData(6, ref surfaceMesh) && surfaceMesh != null;
+            double tolerance = Tolerance();
 
-            Run(() =>
+            PolyMesh quads = null, surface = null;
+            if (!Run(() =>
             {
-                var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint };
-                PolyMesh cutTo = hasSurface ? RhinoConvert.ToPolyMesh(surface) : null;
-                Tiling tiling = hasQuads
-                    ? TilePatternEngine.Tiles(RhinoConvert.ToPolyMesh(quads), pattern, options, cutTo)
-                    : TilePatternEngine.Tiles(pattern, options, cutTo);
-                double tolerance = Rhino.RhinoDoc.ActiveDoc != null ? Rhino.RhinoDoc.ActiveDoc.ModelAbsoluteTolerance : 1e-6;
-                var full = new List<Brep>();
-                var half = new List<Brep>();
-                var cut = new List<Brep>();
-                var labels = new List<string>();
-                var planes = new List<Plane>();
-                var steps = new List<int>();
-                foreach (Tile tile in tiling.Tiles)
+                quads = hasQuads ? RhinoConvert.ToPolyMesh(quadsMesh) : null;
+                surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh) : null;
+            }))
+                return;
+            var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint };
+            // The pattern by identity and by content (identity hashes alone may collide).
+            var flatPairs = new List<int>(2 * pattern.Pairs.Length);
+            foreach (FacePair pair in pattern.Pairs)
+            {
+                flatPairs.Add(pair.A);
+                flatPairs.Add(pair.B);
+            }
+            var key = new InputKey().AddIdentity(pattern).Add(pattern.QuadMesh).Add(flatPairs).Add(pattern.Unpaired).Add(quads).Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(tolerance);
+            TileBoxesResult result = Solve(DA, key, (token, progress) =>
+            {
+                Tiling tiling = quads != null ? TilePatternEngine.Tiles(quads, pattern, options, surface) : TilePatternEngine.Tiles(pattern, options, surface);
+                token.ThrowIfCancellationRequested();
+                return new TileBoxesResult
                 {
-                    Brep brep = RhinoConvert.ToBrep(tile, tolerance);
-                    if (brep == null)
-                        AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "Tile " + tile.Index + " could not be turned into a Brep.");
-                    else
+                    Tiling = tiling,
+                    Outputs = TileOutputs<Brep>.Build(tiling, (tile, pieces) =>
                     {
-                        (tile.Kind == TileKind.Full ? full : tile.Kind == TileKind.Half ? half : cut).Add(brep);
-                        preview.Add(new KeyValuePair<Brep, TileKind>(brep, tile.Kind));
-                        previewBox.Union(brep.GetBoundingBox(false));
-                    }
-                    labels.Add(tile.Label);
-                    planes.Add(RhinoConvert.ToPlane(tile));
-                    steps.Add(tile.Step);
-                }
-                if (tiling.Report.Joints.Overlaps > 0)
-                    AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, tiling.Report.Joints.Overlaps + " contacts between tiles overlap (tile too large for the quads?).");
-                if (tiling.Report.Cutting != null && tiling.Report.Cutting.Slivers > 0)
-                    AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, tiling.Report.Cutting.Slivers + " slivers were left out.");
-                DA.SetDataList(0, full);
-                DA.SetDataList(1, half);
-                DA.SetDataList(2, cut);
-                DA.SetDataList(3, labels);
-                DA.SetDataList(4, planes);
-                DA.SetDataList(5, steps);
-                DA.SetData(6, tiling);
+                        token.ThrowIfCancellationRequested();
+                        return RhinoConvert.ToBrep(tile, pieces, tolerance);
+                    }),
+                };
             });
+            if (result == null)
+                return;
+
+            TileOutputs<Brep> tiles = result.Outputs;
+            foreach (string warning in tiles.Warnings)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "The solid of " + warning);
+            var planes = new List<Plane>(tiles.Count);
+            for (int i = 0; i < tiles.Count; i++)
+            {
+                planes.Add(RhinoConvert.ToPlane(tiles.Frames[i]));
+                Brep brep = tiles.Geometry[i];
+                if (brep != null)
+                {
+                    preview.Add(new KeyValuePair<Brep, string>(brep, tiles.Kinds[i]));
+                    previewBox.Union(brep.GetBoundingBox(false));
+                }
+            }
+            Report report = result.Tiling.Report;
+            if (report.Joints.Overlaps > 0)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, report.Joints.Overlaps + " contacts between tiles overlap (tile too large for the quads?).");
+            if (report.Cutting != null && report.Cutting.Slivers > 0)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, report.Cutting.Slivers + " slivers were left out.");
+            DA.SetDataList(0, tiles.Geometry);
+            DA.SetDataList(1, tiles.Labels);
+            DA.SetDataList(2, planes);
+            DA.SetDataList(3, tiles.Steps);
+            DA.SetDataList(4, tiles.Kinds);
+            DA.SetData(5, result.Tiling);
         }
 
         public override BoundingBox ClippingBox { get { return previewBox; } }
@@ -130,7 +156,7 @@ namespace TilePattern.Gh
         {
             foreach (var item in preview)
             {
-                DisplayMaterial material = item.Value == TileKind.Full ? FullMaterial : item.Value == TileKind.Half ? HalfMaterial : BoundaryMaterial;
+                DisplayMaterial material = item.Value == "full" ? FullMaterial : item.Value == "half" ? HalfMaterial : BoundaryMaterial;
                 args.Display.DrawBrepShaded(item.Key, material);
             }
         }

@@ -4,15 +4,16 @@ using System.Collections.Generic;
 using Grasshopper;
 using Grasshopper.Kernel;
 using Grasshopper.Kernel.Data;
+using Grasshopper.Kernel.Parameters;
 using Rhino.Geometry;
 
 namespace TilePattern.Gh
 {
-    public class TilePatternComponent : ComponentBase
+    public class TilePatternComponent : BackgroundComponent<Pattern>
     {
         public TilePatternComponent()
             : base("Tile Pattern", "TPattern",
-                "Matches adjacent quads into tiles: stack bond (maximum matching), staggered bond (fewest continuous joints) or running bond, solved to a proven optimum or until the time limit. Escape cancels the solve.",
+                "Matches adjacent quads into tiles: stack bond (maximum matching), staggered bond (fewest continuous joints) or running bond, solved to a proven optimum or until the time limit. Solves in the background; right-click to cancel.",
                 "2 Pattern")
         {
         }
@@ -33,12 +34,16 @@ namespace TilePattern.Gh
             pManager.AddIntegerParameter("Excluded", "X", "Optional: faces that take part in no tile (openings, areas laid by hand)", GH_ParamAccess.list);
             pManager[4].Optional = true;
             pManager[5].Optional = true;
+            var bond = (Param_Integer)pManager[1];
+            bond.AddNamedValue("Stack", (int)Bond.Stack);
+            bond.AddNamedValue("Staggered", (int)Bond.Staggered);
+            bond.AddNamedValue("Running bond", (int)Bond.RunningBond);
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
         {
             pManager.AddGenericParameter("Pattern", "P", "The solved pattern, for Tile Boxes", GH_ParamAccess.item);
-            pManager.AddIntegerParameter("Pairs", "Pr", "Matched face pairs, one branch per tile", GH_ParamAccess.tree);
+            pManager.AddIntegerParameter("Pairs", "Pr", "Matched face pairs, one branch per tile: {input path; item; tile}", GH_ParamAccess.tree);
             pManager.AddIntegerParameter("Unpaired", "U", "Quads in no pair: each becomes a half tile", GH_ParamAccess.list);
             pManager.AddTextParameter("Status", "S", "optimal (proven), time_limit or feasible", GH_ParamAccess.item);
             pManager.AddNumberParameter("Objective", "O", "Objective of the pattern", GH_ParamAccess.item);
@@ -66,36 +71,45 @@ namespace TilePattern.Gh
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Forced pairs needs an even number of face indices (a0, b0, a1, b1, ...).");
                 return;
             }
-
-            Run(() =>
+            if (bond < 0 || bond > 2)
             {
-                var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit };
-                for (int k = 0; k < forced.Count; k += 2)
-                    options.ForcedPairs.Add(new FacePair(forced[k], forced[k + 1]));
-                foreach (int face in excluded)
-                    options.ExcludedFaces.Add(face);
-                Pattern pattern;
-                using (var escape = new EscapeWatcher())
-                    pattern = TilePatternEngine.Match(RhinoConvert.ToPolyMesh(mesh), options, escape, escape.Token);
-                // Not disposed here: the pattern travels downstream; its SafeHandles free the
-                // native memory once Grasshopper lets go of it.
-                var pairs = new DataTree<int>();
-                for (int i = 0; i < pattern.Pairs.Length; i++)
-                    pairs.AddRange(new[] { pattern.Pairs[i].A, pattern.Pairs[i].B }, new GH_Path(i));
-                string status = pattern.Status == SolveStatus.Optimal ? "optimal" : pattern.Status == SolveStatus.TimeLimit ? "time_limit" : "feasible";
-                if (pattern.Status != SolveStatus.Optimal)
-                    AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Not proven optimal (" + status + "): gap " + (100 * pattern.Gap).ToString("0.##") + " %.");
-                if (pattern.NonQuadCount > 0)
-                    AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, pattern.NonQuadCount + " faces are not quads and get no tile.");
-                DA.SetData(0, pattern);
-                DA.SetDataTree(1, pairs);
-                DA.SetDataList(2, pattern.Unpaired);
-                DA.SetData(3, status);
-                DA.SetData(4, pattern.Objective);
-                DA.SetData(5, pattern.Bound);
-                DA.SetData(6, pattern.Gap);
-                DA.SetData(7, pattern.ContinuousJoints);
-            });
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Bond is 0 (stack), 1 (staggered) or 2 (running bond), not " + bond + ".");
+                return;
+            }
+            var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit };
+            for (int k = 0; k < forced.Count; k += 2)
+                options.ForcedPairs.Add(new FacePair(forced[k], forced[k + 1]));
+            foreach (int face in excluded)
+                options.ExcludedFaces.Add(face);
+            PolyMesh quads = null;
+            if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh)))
+                return;
+            var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded);
+            // Not disposed here: the pattern travels downstream; its SafeHandles free the native
+            // memory (announced to the GC) once Grasshopper lets go of it.
+            Pattern pattern = Solve(DA, key, (token, progress) => TilePatternEngine.Match(quads, options, progress, token));
+            if (pattern == null)
+                return;
+
+            // One branch per tile under this solve's own target (path and index), so that the
+            // pairs of several meshes never share a branch.
+            int[][] paths = TreePaths.Branches(DA.ParameterTargetPath(1).Indices, DA.ParameterTargetIndex(1), pattern.Pairs.Length);
+            var pairs = new DataTree<int>();
+            for (int i = 0; i < pattern.Pairs.Length; i++)
+                pairs.AddRange(new[] { pattern.Pairs[i].A, pattern.Pairs[i].B }, new GH_Path(paths[i]));
+            string status = pattern.Status == SolveStatus.Optimal ? "optimal" : pattern.Status == SolveStatus.TimeLimit ? "time_limit" : "feasible";
+            if (pattern.Status != SolveStatus.Optimal)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Not proven optimal (" + status + "): gap " + (100 * pattern.Gap).ToString("0.##") + " %.");
+            if (pattern.NonQuadCount > 0)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, pattern.NonQuadCount + " faces are not quads and get no tile.");
+            DA.SetData(0, pattern);
+            DA.SetDataTree(1, pairs);
+            DA.SetDataList(2, pattern.Unpaired);
+            DA.SetData(3, status);
+            DA.SetData(4, pattern.Objective);
+            DA.SetData(5, pattern.Bound);
+            DA.SetData(6, pattern.Gap);
+            DA.SetData(7, pattern.ContinuousJoints);
         }
     }
 }

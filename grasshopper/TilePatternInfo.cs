@@ -1,4 +1,5 @@
-// The plug-in's identity for Grasshopper, its icons, and where it finds the native library.
+// The plug-in's identity for Grasshopper and its icons. (Where it finds the native library:
+// NativeSetup in ComponentBase.cs, at the first solve, when Grasshopper knows the .gha's path.)
 using System;
 using System.Drawing;
 using System.IO;
@@ -16,7 +17,10 @@ namespace TilePattern.Gh
             get { return "Tile laying patterns for free-form shells that need as little cutting as possible (Du, Van Mele, Block, IASS 2023): quad remeshing, tile matching, tile boxes and their report."; }
         }
 
-        public override Guid Id { get { return new Guid("2c756546-dffd-4925-ac95-9db3ed75ad4c"); } }
+        /// <summary>The plug-in's id; NativeSetup looks the .gha up by it.</summary>
+        internal static readonly Guid AssemblyId = new Guid("2c756546-dffd-4925-ac95-9db3ed75ad4c");
+
+        public override Guid Id { get { return AssemblyId; } }
 
         public override Bitmap Icon { get { return Icons.Load("TilePatternPlugin"); } }
 
@@ -25,28 +29,6 @@ namespace TilePattern.Gh
         public override string AuthorContact { get { return "https://github.com/ (see the project's README)"; } }
 
         public override string Version { get { return "0.1.0"; } }
-    }
-
-    /// <summary>Runs when Grasshopper loads the plug-in, before any component: tells the
-    /// wrapper the .gha's folder, so it finds runtimes/&lt;rid&gt;/native/ there even when
-    /// TilePattern.dll itself was loaded from bytes (Grasshopper's COFF loading, where the
-    /// assembly has no location). TILEPATTERN_LIB, if set, wins.</summary>
-    public class TilePatternPriority : GH_AssemblyPriority
-    {
-        public override GH_LoadingInstruction PriorityLoad()
-        {
-            try
-            {
-                string location = typeof(TilePatternPriority).Assembly.Location;
-                if (!string.IsNullOrEmpty(location) && string.IsNullOrEmpty(Environment.GetEnvironmentVariable("TILEPATTERN_LIB")))
-                    TilePatternEngine.UseNativeLibrary(Path.GetDirectoryName(location));
-            }
-            catch (Exception)
-            {
-                // The wrapper's own search still applies; components report a missing library.
-            }
-            return GH_LoadingInstruction.Proceed;
-        }
     }
 
     /// <summary>The 24 x 24 icons embedded from Icons/*.png.</summary>

@@ -2,7 +2,8 @@
 # Installs what TilePattern needs on a fresh Debian/Ubuntu machine: the CBC and Clp solver libraries
 # and pkg-config (to build), a C/C++ compiler and valgrind (C tests), mono with NUnit (C#
 # wrapper tests), Python's venv (Python package tests, which install numpy, compas,
-# rhino3dm and pytest from PyPI into target/py-venv), and cbindgen 0.29.2 (header check). System packages need root or sudo;
+# rhino3dm and pytest from PyPI into target/py-venv; the Grasshopper compile check, which installs
+# the published RhinoCommon/Grasshopper type stubs into target/gh-venv), and cbindgen 0.29.2 (header check). System packages need root or sudo;
 # otherwise it prints the command to run.
 set -euo pipefail
 
@@ -11,7 +12,9 @@ if ! command -v cargo >/dev/null 2>&1; then
   exit 1
 fi
 
-packages=(coinor-libcbc-dev coinor-libclp-dev pkg-config g++ valgrind mono-mcs mono-runtime nunit-console libnunit-cil-dev)
+# System.Drawing and System.Windows.Forms: the Grasshopper components compile against them (make gh-compile).
+packages=(coinor-libcbc-dev coinor-libclp-dev pkg-config g++ valgrind mono-mcs mono-runtime nunit-console libnunit-cil-dev
+  libmono-system-drawing4.0-cil libmono-system-windows-forms4.0-cil)
 # The Python tests make a venv; Debian's own python3 needs python3-venv for that.
 python3 -c "import ensurepip, venv" >/dev/null 2>&1 || packages+=(python3-venv)
 missing=()

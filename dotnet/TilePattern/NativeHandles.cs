@@ -6,6 +6,34 @@ using System.Runtime.InteropServices;
 
 namespace TilePattern
 {
+    /// <summary>Tells the garbage collector about native memory that a handle keeps alive, so
+    /// that a host that drops patterns without disposing them (Grasshopper re-solving) gets
+    /// them finalized in time; the pressure is removed when the handle is released, by Dispose
+    /// or by its finalizer.</summary>
+    internal static class NativePressure
+    {
+        static long outstanding;
+
+        /// <summary>Bytes currently announced (for tests).</summary>
+        internal static long Outstanding { get { return System.Threading.Interlocked.Read(ref outstanding); } }
+
+        internal static void Add(long bytes)
+        {
+            if (bytes <= 0)
+                return;
+            GC.AddMemoryPressure(bytes);
+            System.Threading.Interlocked.Add(ref outstanding, bytes);
+        }
+
+        internal static void Remove(long bytes)
+        {
+            if (bytes <= 0)
+                return;
+            GC.RemoveMemoryPressure(bytes);
+            System.Threading.Interlocked.Add(ref outstanding, -bytes);
+        }
+    }
+
     /// <summary>Owns a TpMesh*; released with tp_mesh_free.</summary>
     internal sealed class MeshHandle : SafeHandle
     {
@@ -13,9 +41,20 @@ namespace TilePattern
 
         public override bool IsInvalid { get { return handle == IntPtr.Zero; } }
 
+        long pressure;
+
+        /// <summary>Announces the native memory this handle holds (once; see NativePressure).</summary>
+        internal void AddPressure(long bytes)
+        {
+            if (IsInvalid || System.Threading.Interlocked.CompareExchange(ref pressure, bytes, 0) != 0)
+                return;
+            NativePressure.Add(bytes);
+        }
+
         protected override bool ReleaseHandle()
         {
             NativeMethods.tp_mesh_free(handle);
+            NativePressure.Remove(System.Threading.Interlocked.Exchange(ref pressure, 0));
             return true;
         }
     }
@@ -27,9 +66,20 @@ namespace TilePattern
 
         public override bool IsInvalid { get { return handle == IntPtr.Zero; } }
 
+        long pressure;
+
+        /// <summary>Announces the native memory this handle holds (once; see NativePressure).</summary>
+        internal void AddPressure(long bytes)
+        {
+            if (IsInvalid || System.Threading.Interlocked.CompareExchange(ref pressure, bytes, 0) != 0)
+                return;
+            NativePressure.Add(bytes);
+        }
+
         protected override bool ReleaseHandle()
         {
             NativeMethods.tp_pattern_free(handle);
+            NativePressure.Remove(System.Threading.Interlocked.Exchange(ref pressure, 0));
             return true;
         }
     }

@@ -79,6 +79,9 @@ namespace TilePattern
 
         public int VertexCount { get { return vertices.Length / 3; } }
 
+        /// <summary>Length of <see cref="FaceIndices"/> (without copying it).</summary>
+        internal int FaceIndexLength { get { return faceIndices.Length; } }
+
         public int FaceCount { get { return faceSizes.Length; } }
 
         /// <summary>Vertex i as {x, y, z}.</summary>

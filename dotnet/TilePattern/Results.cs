@@ -45,6 +45,20 @@ namespace TilePattern
             var unpaired = new uint[Native.Count(s.unpaired)];
             Native.Check(NativeMethods.tp_pattern_copy_unpaired(handle, unpaired, Native.Size(unpaired.Length)));
             Unpaired = PolyMesh.ToInt(unpaired);
+
+            // The native pattern and mesh live as long as this object: tell the GC about them
+            // (an estimate: the mesh's coordinates and indices as the library stores them, and
+            // the pattern's per-face arrays), so that undisposed patterns are collected in time.
+            long meshBytes = 24L * quads.VertexCount + 8L * quads.FaceIndexLength + 16L * FaceCount + 256;
+            mesh.AddPressure(meshBytes);
+            handle.AddPressure(24L * FaceCount + 16L * Pairs.Length + 256);
+        }
+
+        /// <summary>Bytes of native memory announced to the GC for this pattern and its mesh
+        /// (0 once disposed).</summary>
+        internal long NativeBytesEstimate
+        {
+            get { return IsDisposed ? 0 : 24L * QuadMesh.VertexCount + 8L * QuadMesh.FaceIndexLength + 16L * FaceCount + 256 + 24L * FaceCount + 16L * Pairs.Length + 256; }
         }
 
         /// <summary>Which argument proved <see cref="Bound"/> (with an optimal status: which closed the gap).</summary>

@@ -76,8 +76,8 @@ namespace TilePattern
         }
 
         /// <summary>Stage 1: quadrangulates a triangle or polygon surface into near-square quads.
-        /// The library reports progress only at the start and the end of this stage, and can be
-        /// cancelled only before it starts.</summary>
+        /// The library reports progress throughout the stage (about every 10 ms) and stops soon
+        /// after the token is cancelled (<see cref="TilePatternCanceledException"/>).</summary>
         public static PolyMesh Remesh(PolyMesh surface, RemeshOptions options = null, IProgress<double> progress = null,
             CancellationToken cancellationToken = default(CancellationToken))
         {

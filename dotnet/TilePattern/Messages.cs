@@ -1,0 +1,99 @@
+// Every failure of a stage as one sentence for a person, with how bad it is: what a host (the
+// Grasshopper components) shows as a runtime message.
+using System;
+
+namespace TilePattern
+{
+    /// <summary>How a host should show a message (Grasshopper: error, warning, remark).</summary>
+    public enum MessageLevel
+    {
+        Remark,
+        Warning,
+        Error,
+    }
+
+    /// <summary>A message for a person.</summary>
+    public sealed class UserMessage
+    {
+        public UserMessage(MessageLevel level, string text)
+        {
+            Level = level;
+            Text = text;
+        }
+
+        public MessageLevel Level { get; private set; }
+        public string Text { get; private set; }
+
+        public override string ToString()
+        {
+            return Level + ": " + Text;
+        }
+
+        /// <summary>The message for a failure of a stage. A stale native library (a function
+        /// this wrapper calls is missing: EntryPointNotFoundException) and one built for another
+        /// processor or system (BadImageFormatException) are named as such, with where the
+        /// library was loaded from.</summary>
+        public static UserMessage For(Exception e)
+        {
+            if (e == null)
+                throw new ArgumentNullException("e");
+            var inner = e as AggregateException;
+            if (inner != null && inner.InnerExceptions.Count == 1)
+                return For(inner.InnerExceptions[0]);
+            if (e is TilePatternCanceledException || e is OperationCanceledException)
+                return new UserMessage(MessageLevel.Warning, "Cancelled.");
+            if (e is InvalidMeshException)
+                return new UserMessage(MessageLevel.Error, "The mesh was refused: " + ((TilePatternException)e).NativeMessage);
+            if (e is InvalidPatternException)
+                return new UserMessage(MessageLevel.Error, "The pattern does not fit this quad mesh (was it solved on another one?): " + ((TilePatternException)e).NativeMessage);
+            if (e is InvalidArgumentException)
+                return new UserMessage(MessageLevel.Error, "Invalid input: " + ((TilePatternException)e).NativeMessage);
+            if (e is NativePanicException)
+                return new UserMessage(MessageLevel.Error, "Internal error in the TilePattern library (please report it): " + ((TilePatternException)e).NativeMessage);
+            if (e is SolverTimeLimitException)
+                return new UserMessage(MessageLevel.Error, "The time limit passed before any result was ready; give it more time: " + ((TilePatternException)e).NativeMessage);
+            var tp = e as TilePatternException;
+            if (tp != null)
+                return new UserMessage(MessageLevel.Error, tp.Status + ": " + tp.NativeMessage);
+            if (e is EntryPointNotFoundException)
+                return new UserMessage(MessageLevel.Error, "The TilePattern native library" + Where() + " is older or newer than this plug-in: it lacks a function the plug-in calls ("
+                    + e.Message + "). Install the plug-in and its native library (runtimes/<platform>/native/) from the same release, and restart Rhino.");
+            if (e is BadImageFormatException)
+                return new UserMessage(MessageLevel.Error, "The TilePattern native library" + Where() + " is built for another processor or operating system than this Rhino ("
+                    + Architecture() + "): install the build for this platform (runtimes/<platform>/native/), and restart Rhino. (" + e.Message + ")");
+            if (e is DllNotFoundException)
+                return new UserMessage(MessageLevel.Error, e.Message);
+            if (e is ObjectDisposedException)
+                return new UserMessage(MessageLevel.Error, "The input was released: " + e.Message);
+            if (e is ArgumentException)
+                return new UserMessage(MessageLevel.Error, e.Message);
+            return new UserMessage(MessageLevel.Error, e.GetType().Name + ": " + e.Message);
+        }
+
+        static string Where()
+        {
+            try
+            {
+                string path = NativeLibraryLoader.LoadedPath;
+                return string.IsNullOrEmpty(path) ? "" : " (" + path + ")";
+            }
+            catch (Exception)
+            {
+                return "";
+            }
+        }
+
+        static string Architecture()
+        {
+            try
+            {
+                return System.Runtime.InteropServices.RuntimeInformation.OSDescription.Trim() + ", "
+                    + System.Runtime.InteropServices.RuntimeInformation.ProcessArchitecture;
+            }
+            catch (Exception)
+            {
+                return IntPtr.Size == 8 ? "64-bit" : "32-bit";
+            }
+        }
+    }
+}
