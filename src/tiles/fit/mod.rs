@@ -59,7 +59,7 @@ pub struct FitOptions {
 impl FitOptions {
     /// Defaults for a tile: the staggered bond, a bond tolerance of a tenth of the tile's
     /// length, overlaps up to a twentieth of the joint left (0.5 mm on a 10 mm joint; a
-    /// thousandth of the width without a joint), 10 s, 60 steps.
+    /// thousandth of the width without a joint), 10 s, 100 steps.
     pub fn for_spec(spec: &TileSpec) -> Self {
         let overlap_tolerance = if spec.joint > 0.0 { spec.joint / 20.0 } else { spec.width / 1000.0 };
         Self {
@@ -67,7 +67,7 @@ impl FitOptions {
             bond_tolerance: spec.length / 10.0,
             overlap_tolerance,
             time_limit: 10.0,
-            max_iterations: 60,
+            max_iterations: 100,
         }
     }
 

@@ -239,7 +239,7 @@ impl Problem<'_> {
             let mut z: Vec<Vector3<f64>> = r.iter().zip(&inverse).map(|(r, m)| m * r).collect();
             let mut p = z.clone();
             let mut rz = dot(&r, &z);
-            let target = rz.abs() * 1e-10;
+            let target = rz.abs() * CG_REDUCTION;
             let mut ap = vec![Vector3::zeros(); n];
             for round in 0..CG_ROUNDS {
                 if rz.abs() <= target {
@@ -272,11 +272,11 @@ impl Problem<'_> {
             }
             let before: Vec<Frame> = frames.to_vec();
             for t in 0..n {
-                frames[t] = self.moved(&frames[t], &step[t]);
+                frames[t] = self.moved(&frames[t], &clamped(&step[t], &self.sizes[t]));
             }
             let value = self.value(frames);
             if value < current {
-                calm = if current - value < 1e-6 * current.max(1e-300) { calm + 1 } else { 0 };
+                calm = if current - value < CALM * current.max(1e-300) { calm + 1 } else { 0 };
                 current = value;
                 mu = (mu / 3.0).max(1e-9);
                 if calm >= 2 {
@@ -317,7 +317,8 @@ impl Problem<'_> {
 /// that tiles of the outer courses can move out past it (they are cut to it later).
 pub(crate) fn place_on(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vector3<f64>, up: &Vector3<f64>) -> Frame {
     let (point, mut z) = match surface.closest(origin) {
-        Some(sp) if sp.on_boundary => {
+        // Beyond the edge the offset to the closest point runs along the surface, not across.
+        Some(sp) if sp.on_boundary || beside(&(origin - sp.point), &sp.face_normal) => {
             let off = origin - sp.point;
             (sp.point + off - sp.normal * sp.normal.dot(&off), sp.normal)
         }
@@ -333,6 +334,35 @@ pub(crate) fn place_on(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Ve
     });
     Frame { origin: point.into(), x, y: z.cross(&x), z }
 }
+
+/// `step` held within a trust region: a tile moves at most a quarter of its width and turns
+/// at most a twentieth of a radian per step, where the linearisation still holds; a longer
+/// step is shortened along its own direction.
+fn clamped(step: &Vector3<f64>, size: &[f64; 3]) -> Vector3<f64> {
+    let reach = size[1];
+    let scale = (reach / step.xy().norm().max(1e-300)).min(MAX_TURN / step.z.abs().max(1e-300)).min(1.0);
+    step * scale
+}
+
+/// Largest turn of a tile in one step, radians.
+const MAX_TURN: f64 = 0.2;
+
+/// Whether `offset` (from the closest surface point to a point) runs more along the surface
+/// than across it: over the surface it is along the normal (within the small normal cone of
+/// a fine mesh's edges and corners); beyond the surface's edge it runs sideways.
+fn beside(offset: &Vector3<f64>, normal: &Vector3<f64>) -> bool {
+    let across = normal.dot(offset).abs();
+    (offset - normal * normal.dot(offset)).norm() > across.max(1e-12)
+}
+
+/// A step that lowers the objective by less than this share of it is calm; two calm steps
+/// in a row end the fit (converged).
+const CALM: f64 = 1e-4;
+
+/// Conjugate gradients stop once the preconditioned residual has fallen to this share of
+/// its start (the squared norm to 1e-4): each step only needs to point the right way, the
+/// next step corrects it.
+const CG_REDUCTION: f64 = 1e-4;
 
 /// Most conjugate-gradient rounds per step.
 const CG_ROUNDS: usize = 4000;
