@@ -124,7 +124,7 @@ pub(crate) fn pure_quads(raw: Raw, locator: &Locator, t: f64, budget: &mut Budge
     if faces.is_empty() {
         return Err(RemeshError::NothingExtracted(t));
     }
-    Ok(Quads { positions: pos.iter().map(super::surface::point).collect(), faces })
+    Ok(Quads { positions: pos.iter().map(|&p| p.into()).collect(), faces })
 }
 
 /// Drops faces with (almost) no area whose corners all lie on the input boundary: slivers

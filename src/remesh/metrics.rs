@@ -39,7 +39,7 @@ pub struct Metrics {
 /// Measures `quads` against `input` at target edge `t`; works on any polygon mesh, e.g.
 /// QuadriFlow's output, so the acceptance table compares like with like.
 pub fn metrics(input: &PolyMesh, quads: &PolyMesh, target_edge: f64) -> Metrics {
-    let locator = Locator::from_polymesh(input, target_edge);
+    let locator = Locator::from_polymesh(input);
     metrics_with(&locator, input, quads, target_edge)
 }
 
@@ -123,7 +123,7 @@ pub(crate) fn metrics_with(locator: &Locator, input: &PolyMesh, quads: &PolyMesh
     }
 
     // Coverage: sample every input triangle and ask how far the quad mesh is.
-    let quad_locator = Locator::from_polymesh(quads, t);
+    let quad_locator = Locator::from_polymesh(quads);
     let mut covered = 0.0;
     let mut total = 0.0;
     for face in input.faces() {

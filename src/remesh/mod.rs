@@ -43,6 +43,7 @@ mod flow;
 mod linalg;
 mod metrics;
 mod position;
+mod refine;
 mod shapeup;
 mod surface;
 
@@ -241,7 +242,7 @@ pub fn remesh_with(input: &PolyMesh, options: &RemeshOptions, control: &mut Cont
     let frames = field::solve(&base, options, &mut budget);
     budget.check()?;
     budget.stage(0.15, 0.2);
-    let (work, mut work_frames) = surface::refine(&base, &frames, t);
+    let (work, mut work_frames) = refine::refine(&base, &frames, t);
     let rotation = match options.direction {
         FieldDirection::Angle(deg) => deg,
         _ => 0.0,
@@ -259,7 +260,7 @@ pub fn remesh_with(input: &PolyMesh, options: &RemeshOptions, control: &mut Cont
     if raw.faces.is_empty() {
         return Err(RemeshError::NothingExtracted(t));
     }
-    let locator = surface::Locator::new(&base, t);
+    let locator = surface::Locator::new(&base);
     budget.stage(0.82, 0.97);
     let mut quads = cleanup::pure_quads(raw, &locator, t, &mut budget)?;
     if options.shapeup && budget.stopped().is_none() {

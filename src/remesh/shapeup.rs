@@ -15,7 +15,7 @@ use super::budget::{Budget, Stop};
 use super::cleanup::{Anchors, Quads};
 use super::fit;
 use super::RemeshError;
-use super::surface::{Locator, point};
+use super::surface::Locator;
 
 /// Shares of the shape-up move tried, each half the one before.
 const SHARE_HALVINGS: i32 = 4;
@@ -79,7 +79,7 @@ pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usiz
         fit::conform(&mut trial, faces, &anchors, locator, t);
         fit::shorten_boundary_chords(&mut trial, faces, &anchors, locator, tolerance * t);
         if worst(&trial) <= allowed {
-            return Ok(Quads { positions: trial.iter().map(point).collect(), faces: faces.clone() });
+            return Ok(Quads { positions: trial.iter().map(|&p| p.into()).collect(), faces: faces.clone() });
         }
     }
     Ok(quads.clone())

@@ -1,0 +1,121 @@
+//! Refinement of the working surface for the position field: Instant Meshes samples the
+//! lattice on vertices, so edges must be clearly shorter than `t`: midpoint subdivision, then
+//! bisection of any edge still longer than 3/4 t, as slivers have.
+
+use nalgebra::Vector3;
+
+use super::field::match_rosy;
+use super::surface::{Surface, any_tangent};
+
+/// The midpoint of edge `a`-`b` of `surface` with its normal and cross frame (`frames[a]`
+/// averaged with `frames[b]` turned to match it), for refining the working surface.
+fn edge_midpoint(surface: &Surface, frames: &[Vector3<f64>], a: usize, b: usize) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    let n = (surface.normals[a] + surface.normals[b]).try_normalize(1e-300).unwrap_or(surface.normals[a]);
+    let o = frames[a] + match_rosy(&frames[a], &frames[b], &surface.normals[b]);
+    let o = (o - n * n.dot(&o)).try_normalize(1e-300).unwrap_or_else(|| any_tangent(&n));
+    ((surface.pos[a] + surface.pos[b]) * 0.5, n, o)
+}
+
+/// Midpoint-subdivides `base` (flat, so the surface does not move) until the mean edge is at
+/// most `t / 2`, interpolating the orientation field `frames` (one tangent vector per vertex,
+/// a 4-RoSy representative) and the normals onto the new vertices.
+pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surface, Vec<Vector3<f64>>) {
+    let limit = 3_000_000usize;
+    let mut surface = base.clone();
+    let mut frames = frames.to_vec();
+    while surface.mean_edge > t / 2.0 && surface.tris.len() * 4 <= limit {
+        let mut pos = surface.pos.clone();
+        let mut normals = surface.normals.clone();
+        let mut fine_frames = frames.clone();
+        let mut mid = vec![0usize; surface.edges.len()];
+        for (e, &[a, b]) in surface.edges.iter().enumerate() {
+            mid[e] = pos.len();
+            let (p, n, o) = edge_midpoint(&surface, &frames, a, b);
+            pos.push(p);
+            normals.push(n);
+            fine_frames.push(o);
+        }
+        let edge_of = |a: usize, b: usize| -> usize {
+            let list = &surface.adj[a];
+            let k = list.partition_point(|&(v, _)| v < b);
+            mid[list[k].1]
+        };
+        let mut tris = Vec::with_capacity(surface.tris.len() * 4);
+        for &[a, b, c] in &surface.tris {
+            let (ab, bc, ca) = (edge_of(a, b), edge_of(b, c), edge_of(c, a));
+            tris.push([a, ab, ca]);
+            tris.push([ab, b, bc]);
+            tris.push([ca, bc, c]);
+            tris.push([ab, bc, ca]);
+        }
+        surface = Surface::build(pos, tris, Some(normals));
+        frames = fine_frames;
+    }
+    // Slivers (long thin triangles, common where a coarse mesh was subdivided around a
+    // support) keep edges far longer than the mean: the lattice cannot be read across an edge
+    // several quads long, so such edges are bisected until none is.
+    let long = LONG_EDGE * t;
+    while surface.tris.len() * 2 <= limit {
+        let marked: Vec<bool> = surface.edges.iter().map(|&[a, b]| (surface.pos[a] - surface.pos[b]).norm() > long).collect();
+        if !marked.iter().any(|&m| m) {
+            break;
+        }
+        let mut pos = surface.pos.clone();
+        let mut normals = surface.normals.clone();
+        let mut fine_frames = frames.clone();
+        let mut mid = vec![usize::MAX; surface.edges.len()];
+        for (e, &[a, b]) in surface.edges.iter().enumerate() {
+            if !marked[e] {
+                continue;
+            }
+            mid[e] = pos.len();
+            let (p, n, o) = edge_midpoint(&surface, &frames, a, b);
+            pos.push(p);
+            normals.push(n);
+            fine_frames.push(o);
+        }
+        let mid_of = |a: usize, b: usize| -> usize {
+            let list = &surface.adj[a];
+            let k = list.partition_point(|&(v, _)| v < b);
+            mid[list[k].1]
+        };
+        let mut tris = Vec::with_capacity(surface.tris.len() * 2);
+        for &tri in &surface.tris {
+            let m = [0, 1, 2].map(|k| mid_of(tri[k], tri[(k + 1) % 3]));
+            let count = m.iter().filter(|&&x| x != usize::MAX).count();
+            match count {
+                0 => tris.push(tri),
+                3 => {
+                    let [a, b, c] = tri;
+                    let [ab, bc, ca] = m;
+                    tris.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+                }
+                _ => {
+                    // Rotate so the first split edge is tri[0]-tri[1].
+                    let k = (0..3).find(|&k| m[k] != usize::MAX && (count == 1 || m[(k + 1) % 3] != usize::MAX)).unwrap_or(0);
+                    let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+                    let (ab, bc) = (m[k], m[(k + 1) % 3]);
+                    if count == 1 {
+                        tris.extend([[a, ab, c], [ab, b, c]]);
+                    } else {
+                        // Edges ab and bc split: corner triangle at b, the rest cut along the
+                        // shorter diagonal.
+                        tris.push([ab, b, bc]);
+                        if (pos[ab] - pos[c]).norm() <= (pos[bc] - pos[a]).norm() {
+                            tris.extend([[a, ab, c], [ab, bc, c]]);
+                        } else {
+                            tris.extend([[a, ab, bc], [a, bc, c]]);
+                        }
+                    }
+                }
+            }
+        }
+        surface = Surface::build(pos, tris, Some(normals));
+        frames = fine_frames;
+    }
+    surface.set_boundary_scale(t * 0.5);
+    (surface, frames)
+}
+
+/// Longest edge of the working surface, as a fraction of the target edge.
+const LONG_EDGE: f64 = 0.75;
