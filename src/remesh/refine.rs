@@ -119,3 +119,76 @@ pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surfac
 
 /// Longest edge of the working surface, as a fraction of the target edge.
 const LONG_EDGE: f64 = 0.75;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::remesh::surface::Locator;
+
+    /// A fine patch of 20 x 20 cells of 0.05 on a saddle, with a fan of slivers over 2 units
+    /// to one far point along its right edge: the mean edge is short, the slivers' are long.
+    fn patch_with_slivers() -> Surface {
+        let n = 20;
+        let at = |i: usize, j: usize| j * (n + 1) + i;
+        let mut pos: Vec<Vector3<f64>> = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| (i as f64 * 0.05, j as f64 * 0.05)))
+            .map(|(x, y)| Vector3::new(x, y, 0.2 * (x - 0.5) * (y - 0.5)))
+            .collect();
+        let mut tris = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        pos.push(Vector3::new(3.0, 0.5, 0.3));
+        let far = pos.len() - 1;
+        for j in 0..n {
+            tris.push([at(n, j + 1), at(n, j), far]);
+        }
+        Surface::build(pos, tris, None)
+    }
+
+    fn area(s: &Surface) -> f64 {
+        s.tris.iter().map(|&[a, b, c]| s.edge_vec(a, b).cross(&s.edge_vec(a, c)).norm() / 2.0).sum()
+    }
+
+    #[test]
+    fn refinement_keeps_every_edge_below_three_quarters_of_t_and_the_surface_in_place() {
+        let base = patch_with_slivers();
+        let frames: Vec<Vector3<f64>> = base.normals.iter().map(any_tangent).collect();
+        let on_base = Locator::new(&base);
+        let longest = |s: &Surface| s.edges.iter().map(|&[a, b]| s.edge_vec(a, b).norm()).fold(0.0, f64::max);
+        assert!(longest(&base) > 2.0);
+        // t = 0.4: the mean edge is short enough already, only the slivers are bisected;
+        // t = 0.06: the whole surface is subdivided first.
+        for t in [0.4, 0.06] {
+            let (fine, fine_frames) = refine(&base, &frames, t);
+            assert!(fine.tris.len() > base.tris.len());
+            assert!(longest(&fine) <= LONG_EDGE * t, "t = {t}: longest edge {}", longest(&fine));
+            assert!(fine.mean_edge <= t / 2.0);
+            // Flat subdivision: every vertex on the input, the same area and outline.
+            assert!(fine.pos.iter().all(|p| on_base.distance(p) < 1e-12));
+            assert!((area(&fine) - area(&base)).abs() < 1e-9 * area(&base));
+            let outline = |s: &Surface| s.boundary_loops().iter().map(|lp| lp.length).collect::<Vec<_>>();
+            let (a, b) = (outline(&fine), outline(&base));
+            assert!(a.len() == 1 && b.len() == 1 && (a[0] - b[0]).abs() < 1e-9);
+            // The field goes along: a unit tangent per vertex, the old ones unchanged.
+            assert_eq!(fine_frames.len(), fine.len());
+            assert_eq!(fine_frames[..frames.len()], frames[..]);
+            for (o, n) in fine_frames.iter().zip(&fine.normals) {
+                assert!((o.norm() - 1.0).abs() < 1e-9 && o.dot(n).abs() < 1e-9 && (n.norm() - 1.0).abs() < 1e-9);
+            }
+            // It comes back at the boundary scale of t: the patch's corners, the far tip.
+            assert!(fine.corner.iter().any(|&c| c));
+        }
+    }
+
+    #[test]
+    fn a_surface_fine_enough_already_is_left_as_it_is() {
+        let base = patch_with_slivers();
+        let frames: Vec<Vector3<f64>> = base.normals.iter().map(any_tangent).collect();
+        let (same, same_frames) = refine(&base, &frames, 4.0);
+        assert_eq!((same.pos, same.tris, same_frames), (base.pos, base.tris, frames));
+    }
+}

@@ -233,3 +233,87 @@ const NARROW_RATIO: f64 = 2.5;
 
 /// Cosine of the turning angle (50 degrees) above which a boundary vertex is a corner.
 const CORNER_COS: f64 = 0.642_787_609_686_539_3;
+
+#[cfg(test)]
+mod tests {
+    use super::super::samples::sheet;
+    use super::*;
+    use crate::geom::polygon;
+
+    /// Counter-clockwise area of a loop seen from above.
+    fn area(s: &Surface, lp: &BoundaryLoop) -> f64 {
+        polygon::signed_area(&lp.vertices.iter().map(|&v| [s.pos[v].x, s.pos[v].y]).collect::<Vec<_>>())
+    }
+
+    #[test]
+    fn a_sheet_with_a_hole_has_two_loops_of_the_right_lengths() {
+        // 10 x 10 cells of 0.5, a hole of 4 x 2 cells: loops of 20 and 6 edges.
+        let s = sheet(10, 0.5, (3..7, 4..6), |_, _| 0.0);
+        let loops = s.boundary_loops();
+        assert_eq!(loops.len(), 2);
+        let (outer, hole) = (&loops[0], &loops[1]);
+        assert_eq!((outer.vertices.len(), hole.vertices.len()), (40, 12));
+        assert!((outer.length - 20.0).abs() < 1e-12 && (hole.length - 6.0).abs() < 1e-12);
+        // Faces on the left: the outline runs counter-clockwise, the hole clockwise.
+        assert!((area(&s, outer) - 25.0).abs() < 1e-12 && (area(&s, hole) + 2.0).abs() < 1e-12);
+        for lp in &loops {
+            assert_eq!(lp.arcs[0], 0.0);
+            assert_eq!(lp.vertices[0], *lp.vertices.iter().min().unwrap(), "starts at its lowest vertex");
+            for k in 1..lp.vertices.len() {
+                let step = (s.pos[lp.vertices[k]] - s.pos[lp.vertices[k - 1]]).norm();
+                assert!((lp.arcs[k] - lp.arcs[k - 1] - step).abs() < 1e-12 && (step - 0.5).abs() < 1e-12);
+                assert_eq!(s.boundary[lp.vertices[k - 1]].unwrap().1, lp.vertices[k]);
+            }
+        }
+        // Every boundary vertex is on exactly one loop, and nothing else is.
+        let mut on_loop: Vec<usize> = loops.iter().flat_map(|lp| lp.vertices.iter().copied()).collect();
+        on_loop.sort_unstable();
+        let boundary: Vec<usize> = (0..s.len()).filter(|&v| s.boundary[v].is_some()).collect();
+        assert_eq!(on_loop, boundary);
+        assert_eq!(s.boundary_segments().len(), 52);
+    }
+
+    #[test]
+    fn the_corners_of_an_outline_and_a_hole_are_found_and_nothing_else() {
+        let mut s = sheet(12, 0.5, (4..8, 5..8), |_, _| 0.0);
+        s.set_boundary_scale(0.25);
+        let corners: Vec<[f64; 2]> = (0..s.len()).filter(|&v| s.is_corner(v)).map(|v| [s.pos[v].x, s.pos[v].y]).collect();
+        let mut expected: Vec<[f64; 2]> = vec![[0.0, 0.0], [6.0, 0.0], [0.0, 6.0], [6.0, 6.0], [2.0, 2.5], [4.0, 2.5], [2.0, 4.0], [4.0, 4.0]];
+        expected.sort_by(|a, b| a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0])));
+        let mut found = corners.clone();
+        found.sort_by(|a, b| a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0])));
+        assert_eq!(found, expected);
+        assert!(!s.narrow.iter().any(|&n| n), "no part is narrower than the scale");
+        // Boundary directions follow the outline: along +x on the bottom edge.
+        let v = (0..s.len()).find(|&v| s.pos[v].x == 3.0 && s.pos[v].y == 0.0).unwrap();
+        let (din, dout) = s.bdirs[v].unwrap();
+        assert!(din.normalize().x > 0.999 && dout.normalize().x > 0.999);
+        // Both loops have corners, so Auto aligns both; Never aligns none.
+        let boundary: Vec<bool> = s.boundary.iter().map(Option::is_some).collect();
+        assert_eq!(s.aligned_boundary(BoundaryAlignment::Auto), boundary);
+        assert_eq!(s.aligned_boundary(BoundaryAlignment::Always), boundary);
+        assert!(!s.aligned_boundary(BoundaryAlignment::Never).iter().any(|&a| a));
+    }
+
+    #[test]
+    fn a_slot_narrower_than_the_scale_is_narrow_and_left_unaligned() {
+        // A slot one cell wide cut from the top edge down to half the sheet's height.
+        let cell = 0.25;
+        let mut s = sheet(12, cell, (6..7, 6..12), |_, _| 0.0);
+        s.set_boundary_scale(1.5 * cell);
+        let aligned = s.aligned_boundary(BoundaryAlignment::Always);
+        for v in (0..s.len()).filter(|&v| s.boundary[v].is_some()) {
+            let (x, y) = (s.pos[v].x, s.pos[v].y);
+            let slot_side = (x == 1.5 || x == 1.75) && y >= 2.0;
+            let far = y == 0.0 || x == 0.0 || x == 3.0;
+            if slot_side {
+                assert!(s.narrow[v], "slot side at ({x}, {y}) is narrow");
+                assert!(!s.corner[v] && !aligned[v]);
+            }
+            if far {
+                assert!(!s.narrow[v], "outline at ({x}, {y}) is not narrow");
+                assert!(aligned[v]);
+            }
+        }
+    }
+}

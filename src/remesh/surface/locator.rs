@@ -172,3 +172,111 @@ impl Locator {
         self.closest_boundary_at(p).map(|b| b.point)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::samples::{numbers, sheet, wavy};
+    use super::*;
+
+    /// A curved sheet (2 x 2) with a hole, at its boundary scale, and its locator.
+    fn holed() -> (Surface, Locator) {
+        let mut surface = sheet(16, 0.125, (5..9, 6..11), wavy);
+        surface.set_boundary_scale(0.1);
+        let locator = Locator::new(&surface);
+        (surface, locator)
+    }
+
+    /// Query points around the sheet: over and under it, inside the hole, beyond the rim.
+    fn queries(seed: u64, count: usize) -> Vec<Vector3<f64>> {
+        let mut rnd = numbers(seed);
+        (0..count).map(|_| Vector3::new(rnd() * 3.0 - 0.5, rnd() * 3.0 - 0.5, rnd() * 1.2 - 0.6)).collect()
+    }
+
+    #[test]
+    fn closest_point_on_the_surface_is_the_scan_over_all_triangles() {
+        let (surface, locator) = holed();
+        for p in queries(11, 400) {
+            // Brute force: the nearest of all triangles, ties to the lower triangle.
+            let (d2, i, q) = surface
+                .tris
+                .iter()
+                .enumerate()
+                .map(|(i, &[a, b, c])| {
+                    let q = closest::on_triangle(&p, &surface.pos[a], &surface.pos[b], &surface.pos[c]);
+                    ((q - p).norm_squared(), i, q)
+                })
+                .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+                .unwrap();
+            let (found, normal) = locator.closest(&p);
+            assert_eq!(found, q, "query {p:?}");
+            assert!((locator.distance(&p) - d2.sqrt()).abs() < 1e-12);
+            let [a, b, c] = surface.tris[i];
+            let face = (surface.pos[b] - surface.pos[a]).cross(&(surface.pos[c] - surface.pos[a])).normalize();
+            assert!((normal - face).norm() < 1e-12 && normal.z > 0.0);
+        }
+    }
+
+    #[test]
+    fn closest_point_on_the_boundary_is_the_scan_over_all_boundary_edges() {
+        let (surface, locator) = holed();
+        let loops = surface.boundary_loops();
+        let segments = surface.boundary_segments();
+        for p in queries(12, 400) {
+            let (_, i, q) = segments
+                .iter()
+                .enumerate()
+                .map(|(i, &[a, b])| {
+                    let q = closest::on_segment(&p, &surface.pos[a], &surface.pos[b]);
+                    ((q - p).norm_squared(), i, q)
+                })
+                .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+                .unwrap();
+            assert_eq!(locator.closest_boundary(&p), Some(q), "query {p:?}");
+            // Its place along its loop names the same point.
+            let at = locator.closest_boundary_at(&p).unwrap();
+            let lp = loops.iter().position(|lp| lp.vertices.contains(&segments[i][0])).unwrap();
+            assert_eq!((at.lp, at.point), (lp, q));
+            assert!(at.arc >= 0.0 && at.arc <= locator.loop_length(lp));
+            assert!((locator.boundary_point(lp, at.arc) - q).norm() < 1e-12);
+            // The nearest point of a window of the whole loop is that point too.
+            // (At the loop's first vertex the offset may read 0 or the loop's length.)
+            let length = locator.loop_length(lp);
+            let (offset, r) = locator.closest_on_arc(lp, 0.0, length, &p);
+            let apart = (offset - at.arc).rem_euclid(length);
+            assert!(((r - p).norm() - (q - p).norm()).abs() < 1e-12 && apart.min(length - apart) < 1e-9);
+        }
+    }
+
+    #[test]
+    fn loops_lengths_and_points_along_them() {
+        let (surface, locator) = holed();
+        let loops = surface.boundary_loops();
+        assert_eq!(loops.len(), 2);
+        for (id, lp) in loops.iter().enumerate() {
+            assert_eq!(locator.loop_length(id), lp.length);
+            // Arc lengths land on the loop's vertices, and wrap around.
+            for (&v, &arc) in lp.vertices.iter().zip(&lp.arcs) {
+                assert!((locator.boundary_point(id, arc) - surface.pos[v]).norm() < 1e-12);
+                assert!((locator.boundary_point(id, arc - lp.length) - surface.pos[v]).norm() < 1e-12);
+            }
+        }
+        // The outline's four corners, the hole's four.
+        assert_eq!(locator.corners().len(), 8);
+        // A window of the loop that leaves out the nearest point yields the nearest within it.
+        let start = surface.pos[loops[0].vertices[0]];
+        let (offset, q) = locator.closest_on_arc(0, 0.5, 1.0, &start);
+        assert!(offset.abs() < 1e-12 && (q - locator.boundary_point(0, 0.5)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn a_surface_without_boundary_or_triangles_answers_without_panicking() {
+        // The closed surface of a tetrahedron has no boundary.
+        let pos = vec![Vector3::zeros(), Vector3::x(), Vector3::y(), Vector3::z()];
+        let tetrahedron = Surface::build(pos, vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]], None);
+        let locator = Locator::new(&tetrahedron);
+        assert!(locator.closest_boundary(&Vector3::repeat(2.0)).is_none());
+        assert!((locator.closest(&Vector3::repeat(2.0)).0 - Vector3::repeat(1.0 / 3.0)).norm() < 1e-12);
+        let empty = Locator::new(&Surface::build(Vec::new(), Vec::new(), None));
+        assert_eq!(empty.closest(&Vector3::x()), (Vector3::x(), Vector3::z()));
+    }
+}
