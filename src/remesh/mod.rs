@@ -4,7 +4,9 @@
 //! The route is the field-guided one the paper describes, after Instant Meshes (Jakob,
 //! Tarini, Panozzo, Sorkine-Hornung, "Instant field-aligned meshes", SIGGRAPH Asia 2015) and
 //! QuadriFlow (Huang, Zhou, Niessner, Guibas, "QuadriFlow: a scalable and robust method for
-//! quadrangulation", SGP 2018):
+//! quadrangulation", SGP 2018). Every step works on the [`surface`]: the triangulated input
+//! with its adjacency, its boundary loops (corners, narrow parts) and a closest-point
+//! locator on it.
 //!
 //! 1. [`field`]: a 4-RoSy orientation field, the globally smoothest one (Knöppel et al. 2013
 //!    style complex representation, solved by conjugate gradients) that follows principal
@@ -16,14 +18,16 @@
 //!    integer lattice jumps that are re-rounded between solves (the Instant Meshes energy,
 //!    with QuadriFlow's idea of fixing integer offsets globally), with boundary lattice
 //!    lines pinned onto the boundary; the working surface is refined until no edge is longer
-//!    than three quarters of a quad;
+//!    than three quarters of a quad ([`refine`]);
 //! 3. [`extract`]: vertices sharing a lattice point are collapsed, unit lattice offsets become
 //!    quad edges, faces are traced in the tangent plane;
 //! 4. [`cleanup`]: holes are filled, non-quads paired and split, doublets merged, so that the
 //!    result is a pure, manifold quad mesh; then [`fit`]: where the quads stop short of the
 //!    input boundary the boundary row is extended onto it, boundary vertices go onto the
 //!    input boundary and every vertex onto the surface, faces that still leave the surface
-//!    are pulled back, peeled and re-extended, or halved along their quad strip;
+//!    are pulled back, peeled and re-extended, or halved along their quad strip. Both keep
+//!    the same [`anchors`] (boundary vertices on the boundary, corners on corners) and work
+//!    on the face list through [`quadmesh`];
 //! 5. [`shapeup`] (optional): local-global iterations towards squares of side `t`
 //!    (Bouaziz et al., "Shape-Up", SGP 2012, as used in the paper via libigl), projected back
 //!    onto the input after every step;
@@ -34,6 +38,7 @@
 //! Everything is deterministic: iteration is in index order, no hash-map order reaches a
 //! result and no threads are used.
 
+mod anchors;
 mod budget;
 mod cleanup;
 mod extract;
@@ -43,6 +48,7 @@ mod flow;
 mod linalg;
 mod metrics;
 mod position;
+mod quadmesh;
 mod refine;
 mod shapeup;
 mod surface;

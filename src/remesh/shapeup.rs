@@ -12,7 +12,8 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::budget::{Budget, Stop};
-use super::cleanup::{Anchors, Quads};
+use super::anchors::Anchors;
+use super::cleanup::Quads;
 use super::fit;
 use super::RemeshError;
 use super::surface::Locator;
