@@ -59,3 +59,34 @@ impl Anchors {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::remesh::quadmesh::samples::{grid, lines};
+    use crate::remesh::surface::samples::sheet;
+
+    #[test]
+    fn corners_pin_the_nearest_boundary_vertex_and_projection_keeps_the_boundary() {
+        // A 2 x 2 input, and a grid of quads inset by 0.1 on it.
+        let mut input = sheet(4, 0.5, (0..0, 0..0), |_, _| 0.0);
+        input.set_boundary_scale(0.25);
+        let locator = Locator::new(&input);
+        let (mut pos, faces) = grid(&lines(0.1, 1.9, 4), &lines(0.1, 1.9, 4));
+        let anchors = Anchors::new(&mut pos, &faces, &locator, 0.5);
+        let corners = [0, 4, 20, 24];
+        for v in 0..pos.len() {
+            assert_eq!(anchors.pinned[v], corners.contains(&v));
+            let (i, j) = (v % 5, v / 5);
+            let on_rim = i == 0 || i == 4 || j == 0 || j == 4;
+            assert_eq!(anchors.bnbrs[v].len(), if on_rim { 2 } else { 0 });
+            let expected = if corners.contains(&v) { 2 } else if on_rim { 3 } else { 4 };
+            assert_eq!(anchors.nbrs[v].len(), expected);
+        }
+        assert_eq!(pos[24], Vector3::new(2.0, 2.0, 0.0), "moved onto the input's corner");
+        // A rim vertex goes onto the input's edge, an inner one onto the surface.
+        let p = Vector3::new(0.1, 0.9, 0.3);
+        assert!((anchors.project(&locator, 10, &p) - Vector3::new(0.0, 0.9, 0.0)).norm() < 1e-12);
+        assert!((anchors.project(&locator, 12, &p) - Vector3::new(0.1, 0.9, 0.0)).norm() < 1e-12);
+    }
+}

@@ -109,3 +109,100 @@ pub(super) fn quad_cost(pos: &[Vector3<f64>], q: [usize; 4]) -> f64 {
     }
     cost
 }
+
+/// Quad meshes for the remesher's unit tests.
+#[cfg(test)]
+pub(crate) mod samples {
+    use nalgebra::Vector3;
+
+    /// A grid of quads in the plane z = 0 over the lines `x = xs[i]` and `y = ys[j]`,
+    /// counter-clockwise seen from above; vertex `(i, j)` is `j * xs.len() + i`, face `(i, j)`
+    /// is `j * (xs.len() - 1) + i`.
+    pub fn grid(xs: &[f64], ys: &[f64]) -> (Vec<Vector3<f64>>, Vec<Vec<usize>>) {
+        let nx = xs.len();
+        let pos = ys.iter().flat_map(|&y| xs.iter().map(move |&x| Vector3::new(x, y, 0.0))).collect();
+        let at = |i: usize, j: usize| j * nx + i;
+        let faces = (0..ys.len() - 1)
+            .flat_map(|j| (0..nx - 1).map(move |i| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]))
+            .collect();
+        (pos, faces)
+    }
+
+    /// `n + 1` evenly spaced lines from `from` to `to`.
+    pub fn lines(from: f64, to: f64, n: usize) -> Vec<f64> {
+        (0..=n).map(|k| from + (to - from) * k as f64 / n as f64).collect()
+    }
+
+    /// Per vertex: how many edges meet there.
+    pub fn valences(n: usize, faces: &[Vec<usize>]) -> Vec<usize> {
+        let mut valence = vec![0; n];
+        for &(a, b) in super::edge_faces(faces).keys() {
+            valence[a] += 1;
+            valence[b] += 1;
+        }
+        valence
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::samples::{grid, lines};
+    use super::*;
+
+    #[test]
+    fn edges_know_their_faces() {
+        let (_, faces) = grid(&lines(0.0, 2.0, 2), &lines(0.0, 2.0, 2));
+        let map = edge_faces(&faces);
+        assert_eq!(map.len(), 12);
+        assert_eq!(map.values().filter(|l| l.len() == 2).count(), 4);
+        assert_eq!(map[&key(4, 1)], vec![0, 1]);
+        assert_eq!(key(7, 3), (3, 7));
+    }
+
+    #[test]
+    fn boundary_loops_of_a_ring_and_of_a_figure_eight() {
+        // 3 x 3 quads without the middle one: the outline and the hole.
+        let (_, mut faces) = grid(&lines(0.0, 3.0, 3), &lines(0.0, 3.0, 3));
+        faces.remove(4);
+        let mut loops = boundary_loops(&faces);
+        loops.sort_by_key(Vec::len);
+        assert_eq!(loops.iter().map(Vec::len).collect::<Vec<_>>(), vec![4, 12]);
+        // Faces on the left: the outline runs 0 -> 1 -> 2, the hole 5 -> 9 -> 10.
+        let follows = |lp: &[usize], a: usize, b: usize| (0..lp.len()).any(|i| lp[i] == a && lp[(i + 1) % lp.len()] == b);
+        assert!(follows(&loops[1], 0, 1) && follows(&loops[1], 1, 2));
+        assert!(follows(&loops[0], 5, 9) && follows(&loops[0], 9, 10));
+        // Two quads touching at vertex 2: one walk, split into two simple loops.
+        let faces = vec![vec![0, 1, 2, 3], vec![2, 4, 5, 6]];
+        let mut loops = boundary_loops(&faces);
+        loops.iter_mut().for_each(|lp| lp.sort_unstable());
+        loops.sort();
+        assert_eq!(loops, vec![vec![0, 1, 2, 3], vec![2, 4, 5, 6]]);
+    }
+
+    #[test]
+    fn compaction_drops_unused_vertices_in_order_of_use() {
+        let pos: Vec<Vector3<f64>> = (0..6).map(|k| Vector3::new(k as f64, 0.0, 0.0)).collect();
+        let (pos, faces) = compact(pos, vec![vec![5, 1, 3, 4]]);
+        assert_eq!(faces, vec![vec![0, 1, 2, 3]]);
+        assert_eq!(pos.iter().map(|p| p.x).collect::<Vec<_>>(), vec![5.0, 1.0, 3.0, 4.0]);
+    }
+
+    #[test]
+    fn a_square_costs_nothing_a_skewed_quad_its_angles_a_folded_one_more() {
+        let pos = vec![
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(1.0, 0.0, 0.0),
+            Vector3::new(1.0, 1.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.0),
+            Vector3::new(1.5, 1.0, 0.0),
+            Vector3::new(0.5, 1.0, 0.0),
+            Vector3::new(0.3, 0.3, 0.0),
+        ];
+        assert!(quad_cost(&pos, [0, 1, 2, 3]).abs() < 1e-12);
+        // A parallelogram with corners of 63.4 and 116.6 degrees: four times 26.6 degrees.
+        let skew = quad_cost(&pos, [0, 1, 4, 5]);
+        assert!((skew - 4.0 * (0.5f64).atan()).abs() < 1e-12);
+        // A dart: its reflex corner costs a half turn on top of its angles.
+        assert!(quad_cost(&pos, [0, 1, 6, 3]) > std::f64::consts::PI);
+    }
+}

@@ -9,8 +9,9 @@ use nalgebra::Vector3;
 use crate::remesh::quadmesh::{edge_faces, key};
 
 /// Components with fewer faces than this are dropped (stray faces of a garbled lattice).
-pub(super) const MIN_COMPONENT: usize = 4;
+const MIN_COMPONENT: usize = 4;
 
+/// Whether face `f` visits no vertex twice.
 pub(super) fn distinct(f: &[usize]) -> bool {
     f.iter().enumerate().all(|(i, v)| !f[i + 1..].contains(v))
 }
@@ -116,5 +117,55 @@ pub(super) fn split_pinched_vertices(pos: &mut Vec<Vector3<f64>>, faces: &mut [V
             });
             faces[fi][i] = copy;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::remesh::quadmesh::boundary_loops;
+    use crate::remesh::quadmesh::samples::{grid, lines};
+
+    #[test]
+    fn faces_that_repeat_a_vertex_or_a_directed_edge_go() {
+        assert!(distinct(&[0, 1, 2, 3]) && !distinct(&[0, 1, 2, 1]));
+        // The third face runs 1 -> 2 as the first does (a crossing link); the second runs
+        // 2 -> 1, as a neighbour should.
+        let mut faces = vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2], vec![1, 2, 6, 7]];
+        make_edge_manifold(&mut faces);
+        assert_eq!(faces, vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2]]);
+    }
+
+    #[test]
+    fn components_of_fewer_than_four_faces_go() {
+        let (_, mut faces) = grid(&lines(0.0, 2.0, 2), &lines(0.0, 2.0, 2));
+        // Three stray faces in a row, apart from the 2 x 2 block.
+        faces.extend([vec![20, 21, 31, 30], vec![21, 22, 32, 31], vec![22, 23, 33, 32]]);
+        let block = faces[..4].to_vec();
+        drop_small_components(&mut faces);
+        assert_eq!(faces, block);
+        // Faces touching at a vertex only are separate components.
+        let mut touching = vec![vec![0, 1, 2, 3], vec![2, 4, 5, 6]];
+        drop_small_components(&mut touching);
+        assert!(touching.is_empty());
+    }
+
+    #[test]
+    fn two_fans_at_one_vertex_get_a_vertex_each() {
+        // Two 2 x 2 blocks touching at one corner: (2, 2) of the first is (0, 0) of the second.
+        let (mut pos, mut faces) = grid(&lines(0.0, 2.0, 2), &lines(0.0, 2.0, 2));
+        let (pos2, faces2) = grid(&lines(2.0, 4.0, 2), &lines(2.0, 4.0, 2));
+        let shift = pos.len();
+        pos.extend(pos2);
+        faces.extend(faces2.into_iter().map(|f| f.into_iter().map(|v| if v == 0 { 8 } else { v + shift }).collect::<Vec<_>>()));
+        assert_eq!(boundary_loops(&faces).len(), 2, "one walk through vertex 8, split in two");
+        let before = pos.len();
+        split_pinched_vertices(&mut pos, &mut faces);
+        assert_eq!(pos.len(), before + 1);
+        assert_eq!(pos[before], pos[8]);
+        assert!(faces[..4].iter().any(|f| f.contains(&8)) && faces[4..].iter().all(|f| !f.contains(&8)));
+        assert!(faces[4..].iter().any(|f| f.contains(&before)));
+        // A vertex inside a block is shared by faces that share edges: left alone.
+        assert!(faces[..4].iter().filter(|f| f.contains(&4)).count() == 4);
     }
 }

@@ -108,3 +108,63 @@ fn relax(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], locator: &Locator, t: f
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::time::{Duration, Instant};
+
+    use super::*;
+    use crate::control::Control;
+    use crate::remesh::quadmesh::samples::{grid, lines};
+    use crate::remesh::surface::samples::sheet;
+
+    /// Locator of a flat 2 x 2 input at the boundary scale of `t`.
+    fn flat(t: f64) -> Locator {
+        let mut input = sheet(8, 0.25, (0..0, 0..0), |_, _| 0.0);
+        input.set_boundary_scale(t / 2.0);
+        Locator::new(&input)
+    }
+
+    /// Whether vertex `v` is on a boundary edge of `faces`.
+    fn rim(faces: &[Vec<usize>], v: usize) -> bool {
+        boundary_loops(faces).iter().any(|lp| lp.contains(&v))
+    }
+
+    #[test]
+    fn relaxing_puts_the_rim_on_the_input_boundary_and_the_rest_on_the_surface() {
+        let locator = flat(0.5);
+        let (mut pos, faces) = grid(&lines(0.1, 1.9, 4), &lines(0.1, 1.9, 4));
+        for (k, p) in pos.iter_mut().enumerate() {
+            p.z = 0.05 * ((k * 7) % 5) as f64 - 0.1;
+        }
+        relax(&mut pos, &faces, &locator, 0.5, 6);
+        for (v, p) in pos.iter().enumerate() {
+            assert!(p.z.abs() < 1e-12, "on the surface");
+            let on_outline = p.x.abs() < 1e-12 || p.y.abs() < 1e-12 || (p.x - 2.0).abs() < 1e-12 || (p.y - 2.0).abs() < 1e-12;
+            assert_eq!(on_outline, rim(&faces, v), "vertex {v} at {p:?}");
+        }
+        for c in [0, 4, 20, 24] {
+            assert!([0.0, 2.0].contains(&pos[c].x) && [0.0, 2.0].contains(&pos[c].y), "corner {c} on an input corner");
+        }
+    }
+
+    #[test]
+    fn quads_short_of_the_boundary_are_extended_onto_it() {
+        // Quads of t = 0.25 cover [0, 2] x [0, 1.5] of the 2 x 2 input: two rows short of its
+        // far edge.
+        let t = 0.25;
+        let locator = flat(t);
+        let (mut pos, mut faces) = grid(&lines(0.0, 2.0, 8), &lines(0.0, 1.5, 6));
+        let short = faces.len();
+        let mut control = Control::none();
+        let mut budget = Budget::new(&mut control, Instant::now(), Duration::from_secs(60));
+        snap_and_peel(&mut pos, &mut faces, &locator, t, &mut budget).unwrap();
+        assert!(faces.len() > short && faces.iter().all(|f| f.len() == 4));
+        for (v, p) in pos.iter().enumerate().filter(|&(v, _)| rim(&faces, v)) {
+            let q = locator.closest_boundary(p).unwrap();
+            assert!((q - p).norm() < 0.05 * t, "rim vertex {v} at {p:?} is off the input boundary");
+        }
+        let covered: f64 = faces.iter().map(|f| (pos[f[2]] - pos[f[0]]).cross(&(pos[f[3]] - pos[f[1]])).z / 2.0).sum();
+        assert!((covered - 4.0).abs() < 1e-9, "covered {covered}");
+    }
+}

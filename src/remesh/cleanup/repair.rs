@@ -180,3 +180,67 @@ fn split_even(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>) {
     }
     *faces = out;
 }
+
+#[cfg(test)]
+mod tests {
+    use std::time::{Duration, Instant};
+
+    use super::*;
+    use crate::control::Control;
+    use crate::remesh::quadmesh::samples::{grid, lines};
+    use crate::remesh::surface::samples::sheet;
+
+    /// Summed area of `faces` (planar, counter-clockwise).
+    fn area(pos: &[Vector3<f64>], faces: &[Vec<usize>]) -> f64 {
+        faces.iter().map(|f| (0..f.len()).map(|i| pos[f[i]].cross(&pos[f[(i + 1) % f.len()]]).z).sum::<f64>() / 2.0).sum()
+    }
+
+    #[test]
+    fn an_extraction_hole_is_filled_an_opening_of_the_input_is_not() {
+        // A 4 x 4 input with an opening over [1.5, 2.5]^2, and a grid of quads of 0.5 on it
+        // without the faces over the opening and without face (6, 1): an extraction hole.
+        let input = sheet(8, 0.5, (3..5, 3..5), |_, _| 0.0);
+        let locator = Locator::new(&input);
+        let (pos, all) = grid(&lines(0.0, 4.0, 8), &lines(0.0, 4.0, 8));
+        let gone = |i: usize, j: usize| (3..5).contains(&i) && (3..5).contains(&j) || (i, j) == (6, 1);
+        let mut faces: Vec<Vec<usize>> = all.iter().enumerate().filter(|(k, _)| !gone(k % 8, k / 8)).map(|(_, f)| f.clone()).collect();
+        let before = faces.len();
+        fill_holes(&pos, &mut faces, &locator, 0.5);
+        assert_eq!(faces.len(), before + 1, "only the extraction hole is filled");
+        // The same face as the one missing, the same way round.
+        let (filled, missing) = (&faces[before], &all[8 + 6]);
+        let k = filled.iter().position(|&v| v == missing[0]).unwrap();
+        assert_eq!((0..4).map(|i| filled[(k + i) % 4]).collect::<Vec<_>>(), *missing);
+    }
+
+    #[test]
+    fn triangles_odd_faces_and_polygons_become_quads() {
+        let (mut pos, mut faces) = grid(&lines(0.0, 4.0, 4), &lines(0.0, 4.0, 4));
+        let at = |i: usize, j: usize| j * 5 + i;
+        // Face (1, 1) as two triangles.
+        let [a, b, c, d] = [at(1, 1), at(2, 1), at(2, 2), at(1, 2)];
+        faces[4 + 1] = vec![a, b, c];
+        faces.push(vec![a, c, d]);
+        // Faces (2, 2) and (3, 2) as one hexagon.
+        faces[8 + 2] = vec![at(2, 2), at(3, 2), at(4, 2), at(4, 3), at(3, 3), at(2, 3)];
+        faces.remove(8 + 3);
+        // Face (0, 3) with a vertex bulging out of its top edge, on the boundary: a pentagon.
+        pos.push(Vector3::new(0.5, 4.2, 0.0));
+        let m = pos.len() - 1;
+        let f = faces.iter().position(|f| f == &vec![at(0, 3), at(1, 3), at(1, 4), at(0, 4)]).unwrap();
+        faces[f] = vec![at(0, 3), at(1, 3), at(1, 4), m, at(0, 4)];
+        assert_eq!(faces.iter().filter(|f| f.len() % 2 == 1).count(), 3);
+        let mut control = Control::none();
+        let mut budget = Budget::new(&mut control, Instant::now(), Duration::from_secs(60));
+        make_quads(&mut pos, &mut faces, &mut budget);
+        assert!(faces.iter().all(|f| f.len() == 4), "{faces:?}");
+        assert_eq!(faces.len(), 17);
+        // The same surface, covered once, by quads that are not flat.
+        assert!((area(&pos, &faces) - 16.1).abs() < 1e-12);
+        assert!(faces.iter().all(|f| area(&pos, std::slice::from_ref(f)) > 0.05));
+        assert!(edge_faces(&faces).values().all(|l| l.len() <= 2));
+        // The triangles and the hexagon are back to squares.
+        let squares = faces.iter().filter(|f| quad_cost(&pos, [f[0], f[1], f[2], f[3]]) < 1e-12).count();
+        assert!(squares >= 15, "{squares} squares");
+    }
+}

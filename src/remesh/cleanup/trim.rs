@@ -186,7 +186,9 @@ pub(super) fn drop_unfit_rim_faces(pos: &mut [Vector3<f64>], faces: &mut Vec<Vec
     drop_small_components(faces);
 }
 
-/// Deviation (times `t`) above which [`drop_unfit_rim_faces`] drops a rim face.
+/// Deviation (times `t`) a face may keep in the end: above it a face is halved along its strip
+/// ([`split_unfit_faces`]) or, on the rim, dropped ([`drop_unfit_rim_faces`]), and boundary
+/// chords are shortened to it.
 pub(super) const FINAL: f64 = 0.095;
 
 /// Drops faces with (almost) no area whose corners all lie on the input boundary: slivers
@@ -207,3 +209,52 @@ pub(super) fn drop_rim_slivers(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>
 
 /// Area (times `t` squared) below which a rim face is a sliver.
 const SLIVER: f64 = 0.05;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::remesh::quadmesh::samples::{grid, lines};
+    use crate::remesh::surface::samples::sheet;
+
+    /// Largest deviation of `faces` from the surface.
+    fn worst(pos: &[Vector3<f64>], faces: &[Vec<usize>], locator: &Locator) -> f64 {
+        faces.iter().map(|f| fit::deviation(pos, f, locator)).fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn a_strip_across_a_ridge_is_halved_along_the_ridge() {
+        // A roof over [0, 2]^2 with its ridge along x = 1; a strip of four quads of t = 0.5
+        // straddles the ridge from the input's front edge to its back edge.
+        let roof = sheet(8, 0.25, (0..0, 0..0), |x, _| 0.3 * (1.0 - (x - 1.0).abs()));
+        let locator = Locator::new(&roof);
+        let t = 0.5;
+        let (mut pos, mut faces) = grid(&[0.75, 1.25], &lines(0.0, 2.0, 4));
+        for p in pos.iter_mut() {
+            p.z = 0.3 * (1.0 - (p.x - 1.0).abs());
+        }
+        assert!(faces.iter().all(|f| fit::deviation(&pos, f, &locator) > FINAL * t));
+        let old = pos.len();
+        assert!(split_unfit_faces(&mut pos, &mut faces, &locator, t));
+        assert_eq!(faces.len(), 8);
+        assert!(faces.iter().all(|f| f.len() == 4));
+        // One new vertex per crossed edge, on the surface next to the ridge (the nearest
+        // point to a chord's midpoint under it lies on a slope), and the halves follow the
+        // roof.
+        assert_eq!(pos.len(), old + 5);
+        assert!(pos[old..].iter().all(|p| (p.x - 1.0).abs() < 0.05 && locator.distance(p) < 1e-12), "{:?}", &pos[old..]);
+        assert!(worst(&pos, &faces, &locator) < 0.2 * FINAL * t, "{}", worst(&pos, &faces, &locator));
+        assert!(!split_unfit_faces(&mut pos, &mut faces, &locator, t), "nothing left to split");
+    }
+
+    #[test]
+    fn flat_faces_on_the_rim_go_flat_faces_inside_stay() {
+        // Rows of quads over a flat 2 x 2 input: the first and third rows are 0.01 high, the
+        // first lies along the input's edge.
+        let input = sheet(4, 0.5, (0..0, 0..0), |_, _| 0.0);
+        let locator = Locator::new(&input);
+        let (pos, mut faces) = grid(&lines(0.0, 2.0, 4), &[0.0, 0.01, 0.51, 0.52, 1.02]);
+        let kept: Vec<Vec<usize>> = faces[4..].to_vec();
+        drop_rim_slivers(&pos, &mut faces, &locator, 0.5);
+        assert_eq!(faces, kept);
+    }
+}

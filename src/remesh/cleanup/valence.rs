@@ -134,3 +134,62 @@ pub(super) fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
         *faces = kept;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::remesh::quadmesh::samples::{grid, lines, valences};
+
+    /// Interior vertices (not on a boundary edge) of `faces`.
+    fn interior(n: usize, faces: &[Vec<usize>]) -> Vec<bool> {
+        let mut inside = vec![true; n];
+        for (&(a, b), list) in &edge_faces(faces) {
+            if list.len() == 1 {
+                inside[a] = false;
+                inside[b] = false;
+            }
+        }
+        inside
+    }
+
+    #[test]
+    fn a_rotated_edge_in_a_regular_grid_is_rotated_back() {
+        let (pos, regular) = grid(&lines(0.0, 6.0, 6), &lines(0.0, 6.0, 6));
+        let n = pos.len();
+        let at = |i: usize, j: usize| j * 7 + i;
+        // Faces (3, 3) = [a, b, c, d] and (3, 2) = [e, f, b, a] share edge a-b; turning it into
+        // e-c leaves a and b with three edges, e and c with five.
+        let (f1, f2) = (3 * 6 + 3, 2 * 6 + 3);
+        let (a, b, c, d, e, f) = (at(3, 3), at(4, 3), at(4, 4), at(3, 4), at(3, 2), at(4, 2));
+        assert_eq!((regular[f1].clone(), regular[f2].clone()), (vec![a, b, c, d], vec![e, f, b, a]));
+        let mut faces = regular.clone();
+        faces[f1] = vec![e, f, b, c];
+        faces[f2] = vec![c, d, a, e];
+        let v = valences(n, &faces);
+        assert_eq!([v[a], v[b], v[c], v[e]], [3, 3, 5, 5]);
+        rotate_edges(&pos, &mut faces);
+        let inside = interior(n, &faces);
+        let v = valences(n, &faces);
+        assert!((0..n).filter(|&k| inside[k]).all(|k| v[k] == 4), "every interior vertex regular again");
+        let cost: f64 = faces.iter().map(|q| quad_cost(&pos, [q[0], q[1], q[2], q[3]])).sum();
+        assert!(cost < 1e-9, "squares again");
+        // A regular grid stays as it is.
+        let mut same = regular.clone();
+        rotate_edges(&pos, &mut same);
+        assert_eq!(same, regular);
+    }
+
+    #[test]
+    fn the_two_quads_around_a_valence_two_vertex_become_one() {
+        // A diamond C D A B cut into two quads through its centre v (valence two).
+        let (v, c, d, a, b) = (0, 1, 2, 3, 4);
+        let mut faces = vec![vec![v, c, d, a], vec![v, a, b, c]];
+        remove_doublets(&mut faces);
+        assert_eq!(faces, vec![vec![c, d, a, b]]);
+        // On the boundary, a vertex of valence two is a corner, not a doublet.
+        let (_, regular) = grid(&lines(0.0, 2.0, 2), &lines(0.0, 2.0, 2));
+        let mut same = regular.clone();
+        remove_doublets(&mut same);
+        assert_eq!(same, regular);
+    }
+}
