@@ -36,6 +36,14 @@ impl Bvh {
         bvh
     }
 
+    /// A hierarchy over simplices of the points `pos` (segments `[a, b]`, triangles
+    /// `[a, b, c]`; `N` at least 1), each in the box of its corners.
+    pub fn of_simplices<const N: usize>(pos: &[Vector3<f64>], simplices: &[[usize; N]]) -> Self {
+        let boxes: Vec<_> =
+            simplices.iter().map(|s| s[1..].iter().fold((pos[s[0]], pos[s[0]]), |(lo, hi), &v| (lo.inf(&pos[v]), hi.sup(&pos[v])))).collect();
+        Self::new(&boxes)
+    }
+
     /// Number of primitives.
     pub fn len(&self) -> usize {
         self.order.len()
@@ -148,6 +156,21 @@ mod tests {
             let scan = (0..points.len()).min_by(|&a, &b| (points[a] - q).norm_squared().total_cmp(&(points[b] - q).norm_squared())).unwrap();
             assert_eq!(i, scan);
             assert!((d2 - (points[scan] - q).norm_squared()).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn nearest_segment_agrees_with_a_scan() {
+        let mut rnd = numbers(3);
+        let pos: Vec<Vector3<f64>> = (0..300).map(|_| Vector3::new(rnd(), rnd(), rnd() * 0.2)).collect();
+        let segments: Vec<[usize; 2]> = (0..150).map(|k| [2 * k, 2 * k + 1]).collect();
+        let bvh = Bvh::of_simplices(&pos, &segments);
+        let on = |p: &Vector3<f64>, [a, b]: [usize; 2]| crate::geom::closest::on_segment(p, &pos[a], &pos[b]);
+        for _ in 0..200 {
+            let q = Vector3::new(rnd() * 1.4 - 0.2, rnd() * 1.4 - 0.2, rnd() - 0.5);
+            let (i, d2, _) = bvh.nearest(&q, |i| ((on(&q, segments[i]) - q).norm_squared(), on(&q, segments[i]))).unwrap();
+            let scan = segments.iter().map(|&s| (on(&q, s) - q).norm_squared()).fold(f64::INFINITY, f64::min);
+            assert_eq!(d2, scan, "segment {i}");
         }
     }
 

@@ -47,14 +47,7 @@ impl SurfaceIndex {
             }
         }
         let normals = acc.into_iter().map(|a| a.try_normalize(1e-300).unwrap_or_else(Vector3::z)).collect();
-        let boxes: Vec<_> = tris
-            .iter()
-            .map(|t| {
-                let (a, b, c) = (pos[t[0]], pos[t[1]], pos[t[2]]);
-                (a.inf(&b).inf(&c), a.sup(&b).sup(&c))
-            })
-            .collect();
-        let bvh = Bvh::new(&boxes);
+        let bvh = Bvh::of_simplices(&pos, &tris);
         let mut edges: Vec<[usize; 2]> = tris.iter().flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])])).collect();
         edges.sort_unstable();
         let mut boundary = Vec::new();

@@ -24,32 +24,7 @@ pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surfac
     let mut surface = base.clone();
     let mut frames = frames.to_vec();
     while surface.mean_edge > t / 2.0 && surface.tris.len() * 4 <= limit {
-        let mut pos = surface.pos.clone();
-        let mut normals = surface.normals.clone();
-        let mut fine_frames = frames.clone();
-        let mut mid = vec![0usize; surface.edges.len()];
-        for (e, &[a, b]) in surface.edges.iter().enumerate() {
-            mid[e] = pos.len();
-            let (p, n, o) = edge_midpoint(&surface, &frames, a, b);
-            pos.push(p);
-            normals.push(n);
-            fine_frames.push(o);
-        }
-        let edge_of = |a: usize, b: usize| -> usize {
-            let list = &surface.adj[a];
-            let k = list.partition_point(|&(v, _)| v < b);
-            mid[list[k].1]
-        };
-        let mut tris = Vec::with_capacity(surface.tris.len() * 4);
-        for &[a, b, c] in &surface.tris {
-            let (ab, bc, ca) = (edge_of(a, b), edge_of(b, c), edge_of(c, a));
-            tris.push([a, ab, ca]);
-            tris.push([ab, b, bc]);
-            tris.push([ca, bc, c]);
-            tris.push([ab, bc, ca]);
-        }
-        surface = Surface::build(pos, tris, Some(normals));
-        frames = fine_frames;
+        (surface, frames) = split_edges(&surface, &frames, |_| true);
     }
     // Slivers (long thin triangles, common where a coarse mesh was subdivided around a
     // support) keep edges far longer than the mean: the lattice cannot be read across an edge
@@ -60,61 +35,68 @@ pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surfac
         if !marked.iter().any(|&m| m) {
             break;
         }
-        let mut pos = surface.pos.clone();
-        let mut normals = surface.normals.clone();
-        let mut fine_frames = frames.clone();
-        let mut mid = vec![usize::MAX; surface.edges.len()];
-        for (e, &[a, b]) in surface.edges.iter().enumerate() {
-            if !marked[e] {
-                continue;
-            }
-            mid[e] = pos.len();
-            let (p, n, o) = edge_midpoint(&surface, &frames, a, b);
-            pos.push(p);
-            normals.push(n);
-            fine_frames.push(o);
+        (surface, frames) = split_edges(&surface, &frames, |e| marked[e]);
+    }
+    surface.set_boundary_scale(t * 0.5);
+    (surface, frames)
+}
+
+/// Splits the edges `e` of `surface` for which `split(e)` holds at their midpoints (see
+/// [`edge_midpoint`]), with the field `frames`: a triangle with all three edges split becomes
+/// four, with one two, with two a corner triangle and two more cut along the shorter
+/// diagonal.
+fn split_edges(surface: &Surface, frames: &[Vector3<f64>], split: impl Fn(usize) -> bool) -> (Surface, Vec<Vector3<f64>>) {
+    let mut pos = surface.pos.clone();
+    let mut normals = surface.normals.clone();
+    let mut fine_frames = frames.to_vec();
+    let mut mid = vec![usize::MAX; surface.edges.len()];
+    for (e, &[a, b]) in surface.edges.iter().enumerate() {
+        if !split(e) {
+            continue;
         }
-        let mid_of = |a: usize, b: usize| -> usize {
-            let list = &surface.adj[a];
-            let k = list.partition_point(|&(v, _)| v < b);
-            mid[list[k].1]
-        };
-        let mut tris = Vec::with_capacity(surface.tris.len() * 2);
-        for &tri in &surface.tris {
-            let m = [0, 1, 2].map(|k| mid_of(tri[k], tri[(k + 1) % 3]));
-            let count = m.iter().filter(|&&x| x != usize::MAX).count();
-            match count {
-                0 => tris.push(tri),
-                3 => {
-                    let [a, b, c] = tri;
-                    let [ab, bc, ca] = m;
-                    tris.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-                }
-                _ => {
-                    // Rotate so the first split edge is tri[0]-tri[1].
-                    let k = (0..3).find(|&k| m[k] != usize::MAX && (count == 1 || m[(k + 1) % 3] != usize::MAX)).unwrap_or(0);
-                    let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-                    let (ab, bc) = (m[k], m[(k + 1) % 3]);
-                    if count == 1 {
-                        tris.extend([[a, ab, c], [ab, b, c]]);
+        mid[e] = pos.len();
+        let (p, n, o) = edge_midpoint(surface, frames, a, b);
+        pos.push(p);
+        normals.push(n);
+        fine_frames.push(o);
+    }
+    let mid_of = |a: usize, b: usize| -> usize {
+        let list = &surface.adj[a];
+        let k = list.partition_point(|&(v, _)| v < b);
+        mid[list[k].1]
+    };
+    let mut tris = Vec::with_capacity(surface.tris.len() * 4);
+    for &tri in &surface.tris {
+        let m = [0, 1, 2].map(|k| mid_of(tri[k], tri[(k + 1) % 3]));
+        let count = m.iter().filter(|&&x| x != usize::MAX).count();
+        match count {
+            0 => tris.push(tri),
+            3 => {
+                let [a, b, c] = tri;
+                let [ab, bc, ca] = m;
+                tris.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+            }
+            _ => {
+                // Rotate so the first split edge is tri[0]-tri[1].
+                let k = (0..3).find(|&k| m[k] != usize::MAX && (count == 1 || m[(k + 1) % 3] != usize::MAX)).unwrap_or(0);
+                let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+                let (ab, bc) = (m[k], m[(k + 1) % 3]);
+                if count == 1 {
+                    tris.extend([[a, ab, c], [ab, b, c]]);
+                } else {
+                    // Edges ab and bc split: corner triangle at b, the rest cut along the
+                    // shorter diagonal.
+                    tris.push([ab, b, bc]);
+                    if (pos[ab] - pos[c]).norm() <= (pos[bc] - pos[a]).norm() {
+                        tris.extend([[a, ab, c], [ab, bc, c]]);
                     } else {
-                        // Edges ab and bc split: corner triangle at b, the rest cut along the
-                        // shorter diagonal.
-                        tris.push([ab, b, bc]);
-                        if (pos[ab] - pos[c]).norm() <= (pos[bc] - pos[a]).norm() {
-                            tris.extend([[a, ab, c], [ab, bc, c]]);
-                        } else {
-                            tris.extend([[a, ab, bc], [a, bc, c]]);
-                        }
+                        tris.extend([[a, ab, bc], [a, bc, c]]);
                     }
                 }
             }
         }
-        surface = Surface::build(pos, tris, Some(normals));
-        frames = fine_frames;
     }
-    surface.set_boundary_scale(t * 0.5);
-    (surface, frames)
+    (Surface::build(pos, tris, Some(normals)), fine_frames)
 }
 
 /// Longest edge of the working surface, as a fraction of the target edge.

@@ -52,25 +52,32 @@ impl Surface {
         (0..self.len()).filter_map(|v| self.boundary[v].map(|(_, next)| [v, next])).collect()
     }
 
+    /// Walks from boundary vertex `v` along its loop (forwards: faces on the left), calling
+    /// `go_on(w, arc)` at every vertex `w` reached, `arc` the length walked; stops when it
+    /// returns false, back at `v`, where the boundary ends, or after a lap. Returns the last
+    /// vertex reached (`v` when none is).
+    fn walk_boundary(&self, v: usize, forward: bool, mut go_on: impl FnMut(usize, f64) -> bool) -> usize {
+        let mut w = v;
+        let mut arc = 0.0;
+        for _ in 0..self.len() {
+            let Some((prev, next)) = self.boundary[w] else { break };
+            let u = if forward { next } else { prev };
+            arc += (self.pos[u] - self.pos[w]).norm();
+            w = u;
+            if w == v || !go_on(w, arc) {
+                break;
+            }
+        }
+        w
+    }
+
     /// Measures boundary directions and corners over arcs of length `h` (about half a quad):
     /// shell boundaries from subdivided or trimmed meshes zig-zag at the triangle scale, and
     /// quads should follow the boundary's course, not its teeth.
     pub fn set_boundary_scale(&mut self, h: f64) {
         let n = self.len();
-        let walk = |v: usize, forward: bool, h: f64| -> usize {
-            let mut w = v;
-            let mut acc = 0.0;
-            for _ in 0..n {
-                let Some((prev, next)) = self.boundary[w] else { break };
-                let u = if forward { next } else { prev };
-                acc += (self.pos[u] - self.pos[w]).norm();
-                w = u;
-                if acc >= h || w == v {
-                    break;
-                }
-            }
-            w
-        };
+        // The vertex an arc of length `h` away (or the last before the walk ends).
+        let walk = |v: usize, forward: bool, h: f64| self.walk_boundary(v, forward, |_, arc| arc < h);
         let mut bdirs = vec![None; n];
         let mut turn = vec![0.0; n];
         for v in 0..n {
@@ -98,20 +105,15 @@ impl Surface {
             // Non-maximum suppression along the arc of length h on both sides.
             let mut best = true;
             for forward in [false, true] {
-                let mut w = v;
-                let mut acc = 0.0;
-                for _ in 0..n {
-                    let Some((prev, next)) = self.boundary[w] else { break };
-                    let u = if forward { next } else { prev };
-                    acc += (self.pos[u] - self.pos[w]).norm();
-                    w = u;
-                    if w == v || acc > h {
-                        break;
+                self.walk_boundary(v, forward, |w, arc| {
+                    if arc > h {
+                        return false;
                     }
                     if turn[w] > turn[v] || (turn[w] == turn[v] && w < v) {
                         best = false;
                     }
-                }
+                    true
+                });
             }
             corner[v] = best;
         }
@@ -125,20 +127,15 @@ impl Surface {
                 if !(corner[v] && turn[v] > ACUTE_TURN.to_radians()) {
                     continue;
                 }
+                narrow[v] = true;
                 for forward in [false, true] {
-                    let mut w = v;
-                    let mut acc = 0.0;
-                    narrow[v] = true;
-                    for _ in 0..n {
-                        let Some((prev, next)) = self.boundary[w] else { break };
-                        let u = if forward { next } else { prev };
-                        acc += (self.pos[u] - self.pos[w]).norm();
-                        w = u;
-                        if w == v || acc > reach {
-                            break;
+                    self.walk_boundary(v, forward, |w, arc| {
+                        if arc > reach {
+                            return false;
                         }
                         narrow[w] = true;
-                    }
+                        true
+                    });
                 }
             }
         }

@@ -41,14 +41,6 @@ impl Locator {
         let tris = surface.tris.clone();
         let segments = surface.boundary_segments();
         let corners = (0..surface.len()).filter(|&v| surface.is_corner(v)).map(|v| surface.pos[v]).collect();
-        let tri_boxes: Vec<_> = tris
-            .iter()
-            .map(|t| {
-                let (a, b, c) = (pos[t[0]], pos[t[1]], pos[t[2]]);
-                (a.inf(&b).inf(&c), a.sup(&b).sup(&c))
-            })
-            .collect();
-        let seg_boxes: Vec<_> = segments.iter().map(|s| (pos[s[0]].inf(&pos[s[1]]), pos[s[0]].sup(&pos[s[1]]))).collect();
         // Each boundary vertex starts at most one segment; a loop's segments are those that
         // start at its vertices.
         let mut starting = vec![usize::MAX; pos.len()];
@@ -68,7 +60,7 @@ impl Locator {
             }
             loops.push((order, lp.length));
         }
-        Self { tri_bvh: Bvh::new(&tri_boxes), seg_bvh: Bvh::new(&seg_boxes), pos, tris, segments, corners, seg_place, loops }
+        Self { tri_bvh: Bvh::of_simplices(&pos, &tris), seg_bvh: Bvh::of_simplices(&pos, &segments), pos, tris, segments, corners, seg_place, loops }
     }
 
     /// Boundary vertices where the boundary turns by more than 50 degrees.
