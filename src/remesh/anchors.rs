@@ -47,7 +47,11 @@ impl Anchors {
                 }
             }
         }
-        Self { nbrs, bnbrs, pinned }
+        Self {
+            nbrs,
+            bnbrs,
+            pinned,
+        }
     }
 
     /// Where vertex `v` wanting to be at `p` may go: the closest boundary point for boundary vertices, the closest surface point otherwise.
@@ -55,7 +59,9 @@ impl Anchors {
         if self.bnbrs[v].is_empty() {
             locator.closest(p).0
         } else {
-            locator.closest_boundary(p).unwrap_or_else(|| locator.closest(p).0)
+            locator
+                .closest_boundary(p)
+                .unwrap_or_else(|| locator.closest(p).0)
         }
     }
 }
@@ -80,10 +86,20 @@ mod tests {
             let (i, j) = (v % 5, v / 5);
             let on_rim = i == 0 || i == 4 || j == 0 || j == 4;
             assert_eq!(anchors.bnbrs[v].len(), if on_rim { 2 } else { 0 });
-            let expected = if corners.contains(&v) { 2 } else if on_rim { 3 } else { 4 };
+            let expected = if corners.contains(&v) {
+                2
+            } else if on_rim {
+                3
+            } else {
+                4
+            };
             assert_eq!(anchors.nbrs[v].len(), expected);
         }
-        assert_eq!(pos[24], Vector3::new(2.0, 2.0, 0.0), "moved onto the input's corner");
+        assert_eq!(
+            pos[24],
+            Vector3::new(2.0, 2.0, 0.0),
+            "moved onto the input's corner"
+        );
         // A rim vertex goes onto the input's edge, an inner one onto the surface.
         let p = Vector3::new(0.1, 0.9, 0.3);
         assert!((anchors.project(&locator, 10, &p) - Vector3::new(0.0, 0.9, 0.0)).norm() < 1e-12);

@@ -161,7 +161,9 @@ pub enum RemeshError {
     #[error("target edge {0} is not a positive finite length")]
     BadTargetEdge(f64),
     /// The target edge is so large that the surface would get almost no quad.
-    #[error("target edge {target} is too large for a surface of area {area:.4} (at most {max:.4} for a few quads)")]
+    #[error(
+        "target edge {target} is too large for a surface of area {area:.4} (at most {max:.4} for a few quads)"
+    )]
     TargetEdgeTooLarge {
         /// The target edge given.
         target: f64,
@@ -171,7 +173,9 @@ pub enum RemeshError {
         max: f64,
     },
     /// The target edge is so small that the quad mesh would be unreasonably large.
-    #[error("target edge {target} would give about {quads:.0} quads on this surface (limit {limit}); use a larger edge")]
+    #[error(
+        "target edge {target} would give about {quads:.0} quads on this surface (limit {limit}); use a larger edge"
+    )]
     TargetEdgeTooSmall {
         /// The target edge given.
         target: f64,
@@ -196,7 +200,9 @@ pub enum RemeshError {
     #[error("the quad mesh could not be built: {0}")]
     Mesh(#[from] MeshError),
     /// Extraction found no quad at all.
-    #[error("no quad could be extracted; the target edge {0} is probably too large for this surface")]
+    #[error(
+        "no quad could be extracted; the target edge {0} is probably too large for this surface"
+    )]
     NothingExtracted(f64),
     /// A time limit that is negative, NaN or too large.
     #[error("time limit {0} s is not a finite number >= 0")]
@@ -205,7 +211,9 @@ pub enum RemeshError {
     #[error("remesh cancelled by the caller")]
     Cancelled,
     /// The time limit passed before any quad mesh existed.
-    #[error("the remesh time limit passed after {seconds:.2} s, before a quad mesh was ready; allow more time")]
+    #[error(
+        "the remesh time limit passed after {seconds:.2} s, before a quad mesh was ready; allow more time"
+    )]
     TimeLimit {
         /// Seconds spent.
         seconds: f64,
@@ -235,7 +243,11 @@ pub fn remesh(input: &PolyMesh, options: &RemeshOptions) -> Result<Remeshed, Rem
 /// direction), unsupported input (no area, pinched vertices), an extraction failure,
 /// [`RemeshError::Cancelled`] when `control` asked to stop and [`RemeshError::TimeLimit`]
 /// when the limit passed before any quad mesh existed.
-pub fn remesh_with(input: &PolyMesh, options: &RemeshOptions, control: &mut Control<'_>) -> Result<Remeshed, RemeshError> {
+pub fn remesh_with(
+    input: &PolyMesh,
+    options: &RemeshOptions,
+    control: &mut Control<'_>,
+) -> Result<Remeshed, RemeshError> {
     let start = Instant::now();
     check_options(input, options)?;
     let mut budget = Budget::new(control, start, options.time_limit);
@@ -271,14 +283,24 @@ pub fn remesh_with(input: &PolyMesh, options: &RemeshOptions, control: &mut Cont
     let mut quads = cleanup::pure_quads(raw, &locator, t, &mut budget)?;
     if options.shapeup && budget.stopped().is_none() {
         budget.stage(0.97, 0.99);
-        quads = shapeup::shapeup(&quads, &locator, t, options.shapeup_iterations, options.shapeup_tolerance, &mut budget)?;
+        quads = shapeup::shapeup(
+            &quads,
+            &locator,
+            t,
+            options.shapeup_iterations,
+            options.shapeup_tolerance,
+            &mut budget,
+        )?;
     }
     let quads = PolyMesh::new(quads.positions, quads.faces)?;
     let seconds = start.elapsed().as_secs_f64();
     let mut found = metrics::metrics_with(&locator, input, &quads, t);
     found.seconds = seconds;
     budget.finish();
-    Ok(Remeshed { quads, metrics: found })
+    Ok(Remeshed {
+        quads,
+        metrics: found,
+    })
 }
 
 fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), RemeshError> {
@@ -287,28 +309,42 @@ fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), Remesh
         return Err(RemeshError::BadTargetEdge(t));
     }
     match options.direction {
-        FieldDirection::Vector(v) if !v.iter().all(|c| c.is_finite()) || v.iter().all(|&c| c == 0.0) => {
+        FieldDirection::Vector(v)
+            if !v.iter().all(|c| c.is_finite()) || v.iter().all(|&c| c == 0.0) =>
+        {
             return Err(RemeshError::BadDirection(v));
         }
         FieldDirection::Angle(a) if !a.is_finite() => return Err(RemeshError::BadAngle(a)),
         _ => {}
     }
-    if options.shapeup && !(options.shapeup_tolerance.is_finite() && options.shapeup_tolerance > 0.0) {
+    if options.shapeup
+        && !(options.shapeup_tolerance.is_finite() && options.shapeup_tolerance > 0.0)
+    {
         return Err(RemeshError::BadShapeupTolerance(options.shapeup_tolerance));
     }
     let area = input.area();
     if !(area.is_finite() && area > 0.0) {
-        return Err(RemeshError::UnsupportedInput(format!("the surface has no area ({area})")));
+        return Err(RemeshError::UnsupportedInput(format!(
+            "the surface has no area ({area})"
+        )));
     }
     // A handful of quads is the least that makes a pattern; below that the lattice
     // cannot resolve the surface.
     let max = (area / 4.0).sqrt();
     if t > max {
-        return Err(RemeshError::TargetEdgeTooLarge { target: t, area, max });
+        return Err(RemeshError::TargetEdgeTooLarge {
+            target: t,
+            area,
+            max,
+        });
     }
     let quads = area / (t * t);
     if quads > MAX_QUADS as f64 {
-        return Err(RemeshError::TargetEdgeTooSmall { target: t, quads, limit: MAX_QUADS });
+        return Err(RemeshError::TargetEdgeTooSmall {
+            target: t,
+            quads,
+            limit: MAX_QUADS,
+        });
     }
     Ok(())
 }

@@ -15,7 +15,9 @@ pub(super) fn edge_faces(faces: &[Vec<usize>]) -> BTreeMap<(usize, usize), Vec<u
     let mut map: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
     for (fi, f) in faces.iter().enumerate() {
         for i in 0..f.len() {
-            map.entry(key(f[i], f[(i + 1) % f.len()])).or_default().push(fi);
+            map.entry(key(f[i], f[(i + 1) % f.len()]))
+                .or_default()
+                .push(fi);
         }
     }
     map
@@ -72,7 +74,10 @@ pub(super) fn boundary_loops(faces: &[Vec<usize>]) -> Vec<Vec<usize>> {
 }
 
 /// Drops unused vertices, keeping order.
-pub(super) fn compact(pos: Vec<Vector3<f64>>, faces: Vec<Vec<usize>>) -> (Vec<Vector3<f64>>, Vec<Vec<usize>>) {
+pub(super) fn compact(
+    pos: Vec<Vector3<f64>>,
+    faces: Vec<Vec<usize>>,
+) -> (Vec<Vector3<f64>>, Vec<Vec<usize>>) {
     let mut remap = vec![usize::MAX; pos.len()];
     let mut out = Vec::new();
     let faces = faces
@@ -120,17 +125,25 @@ pub(crate) mod samples {
     /// is `j * (xs.len() - 1) + i`.
     pub fn grid(xs: &[f64], ys: &[f64]) -> (Vec<Vector3<f64>>, Vec<Vec<usize>>) {
         let nx = xs.len();
-        let pos = ys.iter().flat_map(|&y| xs.iter().map(move |&x| Vector3::new(x, y, 0.0))).collect();
+        let pos = ys
+            .iter()
+            .flat_map(|&y| xs.iter().map(move |&x| Vector3::new(x, y, 0.0)))
+            .collect();
         let at = |i: usize, j: usize| j * nx + i;
         let faces = (0..ys.len() - 1)
-            .flat_map(|j| (0..nx - 1).map(move |i| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]))
+            .flat_map(|j| {
+                (0..nx - 1)
+                    .map(move |i| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+            })
             .collect();
         (pos, faces)
     }
 
     /// `n + 1` evenly spaced lines from `from` to `to`.
     pub fn lines(from: f64, to: f64, n: usize) -> Vec<f64> {
-        (0..=n).map(|k| from + (to - from) * k as f64 / n as f64).collect()
+        (0..=n)
+            .map(|k| from + (to - from) * k as f64 / n as f64)
+            .collect()
     }
 
     /// Per vertex: how many edges meet there.
@@ -168,7 +181,9 @@ mod tests {
         loops.sort_by_key(Vec::len);
         assert_eq!(loops.iter().map(Vec::len).collect::<Vec<_>>(), vec![4, 12]);
         // Faces on the left: the outline runs 0 -> 1 -> 2, the hole 5 -> 9 -> 10.
-        let follows = |lp: &[usize], a: usize, b: usize| (0..lp.len()).any(|i| lp[i] == a && lp[(i + 1) % lp.len()] == b);
+        let follows = |lp: &[usize], a: usize, b: usize| {
+            (0..lp.len()).any(|i| lp[i] == a && lp[(i + 1) % lp.len()] == b)
+        };
         assert!(follows(&loops[1], 0, 1) && follows(&loops[1], 1, 2));
         assert!(follows(&loops[0], 5, 9) && follows(&loops[0], 9, 10));
         // Two quads touching at vertex 2: one walk, split into two simple loops.
@@ -184,7 +199,10 @@ mod tests {
         let pos: Vec<Vector3<f64>> = (0..6).map(|k| Vector3::new(k as f64, 0.0, 0.0)).collect();
         let (pos, faces) = compact(pos, vec![vec![5, 1, 3, 4]]);
         assert_eq!(faces, vec![vec![0, 1, 2, 3]]);
-        assert_eq!(pos.iter().map(|p| p.x).collect::<Vec<_>>(), vec![5.0, 1.0, 3.0, 4.0]);
+        assert_eq!(
+            pos.iter().map(|p| p.x).collect::<Vec<_>>(),
+            vec![5.0, 1.0, 3.0, 4.0]
+        );
     }
 
     #[test]

@@ -9,17 +9,30 @@ use super::surface::{Surface, any_tangent};
 
 /// The midpoint of edge `a`-`b` of `surface` with its normal and cross frame (`frames[a]`
 /// averaged with `frames[b]` turned to match it), for refining the working surface.
-fn edge_midpoint(surface: &Surface, frames: &[Vector3<f64>], a: usize, b: usize) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-    let n = (surface.normals[a] + surface.normals[b]).try_normalize(1e-300).unwrap_or(surface.normals[a]);
+fn edge_midpoint(
+    surface: &Surface,
+    frames: &[Vector3<f64>],
+    a: usize,
+    b: usize,
+) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    let n = (surface.normals[a] + surface.normals[b])
+        .try_normalize(1e-300)
+        .unwrap_or(surface.normals[a]);
     let o = frames[a] + match_rosy(&frames[a], &frames[b], &surface.normals[b]);
-    let o = (o - n * n.dot(&o)).try_normalize(1e-300).unwrap_or_else(|| any_tangent(&n));
+    let o = (o - n * n.dot(&o))
+        .try_normalize(1e-300)
+        .unwrap_or_else(|| any_tangent(&n));
     ((surface.pos[a] + surface.pos[b]) * 0.5, n, o)
 }
 
 /// Midpoint-subdivides `base` (flat, so the surface does not move) until the mean edge is at
 /// most `t / 2`, interpolating the orientation field `frames` (one tangent vector per vertex,
 /// a 4-RoSy representative) and the normals onto the new vertices.
-pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surface, Vec<Vector3<f64>>) {
+pub(crate) fn refine(
+    base: &Surface,
+    frames: &[Vector3<f64>],
+    t: f64,
+) -> (Surface, Vec<Vector3<f64>>) {
     let limit = 3_000_000usize;
     let mut surface = base.clone();
     let mut frames = frames.to_vec();
@@ -31,7 +44,11 @@ pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surfac
     // several quads long, so such edges are bisected until none is.
     let long = LONG_EDGE * t;
     while surface.tris.len() * 2 <= limit {
-        let marked: Vec<bool> = surface.edges.iter().map(|&[a, b]| (surface.pos[a] - surface.pos[b]).norm() > long).collect();
+        let marked: Vec<bool> = surface
+            .edges
+            .iter()
+            .map(|&[a, b]| (surface.pos[a] - surface.pos[b]).norm() > long)
+            .collect();
         if !marked.iter().any(|&m| m) {
             break;
         }
@@ -45,7 +62,11 @@ pub(crate) fn refine(base: &Surface, frames: &[Vector3<f64>], t: f64) -> (Surfac
 /// [`edge_midpoint`]), with the field `frames`: a triangle with all three edges split becomes
 /// four, with one two, with two a corner triangle and two more cut along the shorter
 /// diagonal.
-fn split_edges(surface: &Surface, frames: &[Vector3<f64>], split: impl Fn(usize) -> bool) -> (Surface, Vec<Vector3<f64>>) {
+fn split_edges(
+    surface: &Surface,
+    frames: &[Vector3<f64>],
+    split: impl Fn(usize) -> bool,
+) -> (Surface, Vec<Vector3<f64>>) {
     let mut pos = surface.pos.clone();
     let mut normals = surface.normals.clone();
     let mut fine_frames = frames.to_vec();
@@ -78,7 +99,9 @@ fn split_edges(surface: &Surface, frames: &[Vector3<f64>], split: impl Fn(usize)
             }
             _ => {
                 // Rotate so the first split edge is tri[0]-tri[1].
-                let k = (0..3).find(|&k| m[k] != usize::MAX && (count == 1 || m[(k + 1) % 3] != usize::MAX)).unwrap_or(0);
+                let k = (0..3)
+                    .find(|&k| m[k] != usize::MAX && (count == 1 || m[(k + 1) % 3] != usize::MAX))
+                    .unwrap_or(0);
                 let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
                 let (ab, bc) = (m[k], m[(k + 1) % 3]);
                 if count == 1 {
@@ -132,7 +155,10 @@ mod tests {
     }
 
     fn area(s: &Surface) -> f64 {
-        s.tris.iter().map(|&[a, b, c]| s.edge_vec(a, b).cross(&s.edge_vec(a, c)).norm() / 2.0).sum()
+        s.tris
+            .iter()
+            .map(|&[a, b, c]| s.edge_vec(a, b).cross(&s.edge_vec(a, c)).norm() / 2.0)
+            .sum()
     }
 
     #[test]
@@ -140,26 +166,44 @@ mod tests {
         let base = patch_with_slivers();
         let frames: Vec<Vector3<f64>> = base.normals.iter().map(any_tangent).collect();
         let on_base = Locator::new(&base);
-        let longest = |s: &Surface| s.edges.iter().map(|&[a, b]| s.edge_vec(a, b).norm()).fold(0.0, f64::max);
+        let longest = |s: &Surface| {
+            s.edges
+                .iter()
+                .map(|&[a, b]| s.edge_vec(a, b).norm())
+                .fold(0.0, f64::max)
+        };
         assert!(longest(&base) > 2.0);
         // t = 0.4: the mean edge is short enough already, only the slivers are bisected;
         // t = 0.06: the whole surface is subdivided first.
         for t in [0.4, 0.06] {
             let (fine, fine_frames) = refine(&base, &frames, t);
             assert!(fine.tris.len() > base.tris.len());
-            assert!(longest(&fine) <= LONG_EDGE * t, "t = {t}: longest edge {}", longest(&fine));
+            assert!(
+                longest(&fine) <= LONG_EDGE * t,
+                "t = {t}: longest edge {}",
+                longest(&fine)
+            );
             assert!(fine.mean_edge <= t / 2.0);
             // Flat subdivision: every vertex on the input, the same area and outline.
             assert!(fine.pos.iter().all(|p| on_base.distance(p) < 1e-12));
             assert!((area(&fine) - area(&base)).abs() < 1e-9 * area(&base));
-            let outline = |s: &Surface| s.boundary_loops().iter().map(|lp| lp.length).collect::<Vec<_>>();
+            let outline = |s: &Surface| {
+                s.boundary_loops()
+                    .iter()
+                    .map(|lp| lp.length)
+                    .collect::<Vec<_>>()
+            };
             let (a, b) = (outline(&fine), outline(&base));
             assert!(a.len() == 1 && b.len() == 1 && (a[0] - b[0]).abs() < 1e-9);
             // The field goes along: a unit tangent per vertex, the old ones unchanged.
             assert_eq!(fine_frames.len(), fine.len());
             assert_eq!(fine_frames[..frames.len()], frames[..]);
             for (o, n) in fine_frames.iter().zip(&fine.normals) {
-                assert!((o.norm() - 1.0).abs() < 1e-9 && o.dot(n).abs() < 1e-9 && (n.norm() - 1.0).abs() < 1e-9);
+                assert!(
+                    (o.norm() - 1.0).abs() < 1e-9
+                        && o.dot(n).abs() < 1e-9
+                        && (n.norm() - 1.0).abs() < 1e-9
+                );
             }
             // It comes back at the boundary scale of t: the patch's corners, the far tip.
             assert!(fine.corner.iter().any(|&c| c));
@@ -171,6 +215,9 @@ mod tests {
         let base = patch_with_slivers();
         let frames: Vec<Vector3<f64>> = base.normals.iter().map(any_tangent).collect();
         let (same, same_frames) = refine(&base, &frames, 4.0);
-        assert_eq!((same.pos, same.tris, same_frames), (base.pos, base.tris, frames));
+        assert_eq!(
+            (same.pos, same.tris, same_frames),
+            (base.pos, base.tris, frames)
+        );
     }
 }

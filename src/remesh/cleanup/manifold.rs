@@ -20,7 +20,8 @@ pub(super) fn distinct(f: &[usize]) -> bool {
 pub(super) fn make_edge_manifold(faces: &mut Vec<Vec<usize>>) {
     let mut seen: HashMap<(usize, usize), ()> = HashMap::new();
     faces.retain(|f| {
-        let directed: Vec<(usize, usize)> = (0..f.len()).map(|i| (f[i], f[(i + 1) % f.len()])).collect();
+        let directed: Vec<(usize, usize)> =
+            (0..f.len()).map(|i| (f[i], f[(i + 1) % f.len()])).collect();
         if directed.iter().any(|d| seen.contains_key(d)) {
             return false;
         }
@@ -140,7 +141,11 @@ mod tests {
     fn components_of_fewer_than_four_faces_go() {
         let (_, mut faces) = grid(&lines(0.0, 2.0, 2), &lines(0.0, 2.0, 2));
         // Three stray faces in a row, apart from the 2 x 2 block.
-        faces.extend([vec![20, 21, 31, 30], vec![21, 22, 32, 31], vec![22, 23, 33, 32]]);
+        faces.extend([
+            vec![20, 21, 31, 30],
+            vec![21, 22, 32, 31],
+            vec![22, 23, 33, 32],
+        ]);
         let block = faces[..4].to_vec();
         drop_small_components(&mut faces);
         assert_eq!(faces, block);
@@ -157,13 +162,23 @@ mod tests {
         let (pos2, faces2) = grid(&lines(2.0, 4.0, 2), &lines(2.0, 4.0, 2));
         let shift = pos.len();
         pos.extend(pos2);
-        faces.extend(faces2.into_iter().map(|f| f.into_iter().map(|v| if v == 0 { 8 } else { v + shift }).collect::<Vec<_>>()));
-        assert_eq!(boundary_loops(&faces).len(), 2, "one walk through vertex 8, split in two");
+        faces.extend(faces2.into_iter().map(|f| {
+            f.into_iter()
+                .map(|v| if v == 0 { 8 } else { v + shift })
+                .collect::<Vec<_>>()
+        }));
+        assert_eq!(
+            boundary_loops(&faces).len(),
+            2,
+            "one walk through vertex 8, split in two"
+        );
         let before = pos.len();
         split_pinched_vertices(&mut pos, &mut faces);
         assert_eq!(pos.len(), before + 1);
         assert_eq!(pos[before], pos[8]);
-        assert!(faces[..4].iter().any(|f| f.contains(&8)) && faces[4..].iter().all(|f| !f.contains(&8)));
+        assert!(
+            faces[..4].iter().any(|f| f.contains(&8)) && faces[4..].iter().all(|f| !f.contains(&8))
+        );
         assert!(faces[4..].iter().any(|f| f.contains(&before)));
         // A vertex inside a block is shared by faces that share edges: left alone.
         assert!(faces[..4].iter().filter(|f| f.contains(&4)).count() == 4);

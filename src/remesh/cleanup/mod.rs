@@ -56,7 +56,12 @@ pub(crate) struct Quads {
 /// The topology repair must finish (a stop there is an error); the fitting rounds after it
 /// only improve a valid mesh, so when the time limit passes during them the mesh as it is
 /// comes back.
-pub(crate) fn pure_quads(raw: Raw, locator: &Locator, t: f64, budget: &mut Budget) -> Result<Quads, RemeshError> {
+pub(crate) fn pure_quads(
+    raw: Raw,
+    locator: &Locator,
+    t: f64,
+    budget: &mut Budget,
+) -> Result<Quads, RemeshError> {
     let mut pos = raw.positions;
     let mut faces: Vec<Vec<usize>> = raw.faces.into_iter().filter(|f| distinct(f)).collect();
     make_edge_manifold(&mut faces);
@@ -83,5 +88,8 @@ pub(crate) fn pure_quads(raw: Raw, locator: &Locator, t: f64, budget: &mut Budge
     if faces.is_empty() {
         return Err(RemeshError::NothingExtracted(t));
     }
-    Ok(Quads { positions: pos.into_iter().map(Point3::from).collect(), faces })
+    Ok(Quads {
+        positions: pos.into_iter().map(Point3::from).collect(),
+        faces,
+    })
 }

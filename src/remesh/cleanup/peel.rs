@@ -20,7 +20,13 @@ use crate::remesh::surface::Locator;
 /// relaxed; then up to [`FIT_ROUNDS`] + 1 rounds of pulling faces back onto the surface and
 /// peeling the boundary faces that still leave it. When the time limit passes the mesh as it
 /// stands is kept; a cancel is an error.
-pub(super) fn snap_and_peel(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, locator: &Locator, t: f64, budget: &mut Budget) -> Result<(), RemeshError> {
+pub(super) fn snap_and_peel(
+    pos: &mut Vec<Vector3<f64>>,
+    faces: &mut Vec<Vec<usize>>,
+    locator: &Locator,
+    t: f64,
+    budget: &mut Budget,
+) -> Result<(), RemeshError> {
     for p in pos.iter_mut() {
         *p = locator.closest(p).0;
     }
@@ -41,13 +47,21 @@ pub(super) fn snap_and_peel(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usi
         // are only put onto the input boundary, and the peeling is kept only if it helped.
         let bad: Vec<bool> = faces
             .iter()
-            .map(|f| f.iter().any(|&v| !anchors.bnbrs[v].is_empty()) && fit::deviation(pos, f, locator) > PEEL * t)
+            .map(|f| {
+                f.iter().any(|&v| !anchors.bnbrs[v].is_empty())
+                    && fit::deviation(pos, f, locator) > PEEL * t
+            })
             .collect();
         if !bad.iter().any(|&b| b) {
             break;
         }
         let before = (round == FIT_ROUNDS).then(|| (pos.clone(), faces.clone()));
-        let mut kept: Vec<Vec<usize>> = faces.iter().zip(&bad).filter(|(_, b)| !**b).map(|(f, _)| f.clone()).collect();
+        let mut kept: Vec<Vec<usize>> = faces
+            .iter()
+            .zip(&bad)
+            .filter(|(_, b)| !**b)
+            .map(|(f, _)| f.clone())
+            .collect();
         drop_small_components(&mut kept);
         remove_doublets(&mut kept);
         let (p2, f2) = compact(std::mem::take(pos), kept);
@@ -61,9 +75,17 @@ pub(super) fn snap_and_peel(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usi
                 }
             }
             fit::conform(pos, faces, &anchors, locator, t);
-            let worst = |pos: &[Vector3<f64>], faces: &[Vec<usize>]| faces.iter().map(|f| fit::deviation(pos, f, locator)).fold(0.0, f64::max);
+            let worst = |pos: &[Vector3<f64>], faces: &[Vec<usize>]| {
+                faces
+                    .iter()
+                    .map(|f| fit::deviation(pos, f, locator))
+                    .fold(0.0, f64::max)
+            };
             let on_boundary = (0..pos.len()).all(|v| {
-                anchors.bnbrs[v].is_empty() || locator.closest_boundary(&pos[v]).is_some_and(|q| (q - pos[v]).norm() <= 0.04 * t)
+                anchors.bnbrs[v].is_empty()
+                    || locator
+                        .closest_boundary(&pos[v])
+                        .is_some_and(|q| (q - pos[v]).norm() <= 0.04 * t)
             });
             if !on_boundary || worst(pos, faces) >= worst(&old_pos, &old_faces) {
                 *pos = old_pos;
@@ -99,11 +121,16 @@ fn relax(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], locator: &Locator, t: f
             if anchors.pinned[v] {
                 continue;
             }
-            let list = if anchors.bnbrs[v].is_empty() { &anchors.nbrs[v] } else { &anchors.bnbrs[v] };
+            let list = if anchors.bnbrs[v].is_empty() {
+                &anchors.nbrs[v]
+            } else {
+                &anchors.bnbrs[v]
+            };
             if list.is_empty() {
                 continue;
             }
-            let mean = list.iter().fold(Vector3::zeros(), |acc, &w| acc + old[w]) / list.len() as f64;
+            let mean =
+                list.iter().fold(Vector3::zeros(), |acc, &w| acc + old[w]) / list.len() as f64;
             pos[v] = anchors.project(locator, v, &(old[v] * 0.5 + mean * 0.5));
         }
     }
@@ -140,11 +167,17 @@ mod tests {
         relax(&mut pos, &faces, &locator, 0.5, 6);
         for (v, p) in pos.iter().enumerate() {
             assert!(p.z.abs() < 1e-12, "on the surface");
-            let on_outline = p.x.abs() < 1e-12 || p.y.abs() < 1e-12 || (p.x - 2.0).abs() < 1e-12 || (p.y - 2.0).abs() < 1e-12;
+            let on_outline = p.x.abs() < 1e-12
+                || p.y.abs() < 1e-12
+                || (p.x - 2.0).abs() < 1e-12
+                || (p.y - 2.0).abs() < 1e-12;
             assert_eq!(on_outline, rim(&faces, v), "vertex {v} at {p:?}");
         }
         for c in [0, 4, 20, 24] {
-            assert!([0.0, 2.0].contains(&pos[c].x) && [0.0, 2.0].contains(&pos[c].y), "corner {c} on an input corner");
+            assert!(
+                [0.0, 2.0].contains(&pos[c].x) && [0.0, 2.0].contains(&pos[c].y),
+                "corner {c} on an input corner"
+            );
         }
     }
 
@@ -162,9 +195,15 @@ mod tests {
         assert!(faces.len() > short && faces.iter().all(|f| f.len() == 4));
         for (v, p) in pos.iter().enumerate().filter(|&(v, _)| rim(&faces, v)) {
             let q = locator.closest_boundary(p).unwrap();
-            assert!((q - p).norm() < 0.05 * t, "rim vertex {v} at {p:?} is off the input boundary");
+            assert!(
+                (q - p).norm() < 0.05 * t,
+                "rim vertex {v} at {p:?} is off the input boundary"
+            );
         }
-        let covered: f64 = faces.iter().map(|f| (pos[f[2]] - pos[f[0]]).cross(&(pos[f[3]] - pos[f[1]])).z / 2.0).sum();
+        let covered: f64 = faces
+            .iter()
+            .map(|f| (pos[f[2]] - pos[f[0]]).cross(&(pos[f[3]] - pos[f[1]])).z / 2.0)
+            .sum();
         assert!((covered - 4.0).abs() < 1e-9, "covered {covered}");
     }
 }

@@ -13,14 +13,23 @@ use crate::remesh::surface::Locator;
 
 /// Turns extraction holes (short boundary loops, mostly away from the input boundary) into
 /// polygons. Long loops are the outline (or openings) of the shell and stay open.
-pub(super) fn fill_holes(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>, locator: &Locator, t: f64) {
+pub(super) fn fill_holes(
+    pos: &[Vector3<f64>],
+    faces: &mut Vec<Vec<usize>>,
+    locator: &Locator,
+    t: f64,
+) {
     for lp in boundary_loops(faces) {
         if lp.len() > MAX_HOLE {
             continue;
         }
         let near = lp
             .iter()
-            .filter(|&&v| locator.closest_boundary(&pos[v]).is_some_and(|q| (q - pos[v]).norm() < 0.75 * t))
+            .filter(|&&v| {
+                locator
+                    .closest_boundary(&pos[v])
+                    .is_some_and(|q| (q - pos[v]).norm() < 0.75 * t)
+            })
             .count();
         if near * 2 >= lp.len() {
             continue;
@@ -28,10 +37,12 @@ pub(super) fn fill_holes(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>, loca
         // A loop around a single face (a stray face) is not a hole.
         let mut sorted = lp.clone();
         sorted.sort_unstable();
-        if faces.iter().any(|f| f.len() == sorted.len() && {
-            let mut g = f.clone();
-            g.sort_unstable();
-            g == sorted
+        if faces.iter().any(|f| {
+            f.len() == sorted.len() && {
+                let mut g = f.clone();
+                g.sort_unstable();
+                g == sorted
+            }
         }) {
             continue;
         }
@@ -45,7 +56,11 @@ pub(super) fn fill_holes(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>, loca
 const MAX_HOLE: usize = 24;
 
 /// Topology repair: triangles paired, odd faces evened, even polygons cut, doublets merged.
-pub(super) fn make_quads(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, budget: &mut Budget) {
+pub(super) fn make_quads(
+    pos: &mut Vec<Vector3<f64>>,
+    faces: &mut Vec<Vec<usize>>,
+    budget: &mut Budget,
+) {
     merge_triangles(pos, faces);
     pair_odd_faces(pos, faces, budget);
     split_even(pos, faces);
@@ -60,9 +75,13 @@ fn merge_triangles(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>) {
         if let [f, g] = list.as_slice() {
             if faces[*f].len() == 3 && faces[*g].len() == 3 {
                 let tri = &faces[*f];
-                let i = (0..3).find(|&i| key(tri[i], tri[(i + 1) % 3]) == (a, b)).unwrap_or(0);
+                let i = (0..3)
+                    .find(|&i| key(tri[i], tri[(i + 1) % 3]) == (a, b))
+                    .unwrap_or(0);
                 let (x, y, z) = (tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]);
-                let Some(&d) = faces[*g].iter().find(|&&v| v != x && v != y) else { continue };
+                let Some(&d) = faces[*g].iter().find(|&&v| v != x && v != y) else {
+                    continue;
+                };
                 if d == z {
                     continue;
                 }
@@ -81,7 +100,12 @@ fn merge_triangles(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>) {
             added.push(quad.to_vec());
         }
     }
-    let mut kept: Vec<Vec<usize>> = faces.iter().enumerate().filter(|(i, _)| !gone[*i]).map(|(_, f)| f.clone()).collect();
+    let mut kept: Vec<Vec<usize>> = faces
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| !gone[*i])
+        .map(|(_, f)| f.clone())
+        .collect();
     kept.extend(added);
     *faces = kept;
 }
@@ -92,7 +116,9 @@ fn pair_odd_faces(pos: &mut Vec<Vector3<f64>>, faces: &mut [Vec<usize>], budget:
     // Kept up to date as edges are split (each half keeps the edge's faces, in order).
     let mut map = edge_faces(faces);
     loop {
-        let Some(f0) = faces.iter().position(|f| f.len() % 2 == 1) else { return };
+        let Some(f0) = faces.iter().position(|f| f.len() % 2 == 1) else {
+            return;
+        };
         if !budget.poll(0.25) {
             return;
         }
@@ -165,7 +191,12 @@ fn split_even(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>) {
             let best = (0..n)
                 .filter(|&i| !existing.contains(&key(rest[i], rest[(i + 3) % n])))
                 .map(|i| {
-                    let q = [rest[i], rest[(i + 1) % n], rest[(i + 2) % n], rest[(i + 3) % n]];
+                    let q = [
+                        rest[i],
+                        rest[(i + 1) % n],
+                        rest[(i + 2) % n],
+                        rest[(i + 3) % n],
+                    ];
                     (quad_cost(pos, q), i, q)
                 })
                 .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
@@ -174,7 +205,12 @@ fn split_even(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>) {
             out.push(q.to_vec());
             // Remove the two ear vertices i+1, i+2.
             let (r1, r2) = ((i + 1) % n, (i + 2) % n);
-            rest = rest.iter().enumerate().filter(|(k, _)| *k != r1 && *k != r2).map(|(_, &v)| v).collect();
+            rest = rest
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| *k != r1 && *k != r2)
+                .map(|(_, &v)| v)
+                .collect();
         }
         out.push(rest);
     }
@@ -192,7 +228,15 @@ mod tests {
 
     /// Summed area of `faces` (planar, counter-clockwise).
     fn area(pos: &[Vector3<f64>], faces: &[Vec<usize>]) -> f64 {
-        faces.iter().map(|f| (0..f.len()).map(|i| pos[f[i]].cross(&pos[f[(i + 1) % f.len()]]).z).sum::<f64>() / 2.0).sum()
+        faces
+            .iter()
+            .map(|f| {
+                (0..f.len())
+                    .map(|i| pos[f[i]].cross(&pos[f[(i + 1) % f.len()]]).z)
+                    .sum::<f64>()
+                    / 2.0
+            })
+            .sum()
     }
 
     #[test]
@@ -202,15 +246,28 @@ mod tests {
         let input = sheet(8, 0.5, (3..5, 3..5), |_, _| 0.0);
         let locator = Locator::new(&input);
         let (pos, all) = grid(&lines(0.0, 4.0, 8), &lines(0.0, 4.0, 8));
-        let gone = |i: usize, j: usize| (3..5).contains(&i) && (3..5).contains(&j) || (i, j) == (6, 1);
-        let mut faces: Vec<Vec<usize>> = all.iter().enumerate().filter(|(k, _)| !gone(k % 8, k / 8)).map(|(_, f)| f.clone()).collect();
+        let gone =
+            |i: usize, j: usize| (3..5).contains(&i) && (3..5).contains(&j) || (i, j) == (6, 1);
+        let mut faces: Vec<Vec<usize>> = all
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !gone(k % 8, k / 8))
+            .map(|(_, f)| f.clone())
+            .collect();
         let before = faces.len();
         fill_holes(&pos, &mut faces, &locator, 0.5);
-        assert_eq!(faces.len(), before + 1, "only the extraction hole is filled");
+        assert_eq!(
+            faces.len(),
+            before + 1,
+            "only the extraction hole is filled"
+        );
         // The same face as the one missing, the same way round.
         let (filled, missing) = (&faces[before], &all[8 + 6]);
         let k = filled.iter().position(|&v| v == missing[0]).unwrap();
-        assert_eq!((0..4).map(|i| filled[(k + i) % 4]).collect::<Vec<_>>(), *missing);
+        assert_eq!(
+            (0..4).map(|i| filled[(k + i) % 4]).collect::<Vec<_>>(),
+            *missing
+        );
     }
 
     #[test]
@@ -227,7 +284,10 @@ mod tests {
         // Face (0, 3) with a vertex bulging out of its top edge, on the boundary: a pentagon.
         pos.push(Vector3::new(0.5, 4.2, 0.0));
         let m = pos.len() - 1;
-        let f = faces.iter().position(|f| f == &vec![at(0, 3), at(1, 3), at(1, 4), at(0, 4)]).unwrap();
+        let f = faces
+            .iter()
+            .position(|f| f == &vec![at(0, 3), at(1, 3), at(1, 4), at(0, 4)])
+            .unwrap();
         faces[f] = vec![at(0, 3), at(1, 3), at(1, 4), m, at(0, 4)];
         assert_eq!(faces.iter().filter(|f| f.len() % 2 == 1).count(), 3);
         let mut control = Control::none();
@@ -237,10 +297,17 @@ mod tests {
         assert_eq!(faces.len(), 17);
         // The same surface, covered once, by quads that are not flat.
         assert!((area(&pos, &faces) - 16.1).abs() < 1e-12);
-        assert!(faces.iter().all(|f| area(&pos, std::slice::from_ref(f)) > 0.05));
+        assert!(
+            faces
+                .iter()
+                .all(|f| area(&pos, std::slice::from_ref(f)) > 0.05)
+        );
         assert!(edge_faces(&faces).values().all(|l| l.len() <= 2));
         // The triangles and the hexagon are back to squares.
-        let squares = faces.iter().filter(|f| quad_cost(&pos, [f[0], f[1], f[2], f[3]]) < 1e-12).count();
+        let squares = faces
+            .iter()
+            .filter(|f| quad_cost(&pos, [f[0], f[1], f[2], f[3]]) < 1e-12)
+            .count();
         assert!(squares >= 15, "{squares} squares");
     }
 }

@@ -16,22 +16,34 @@ use crate::remesh::surface::Locator;
 /// its quad strip (chord), when that strip runs to the boundary within a few faces both
 /// ways: splitting a whole strip keeps every face a quad and adds no irregular vertex.
 /// Returns whether anything changed.
-pub(super) fn split_unfit_faces(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, locator: &Locator, t: f64) -> bool {
+pub(super) fn split_unfit_faces(
+    pos: &mut Vec<Vector3<f64>>,
+    faces: &mut Vec<Vec<usize>>,
+    locator: &Locator,
+    t: f64,
+) -> bool {
     let limit = FINAL * t;
     let map = edge_faces(faces);
-    let other = |e: (usize, usize), f: usize| -> Option<usize> { map.get(&e).and_then(|l| l.iter().copied().find(|&g| g != f)) };
+    let other = |e: (usize, usize), f: usize| -> Option<usize> {
+        map.get(&e)
+            .and_then(|l| l.iter().copied().find(|&g| g != f))
+    };
     let edge = |f: &[usize], i: usize| key(f[i % 4], f[(i + 1) % 4]);
     let mut in_chord = vec![false; faces.len()];
     // (face, index of its first split edge) for every face of every accepted chord.
     let mut splits: Vec<(usize, usize)> = Vec::new();
     for f0 in 0..faces.len() {
-        if in_chord[f0] || faces[f0].len() != 4 || fit::deviation(pos, &faces[f0], locator) <= limit {
+        if in_chord[f0] || faces[f0].len() != 4 || fit::deviation(pos, &faces[f0], locator) <= limit
+        {
             continue;
         }
         // Split across the sides whose midpoints leave the surface most, or across the
         // longer sides when only the centre does.
         let q = &faces[f0];
-        let len = |i: usize| (pos[q[i]] - pos[q[(i + 1) % 4]]).norm() + (pos[q[(i + 2) % 4]] - pos[q[(i + 3) % 4]]).norm();
+        let len = |i: usize| {
+            (pos[q[i]] - pos[q[(i + 1) % 4]]).norm()
+                + (pos[q[(i + 2) % 4]] - pos[q[(i + 3) % 4]]).norm()
+        };
         let off = |i: usize| locator.distance(&((pos[q[i % 4]] + pos[q[(i + 1) % 4]]) * 0.5));
         let worst = |i: usize| off(i).max(off(i + 2));
         let i0 = if worst(0).max(worst(1)) > limit {
@@ -47,7 +59,12 @@ pub(super) fn split_unfit_faces(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec
         for start_edge in [i0, i0 + 2] {
             let (mut f, mut e) = (f0, edge(&faces[f0], start_edge));
             while let Some(g) = other(e, f) {
-                if g == f0 || faces[g].len() != 4 || in_chord[g] || chord.iter().any(|&(h, _)| h == g) || chord.len() >= MAX_CHORD {
+                if g == f0
+                    || faces[g].len() != 4
+                    || in_chord[g]
+                    || chord.iter().any(|&(h, _)| h == g)
+                    || chord.len() >= MAX_CHORD
+                {
                     ok = false;
                     break;
                 }
@@ -79,7 +96,13 @@ pub(super) fn split_unfit_faces(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec
         *mids.entry(key(a, b)).or_insert_with(|| {
             let m = (pos[a] + pos[b]) * 0.5;
             let boundary = map.get(&key(a, b)).is_some_and(|l| l.len() == 1);
-            let q = if boundary { locator.closest_boundary(&m).unwrap_or_else(|| locator.closest(&m).0) } else { locator.closest(&m).0 };
+            let q = if boundary {
+                locator
+                    .closest_boundary(&m)
+                    .unwrap_or_else(|| locator.closest(&m).0)
+            } else {
+                locator.closest(&m).0
+            };
             pos.push(q);
             pos.len() - 1
         })
@@ -108,9 +131,16 @@ pub(super) const SPLIT_ROUNDS: usize = 2;
 /// Drops faces at the rim that still leave the surface (a quad spanning a fold of slivers
 /// at a support), one at a time and only where the vertices this exposes can go onto the
 /// input boundary without pushing a neighbouring face off the surface.
-pub(super) fn drop_unfit_rim_faces(pos: &mut [Vector3<f64>], faces: &mut Vec<Vec<usize>>, locator: &Locator, t: f64) {
+pub(super) fn drop_unfit_rim_faces(
+    pos: &mut [Vector3<f64>],
+    faces: &mut Vec<Vec<usize>>,
+    locator: &Locator,
+    t: f64,
+) {
     let limit = FINAL * t;
-    let mut candidates: Vec<usize> = (0..faces.len()).filter(|&f| fit::deviation(pos, &faces[f], locator) > limit).collect();
+    let mut candidates: Vec<usize> = (0..faces.len())
+        .filter(|&f| fit::deviation(pos, &faces[f], locator) > limit)
+        .collect();
     if candidates.is_empty() {
         return;
     }
@@ -132,7 +162,8 @@ pub(super) fn drop_unfit_rim_faces(pos: &mut [Vector3<f64>], faces: &mut Vec<Vec
             let f = &faces[g];
             let i = f.iter().position(|&w| w == v).unwrap_or(0);
             let k = f.len();
-            count.get(&key(v, f[(i + 1) % k])) == Some(&1) || count.get(&key(v, f[(i + k - 1) % k])) == Some(&1)
+            count.get(&key(v, f[(i + 1) % k])) == Some(&1)
+                || count.get(&key(v, f[(i + k - 1) % k])) == Some(&1)
         })
     };
     candidates.sort_unstable();
@@ -141,7 +172,11 @@ pub(super) fn drop_unfit_rim_faces(pos: &mut [Vector3<f64>], faces: &mut Vec<Vec
         if !f.iter().any(|&v| on_boundary(v, &count, &gone)) {
             continue;
         }
-        let exposed: Vec<usize> = f.iter().copied().filter(|&v| !on_boundary(v, &count, &gone)).collect();
+        let exposed: Vec<usize> = f
+            .iter()
+            .copied()
+            .filter(|&v| !on_boundary(v, &count, &gone))
+            .collect();
         let mut moves = Vec::new();
         let mut ok = true;
         for &v in &exposed {
@@ -155,16 +190,26 @@ pub(super) fn drop_unfit_rim_faces(pos: &mut [Vector3<f64>], faces: &mut Vec<Vec
         }
         gone[fi] = true;
         let around: Vec<usize> = {
-            let mut list: Vec<usize> = moves.iter().flat_map(|&(v, _, _)| incident[v].iter().copied()).filter(|&g| !gone[g]).collect();
+            let mut list: Vec<usize> = moves
+                .iter()
+                .flat_map(|&(v, _, _)| incident[v].iter().copied())
+                .filter(|&g| !gone[g])
+                .collect();
             list.sort_unstable();
             list.dedup();
             list
         };
-        let before: Vec<f64> = around.iter().map(|&g| fit::deviation(pos, &faces[g], locator)).collect();
+        let before: Vec<f64> = around
+            .iter()
+            .map(|&g| fit::deviation(pos, &faces[g], locator))
+            .collect();
         for &(v, _, q) in &moves {
             pos[v] = q;
         }
-        let fine = around.iter().zip(&before).all(|(&g, &b)| fit::deviation(pos, &faces[g], locator) <= limit.max(b + 0.01 * t));
+        let fine = around
+            .iter()
+            .zip(&before)
+            .all(|(&g, &b)| fit::deviation(pos, &faces[g], locator) <= limit.max(b + 0.01 * t));
         if fine {
             for i in 0..f.len() {
                 if let Some(c) = count.get_mut(&key(f[i], f[(i + 1) % f.len()])) {
@@ -194,11 +239,25 @@ pub(super) const FINAL: f64 = 0.095;
 /// Drops faces with (almost) no area whose corners all lie on the input boundary: slivers
 /// that row extension and strip splitting can leave along a ragged rim. Nothing is exposed
 /// that is off the boundary.
-pub(super) fn drop_rim_slivers(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>, locator: &Locator, t: f64) {
-    let on_rim = |v: usize| locator.closest_boundary(&pos[v]).is_some_and(|q| (q - pos[v]).norm() <= 0.04 * t);
+pub(super) fn drop_rim_slivers(
+    pos: &[Vector3<f64>],
+    faces: &mut Vec<Vec<usize>>,
+    locator: &Locator,
+    t: f64,
+) {
+    let on_rim = |v: usize| {
+        locator
+            .closest_boundary(&pos[v])
+            .is_some_and(|q| (q - pos[v]).norm() <= 0.04 * t)
+    };
     let area = |f: &[usize]| {
         let k = f.len();
-        (0..k).fold(Vector3::zeros(), |acc: Vector3<f64>, i| acc + pos[f[i]].cross(&pos[f[(i + 1) % k]])).norm() * 0.5
+        (0..k)
+            .fold(Vector3::zeros(), |acc: Vector3<f64>, i| {
+                acc + pos[f[i]].cross(&pos[f[(i + 1) % k]])
+            })
+            .norm()
+            * 0.5
     };
     let before = faces.len();
     faces.retain(|f| !(area(f) < SLIVER * t * t && f.iter().all(|&v| on_rim(v))));
@@ -218,7 +277,10 @@ mod tests {
 
     /// Largest deviation of `faces` from the surface.
     fn worst(pos: &[Vector3<f64>], faces: &[Vec<usize>], locator: &Locator) -> f64 {
-        faces.iter().map(|f| fit::deviation(pos, f, locator)).fold(0.0, f64::max)
+        faces
+            .iter()
+            .map(|f| fit::deviation(pos, f, locator))
+            .fold(0.0, f64::max)
     }
 
     #[test]
@@ -232,7 +294,11 @@ mod tests {
         for p in pos.iter_mut() {
             p.z = 0.3 * (1.0 - (p.x - 1.0).abs());
         }
-        assert!(faces.iter().all(|f| fit::deviation(&pos, f, &locator) > FINAL * t));
+        assert!(
+            faces
+                .iter()
+                .all(|f| fit::deviation(&pos, f, &locator) > FINAL * t)
+        );
         let old = pos.len();
         assert!(split_unfit_faces(&mut pos, &mut faces, &locator, t));
         assert_eq!(faces.len(), 8);
@@ -241,9 +307,22 @@ mod tests {
         // point to a chord's midpoint under it lies on a slope), and the halves follow the
         // roof.
         assert_eq!(pos.len(), old + 5);
-        assert!(pos[old..].iter().all(|p| (p.x - 1.0).abs() < 0.05 && locator.distance(p) < 1e-12), "{:?}", &pos[old..]);
-        assert!(worst(&pos, &faces, &locator) < 0.2 * FINAL * t, "{}", worst(&pos, &faces, &locator));
-        assert!(!split_unfit_faces(&mut pos, &mut faces, &locator, t), "nothing left to split");
+        assert!(
+            pos[old..]
+                .iter()
+                .all(|p| (p.x - 1.0).abs() < 0.05 && locator.distance(p) < 1e-12),
+            "{:?}",
+            &pos[old..]
+        );
+        assert!(
+            worst(&pos, &faces, &locator) < 0.2 * FINAL * t,
+            "{}",
+            worst(&pos, &faces, &locator)
+        );
+        assert!(
+            !split_unfit_faces(&mut pos, &mut faces, &locator, t),
+            "nothing left to split"
+        );
     }
 
     #[test]

@@ -33,8 +33,13 @@ pub(super) fn rotate_edges(pos: &[Vector3<f64>], faces: &mut [Vec<usize>]) {
                 continue;
             }
             // Orient: f1 has a -> b, f2 has b -> a.
-            let has = |f: &[usize], x: usize, y: usize| (0..4).any(|i| f[i] == x && f[(i + 1) % 4] == y);
-            let (f1, f2) = if has(&faces[f1], a, b) { (f1, f2) } else { (f2, f1) };
+            let has =
+                |f: &[usize], x: usize, y: usize| (0..4).any(|i| f[i] == x && f[(i + 1) % 4] == y);
+            let (f1, f2) = if has(&faces[f1], a, b) {
+                (f1, f2)
+            } else {
+                (f2, f1)
+            };
             if !has(&faces[f1], a, b) || !has(&faces[f2], b, a) {
                 continue;
             }
@@ -46,11 +51,19 @@ pub(super) fn rotate_edges(pos: &[Vector3<f64>], faces: &mut [Vec<usize>]) {
             let [_, _, e, f] = turn(&faces[f2], b);
             // Hexagon a e f b c d; the edge ab may rotate to e-c or to f-d.
             let hexagon = [a, e, f, b, c, d];
-            if hexagon.iter().enumerate().any(|(i, v)| hexagon[i + 1..].contains(v)) {
+            if hexagon
+                .iter()
+                .enumerate()
+                .any(|(i, v)| hexagon[i + 1..].contains(v))
+            {
                 continue;
             }
             let cost = |v: usize, delta: i64| -> i64 {
-                if boundary[v] { 0 } else { (valence[v] + delta - 4).pow(2) }
+                if boundary[v] {
+                    0
+                } else {
+                    (valence[v] + delta - 4).pow(2)
+                }
             };
             let now = cost(a, 0) + cost(b, 0) + cost(c, 0) + cost(d, 0) + cost(e, 0) + cost(f, 0);
             if [a, b].iter().any(|&v| boundary[v]) {
@@ -66,10 +79,20 @@ pub(super) fn rotate_edges(pos: &[Vector3<f64>], faces: &mut [Vec<usize>]) {
                 if boundary[p] || boundary[q] || map.contains_key(&key(p, q)) {
                     continue;
                 }
-                let after = cost(a, -1) + cost(b, -1) + cost(p, 1) + cost(q, 1)
-                    + [c, d, e, f].iter().filter(|&&v| v != p && v != q).map(|&v| cost(v, 0)).sum::<i64>();
+                let after = cost(a, -1)
+                    + cost(b, -1)
+                    + cost(p, 1)
+                    + cost(q, 1)
+                    + [c, d, e, f]
+                        .iter()
+                        .filter(|&&v| v != p && v != q)
+                        .map(|&v| cost(v, 0))
+                        .sum::<i64>();
                 let shape = quad_cost(pos, quads[0]) + quad_cost(pos, quads[1]);
-                if after < now && shape <= shape_now + ROTATION_SHAPE_SLACK && best.is_none_or(|(c0, s0, _)| (after, shape) < (c0, s0)) {
+                if after < now
+                    && shape <= shape_now + ROTATION_SHAPE_SLACK
+                    && best.is_none_or(|(c0, s0, _)| (after, shape) < (c0, s0))
+                {
                     best = Some((after, shape, quads));
                 }
             }
@@ -116,9 +139,14 @@ pub(super) fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
                 let i = f.iter().position(|&w| w == v)?;
                 Some([f[(i + 1) % 4], f[(i + 2) % 4], f[(i + 3) % 4]])
             };
-            let (Some([p1, q1, r1]), Some([p2, q2, r2])) = (turn(&faces[*f1]), turn(&faces[*f2])) else { continue };
+            let (Some([p1, q1, r1]), Some([p2, q2, r2])) = (turn(&faces[*f1]), turn(&faces[*f2]))
+            else {
+                continue;
+            };
             // Interior: both edges at v are shared by exactly these two faces.
-            let interior = [p1, r1].iter().all(|&w| map.get(&key(v, w)).is_some_and(|l| l.len() == 2));
+            let interior = [p1, r1]
+                .iter()
+                .all(|&w| map.get(&key(v, w)).is_some_and(|l| l.len() == 2));
             if !interior || p1 != r2 || r1 != p2 || q1 == q2 {
                 continue;
             }
@@ -129,7 +157,12 @@ pub(super) fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
         if added.is_empty() {
             return;
         }
-        let mut kept: Vec<Vec<usize>> = faces.iter().enumerate().filter(|(i, _)| !gone[*i]).map(|(_, f)| f.clone()).collect();
+        let mut kept: Vec<Vec<usize>> = faces
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !gone[*i])
+            .map(|(_, f)| f.clone())
+            .collect();
         kept.extend(added);
         *faces = kept;
     }
@@ -161,7 +194,10 @@ mod tests {
         // e-c leaves a and b with three edges, e and c with five.
         let (f1, f2) = (3 * 6 + 3, 2 * 6 + 3);
         let (a, b, c, d, e, f) = (at(3, 3), at(4, 3), at(4, 4), at(3, 4), at(3, 2), at(4, 2));
-        assert_eq!((regular[f1].clone(), regular[f2].clone()), (vec![a, b, c, d], vec![e, f, b, a]));
+        assert_eq!(
+            (regular[f1].clone(), regular[f2].clone()),
+            (vec![a, b, c, d], vec![e, f, b, a])
+        );
         let mut faces = regular.clone();
         faces[f1] = vec![e, f, b, c];
         faces[f2] = vec![c, d, a, e];
@@ -170,8 +206,14 @@ mod tests {
         rotate_edges(&pos, &mut faces);
         let inside = interior(n, &faces);
         let v = valences(n, &faces);
-        assert!((0..n).filter(|&k| inside[k]).all(|k| v[k] == 4), "every interior vertex regular again");
-        let cost: f64 = faces.iter().map(|q| quad_cost(&pos, [q[0], q[1], q[2], q[3]])).sum();
+        assert!(
+            (0..n).filter(|&k| inside[k]).all(|k| v[k] == 4),
+            "every interior vertex regular again"
+        );
+        let cost: f64 = faces
+            .iter()
+            .map(|q| quad_cost(&pos, [q[0], q[1], q[2], q[3]]))
+            .sum();
         assert!(cost < 1e-9, "squares again");
         // A regular grid stays as it is.
         let mut same = regular.clone();

@@ -31,13 +31,19 @@ impl Surface {
             if seen[start] || self.boundary[start].is_none() {
                 continue;
             }
-            let mut lp = BoundaryLoop { vertices: Vec::new(), arcs: Vec::new(), length: 0.0 };
+            let mut lp = BoundaryLoop {
+                vertices: Vec::new(),
+                arcs: Vec::new(),
+                length: 0.0,
+            };
             let mut v = start;
             while !seen[v] {
                 seen[v] = true;
                 lp.vertices.push(v);
                 lp.arcs.push(lp.length);
-                let Some((_, next)) = self.boundary[v] else { break };
+                let Some((_, next)) = self.boundary[v] else {
+                    break;
+                };
                 lp.length += (self.pos[next] - self.pos[v]).norm();
                 v = next;
             }
@@ -49,18 +55,27 @@ impl Surface {
     /// The boundary edges, each as (vertex, its successor along the boundary), in order of
     /// the vertex.
     pub fn boundary_segments(&self) -> Vec<[usize; 2]> {
-        (0..self.len()).filter_map(|v| self.boundary[v].map(|(_, next)| [v, next])).collect()
+        (0..self.len())
+            .filter_map(|v| self.boundary[v].map(|(_, next)| [v, next]))
+            .collect()
     }
 
     /// Walks from boundary vertex `v` along its loop (forwards: faces on the left), calling
     /// `go_on(w, arc)` at every vertex `w` reached, `arc` the length walked; stops when it
     /// returns false, back at `v`, where the boundary ends, or after a lap. Returns the last
     /// vertex reached (`v` when none is).
-    fn walk_boundary(&self, v: usize, forward: bool, mut go_on: impl FnMut(usize, f64) -> bool) -> usize {
+    fn walk_boundary(
+        &self,
+        v: usize,
+        forward: bool,
+        mut go_on: impl FnMut(usize, f64) -> bool,
+    ) -> usize {
         let mut w = v;
         let mut arc = 0.0;
         for _ in 0..self.len() {
-            let Some((prev, next)) = self.boundary[w] else { break };
+            let Some((prev, next)) = self.boundary[w] else {
+                break;
+            };
             let u = if forward { next } else { prev };
             arc += (self.pos[u] - self.pos[w]).norm();
             w = u;
@@ -77,7 +92,8 @@ impl Surface {
     pub fn set_boundary_scale(&mut self, h: f64) {
         let n = self.len();
         // The vertex an arc of length `h` away (or the last before the walk ends).
-        let walk = |v: usize, forward: bool, h: f64| self.walk_boundary(v, forward, |_, arc| arc < h);
+        let walk =
+            |v: usize, forward: bool, h: f64| self.walk_boundary(v, forward, |_, arc| arc < h);
         let mut bdirs = vec![None; n];
         let mut turn = vec![0.0; n];
         for v in 0..n {
@@ -88,7 +104,10 @@ impl Surface {
                 bdirs[v] = Some((din, dout));
                 // Corners are read at the scale of a whole quad: a boundary rounded with a
                 // radius of about one quad is a corner for the quads.
-                let (back, fwd) = (walk(v, false, CORNER_SCALE * h), walk(v, true, CORNER_SCALE * h));
+                let (back, fwd) = (
+                    walk(v, false, CORNER_SCALE * h),
+                    walk(v, true, CORNER_SCALE * h),
+                );
                 turn[v] = (self.pos[v] - self.pos[back]).angle(&(self.pos[fwd] - self.pos[v]));
                 if turn[v].is_nan() {
                     turn[v] = 0.0;
@@ -117,7 +136,11 @@ impl Surface {
             }
             corner[v] = best;
         }
-        let mut narrow = if h > 0.0 { self.narrow_parts(h / CORNER_SCALE) } else { vec![false; n] };
+        let mut narrow = if h > 0.0 {
+            self.narrow_parts(h / CORNER_SCALE)
+        } else {
+            vec![false; n]
+        };
         // An acute corner cannot be followed by quads on both sides: rows along both sides
         // would have to end in a point. The boundary near it is left free, so the rows of the
         // wider side run out across the tip instead.
@@ -167,7 +190,12 @@ impl Surface {
         if segments.is_empty() {
             return vec![false; n];
         }
-        let grid = HashGrid::of_points(r, segments.iter().map(|s| [Point3::from(self.pos[s[0]]), Point3::from(self.pos[s[1]])]));
+        let grid = HashGrid::of_points(
+            r,
+            segments
+                .iter()
+                .map(|s| [Point3::from(self.pos[s[0]]), Point3::from(self.pos[s[1]])]),
+        );
         let mut narrow = vec![false; n];
         for v in (0..n).filter(|&v| self.boundary[v].is_some()) {
             let p = self.pos[v];
@@ -239,7 +267,12 @@ mod tests {
 
     /// Counter-clockwise area of a loop seen from above.
     fn area(s: &Surface, lp: &BoundaryLoop) -> f64 {
-        polygon::signed_area(&lp.vertices.iter().map(|&v| [s.pos[v].x, s.pos[v].y]).collect::<Vec<_>>())
+        polygon::signed_area(
+            &lp.vertices
+                .iter()
+                .map(|&v| [s.pos[v].x, s.pos[v].y])
+                .collect::<Vec<_>>(),
+        )
     }
 
     #[test]
@@ -255,15 +288,25 @@ mod tests {
         assert!((area(&s, outer) - 25.0).abs() < 1e-12 && (area(&s, hole) + 2.0).abs() < 1e-12);
         for lp in &loops {
             assert_eq!(lp.arcs[0], 0.0);
-            assert_eq!(lp.vertices[0], *lp.vertices.iter().min().unwrap(), "starts at its lowest vertex");
+            assert_eq!(
+                lp.vertices[0],
+                *lp.vertices.iter().min().unwrap(),
+                "starts at its lowest vertex"
+            );
             for k in 1..lp.vertices.len() {
                 let step = (s.pos[lp.vertices[k]] - s.pos[lp.vertices[k - 1]]).norm();
-                assert!((lp.arcs[k] - lp.arcs[k - 1] - step).abs() < 1e-12 && (step - 0.5).abs() < 1e-12);
+                assert!(
+                    (lp.arcs[k] - lp.arcs[k - 1] - step).abs() < 1e-12
+                        && (step - 0.5).abs() < 1e-12
+                );
                 assert_eq!(s.boundary[lp.vertices[k - 1]].unwrap().1, lp.vertices[k]);
             }
         }
         // Every boundary vertex is on exactly one loop, and nothing else is.
-        let mut on_loop: Vec<usize> = loops.iter().flat_map(|lp| lp.vertices.iter().copied()).collect();
+        let mut on_loop: Vec<usize> = loops
+            .iter()
+            .flat_map(|lp| lp.vertices.iter().copied())
+            .collect();
         on_loop.sort_unstable();
         let boundary: Vec<usize> = (0..s.len()).filter(|&v| s.boundary[v].is_some()).collect();
         assert_eq!(on_loop, boundary);
@@ -274,22 +317,43 @@ mod tests {
     fn the_corners_of_an_outline_and_a_hole_are_found_and_nothing_else() {
         let mut s = sheet(12, 0.5, (4..8, 5..8), |_, _| 0.0);
         s.set_boundary_scale(0.25);
-        let corners: Vec<[f64; 2]> = (0..s.len()).filter(|&v| s.is_corner(v)).map(|v| [s.pos[v].x, s.pos[v].y]).collect();
-        let mut expected: Vec<[f64; 2]> = vec![[0.0, 0.0], [6.0, 0.0], [0.0, 6.0], [6.0, 6.0], [2.0, 2.5], [4.0, 2.5], [2.0, 4.0], [4.0, 4.0]];
+        let corners: Vec<[f64; 2]> = (0..s.len())
+            .filter(|&v| s.is_corner(v))
+            .map(|v| [s.pos[v].x, s.pos[v].y])
+            .collect();
+        let mut expected: Vec<[f64; 2]> = vec![
+            [0.0, 0.0],
+            [6.0, 0.0],
+            [0.0, 6.0],
+            [6.0, 6.0],
+            [2.0, 2.5],
+            [4.0, 2.5],
+            [2.0, 4.0],
+            [4.0, 4.0],
+        ];
         expected.sort_by(|a, b| a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0])));
         let mut found = corners.clone();
         found.sort_by(|a, b| a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0])));
         assert_eq!(found, expected);
-        assert!(!s.narrow.iter().any(|&n| n), "no part is narrower than the scale");
+        assert!(
+            !s.narrow.iter().any(|&n| n),
+            "no part is narrower than the scale"
+        );
         // Boundary directions follow the outline: along +x on the bottom edge.
-        let v = (0..s.len()).find(|&v| s.pos[v].x == 3.0 && s.pos[v].y == 0.0).unwrap();
+        let v = (0..s.len())
+            .find(|&v| s.pos[v].x == 3.0 && s.pos[v].y == 0.0)
+            .unwrap();
         let (din, dout) = s.bdirs[v].unwrap();
         assert!(din.normalize().x > 0.999 && dout.normalize().x > 0.999);
         // Both loops have corners, so Auto aligns both; Never aligns none.
         let boundary: Vec<bool> = s.boundary.iter().map(Option::is_some).collect();
         assert_eq!(s.aligned_boundary(BoundaryAlignment::Auto), boundary);
         assert_eq!(s.aligned_boundary(BoundaryAlignment::Always), boundary);
-        assert!(!s.aligned_boundary(BoundaryAlignment::Never).iter().any(|&a| a));
+        assert!(
+            !s.aligned_boundary(BoundaryAlignment::Never)
+                .iter()
+                .any(|&a| a)
+        );
     }
 
     #[test]

@@ -40,7 +40,10 @@ impl Locator {
         let pos = surface.pos.clone();
         let tris = surface.tris.clone();
         let segments = surface.boundary_segments();
-        let corners = (0..surface.len()).filter(|&v| surface.is_corner(v)).map(|v| surface.pos[v]).collect();
+        let corners = (0..surface.len())
+            .filter(|&v| surface.is_corner(v))
+            .map(|v| surface.pos[v])
+            .collect();
         // Each boundary vertex starts at most one segment; a loop's segments are those that
         // start at its vertices.
         let mut starting = vec![usize::MAX; pos.len()];
@@ -60,7 +63,16 @@ impl Locator {
             }
             loops.push((order, lp.length));
         }
-        Self { tri_bvh: Bvh::of_simplices(&pos, &tris), seg_bvh: Bvh::of_simplices(&pos, &segments), pos, tris, segments, corners, seg_place, loops }
+        Self {
+            tri_bvh: Bvh::of_simplices(&pos, &tris),
+            seg_bvh: Bvh::of_simplices(&pos, &segments),
+            pos,
+            tris,
+            segments,
+            corners,
+            seg_place,
+            loops,
+        }
     }
 
     /// Boundary vertices where the boundary turns by more than 50 degrees.
@@ -72,7 +84,10 @@ impl Locator {
     pub fn from_polymesh(mesh: &PolyMesh) -> Self {
         let surface = Surface::build(
             mesh.positions().iter().map(|p| p.coords).collect(),
-            mesh.faces().iter().flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]])).collect(),
+            mesh.faces()
+                .iter()
+                .flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]]))
+                .collect(),
             None,
         );
         Self::new(&surface)
@@ -87,7 +102,11 @@ impl Locator {
         })?;
         let (lp, start) = self.seg_place[i];
         let arc = start + (point - self.pos[self.segments[i][0]]).norm();
-        Some(BoundaryPoint { lp, arc: arc.min(self.loops[lp].1).max(0.0), point })
+        Some(BoundaryPoint {
+            lp,
+            arc: arc.min(self.loops[lp].1).max(0.0),
+            point,
+        })
     }
 
     /// Length of boundary loop `lp`.
@@ -99,22 +118,34 @@ impl Locator {
     pub fn boundary_point(&self, lp: usize, arc: f64) -> Vector3<f64> {
         let (order, length) = &self.loops[lp];
         if order.is_empty() || *length <= 0.0 {
-            return order.first().map_or_else(Vector3::zeros, |&i| self.pos[self.segments[i][0]]);
+            return order
+                .first()
+                .map_or_else(Vector3::zeros, |&i| self.pos[self.segments[i][0]]);
         }
         let arc = arc.rem_euclid(*length);
-        let k = order.partition_point(|&i| self.seg_place[i].1 <= arc).max(1) - 1;
+        let k = order
+            .partition_point(|&i| self.seg_place[i].1 <= arc)
+            .max(1)
+            - 1;
         let i = order[k];
         let [a, b] = self.segments[i];
         let l = (self.pos[b] - self.pos[a]).norm();
         if l <= 0.0 {
             return self.pos[a];
         }
-        self.pos[a] + (self.pos[b] - self.pos[a]) * ((arc - self.seg_place[i].1) / l).clamp(0.0, 1.0)
+        self.pos[a]
+            + (self.pos[b] - self.pos[a]) * ((arc - self.seg_place[i].1) / l).clamp(0.0, 1.0)
     }
 
     /// The point of loop `lp` nearest to `p` among those between arc `from` and `from +
     /// span` (going forward, wrapping), as (offset from `from`, point).
-    pub fn closest_on_arc(&self, lp: usize, from: f64, span: f64, p: &Vector3<f64>) -> (f64, Vector3<f64>) {
+    pub fn closest_on_arc(
+        &self,
+        lp: usize,
+        from: f64,
+        span: f64,
+        p: &Vector3<f64>,
+    ) -> (f64, Vector3<f64>) {
         let (order, length) = &self.loops[lp];
         let mut best = (f64::INFINITY, 0.0, self.boundary_point(lp, from));
         for &i in order {
@@ -122,12 +153,19 @@ impl Locator {
             let l = (self.pos[b] - self.pos[a]).norm();
             let start = (self.seg_place[i].1 - from).rem_euclid(*length);
             // Parts of this segment inside the window, as offsets.
-            let (lo, hi) = if start + l <= *length { (start, start + l) } else { (start - *length, start - *length + l) };
+            let (lo, hi) = if start + l <= *length {
+                (start, start + l)
+            } else {
+                (start - *length, start - *length + l)
+            };
             let (lo, hi) = (lo.max(0.0), hi.min(span));
             if lo > hi {
                 continue;
             }
-            let (qa, qb) = (self.boundary_point(lp, from + lo), self.boundary_point(lp, from + hi));
+            let (qa, qb) = (
+                self.boundary_point(lp, from + lo),
+                self.boundary_point(lp, from + hi),
+            );
             let q = closest::on_segment(p, &qa, &qb);
             let d = (q - p).norm_squared();
             if d < best.0 {
@@ -181,7 +219,9 @@ mod tests {
     /// Query points around the sheet: over and under it, inside the hole, beyond the rim.
     fn queries(seed: u64, count: usize) -> Vec<Vector3<f64>> {
         let mut rnd = numbers(seed);
-        (0..count).map(|_| Vector3::new(rnd() * 3.0 - 0.5, rnd() * 3.0 - 0.5, rnd() * 1.2 - 0.6)).collect()
+        (0..count)
+            .map(|_| Vector3::new(rnd() * 3.0 - 0.5, rnd() * 3.0 - 0.5, rnd() * 1.2 - 0.6))
+            .collect()
     }
 
     #[test]
@@ -194,7 +234,8 @@ mod tests {
                 .iter()
                 .enumerate()
                 .map(|(i, &[a, b, c])| {
-                    let q = closest::on_triangle(&p, &surface.pos[a], &surface.pos[b], &surface.pos[c]);
+                    let q =
+                        closest::on_triangle(&p, &surface.pos[a], &surface.pos[b], &surface.pos[c]);
                     ((q - p).norm_squared(), i, q)
                 })
                 .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
@@ -203,7 +244,9 @@ mod tests {
             assert_eq!(found, q, "query {p:?}");
             assert!((locator.distance(&p) - d2.sqrt()).abs() < 1e-12);
             let [a, b, c] = surface.tris[i];
-            let face = (surface.pos[b] - surface.pos[a]).cross(&(surface.pos[c] - surface.pos[a])).normalize();
+            let face = (surface.pos[b] - surface.pos[a])
+                .cross(&(surface.pos[c] - surface.pos[a]))
+                .normalize();
             assert!((normal - face).norm() < 1e-12 && normal.z > 0.0);
         }
     }
@@ -226,7 +269,10 @@ mod tests {
             assert_eq!(locator.closest_boundary(&p), Some(q), "query {p:?}");
             // Its place along its loop names the same point.
             let at = locator.closest_boundary_at(&p).unwrap();
-            let lp = loops.iter().position(|lp| lp.vertices.contains(&segments[i][0])).unwrap();
+            let lp = loops
+                .iter()
+                .position(|lp| lp.vertices.contains(&segments[i][0]))
+                .unwrap();
             assert_eq!((at.lp, at.point), (lp, q));
             assert!(at.arc >= 0.0 && at.arc <= locator.loop_length(lp));
             assert!((locator.boundary_point(lp, at.arc) - q).norm() < 1e-12);
@@ -235,7 +281,9 @@ mod tests {
             let length = locator.loop_length(lp);
             let (offset, r) = locator.closest_on_arc(lp, 0.0, length, &p);
             let apart = (offset - at.arc).rem_euclid(length);
-            assert!(((r - p).norm() - (q - p).norm()).abs() < 1e-12 && apart.min(length - apart) < 1e-9);
+            assert!(
+                ((r - p).norm() - (q - p).norm()).abs() < 1e-12 && apart.min(length - apart) < 1e-9
+            );
         }
     }
 
@@ -249,7 +297,9 @@ mod tests {
             // Arc lengths land on the loop's vertices, and wrap around.
             for (&v, &arc) in lp.vertices.iter().zip(&lp.arcs) {
                 assert!((locator.boundary_point(id, arc) - surface.pos[v]).norm() < 1e-12);
-                assert!((locator.boundary_point(id, arc - lp.length) - surface.pos[v]).norm() < 1e-12);
+                assert!(
+                    (locator.boundary_point(id, arc - lp.length) - surface.pos[v]).norm() < 1e-12
+                );
             }
         }
         // The outline's four corners, the hole's four.
@@ -264,10 +314,13 @@ mod tests {
     fn a_surface_without_boundary_or_triangles_answers_without_panicking() {
         // The closed surface of a tetrahedron has no boundary.
         let pos = vec![Vector3::zeros(), Vector3::x(), Vector3::y(), Vector3::z()];
-        let tetrahedron = Surface::build(pos, vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]], None);
+        let tetrahedron =
+            Surface::build(pos, vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]], None);
         let locator = Locator::new(&tetrahedron);
         assert!(locator.closest_boundary(&Vector3::repeat(2.0)).is_none());
-        assert!((locator.closest(&Vector3::repeat(2.0)).0 - Vector3::repeat(1.0 / 3.0)).norm() < 1e-12);
+        assert!(
+            (locator.closest(&Vector3::repeat(2.0)).0 - Vector3::repeat(1.0 / 3.0)).norm() < 1e-12
+        );
         let empty = Locator::new(&Surface::build(Vec::new(), Vec::new(), None));
         assert_eq!(empty.closest(&Vector3::x()), (Vector3::x(), Vector3::z()));
     }

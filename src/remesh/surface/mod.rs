@@ -77,7 +77,11 @@ impl Surface {
     }
 
     /// Builds adjacency, boundary loops and (unless given) area-weighted vertex normals.
-    pub fn build(pos: Vec<Vector3<f64>>, tris: Vec<[usize; 3]>, normals: Option<Vec<Vector3<f64>>>) -> Self {
+    pub fn build(
+        pos: Vec<Vector3<f64>>,
+        tris: Vec<[usize; 3]>,
+        normals: Option<Vec<Vector3<f64>>>,
+    ) -> Self {
         let n = pos.len();
         let mut edges = Vec::new();
         let mut edge_faces: Vec<u32> = Vec::new();
@@ -131,15 +135,31 @@ impl Surface {
                     acc[v] += w;
                 }
             }
-            acc.into_iter().map(|a| a.try_normalize(1e-300).unwrap_or_else(Vector3::z)).collect()
+            acc.into_iter()
+                .map(|a| a.try_normalize(1e-300).unwrap_or_else(Vector3::z))
+                .collect()
         });
         let mean_edge = if edges.is_empty() {
             0.0
         } else {
-            edges.iter().map(|&[a, b]| (pos[a] - pos[b]).norm()).sum::<f64>() / edges.len() as f64
+            edges
+                .iter()
+                .map(|&[a, b]| (pos[a] - pos[b]).norm())
+                .sum::<f64>()
+                / edges.len() as f64
         };
-        let mut surface =
-            Self { pos, tris, normals, edges, adj, boundary, mean_edge, bdirs: Vec::new(), corner: Vec::new(), narrow: Vec::new() };
+        let mut surface = Self {
+            pos,
+            tris,
+            normals,
+            edges,
+            adj,
+            boundary,
+            mean_edge,
+            bdirs: Vec::new(),
+            corner: Vec::new(),
+            narrow: Vec::new(),
+        };
         surface.set_boundary_scale(0.0);
         surface
     }
@@ -176,7 +196,11 @@ impl Surface {
 
 /// Some unit vector orthogonal to `n`.
 pub(crate) fn any_tangent(n: &Vector3<f64>) -> Vector3<f64> {
-    let axis = if n.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+    let axis = if n.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
     (axis - n * n.dot(&axis)).normalize()
 }
 
@@ -193,7 +217,12 @@ pub(crate) mod samples {
     /// A sheet of `n` x `n` square cells of side `cell` over the xy-plane, lifted to
     /// `height(x, y)`, without the cells `(i, j)` with `i` in `holes.0` and `j` in `holes.1`;
     /// quads counter-clockwise seen from above, fan-triangulated as any input is.
-    pub fn sheet(n: usize, cell: f64, hole: (Range<usize>, Range<usize>), height: impl Fn(f64, f64) -> f64) -> Surface {
+    pub fn sheet(
+        n: usize,
+        cell: f64,
+        hole: (Range<usize>, Range<usize>),
+        height: impl Fn(f64, f64) -> f64,
+    ) -> Surface {
         let at = |i: usize, j: usize| j * (n + 1) + i;
         let positions = (0..=n)
             .flat_map(|j| (0..=n).map(move |i| (i as f64 * cell, j as f64 * cell)))
@@ -204,7 +233,8 @@ pub(crate) mod samples {
             .filter(|(i, j)| !(hole.0.contains(i) && hole.1.contains(j)))
             .map(|(i, j)| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
             .collect();
-        Surface::from_polymesh(&PolyMesh::new(positions, faces).expect("a valid sheet")).expect("a manifold sheet")
+        Surface::from_polymesh(&PolyMesh::new(positions, faces).expect("a valid sheet"))
+            .expect("a manifold sheet")
     }
 
     /// A gently curved sheet: a low saddle with a ripple, so no two triangles are coplanar.
@@ -216,7 +246,9 @@ pub(crate) mod samples {
     pub fn numbers(seed: u64) -> impl FnMut() -> f64 {
         let mut s = seed;
         move || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (s >> 11) as f64 / (1u64 << 53) as f64
         }
     }
@@ -233,28 +265,53 @@ mod tests {
     fn adjacency_lists_every_edge_at_both_ends_in_order() {
         // A sheet with a hole is an annulus: V - E + F = 0.
         let s = sheet(8, 0.25, (3..5, 2..6), wavy);
-        assert_eq!(s.len() as i64 - s.edges.len() as i64 + s.tris.len() as i64, 0);
+        assert_eq!(
+            s.len() as i64 - s.edges.len() as i64 + s.tris.len() as i64,
+            0
+        );
         for (e, &[a, b]) in s.edges.iter().enumerate() {
             assert!(a < b);
             assert!(s.adj[a].contains(&(b, e)) && s.adj[b].contains(&(a, e)));
         }
         for list in &s.adj {
-            assert!(list.windows(2).all(|w| w[0].0 < w[1].0), "sorted by neighbour, each once");
+            assert!(
+                list.windows(2).all(|w| w[0].0 < w[1].0),
+                "sorted by neighbour, each once"
+            );
         }
         assert_eq!(s.adj.iter().map(Vec::len).sum::<usize>(), 2 * s.edges.len());
-        let mean = s.edges.iter().map(|&[a, b]| s.edge_vec(a, b).norm()).sum::<f64>() / s.edges.len() as f64;
+        let mean = s
+            .edges
+            .iter()
+            .map(|&[a, b]| s.edge_vec(a, b).norm())
+            .sum::<f64>()
+            / s.edges.len() as f64;
         assert!((s.mean_edge - mean).abs() < 1e-12);
         // Normals are unit and face up, as the faces do.
-        assert!(s.normals.iter().all(|n| (n.norm() - 1.0).abs() < 1e-12 && n.z > 0.8));
+        assert!(
+            s.normals
+                .iter()
+                .all(|n| (n.norm() - 1.0).abs() < 1e-12 && n.z > 0.8)
+        );
     }
 
     #[test]
     fn unused_vertices_are_dropped_and_pinched_vertices_refused() {
         // Two triangles sharing only vertex 2 (a bow tie), and vertex 5 used by no face.
         let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
-        let positions = vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(2.0, 1.0), p(2.0, 2.0), p(9.0, 9.0)];
+        let positions = vec![
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(1.0, 1.0),
+            p(2.0, 1.0),
+            p(2.0, 2.0),
+            p(9.0, 9.0),
+        ];
         let bow_tie = PolyMesh::new(positions.clone(), vec![vec![0, 1, 2], vec![2, 3, 4]]).unwrap();
-        assert!(matches!(Surface::from_polymesh(&bow_tie), Err(RemeshError::UnsupportedInput(_))));
+        assert!(matches!(
+            Surface::from_polymesh(&bow_tie),
+            Err(RemeshError::UnsupportedInput(_))
+        ));
         let apart = PolyMesh::new(positions, vec![vec![0, 1, 2], vec![1, 3, 2]]).unwrap();
         let s = Surface::from_polymesh(&apart).unwrap();
         assert_eq!((s.len(), s.tris.len(), s.edges.len()), (4, 2, 5));
@@ -262,7 +319,12 @@ mod tests {
 
     #[test]
     fn any_tangent_is_a_unit_vector_orthogonal_to_the_normal() {
-        for n in [Vector3::x(), Vector3::y(), Vector3::z(), Vector3::new(0.95, 0.1, -0.3).normalize()] {
+        for n in [
+            Vector3::x(),
+            Vector3::y(),
+            Vector3::z(),
+            Vector3::new(0.95, 0.1, -0.3).normalize(),
+        ] {
             let t = any_tangent(&n);
             assert!((t.norm() - 1.0).abs() < 1e-12 && t.dot(&n).abs() < 1e-12);
         }
