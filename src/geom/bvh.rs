@@ -168,17 +168,7 @@ impl Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Deterministic pseudo-random numbers in [0, 1).
-    fn numbers(seed: u64) -> impl FnMut() -> f64 {
-        let mut s = seed;
-        move || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::geom::numbers;
 
     #[test]
     fn nearest_point_agrees_with_a_scan() {
@@ -202,35 +192,6 @@ mod tests {
                 .unwrap();
             assert_eq!(i, scan);
             assert!((d2 - (points[scan] - q).norm_squared()).abs() < 1e-15);
-        }
-    }
-
-    #[test]
-    fn nearest_segment_agrees_with_a_scan() {
-        let mut rnd = numbers(3);
-        let pos: Vec<Vector3<f64>> = (0..300)
-            .map(|_| Vector3::new(rnd(), rnd(), rnd() * 0.2))
-            .collect();
-        let segments: Vec<[usize; 2]> = (0..150).map(|k| [2 * k, 2 * k + 1]).collect();
-        let bvh = Bvh::of_simplices(&pos, &segments);
-        let on = |p: &Vector3<f64>, [a, b]: [usize; 2]| {
-            crate::geom::closest::on_segment(p, &pos[a], &pos[b])
-        };
-        for _ in 0..200 {
-            let q = Vector3::new(rnd() * 1.4 - 0.2, rnd() * 1.4 - 0.2, rnd() - 0.5);
-            let (i, d2, _) = bvh
-                .nearest(&q, |i| {
-                    (
-                        (on(&q, segments[i]) - q).norm_squared(),
-                        on(&q, segments[i]),
-                    )
-                })
-                .unwrap();
-            let scan = segments
-                .iter()
-                .map(|&s| (on(&q, s) - q).norm_squared())
-                .fold(f64::INFINITY, f64::min);
-            assert_eq!(d2, scan, "segment {i}");
         }
     }
 

@@ -73,6 +73,16 @@ pub(super) fn boundary_loops(faces: &[Vec<usize>]) -> Vec<Vec<usize>> {
     loops
 }
 
+/// Drops the faces marked `gone` (keeping the order of the rest) and appends `added`.
+pub(super) fn replace_faces(faces: &mut Vec<Vec<usize>>, gone: &[bool], added: Vec<Vec<usize>>) {
+    let mut k = 0;
+    faces.retain(|_| {
+        k += 1;
+        !gone[k - 1]
+    });
+    faces.extend(added);
+}
+
 /// Drops unused vertices, keeping order.
 pub(super) fn compact(
     pos: Vec<Vector3<f64>>,

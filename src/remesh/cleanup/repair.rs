@@ -8,7 +8,7 @@ use nalgebra::Vector3;
 
 use super::valence::remove_doublets;
 use crate::remesh::budget::Budget;
-use crate::remesh::quadmesh::{boundary_loops, edge_faces, key, quad_cost};
+use crate::remesh::quadmesh::{boundary_loops, edge_faces, key, quad_cost, replace_faces};
 use crate::remesh::surface::Locator;
 
 /// Turns extraction holes (short boundary loops, mostly away from the input boundary) into
@@ -100,14 +100,7 @@ fn merge_triangles(pos: &[Vector3<f64>], faces: &mut Vec<Vec<usize>>) {
             added.push(quad.to_vec());
         }
     }
-    let mut kept: Vec<Vec<usize>> = faces
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| !gone[*i])
-        .map(|(_, f)| f.clone())
-        .collect();
-    kept.extend(added);
-    *faces = kept;
+    replace_faces(faces, &gone, added);
 }
 
 /// Pairs odd faces along shortest dual paths (or to the boundary) and splits the crossed

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::Vector3;
 
-use crate::remesh::quadmesh::{edge_faces, key, quad_cost};
+use crate::remesh::quadmesh::{edge_faces, key, quad_cost, replace_faces};
 
 /// Rotates interior edges between two quads where that brings the valences of the four
 /// vertices involved closer to four (Bommes et al.'s quad mesh "edge rotation"): a 5 next
@@ -157,14 +157,7 @@ pub(super) fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
         if added.is_empty() {
             return;
         }
-        let mut kept: Vec<Vec<usize>> = faces
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| !gone[*i])
-            .map(|(_, f)| f.clone())
-            .collect();
-        kept.extend(added);
-        *faces = kept;
+        replace_faces(faces, &gone, added);
     }
 }
 

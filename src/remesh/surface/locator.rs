@@ -205,8 +205,9 @@ impl Locator {
 
 #[cfg(test)]
 mod tests {
-    use super::super::samples::{numbers, sheet, wavy};
+    use super::super::samples::{sheet, wavy};
     use super::*;
+    use crate::geom::numbers;
 
     /// A curved sheet (2 x 2) with a hole, at its boundary scale, and its locator.
     fn holed() -> (Surface, Locator) {

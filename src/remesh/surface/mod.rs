@@ -204,7 +204,7 @@ pub(crate) fn any_tangent(n: &Vector3<f64>) -> Vector3<f64> {
     (axis - n * n.dot(&axis)).normalize()
 }
 
-/// Generated surfaces and numbers for the remesher's unit tests.
+/// Generated surfaces for the remesher's unit tests.
 #[cfg(test)]
 pub(crate) mod samples {
     use std::ops::Range;
@@ -215,7 +215,7 @@ pub(crate) mod samples {
     use crate::mesh::PolyMesh;
 
     /// A sheet of `n` x `n` square cells of side `cell` over the xy-plane, lifted to
-    /// `height(x, y)`, without the cells `(i, j)` with `i` in `holes.0` and `j` in `holes.1`;
+    /// `height(x, y)`, without the cells `(i, j)` with `i` in `hole.0` and `j` in `hole.1`;
     /// quads counter-clockwise seen from above, fan-triangulated as any input is.
     pub fn sheet(
         n: usize,
@@ -240,17 +240,6 @@ pub(crate) mod samples {
     /// A gently curved sheet: a low saddle with a ripple, so no two triangles are coplanar.
     pub fn wavy(x: f64, y: f64) -> f64 {
         0.15 * (x - 1.0) * (y - 1.0) + 0.05 * (3.0 * x).sin() * (2.0 * y).cos()
-    }
-
-    /// Deterministic pseudo-random numbers in [0, 1).
-    pub fn numbers(seed: u64) -> impl FnMut() -> f64 {
-        let mut s = seed;
-        move || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        }
     }
 }
 
