@@ -28,12 +28,29 @@ impl Bvh {
     pub fn new(boxes: &[(Vector3<f64>, Vector3<f64>)]) -> Self {
         let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
         let centres: Vec<Vector3<f64>> = boxes.iter().map(|(lo, hi)| (lo + hi) * 0.5).collect();
-        let mut bvh = Self { nodes: Vec::with_capacity(2 * boxes.len() / LEAF + 1), order: Vec::new() };
+        let mut bvh = Self {
+            nodes: Vec::with_capacity(2 * boxes.len() / LEAF + 1),
+            order: Vec::new(),
+        };
         if !boxes.is_empty() {
             bvh.build(boxes, &centres, &mut order, 0);
         }
         bvh.order = order;
         bvh
+    }
+
+    /// A hierarchy over simplices of the points `pos` (segments `[a, b]`, triangles
+    /// `[a, b, c]`; `N` at least 1), each in the box of its corners.
+    pub fn of_simplices<const N: usize>(pos: &[Vector3<f64>], simplices: &[[usize; N]]) -> Self {
+        let boxes: Vec<_> = simplices
+            .iter()
+            .map(|s| {
+                s[1..].iter().fold((pos[s[0]], pos[s[0]]), |(lo, hi), &v| {
+                    (lo.inf(&pos[v]), hi.sup(&pos[v]))
+                })
+            })
+            .collect();
+        Self::new(&boxes)
     }
 
     /// Number of primitives.
@@ -46,7 +63,13 @@ impl Bvh {
         self.order.is_empty()
     }
 
-    fn build(&mut self, boxes: &[(Vector3<f64>, Vector3<f64>)], centres: &[Vector3<f64>], order: &mut [u32], offset: usize) -> usize {
+    fn build(
+        &mut self,
+        boxes: &[(Vector3<f64>, Vector3<f64>)],
+        centres: &[Vector3<f64>],
+        order: &mut [u32],
+        offset: usize,
+    ) -> usize {
         let mut lo = Vector3::repeat(f64::INFINITY);
         let mut hi = Vector3::repeat(f64::NEG_INFINITY);
         let mut clo = Vector3::repeat(f64::INFINITY);
@@ -59,14 +82,29 @@ impl Bvh {
             chi = chi.sup(&centres[i as usize]);
         }
         let id = self.nodes.len();
-        self.nodes.push(Node { lo, hi, start: offset as u32, count: order.len() as u32 });
+        self.nodes.push(Node {
+            lo,
+            hi,
+            start: offset as u32,
+            count: order.len() as u32,
+        });
         if order.len() <= LEAF {
             return id;
         }
         let extent = chi - clo;
-        let axis = if extent.x >= extent.y && extent.x >= extent.z { 0 } else if extent.y >= extent.z { 1 } else { 2 };
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
         let mid = order.len() / 2;
-        order.select_nth_unstable_by(mid, |&a, &b| centres[a as usize][axis].total_cmp(&centres[b as usize][axis]).then(a.cmp(&b)));
+        order.select_nth_unstable_by(mid, |&a, &b| {
+            centres[a as usize][axis]
+                .total_cmp(&centres[b as usize][axis])
+                .then(a.cmp(&b))
+        });
         let (left, right) = order.split_at_mut(mid);
         self.build(boxes, centres, left, offset);
         let second = self.build(boxes, centres, right, offset + mid);
@@ -77,7 +115,11 @@ impl Bvh {
 
     /// Nearest primitive to `p` by `dist2` (squared distance to primitive `i` and its closest
     /// point), as (primitive, squared distance, point); ties go to the smaller index.
-    pub fn nearest(&self, p: &Vector3<f64>, dist2: impl Fn(usize) -> (f64, Vector3<f64>)) -> Option<(usize, f64, Vector3<f64>)> {
+    pub fn nearest(
+        &self,
+        p: &Vector3<f64>,
+        dist2: impl Fn(usize) -> (f64, Vector3<f64>),
+    ) -> Option<(usize, f64, Vector3<f64>)> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -126,26 +168,28 @@ impl Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Deterministic pseudo-random numbers in [0, 1).
-    fn numbers(seed: u64) -> impl FnMut() -> f64 {
-        let mut s = seed;
-        move || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::geom::numbers;
 
     #[test]
     fn nearest_point_agrees_with_a_scan() {
         let mut rnd = numbers(7);
-        let points: Vec<Vector3<f64>> = (0..500).map(|_| Vector3::new(rnd(), rnd(), rnd() * 0.1)).collect();
+        let points: Vec<Vector3<f64>> = (0..500)
+            .map(|_| Vector3::new(rnd(), rnd(), rnd() * 0.1))
+            .collect();
         let bvh = Bvh::new(&points.iter().map(|p| (*p, *p)).collect::<Vec<_>>());
         assert_eq!(bvh.len(), 500);
         for _ in 0..200 {
             let q = Vector3::new(rnd() * 1.4 - 0.2, rnd() * 1.4 - 0.2, rnd() - 0.5);
-            let (i, d2, _) = bvh.nearest(&q, |i| ((points[i] - q).norm_squared(), points[i])).unwrap();
-            let scan = (0..points.len()).min_by(|&a, &b| (points[a] - q).norm_squared().total_cmp(&(points[b] - q).norm_squared())).unwrap();
+            let (i, d2, _) = bvh
+                .nearest(&q, |i| ((points[i] - q).norm_squared(), points[i]))
+                .unwrap();
+            let scan = (0..points.len())
+                .min_by(|&a, &b| {
+                    (points[a] - q)
+                        .norm_squared()
+                        .total_cmp(&(points[b] - q).norm_squared())
+                })
+                .unwrap();
             assert_eq!(i, scan);
             assert!((d2 - (points[scan] - q).norm_squared()).abs() < 1e-15);
         }

@@ -20,3 +20,16 @@ mod surface;
 pub use bvh::Bvh;
 pub use grid::HashGrid;
 pub use surface::{SurfaceIndex, SurfacePoint};
+
+/// Deterministic pseudo-random numbers in [0, 1) for tests (a 64-bit linear congruential
+/// generator, the top 53 bits).
+#[cfg(test)]
+pub(crate) fn numbers(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed;
+    move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

@@ -46,16 +46,15 @@ impl SurfaceIndex {
                 acc[v] += w;
             }
         }
-        let normals = acc.into_iter().map(|a| a.try_normalize(1e-300).unwrap_or_else(Vector3::z)).collect();
-        let boxes: Vec<_> = tris
-            .iter()
-            .map(|t| {
-                let (a, b, c) = (pos[t[0]], pos[t[1]], pos[t[2]]);
-                (a.inf(&b).inf(&c), a.sup(&b).sup(&c))
-            })
+        let normals = acc
+            .into_iter()
+            .map(|a| a.try_normalize(1e-300).unwrap_or_else(Vector3::z))
             .collect();
-        let bvh = Bvh::new(&boxes);
-        let mut edges: Vec<[usize; 2]> = tris.iter().flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])])).collect();
+        let bvh = Bvh::of_simplices(&pos, &tris);
+        let mut edges: Vec<[usize; 2]> = tris
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])]))
+            .collect();
         edges.sort_unstable();
         let mut boundary = Vec::new();
         let mut i = 0;
@@ -74,13 +73,24 @@ impl SurfaceIndex {
             boundary_vertex[e[0]] = true;
             boundary_vertex[e[1]] = true;
         }
-        Self { pos, tris, normals, boundary, boundary_vertex, bvh }
+        Self {
+            pos,
+            tris,
+            normals,
+            boundary,
+            boundary_vertex,
+            bvh,
+        }
     }
 
     /// Indexes a polygon mesh, its faces fan-triangulated.
     pub fn from_polymesh(mesh: &PolyMesh) -> Self {
         let pos = mesh.positions().iter().map(|p| p.coords).collect();
-        let tris = mesh.faces().iter().flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]])).collect();
+        let tris = mesh
+            .faces()
+            .iter()
+            .flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]]))
+            .collect();
         Self::new(pos, tris)
     }
 
@@ -99,20 +109,30 @@ impl SurfaceIndex {
         })?;
         let [a, b, c] = self.tris[i];
         let w = closest::triangle_weights(&point, &self.pos[a], &self.pos[b], &self.pos[c]);
-        let face_normal = (self.pos[b] - self.pos[a]).cross(&(self.pos[c] - self.pos[a])).try_normalize(1e-300).unwrap_or_else(Vector3::z);
+        let face_normal = (self.pos[b] - self.pos[a])
+            .cross(&(self.pos[c] - self.pos[a]))
+            .try_normalize(1e-300)
+            .unwrap_or_else(Vector3::z);
         let smooth = self.normals[a] * w[0] + self.normals[b] * w[1] + self.normals[c] * w[2];
         let normal = smooth.try_normalize(1e-12).unwrap_or(face_normal);
         // On an edge (one weight zero) or at a corner (two zero) of the triangle: is that
         // edge, or an edge at that corner, on the boundary?
         let corners = [a, b, c];
         let used: Vec<usize> = (0..3).filter(|&k| w[k] > 1e-12).map(|k| corners[k]).collect();
-        let is_boundary = |x: usize, y: usize| self.boundary.binary_search(&[x.min(y), x.max(y)]).is_ok();
+        let is_boundary =
+            |x: usize, y: usize| self.boundary.binary_search(&[x.min(y), x.max(y)]).is_ok();
         let on_boundary = match used[..] {
             [x, y] => is_boundary(x, y),
             [x] => self.boundary_vertex[x],
             _ => false,
         };
-        Some(SurfacePoint { point, triangle: i, normal, face_normal, on_boundary })
+        Some(SurfacePoint {
+            point,
+            triangle: i,
+            normal,
+            face_normal,
+            on_boundary,
+        })
     }
 }
 
@@ -127,7 +147,11 @@ mod tests {
             let polar = std::f64::consts::FRAC_PI_2 * i as f64 / rings as f64;
             for j in 0..sectors {
                 let az = std::f64::consts::TAU * j as f64 / sectors as f64;
-                pos.push(Vector3::new(polar.sin() * az.cos(), polar.sin() * az.sin(), polar.cos()));
+                pos.push(Vector3::new(
+                    polar.sin() * az.cos(),
+                    polar.sin() * az.sin(),
+                    polar.cos(),
+                ));
             }
         }
         let at = |i: usize, j: usize| 1 + (i - 1) * sectors + j % sectors;
@@ -154,7 +178,14 @@ mod tests {
             let scan = surface
                 .tris
                 .iter()
-                .map(|t| closest::on_triangle(&p, &surface.pos[t[0]], &surface.pos[t[1]], &surface.pos[t[2]]))
+                .map(|t| {
+                    closest::on_triangle(
+                        &p,
+                        &surface.pos[t[0]],
+                        &surface.pos[t[1]],
+                        &surface.pos[t[2]],
+                    )
+                })
                 .map(|q| (q - p).norm())
                 .fold(f64::INFINITY, f64::min);
             assert!(((found.point - p).norm() - scan).abs() < 1e-12);
@@ -170,6 +201,10 @@ mod tests {
 
     #[test]
     fn empty_surface_has_no_closest_point() {
-        assert!(SurfaceIndex::new(Vec::new(), Vec::new()).closest(&Vector3::zeros()).is_none());
+        assert!(
+            SurfaceIndex::new(Vec::new(), Vec::new())
+                .closest(&Vector3::zeros())
+                .is_none()
+        );
     }
 }

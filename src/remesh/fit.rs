@@ -10,7 +10,7 @@
 
 use nalgebra::Vector3;
 
-use super::cleanup::Anchors;
+use super::anchors::Anchors;
 use super::surface::Locator;
 
 /// Boundary vertices farther than this (times `t`) from the input boundary start a row

@@ -39,12 +39,17 @@ pub struct Metrics {
 /// Measures `quads` against `input` at target edge `t`; works on any polygon mesh, e.g.
 /// QuadriFlow's output, so the acceptance table compares like with like.
 pub fn metrics(input: &PolyMesh, quads: &PolyMesh, target_edge: f64) -> Metrics {
-    let locator = Locator::from_polymesh(input, target_edge);
+    let locator = Locator::from_polymesh(input);
     metrics_with(&locator, input, quads, target_edge)
 }
 
 /// [`metrics`] with a locator on the input already built.
-pub(crate) fn metrics_with(locator: &Locator, input: &PolyMesh, quads: &PolyMesh, t: f64) -> Metrics {
+pub(crate) fn metrics_with(
+    locator: &Locator,
+    input: &PolyMesh,
+    quads: &PolyMesh,
+    t: f64,
+) -> Metrics {
     let pos: Vec<Vector3<f64>> = quads.positions().iter().map(|p| p.coords).collect();
     let faces = quads.faces();
     let n = pos.len();
@@ -79,17 +84,31 @@ pub(crate) fn metrics_with(locator: &Locator, input: &PolyMesh, quads: &PolyMesh
         faces.iter().flatten().for_each(|&v| u[v] = true);
         u
     };
-    let interior_irregular_vertices = (0..n).filter(|&v| used[v] && !boundary[v] && valence[v] != 4).count();
+    let interior_irregular_vertices = (0..n)
+        .filter(|&v| used[v] && !boundary[v] && valence[v] != 4)
+        .count();
     let boundary_vertices_off_input = (0..n)
         .filter(|&v| boundary[v])
-        .filter(|&v| locator.closest_boundary(&pos[v]).is_none_or(|q| (q - pos[v]).norm() > 0.05 * t))
+        .filter(|&v| {
+            locator
+                .closest_boundary(&pos[v])
+                .is_none_or(|q| (q - pos[v]).norm() > 0.05 * t)
+        })
         .count();
 
-    let lengths: Vec<f64> = unique.iter().map(|&((a, b), _)| (pos[a] - pos[b]).norm() / t).collect();
-    let mean_edge_ratio = if lengths.is_empty() { 0.0 } else { lengths.iter().sum::<f64>() / lengths.len() as f64 };
+    let lengths: Vec<f64> = unique
+        .iter()
+        .map(|&((a, b), _)| (pos[a] - pos[b]).norm() / t)
+        .collect();
+    let mean_edge_ratio = if lengths.is_empty() {
+        0.0
+    } else {
+        lengths.iter().sum::<f64>() / lengths.len() as f64
+    };
     let edges_within_20pct = fraction(lengths.iter().map(|l| (l - 1.0).abs() <= 0.2));
-    let faces_area_within_20pct =
-        fraction((0..faces.len()).map(|f| (quads.face_area_vector(f).norm() / (t * t) - 1.0).abs() <= 0.2));
+    let faces_area_within_20pct = fraction(
+        (0..faces.len()).map(|f| (quads.face_area_vector(f).norm() / (t * t) - 1.0).abs() <= 0.2),
+    );
 
     let mut deviations: Vec<f64> = Vec::new();
     for f in faces {
@@ -108,7 +127,8 @@ pub(crate) fn metrics_with(locator: &Locator, input: &PolyMesh, quads: &PolyMesh
     let p95_corner_angle_deviation_deg = if deviations.is_empty() {
         0.0
     } else {
-        deviations[((deviations.len() as f64 * 0.95).ceil() as usize).clamp(1, deviations.len()) - 1]
+        deviations
+            [((deviations.len() as f64 * 0.95).ceil() as usize).clamp(1, deviations.len()) - 1]
     };
 
     let mut max_distance: f64 = 0.0;
@@ -123,7 +143,7 @@ pub(crate) fn metrics_with(locator: &Locator, input: &PolyMesh, quads: &PolyMesh
     }
 
     // Coverage: sample every input triangle and ask how far the quad mesh is.
-    let quad_locator = Locator::from_polymesh(quads, t);
+    let quad_locator = Locator::from_polymesh(quads);
     let mut covered = 0.0;
     let mut total = 0.0;
     for face in input.faces() {
@@ -164,5 +184,9 @@ fn fraction(flags: impl Iterator<Item = bool>) -> f64 {
         all += 1;
         yes += usize::from(f);
     }
-    if all == 0 { 0.0 } else { yes as f64 / all as f64 }
+    if all == 0 {
+        0.0
+    } else {
+        yes as f64 / all as f64
+    }
 }

@@ -4,7 +4,9 @@
 //! The route is the field-guided one the paper describes, after Instant Meshes (Jakob,
 //! Tarini, Panozzo, Sorkine-Hornung, "Instant field-aligned meshes", SIGGRAPH Asia 2015) and
 //! QuadriFlow (Huang, Zhou, Niessner, Guibas, "QuadriFlow: a scalable and robust method for
-//! quadrangulation", SGP 2018):
+//! quadrangulation", SGP 2018). Every step works on the [`surface`]: the triangulated input
+//! with its adjacency, its boundary loops (corners, narrow parts) and a closest-point
+//! locator on it.
 //!
 //! 1. [`field`]: a 4-RoSy orientation field, the globally smoothest one (Knöppel et al. 2013
 //!    style complex representation, solved by conjugate gradients) that follows principal
@@ -16,14 +18,16 @@
 //!    integer lattice jumps that are re-rounded between solves (the Instant Meshes energy,
 //!    with QuadriFlow's idea of fixing integer offsets globally), with boundary lattice
 //!    lines pinned onto the boundary; the working surface is refined until no edge is longer
-//!    than three quarters of a quad;
+//!    than three quarters of a quad ([`refine`]);
 //! 3. [`extract`]: vertices sharing a lattice point are collapsed, unit lattice offsets become
 //!    quad edges, faces are traced in the tangent plane;
 //! 4. [`cleanup`]: holes are filled, non-quads paired and split, doublets merged, so that the
 //!    result is a pure, manifold quad mesh; then [`fit`]: where the quads stop short of the
 //!    input boundary the boundary row is extended onto it, boundary vertices go onto the
 //!    input boundary and every vertex onto the surface, faces that still leave the surface
-//!    are pulled back, peeled and re-extended, or halved along their quad strip;
+//!    are pulled back, peeled and re-extended, or halved along their quad strip. Both keep
+//!    the same [`anchors`] (boundary vertices on the boundary, corners on corners) and work
+//!    on the face list through [`quadmesh`];
 //! 5. [`shapeup`] (optional): local-global iterations towards squares of side `t`
 //!    (Bouaziz et al., "Shape-Up", SGP 2012, as used in the paper via libigl), projected back
 //!    onto the input after every step;
@@ -34,6 +38,7 @@
 //! Everything is deterministic: iteration is in index order, no hash-map order reaches a
 //! result and no threads are used.
 
+mod anchors;
 mod budget;
 mod cleanup;
 mod extract;
@@ -43,6 +48,8 @@ mod flow;
 mod linalg;
 mod metrics;
 mod position;
+mod quadmesh;
+mod refine;
 mod shapeup;
 mod surface;
 
@@ -154,7 +161,9 @@ pub enum RemeshError {
     #[error("target edge {0} is not a positive finite length")]
     BadTargetEdge(f64),
     /// The target edge is so large that the surface would get almost no quad.
-    #[error("target edge {target} is too large for a surface of area {area:.4} (at most {max:.4} for a few quads)")]
+    #[error(
+        "target edge {target} is too large for a surface of area {area:.4} (at most {max:.4} for a few quads)"
+    )]
     TargetEdgeTooLarge {
         /// The target edge given.
         target: f64,
@@ -164,7 +173,9 @@ pub enum RemeshError {
         max: f64,
     },
     /// The target edge is so small that the quad mesh would be unreasonably large.
-    #[error("target edge {target} would give about {quads:.0} quads on this surface (limit {limit}); use a larger edge")]
+    #[error(
+        "target edge {target} would give about {quads:.0} quads on this surface (limit {limit}); use a larger edge"
+    )]
     TargetEdgeTooSmall {
         /// The target edge given.
         target: f64,
@@ -189,7 +200,9 @@ pub enum RemeshError {
     #[error("the quad mesh could not be built: {0}")]
     Mesh(#[from] MeshError),
     /// Extraction found no quad at all.
-    #[error("no quad could be extracted; the target edge {0} is probably too large for this surface")]
+    #[error(
+        "no quad could be extracted; the target edge {0} is probably too large for this surface"
+    )]
     NothingExtracted(f64),
     /// A time limit that is negative, NaN or too large.
     #[error("time limit {0} s is not a finite number >= 0")]
@@ -198,7 +211,9 @@ pub enum RemeshError {
     #[error("remesh cancelled by the caller")]
     Cancelled,
     /// The time limit passed before any quad mesh existed.
-    #[error("the remesh time limit passed after {seconds:.2} s, before a quad mesh was ready; allow more time")]
+    #[error(
+        "the remesh time limit passed after {seconds:.2} s, before a quad mesh was ready; allow more time"
+    )]
     TimeLimit {
         /// Seconds spent.
         seconds: f64,
@@ -228,7 +243,11 @@ pub fn remesh(input: &PolyMesh, options: &RemeshOptions) -> Result<Remeshed, Rem
 /// direction), unsupported input (no area, pinched vertices), an extraction failure,
 /// [`RemeshError::Cancelled`] when `control` asked to stop and [`RemeshError::TimeLimit`]
 /// when the limit passed before any quad mesh existed.
-pub fn remesh_with(input: &PolyMesh, options: &RemeshOptions, control: &mut Control<'_>) -> Result<Remeshed, RemeshError> {
+pub fn remesh_with(
+    input: &PolyMesh,
+    options: &RemeshOptions,
+    control: &mut Control<'_>,
+) -> Result<Remeshed, RemeshError> {
     let start = Instant::now();
     check_options(input, options)?;
     let mut budget = Budget::new(control, start, options.time_limit);
@@ -241,7 +260,7 @@ pub fn remesh_with(input: &PolyMesh, options: &RemeshOptions, control: &mut Cont
     let frames = field::solve(&base, options, &mut budget);
     budget.check()?;
     budget.stage(0.15, 0.2);
-    let (work, mut work_frames) = surface::refine(&base, &frames, t);
+    let (work, mut work_frames) = refine::refine(&base, &frames, t);
     let rotation = match options.direction {
         FieldDirection::Angle(deg) => deg,
         _ => 0.0,
@@ -259,19 +278,29 @@ pub fn remesh_with(input: &PolyMesh, options: &RemeshOptions, control: &mut Cont
     if raw.faces.is_empty() {
         return Err(RemeshError::NothingExtracted(t));
     }
-    let locator = surface::Locator::new(&base, t);
+    let locator = surface::Locator::new(&base);
     budget.stage(0.82, 0.97);
     let mut quads = cleanup::pure_quads(raw, &locator, t, &mut budget)?;
     if options.shapeup && budget.stopped().is_none() {
         budget.stage(0.97, 0.99);
-        quads = shapeup::shapeup(&quads, &locator, t, options.shapeup_iterations, options.shapeup_tolerance, &mut budget)?;
+        quads = shapeup::shapeup(
+            &quads,
+            &locator,
+            t,
+            options.shapeup_iterations,
+            options.shapeup_tolerance,
+            &mut budget,
+        )?;
     }
     let quads = PolyMesh::new(quads.positions, quads.faces)?;
     let seconds = start.elapsed().as_secs_f64();
     let mut found = metrics::metrics_with(&locator, input, &quads, t);
     found.seconds = seconds;
     budget.finish();
-    Ok(Remeshed { quads, metrics: found })
+    Ok(Remeshed {
+        quads,
+        metrics: found,
+    })
 }
 
 fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), RemeshError> {
@@ -280,28 +309,42 @@ fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), Remesh
         return Err(RemeshError::BadTargetEdge(t));
     }
     match options.direction {
-        FieldDirection::Vector(v) if !v.iter().all(|c| c.is_finite()) || v.iter().all(|&c| c == 0.0) => {
+        FieldDirection::Vector(v)
+            if !v.iter().all(|c| c.is_finite()) || v.iter().all(|&c| c == 0.0) =>
+        {
             return Err(RemeshError::BadDirection(v));
         }
         FieldDirection::Angle(a) if !a.is_finite() => return Err(RemeshError::BadAngle(a)),
         _ => {}
     }
-    if options.shapeup && !(options.shapeup_tolerance.is_finite() && options.shapeup_tolerance > 0.0) {
+    if options.shapeup
+        && !(options.shapeup_tolerance.is_finite() && options.shapeup_tolerance > 0.0)
+    {
         return Err(RemeshError::BadShapeupTolerance(options.shapeup_tolerance));
     }
     let area = input.area();
     if !(area.is_finite() && area > 0.0) {
-        return Err(RemeshError::UnsupportedInput(format!("the surface has no area ({area})")));
+        return Err(RemeshError::UnsupportedInput(format!(
+            "the surface has no area ({area})"
+        )));
     }
     // A handful of quads is the least that makes a pattern; below that the lattice
     // cannot resolve the surface.
     let max = (area / 4.0).sqrt();
     if t > max {
-        return Err(RemeshError::TargetEdgeTooLarge { target: t, area, max });
+        return Err(RemeshError::TargetEdgeTooLarge {
+            target: t,
+            area,
+            max,
+        });
     }
     let quads = area / (t * t);
     if quads > MAX_QUADS as f64 {
-        return Err(RemeshError::TargetEdgeTooSmall { target: t, quads, limit: MAX_QUADS });
+        return Err(RemeshError::TargetEdgeTooSmall {
+            target: t,
+            quads,
+            limit: MAX_QUADS,
+        });
     }
     Ok(())
 }

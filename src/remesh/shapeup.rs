@@ -11,11 +11,12 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::budget::{Budget, Stop};
-use super::cleanup::{Anchors, Quads};
-use super::fit;
 use super::RemeshError;
-use super::surface::{Locator, point};
+use super::anchors::Anchors;
+use super::budget::{Budget, Stop};
+use super::cleanup::Quads;
+use super::fit;
+use super::surface::Locator;
 
 /// Shares of the shape-up move tried, each half the one before.
 const SHARE_HALVINGS: i32 = 4;
@@ -24,12 +25,24 @@ const SHARE_HALVINGS: i32 = 4;
 /// that leaves the surface (at vertices, edge midpoints or centroids) by no more than
 /// `tolerance * t`, or than the input did; the input unchanged if none does. When the time limit passes
 /// the rounds done so far stand; a cancel is an error.
-pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usize, tolerance: f64, budget: &mut Budget) -> Result<Quads, RemeshError> {
+pub(crate) fn shapeup(
+    quads: &Quads,
+    locator: &Locator,
+    t: f64,
+    iterations: usize,
+    tolerance: f64,
+    budget: &mut Budget,
+) -> Result<Quads, RemeshError> {
     let mut pos: Vec<Vector3<f64>> = quads.positions.iter().map(|p| p.coords).collect();
     let faces = &quads.faces;
     let anchors = Anchors::new(&mut pos, faces, locator, t);
     let h = t * 0.5;
-    let square = [Vector3::new(-h, -h, 0.0), Vector3::new(h, -h, 0.0), Vector3::new(h, h, 0.0), Vector3::new(-h, h, 0.0)];
+    let square = [
+        Vector3::new(-h, -h, 0.0),
+        Vector3::new(h, -h, 0.0),
+        Vector3::new(h, h, 0.0),
+        Vector3::new(-h, h, 0.0),
+    ];
     for round in 0..iterations {
         if !budget.poll(round as f64 / iterations.max(1) as f64) {
             if budget.stopped() == Some(Stop::Cancelled) {
@@ -47,7 +60,9 @@ pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usiz
                 cov += (p[k] - c) * square[k].transpose();
             }
             let svd = cov.svd(true, true);
-            let (Some(u), Some(vt)) = (svd.u, svd.v_t) else { continue };
+            let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {
+                continue;
+            };
             let mut d = Matrix3::identity();
             if (u * vt).determinant() < 0.0 {
                 d[(2, 2)] = -1.0;
@@ -69,17 +84,32 @@ pub(crate) fn shapeup(quads: &Quads, locator: &Locator, t: f64, iterations: usiz
     // largest share of the shape-up move (all, half, a quarter, ...) whose faces, pulled back
     // as the fitting does, keep within the tolerance (or within the input's own deviation)
     // is kept.
-    let worst = |pos: &[Vector3<f64>]| faces.iter().map(|f| fit::deviation(pos, f, locator)).fold(0.0, f64::max);
+    let worst = |pos: &[Vector3<f64>]| {
+        faces
+            .iter()
+            .map(|f| fit::deviation(pos, f, locator))
+            .fold(0.0, f64::max)
+    };
     let before: Vec<Vector3<f64>> = quads.positions.iter().map(|p| p.coords).collect();
     let allowed = (tolerance * t).max(worst(&before));
     for halvings in 0..SHARE_HALVINGS {
         let share = 0.5f64.powi(halvings);
-        let mut trial: Vec<Vector3<f64>> =
-            (0..pos.len()).map(|v| if anchors.pinned[v] { before[v] } else { anchors.project(locator, v, &(before[v] + (pos[v] - before[v]) * share)) }).collect();
+        let mut trial: Vec<Vector3<f64>> = (0..pos.len())
+            .map(|v| {
+                if anchors.pinned[v] {
+                    before[v]
+                } else {
+                    anchors.project(locator, v, &(before[v] + (pos[v] - before[v]) * share))
+                }
+            })
+            .collect();
         fit::conform(&mut trial, faces, &anchors, locator, t);
         fit::shorten_boundary_chords(&mut trial, faces, &anchors, locator, tolerance * t);
         if worst(&trial) <= allowed {
-            return Ok(Quads { positions: trial.iter().map(point).collect(), faces: faces.clone() });
+            return Ok(Quads {
+                positions: trial.iter().map(|&p| p.into()).collect(),
+                faces: faces.clone(),
+            });
         }
     }
     Ok(quads.clone())
