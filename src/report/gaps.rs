@@ -49,7 +49,9 @@ pub struct JointSummary {
     pub within_2mm: f64,
     /// Share of pairs with `|gap - joint|` at most 5 mm.
     pub within_5mm: f64,
-    /// Tiles the fit stage cut because they could not be made to fit.
+    /// Tiles the fit stage cut because they could not be made to fit (kind `fit_cut`: full
+    /// and half tiles that would otherwise need no further cut; filler pieces and tiles cut
+    /// to the boundary that the fit trims too are cut anyway and not counted).
     pub fit_cuts: usize,
     /// The same figures for the section 3.5 placement, before the fit stage moved the tiles
     /// (absent when the fit stage did not run).

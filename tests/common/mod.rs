@@ -102,3 +102,69 @@ pub fn ragged_grid(n: usize) -> PolyMesh {
     let faces: Vec<Vec<usize>> = (0..grid.face_count()).filter(|&f| keep(f)).map(|f| grid.faces()[f].clone()).collect();
     PolyMesh::new(grid.positions().to_vec(), faces).unwrap()
 }
+
+/// Pairs of tiles whose kept faces overlap by more than `depth`, found by sampling, without
+/// the library's own joint measure: points on a grid of pitch `step` over each tile's kept
+/// face that lie at least `depth` inside it are looked up in every nearby tile's frame; a
+/// point that also lies at least `depth` inside another tile's kept face (and within half a
+/// tile width of its plane) is an overlap deeper than `depth` in both.
+pub fn overlapping_tiles(tiles: &[tilepattern::tiles::Tile], depth: f64, step: f64) -> Vec<(usize, usize, Point3<f64>)> {
+    use nalgebra::Vector3;
+    let loops = |t: &tilepattern::tiles::Tile| -> Vec<Vec<[f64; 2]>> {
+        let (hx, hy) = (t.size[0] / 2.0, t.size[1] / 2.0);
+        match &t.cut {
+            Some(cut) => cut.loops.clone(),
+            None => vec![vec![[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]]],
+        }
+    };
+    // Depth of `q` inside `loops` (negative outside): winding number and distance to edges.
+    let inside = |loops: &[Vec<[f64; 2]>], q: [f64; 2]| -> f64 {
+        let (mut winding, mut nearest) = (0, f64::INFINITY);
+        for l in loops {
+            for i in 0..l.len() {
+                let (a, b) = (l[i], l[(i + 1) % l.len()]);
+                let d = [b[0] - a[0], b[1] - a[1]];
+                let len2 = d[0] * d[0] + d[1] * d[1];
+                let t = if len2 > 0.0 { (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                nearest = nearest.min((q[0] - a[0] - t * d[0]).hypot(q[1] - a[1] - t * d[1]));
+                let side = d[0] * (q[1] - a[1]) - d[1] * (q[0] - a[0]);
+                if a[1] <= q[1] && b[1] > q[1] && side > 0.0 {
+                    winding += 1;
+                } else if a[1] > q[1] && b[1] <= q[1] && side < 0.0 {
+                    winding -= 1;
+                }
+            }
+        }
+        if winding != 0 { nearest } else { -nearest }
+    };
+    let all: Vec<Vec<Vec<[f64; 2]>>> = tiles.iter().map(loops).collect();
+    let mut found = Vec::new();
+    for (a, ta) in tiles.iter().enumerate() {
+        let reach_a = ta.size[0].hypot(ta.size[1]) / 2.0;
+        let near: Vec<usize> = (0..tiles.len())
+            .filter(|&b| b != a && (tiles[b].frame.origin - ta.frame.origin).norm() < reach_a + tiles[b].size[0].hypot(tiles[b].size[1]) / 2.0)
+            .collect();
+        let (hx, hy) = (ta.size[0] / 2.0, ta.size[1] / 2.0);
+        let (nx, ny) = ((2.0 * hx / step).ceil() as usize, (2.0 * hy / step).ceil() as usize);
+        'points: for i in 0..=nx {
+            for j in 0..=ny {
+                let q = [-hx + 2.0 * hx * i as f64 / nx as f64, -hy + 2.0 * hy * j as f64 / ny as f64];
+                if inside(&all[a], q) < depth {
+                    continue;
+                }
+                let p = ta.to_world(Vector3::new(q[0], q[1], 0.0));
+                for &b in &near {
+                    let tb = &tiles[b];
+                    let local = tb.frame.to_local(&p);
+                    if local.z.abs() <= tb.size[1] / 2.0 && inside(&all[b], [local.x, local.y]) >= depth {
+                        found.push((a.min(b), a.max(b), p));
+                        break 'points;
+                    }
+                }
+            }
+        }
+    }
+    found.sort_by_key(|f| (f.0, f.1));
+    found.dedup_by_key(|f| (f.0, f.1));
+    found
+}

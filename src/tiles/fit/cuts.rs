@@ -10,9 +10,10 @@ use crate::tiles::outline::{self, Separation};
 use crate::tiles::{Cut, Tile, TileKind};
 
 /// Cuts tiles until no two overlap by more than `tolerance`, leaving a `joint` between each
-/// cut tile and the tile it was cut against. Of two overlapping tiles the one cut is a filler
-/// piece if either is (it is cut anyway), else one already cut (a boundary or half tile),
-/// else the one that loses less area. Returns the indices of the tiles cut, in order.
+/// cut tile and the tile it was cut against. Of two overlapping tiles the one cut is, in this
+/// order, a filler piece (it is cut anyway), a tile already cut to the boundary, a half tile
+/// (cut from a blank anyway), and of two alike the one that loses less area. Returns the
+/// indices of the tiles cut, in order.
 pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<usize> {
     let mut outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_outline).collect();
     let reach = tiles.iter().map(|t| t.size[0].hypot(t.size[1])).fold(0.0, f64::max);
@@ -35,10 +36,11 @@ pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<u
             let flipped = Separation { gap: s.gap, axis: -s.axis };
             let keep_a = beyond(&tiles[a], &outlines[b], &flipped, joint);
             let area = |c: &Option<Cut>| c.as_ref().map_or(0.0, Cut::area);
-            let rank = |t: &Tile| match (t.faces.is_empty(), t.cut.is_some() || t.kind == TileKind::Half) {
-                (true, _) => 0,
-                (false, true) => 1,
-                (false, false) => 2,
+            let rank = |t: &Tile| match (t.faces.is_empty(), t.cut.is_some(), t.kind == TileKind::Half) {
+                (true, _, _) => 0,
+                (false, true, _) => 1,
+                (false, false, true) => 2,
+                (false, false, false) => 3,
             };
             let loss_a = tiles[a].kept_area() - area(&keep_a);
             let loss_b = tiles[b].kept_area() - area(&keep_b);

@@ -34,9 +34,12 @@ use crate::tiles::{Tile, TileError, TileSpec};
 use self::solve::{BondBand, Problem, Weights};
 
 /// Residual weights: an overlap counts four times a gap of the same size per millimetre
-/// (sixteen times squared); a bond band as much as a joint; the anchor a thousandth, so that
-/// it only settles what the joints leave free.
-const WEIGHTS: Weights = Weights { overlap_slope: 4.0, bond: 1.0, anchor: 1e-3 };
+/// (sixteen times squared); a bond band as much as a joint; a tile's overhang beyond the
+/// surface's edge a quarter (where the quads' outer row is narrower than a course, that
+/// course overhangs rather than squeezing every joint inside: measured on the shared vault,
+/// weight 4 keeps 0.4 % more tiles on the surface with p95 joint deviations of 7 mm instead
+/// of 2.6 mm); the anchor a thousandth, so that it only settles what the joints leave free.
+const WEIGHTS: Weights = Weights { overlap_slope: 4.0, bond: 1.0, anchor: 1e-3, edge: 0.25 };
 
 /// How the fit stage places tiles.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -144,8 +147,8 @@ pub fn fit(
     let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
     let found = contacts::contacts(quads, &topology, &tiles);
     let index = SurfaceIndex::from_polymesh(surface.unwrap_or(quads));
-    let anchors: Vec<_> =
-        tiles.iter().map(|t| solve::place_on(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z)).collect();
+    let anchors: Vec<_> = tiles.iter().map(|t| solve::place_on(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z)).collect();
+    let beyond_start = solve::beyond_edge(&index, &anchors);
     let sizes: Vec<[f64; 3]> = tiles.iter().map(|t| t.size).collect();
     let bands: Vec<Option<BondBand>> = found.iter().map(|c| bond_band(c, &tiles, &anchors, spec, options)).collect();
     let problem = Problem {
@@ -153,6 +156,7 @@ pub fn fit(
         contacts: &found,
         bands: &bands,
         anchors: &anchors,
+        beyond_start: &beyond_start,
         joint: spec.joint,
         weights: WEIGHTS,
         surface: &index,

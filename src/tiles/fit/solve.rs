@@ -5,12 +5,14 @@
 //!
 //! Residuals, each with its gradient over the (at most two) tiles it involves:
 //! - **joints**: for every [`Contact`], the distance from each corner of either facing side
-//!   to the other tile's side plane, minus the joint, for corners along the other side
-//!   (fading out just beyond its ends);
+//!   to the other tile's side plane, minus the joint;
 //!   an overlap (negative distance) counts `overlap_slope` times as much per unit, so the
 //!   stage would rather open a joint than press two tiles into each other;
 //! - **bond**: for two full tiles side by side (a bed joint), the offset of their centres
 //!   along the joint, where it leaves the band the bond allows ([`BondBand`]);
+//! - **edge**: a tile that started over the surface may not move its origin more than a
+//!   quarter of its width beyond the surface's edge (an outer course that does not fit
+//!   overhangs and is cut, it is not pushed off);
 //! - **anchors**: a weak pull of each tile towards where the section 3.5 placement put it,
 //!   which only fixes what the joints leave free (sliding the whole layout).
 
@@ -38,6 +40,8 @@ pub(crate) struct Weights {
     pub bond: f64,
     /// Weight of the anchor residuals.
     pub anchor: f64,
+    /// Weight per unit of a tile's origin moving beyond the surface's edge.
+    pub edge: f64,
 }
 
 /// The placement problem.
@@ -50,6 +54,9 @@ pub(crate) struct Problem<'a> {
     pub bands: &'a [Option<BondBand>],
     /// Frames of the starting placement.
     pub anchors: &'a [Frame],
+    /// How far beyond the surface's edge each starting placement lies (tiles a ragged quad
+    /// mesh puts there may stay there, no further out).
+    pub beyond_start: &'a [Vector3<f64>],
     /// Nominal joint.
     pub joint: f64,
     /// Residual weights.
@@ -99,7 +106,7 @@ impl Problem<'_> {
     /// Calls `row(tile_a, grad_a, tile_b, grad_b, value)` for every residual at `frames`
     /// (`tile_b` is `usize::MAX` for a residual of one tile), contact residuals first, in
     /// contact order, with the contact's index.
-    fn residuals(&self, frames: &[Frame], mut row: impl FnMut(Option<usize>, usize, Grad, usize, Grad, f64)) {
+    fn residuals(&self, frames: &[Frame], beyond: &[Vector3<f64>], mut row: impl FnMut(Option<usize>, usize, Grad, usize, Grad, f64)) {
         let j = self.joint;
         let k = self.weights.overlap_slope;
         for (ci, c) in self.contacts.iter().enumerate() {
@@ -107,29 +114,18 @@ impl Problem<'_> {
             let (fa, fb) = (&frames[a], &frames[b]);
             let (ma, ca, ta, la) = side_line(fa, &self.sizes[a], c.sides[0]);
             let (mb, cb, tb, lb) = side_line(fb, &self.sizes[b], c.sides[1]);
-            // Each corner of either facing side against the other tile's side plane, weighted
-            // by how far it lies along the other side: fully where the sides run along each
-            // other, fading to nothing within `fade` beyond the other side's end, so that the
-            // residuals stay continuous as tiles slide.
-            let fade = 0.25 * la.min(lb);
-            for (point_tile, fp, t_own, c_own, l_own, plane_tile, fq, m_other, t_other, c_other, l_other) in
-                [(a, fa, ta, ca, la, b, fb, mb, tb, cb, lb), (b, fb, tb, cb, lb, a, fa, ma, ta, ca, la)]
+            // Each corner of either facing side against the other tile's side plane (the
+            // separating-axis measure of the report): all four always count, so that no tile
+            // can shed a joint it cannot fit by sliding away from its neighbour.
+            for (point_tile, fp, t_own, c_own, l_own, plane_tile, fq, m_other, c_other) in
+                [(a, fa, ta, ca, la, b, fb, mb, cb), (b, fb, tb, cb, lb, a, fa, ma, ca)]
             {
                 for sign in [-1.0, 1.0] {
                     let corner = c_own + t_own * (sign * l_own);
-                    let (along, g_along_point, g_along_plane) = plane_distance(fp, &corner, fq, &t_other, &c_other);
-                    let weight = ((l_other + fade - along.abs()) / fade).clamp(0.0, 1.0);
-                    if weight == 0.0 {
-                        continue;
-                    }
                     let (d, g_point, g_plane) = plane_distance(fp, &corner, fq, &m_other, &c_other);
                     let slope = if d < 0.0 { k } else { 1.0 };
                     let excess = d - j + (k - 1.0) * d.min(0.0);
-                    // d(weight)/d(along): -sign(along) / fade on the fading stretch.
-                    let dw = if weight < 1.0 { -along.signum() / fade } else { 0.0 };
-                    let g_point = g_point * (slope * weight) + g_along_point * (dw * excess);
-                    let g_plane = g_plane * (slope * weight) + g_along_plane * (dw * excess);
-                    row(Some(ci), point_tile, g_point, plane_tile, g_plane, weight * excess);
+                    row(Some(ci), point_tile, g_point * slope, plane_tile, g_plane * slope, excess);
                 }
             }
             if let Some(band) = self.bands[ci] {
@@ -144,6 +140,19 @@ impl Problem<'_> {
                 }
             }
         }
+        // An outer course may overhang the surface's edge, but no tile that the section 3.5
+        // placement put on the surface may be pushed off it: its origin stays within a quarter
+        // of its width beyond the edge (or where it started, if further), so that what is
+        // left on the surface after cutting is still more than a sliver.
+        for (t, (frame, out)) in frames.iter().zip(beyond).enumerate() {
+            let start = self.beyond_start.get(t).map_or(0.0, |b| b.norm()).max(self.sizes[t][1] / 4.0);
+            let excess = out.norm() - start;
+            if excess > 0.0 {
+                let away = out / out.norm();
+                let w = self.weights.edge;
+                row(None, t, Vector3::new(away.dot(&frame.x), away.dot(&frame.y), 0.0) * w, usize::MAX, Grad::zeros(), w * excess);
+            }
+        }
         let w = self.weights.anchor;
         for (t, (frame, anchor)) in frames.iter().zip(self.anchors).enumerate() {
             let moved = frame.origin - anchor.origin;
@@ -155,17 +164,18 @@ impl Problem<'_> {
         }
     }
 
-    /// The sum of squared residuals at `frames`.
-    pub fn value(&self, frames: &[Frame]) -> f64 {
+    /// The sum of squared residuals at `frames`, whose origins lie `beyond` the surface's
+    /// edge by these offsets.
+    pub fn value(&self, frames: &[Frame], beyond: &[Vector3<f64>]) -> f64 {
         let mut value = 0.0;
-        self.residuals(frames, |_, _, _, _, _, r| value += r * r);
+        self.residuals(frames, beyond, |_, _, _, _, _, r| value += r * r);
         value
     }
 
-    fn normal_equations(&self, frames: &[Frame]) -> Normal {
+    fn normal_equations(&self, frames: &[Frame], beyond: &[Vector3<f64>]) -> Normal {
         let n = frames.len();
         let mut eq = Normal { diag: vec![Matrix3::zeros(); n], off: vec![Matrix3::zeros(); self.contacts.len()], g: vec![Vector3::zeros(); n], value: 0.0 };
-        self.residuals(frames, |contact, a, ga, b, gb, r| {
+        self.residuals(frames, beyond, |contact, a, ga, b, gb, r| {
             eq.value += r * r;
             eq.diag[a] += ga * ga.transpose();
             eq.g[a] += ga * r;
@@ -222,14 +232,15 @@ impl Problem<'_> {
     /// rounds; returns as soon as it answers `false`, with the best placement so far.
     pub fn solve(&self, frames: &mut [Frame], max_iterations: usize, keep_going: &mut dyn FnMut(f64) -> bool) -> Progress {
         let n = frames.len();
-        let start = self.value(frames);
+        let mut beyond = beyond_edge(self.surface, frames);
+        let start = self.value(frames, &beyond);
         let mut progress = Progress { iterations: 0, converged: false, stopped: false, start, end: start };
         let mut mu = 1e-4;
         let mut current = start;
         let mut calm = 0;
         while progress.iterations < max_iterations {
             progress.iterations += 1;
-            let eq = self.normal_equations(frames);
+            let eq = self.normal_equations(frames, &beyond);
             current = eq.value;
             let damped: Vec<Matrix3<f64>> = eq.diag.iter().map(|d| d + Matrix3::from_diagonal(&d.diagonal()) * mu + Matrix3::identity() * 1e-12).collect();
             let inverse: Vec<Matrix3<f64>> = damped.iter().map(|d| d.try_inverse().unwrap_or_else(Matrix3::identity)).collect();
@@ -271,10 +282,11 @@ impl Problem<'_> {
                 break;
             }
             let before: Vec<Frame> = frames.to_vec();
+            let before_beyond = beyond.clone();
             for t in 0..n {
-                frames[t] = self.moved(&frames[t], &clamped(&step[t], &self.sizes[t]));
+                (frames[t], beyond[t]) = self.moved(&frames[t], &clamped(&step[t], &self.sizes[t]));
             }
-            let value = self.value(frames);
+            let value = self.value(frames, &beyond);
             if value < current {
                 calm = if current - value < CALM * current.max(1e-300) { calm + 1 } else { 0 };
                 current = value;
@@ -285,6 +297,7 @@ impl Problem<'_> {
                 }
             } else {
                 frames.copy_from_slice(&before);
+                beyond.copy_from_slice(&before_beyond);
                 mu *= 8.0;
                 if mu > 1e6 {
                     progress.converged = true;
@@ -296,18 +309,17 @@ impl Problem<'_> {
                 break;
             }
         }
-        progress.end = current.min(self.value(frames));
+        progress.end = current.min(self.value(frames, &beyond));
         progress
     }
 
-    /// `frame` after the step `(u, v, phi)`, put back on the surface: origin at the closest
-    /// surface point, `z` the surface's normal there, `x` turned by `phi` and laid into the
-    /// new tangent plane.
-    fn moved(&self, frame: &Frame, step: &Vector3<f64>) -> Frame {
+    /// `frame` after the step `(u, v, phi)`, put back on the surface (see [`place`]), and
+    /// how far beyond the surface's edge its origin now lies.
+    fn moved(&self, frame: &Frame, step: &Vector3<f64>) -> (Frame, Vector3<f64>) {
         let origin = frame.origin.coords + frame.x * step.x + frame.y * step.y;
         let (s, c) = step.z.sin_cos();
         let x = frame.x * c + frame.y * s;
-        place_on(self.surface, &origin, &x, &frame.z)
+        place(self.surface, &origin, &x, &frame.z)
     }
 }
 
@@ -316,14 +328,26 @@ impl Problem<'_> {
 /// Beyond the surface's edge the surface is continued by its tangent plane at the edge, so
 /// that tiles of the outer courses can move out past it (they are cut to it later).
 pub(crate) fn place_on(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vector3<f64>, up: &Vector3<f64>) -> Frame {
-    let (point, mut z) = match surface.closest(origin) {
+    place(surface, origin, along, up).0
+}
+
+/// How far beyond the surface's edge each of `frames` lies (see [`place`]).
+pub(crate) fn beyond_edge(surface: &SurfaceIndex, frames: &[Frame]) -> Vec<Vector3<f64>> {
+    frames.iter().map(|f| place(surface, &f.origin.coords, &f.x, &f.z).1).collect()
+}
+
+/// [`place_on`], and the offset (in the tangent plane at the edge) of the origin beyond the
+/// surface's edge: zero over the surface.
+fn place(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vector3<f64>, up: &Vector3<f64>) -> (Frame, Vector3<f64>) {
+    let (point, mut z, beyond) = match surface.closest(origin) {
         // Beyond the edge the offset to the closest point runs along the surface, not across.
         Some(sp) if sp.on_boundary || beside(&(origin - sp.point), &sp.face_normal) => {
             let off = origin - sp.point;
-            (sp.point + off - sp.normal * sp.normal.dot(&off), sp.normal)
+            let along_surface = off - sp.normal * sp.normal.dot(&off);
+            (sp.point + along_surface, sp.normal, along_surface)
         }
-        Some(sp) => (sp.point, sp.normal),
-        None => (*origin, *up),
+        Some(sp) => (sp.point, sp.normal, Vector3::zeros()),
+        None => (*origin, *up, Vector3::zeros()),
     };
     if z.dot(up) < 0.0 {
         z = -z;
@@ -332,7 +356,7 @@ pub(crate) fn place_on(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Ve
         let other = if z.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
         (other - z * other.dot(&z)).normalize()
     });
-    Frame { origin: point.into(), x, y: z.cross(&x), z }
+    (Frame { origin: point.into(), x, y: z.cross(&x), z }, beyond)
 }
 
 /// `step` held within a trust region: a tile moves at most a quarter of its width and turns
@@ -409,20 +433,22 @@ mod tests {
             bands: &bands,
             anchors: &anchors,
             joint: 0.1,
-            weights: Weights { overlap_slope: 4.0, bond: 1.0, anchor: 0.1 },
+            weights: Weights { overlap_slope: 4.0, bond: 1.0, anchor: 0.1, edge: 4.0 },
+            beyond_start: &[],
             surface: &surface,
         };
-        let eq = problem.normal_equations(&frames);
+        let beyond = vec![Vector3::zeros(); frames.len()];
+        let eq = problem.normal_equations(&frames, &beyond);
         let h = 1e-7;
         for t in 0..frames.len() {
             for k in 0..3 {
                 let mut step = Vector3::zeros();
                 step[k] = h;
                 let mut plus = frames.clone();
-                plus[t] = problem.moved(&frames[t], &step);
+                plus[t] = problem.moved(&frames[t], &step).0;
                 let mut minus = frames.clone();
-                minus[t] = problem.moved(&frames[t], &(-step));
-                let numeric = (problem.value(&plus) - problem.value(&minus)) / (4.0 * h);
+                minus[t] = problem.moved(&frames[t], &(-step)).0;
+                let numeric = (problem.value(&plus, &beyond) - problem.value(&minus, &beyond)) / (4.0 * h);
                 assert!((numeric - eq.g[t][k]).abs() < 1e-5 * (1.0 + numeric.abs()), "tile {t} axis {k}: {numeric} vs {}", eq.g[t][k]);
             }
         }
