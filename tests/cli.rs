@@ -55,13 +55,29 @@ fn match_then_tiles_round_trip_with_stable_fields() {
     let tiles = dir.join("tiles.obj");
     let report = dir.join("report.json");
     let svg = dir.join("p.svg");
-    let out = tilepattern(&["tiles", s(&quads), "--pairs", s(&pairs), "--tile", "280x140x15", "--joint", "10", "-o", s(&tiles), "--json", s(&report), "--svg", s(&svg)]);
+    // The paper's placement (section 3.5): every pair is a full tile on the quads.
+    let out = tilepattern(&["tiles", s(&quads), "--pairs", s(&pairs), "--tile", "280x140x15", "--joint", "10", "--no-fit", "-o", s(&tiles), "--json", s(&report), "--svg", s(&svg)]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let report = json(&report);
+    let paper = json(&report);
     let paired = found["pairs"].as_array().unwrap().len() as u64;
-    assert_eq!(report["full_tiles"].as_u64().unwrap(), paired);
-    assert_eq!(report["tile"]["length"], 0.28);
+    assert_eq!(paper["full_tiles"].as_u64().unwrap(), paired);
+    assert_eq!(paper["tile"]["length"], 0.28);
     assert!(svg.is_file() && tiles.is_file());
+    assert!(paper.get("fit").is_none() && paper["joints"].get("before_fit").is_none());
+
+    // The fit (default): the report gives the joints before and after, and what the fit did.
+    let out = tilepattern(&["tiles", s(&quads), "--pairs", s(&pairs), "--tile", "280x140x15", "--joint", "10", "-o", s(&tiles), "--json", s(&report)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("after the fit"));
+    let fitted = json(&report);
+    for field in ["contacts", "overlaps", "max_overlap", "p95_deviation", "within_2mm", "within_5mm", "max_gap", "fit_cuts", "before_fit"] {
+        assert!(fitted["joints"].get(field).is_some(), "joints.{field} missing");
+    }
+    for field in ["status", "iterations", "objective_before", "objective_after", "mean_move", "max_move"] {
+        assert!(fitted["fit"].get(field).is_some(), "fit.{field} missing");
+    }
+    assert_eq!(fitted["joints"]["before_fit"]["p95_deviation"], paper["joints"]["p95_deviation"]);
+    assert!(fitted["joints"]["p95_deviation"].as_f64().unwrap() < paper["joints"]["p95_deviation"].as_f64().unwrap());
 }
 
 #[test]
