@@ -22,6 +22,7 @@ pub mod fit;
 mod frame;
 pub mod outline;
 pub mod sequence;
+pub mod solid;
 
 pub use clip::{Cut, SurfaceBoundary};
 pub use cutlist::CutGroup;
@@ -480,12 +481,14 @@ impl Tile {
     }
 }
 
-/// Formats tiles as OBJ: one object per tile named `full_<i>` or `half_<i>` (`i` = tile
-/// index), six outward-facing quads per box.
+/// Formats tiles as OBJ: one object per tile named `full_<i>`, `half_<i>`, `boundary_<i>`
+/// (cut to the surface's boundary, filler pieces included) or `fitcut_<i>` (cut by the fit
+/// stage), `i` = tile index; each the tile's [`solid::solid`]: a box, or for a cut tile the
+/// prisms of its kept pieces, outward-facing.
 pub fn to_obj(tiles: &[Tile]) -> String {
     use std::fmt::Write as _;
-    const BOX_FACES: [[usize; 4]; 6] = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
     let mut out = String::new();
+    let mut next = 1;
     for (i, tile) in tiles.iter().enumerate() {
         let kind = match tile.kind {
             TileKind::Full => "full",
@@ -494,13 +497,15 @@ pub fn to_obj(tiles: &[Tile]) -> String {
             TileKind::FitCut => "fitcut",
         };
         let _ = writeln!(out, "o {kind}_{i}");
-        for c in &tile.corners {
-            let _ = writeln!(out, "v {} {} {}", c[0], c[1], c[2]);
+        let piece = solid::solid(tile);
+        for p in &piece.positions {
+            let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
         }
-        for face in BOX_FACES {
-            let [a, b, c, d] = face.map(|k| 8 * i + k + 1);
-            let _ = writeln!(out, "f {a} {b} {c} {d}");
+        for face in &piece.faces {
+            let ids: Vec<String> = face.iter().map(|k| (next + k).to_string()).collect();
+            let _ = writeln!(out, "f {}", ids.join(" "));
         }
+        next += piece.positions.len();
     }
     out
 }
