@@ -309,6 +309,42 @@ namespace TilePattern.Tests
             Assert.AreEqual(145.0, mm.QuadEdgeFor(Courses.Free), 1e-12);
             Assert.AreEqual(150.0, mm.QuadEdgeFor(Courses.Level), 1e-12);
             Assert.AreEqual(150.0, o.QuadEdge(Courses.Level), 1e-12);
+            Assert.AreEqual(145.0, TileOptions.QuadEdgeOf(280, 100, 10, Courses.Level), 1e-12, "a course lower than the square quad keeps the square");
+        }
+
+        static Report JointsReport(string fit, int overlaps, double maxOverlap)
+        {
+            return Report.Parse("{\"tile\": {\"length\": 0.28, \"width\": 0.14, \"thickness\": 0.015, \"joint\": 0.01},"
+                + "\"joints\": {\"contacts\": 10, \"joint\": 0.01, \"p95_deviation\": 0.002, \"overlaps\": " + overlaps
+                + ", \"max_overlap\": " + maxOverlap.ToString(System.Globalization.CultureInfo.InvariantCulture) + ", \"fit_cuts\": 3"
+                + (fit == null ? "" : ", \"before_fit\": {\"contacts\": 10, \"p95_deviation\": 0.02}") + "}"
+                + (fit == null ? "" : ", \"fit\": {\"status\": \"" + fit + "\", \"iterations\": 12}") + "}");
+        }
+
+        [Test]
+        public void MessagesAboutTheJoints()
+        {
+            // Fitted, overlaps within a twentieth of the joint: remarks only.
+            UserMessage[] m = UserMessage.ForJoints(JointsReport("converged", 2, 0.0004));
+            Assert.AreEqual(2, m.Length);
+            Assert.IsTrue(m.All(x => x.Level == MessageLevel.Remark), string.Join(" | ", m.Select(x => x.ToString()).ToArray()));
+            StringAssert.Contains("converged, 12 steps", m[0].Text);
+            StringAssert.Contains("0.02 before, 0.002 after", m[0].Text);
+            StringAssert.Contains("3 tiles cut", m[0].Text);
+            StringAssert.Contains("2 pairs of tiles overlap by at most 0.0004", m[1].Text);
+            // A deeper overlap, and a fit cut short by its time limit: warnings.
+            m = UserMessage.ForJoints(JointsReport("time_limit", 1, 0.003));
+            Assert.AreEqual(MessageLevel.Warning, m[0].Level);
+            StringAssert.Contains("time limit", m[0].Text);
+            Assert.AreEqual(MessageLevel.Warning, m[1].Level);
+            StringAssert.Contains("the deepest by 0.003", m[1].Text);
+            // Without the fit any overlap is a warning that names the fit; no overlap, no message.
+            m = UserMessage.ForJoints(JointsReport(null, 4, 0.0001));
+            Assert.AreEqual(1, m.Length);
+            Assert.AreEqual(MessageLevel.Warning, m[0].Level);
+            StringAssert.Contains("turn the fit on", m[0].Text);
+            Assert.IsEmpty(UserMessage.ForJoints(JointsReport(null, 0, 0.0)));
+            Assert.Throws<ArgumentNullException>(() => UserMessage.ForJoints(null));
         }
 
         [Test]

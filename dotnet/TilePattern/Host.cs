@@ -88,7 +88,7 @@ namespace TilePattern
         /// / 2, or for level courses at least width + joint (see <see cref="TileOptions.QuadEdge"/>).</summary>
         public double QuadEdgeFor(Courses courses)
         {
-            return courses == Courses.Level ? Math.Max(QuadEdge, Width + Joint) : QuadEdge;
+            return TileOptions.QuadEdgeOf(Length, Width, Joint, courses);
         }
 
         /// <summary>Tile options of this size, with <see cref="TileOptions.UnitsPerMm"/> for the

@@ -381,8 +381,14 @@ namespace TilePattern
         /// fit then closes the head joints along each course).</summary>
         public double QuadEdge(Courses courses)
         {
-            double edge = (Length + Joint) / 2.0;
-            return courses == Courses.Level ? Math.Max(edge, Width + Joint) : edge;
+            return QuadEdgeOf(Length, Width, Joint, courses);
+        }
+
+        /// <summary><see cref="QuadEdge"/> for a tile of these dimensions (model units).</summary>
+        public static double QuadEdgeOf(double length, double width, double joint, Courses courses)
+        {
+            double edge = (length + joint) / 2.0;
+            return courses == Courses.Level ? Math.Max(edge, width + joint) : edge;
         }
 
         [MethodImpl(MethodImplOptions.NoInlining)]
