@@ -2,12 +2,13 @@
 
 Loads a surface (an OBJ file, or COMPAS's sample hypar made of triangles), quadrangulates
 it when it is not made of quads, matches the quads into tiles (staggered bond by default),
-places the tiles cut to the surface's boundary, prints the report, and writes a Rhino file
-(layers tiles::full, tiles::half, tiles::cuts) and, with --json, the tiles as COMPAS boxes.
+fits them so that the joints come close to the mortar joint (cutting what cannot fit), cuts
+them to the surface's boundary, prints the report, and writes a Rhino file (layers
+tiles::full, tiles::half, tiles::cuts) and, with --json, the tiles as COMPAS boxes.
 
     python examples/compas_tiles.py [MESH.obj] [--units m] [--tile 280x140x15] [--joint 10]
-                                    [--bond staggered] [--time-limit 10] [--out compas_tiles]
-                                    [--json]
+                                    [--bond staggered] [--courses level] [--no-fit]
+                                    [--time-limit 10] [--out compas_tiles] [--json]
 
 Needs numpy, compas and rhino3dm (pip install compas rhino3dm) and the TilePattern library
 (`cargo build --release --lib` in the repository, or TILEPATTERN_LIB=/path/to/library).
@@ -25,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
 import compas  # noqa: E402
 from compas.datastructures import Mesh  # noqa: E402
 
+import tilepattern as tp  # noqa: E402
 import tilepattern.compas as tpc  # noqa: E402
 from tilepattern.rhino import export_3dm  # noqa: E402
 
@@ -39,6 +41,9 @@ def parse_args():
     parser.add_argument("--tile", default="280x140x15", help="tile length x width x thickness in mm (default 280x140x15)")
     parser.add_argument("--joint", type=float, default=10.0, help="mortar joint in mm (default 10)")
     parser.add_argument("--bond", choices=["staggered", "stack", "running"], default="staggered")
+    parser.add_argument("--courses", choices=["level", "free"], default="level",
+                        help="tiles along level courses (default, fits far better) or either way (the paper's model)")
+    parser.add_argument("--no-fit", action="store_true", help="keep the paper's placement (no fit of the joints)")
     parser.add_argument("--time-limit", type=float, default=10.0, help="seconds for the matching (default 10)")
     parser.add_argument("--out", default="compas_tiles", help="output folder (default ./compas_tiles)")
     parser.add_argument("--json", action="store_true", help="also write the tiles as COMPAS boxes (boxes.json)")
@@ -58,6 +63,13 @@ class Progress:
             print("  %s %3d%%" % (stage, 10 * step[1]), end="\n" if fraction >= 1 else "\r", flush=True)
         return False  # True would cancel
 
+    def done(self):
+        """Ends the progress line of a stage that stopped short of 100 % (the fit stops
+        when it converges)."""
+        if self.shown is not None and self.shown[1] < 10:
+            print()
+        self.shown = None
+
 
 def main():
     args = parse_args()
@@ -76,22 +88,36 @@ def main():
     if all(len(surface.face_vertices(face)) == 4 for face in surface.faces()):
         quads = surface
     else:
-        quads = tpc.remesh(surface, target_edge=(length + joint) / 2, progress=Progress())
+        edge = tp.quad_edge(length, width, joint, courses=args.courses)
+        quads = tpc.remesh(surface, target_edge=edge, progress=Progress())
         print("remeshed into %d quads" % quads.number_of_faces())
 
-    pattern = tpc.match(quads, bond=args.bond, time_limit=args.time_limit, progress=Progress())
+    pattern = tpc.match(quads, bond=args.bond, courses=args.courses, time_limit=args.time_limit, progress=Progress())
     print(
         "pattern: %d pairs, %d unpaired quads, %d continuous joints; objective %.1f, bound %.1f (%s)"
         % (len(pattern.pairs), len(pattern.unpaired), pattern.continuous_joints, pattern.objective, pattern.bound, pattern.status)
     )
 
-    boxes = tpc.tiles(quads, pattern, surface=surface, length=length, width=width, thickness=thickness, joint=joint)
+    progress = Progress()
+    boxes = tpc.tiles(quads, pattern, surface=surface, length=length, width=width, thickness=thickness, joint=joint,
+                      fit=not args.no_fit, units_per_mm=per_mm, progress=progress)
+    progress.done()
     report = tpc.report(boxes)
     cutting, joints = report["cutting"], report["joints"]
-    print("tiles: %d full, %d half, %d cut to the boundary in %d shapes; coverage %.3f" % (
-        report["full_tiles"], report["half_tiles"], cutting["boundary_tiles"], cutting["boundary_shapes"], cutting["coverage"]))
-    print("joints: %d contacts, gap %.1f..%.1f mm (nominal %.1f)" % (
-        joints["contacts"], joints["min_gap"] / per_mm, joints["max_gap"] / per_mm, joints["joint"] / per_mm))
+    print("tiles: %d full, %d half, %d cut to the boundary in %d shapes, %d filler pieces; coverage %.3f" % (
+        report["full_tiles"], report["half_tiles"], cutting["boundary_tiles"], cutting["boundary_shapes"],
+        cutting["filler_tiles"], cutting["coverage"]))
+    for name, figures in (("before the fit", joints.get("before_fit")), ("joints", joints)):
+        if figures:
+            print("%s: %d contacts, gap %.1f..%.1f mm (nominal %.1f), p95 |gap - joint| %.1f mm, %.0f %% within 2 mm, "
+                  "%d overlaps (deepest %.1f mm)" % (
+                      name, figures["contacts"], figures["min_gap"] / per_mm, figures["max_gap"] / per_mm,
+                      figures["joint"] / per_mm, figures["p95_deviation"] / per_mm, 100 * figures["within_2mm"],
+                      figures["overlaps"], figures["max_overlap"] / per_mm))
+    if "fit" in report:
+        fit = report["fit"]
+        print("fit: %s after %d steps, %d tiles cut to fit, mean move %.1f mm, largest %.1f mm" % (
+            fit["status"], fit["iterations"], joints["fit_cuts"], fit["mean_move"] / per_mm, fit["max_move"] / per_mm))
     print("cut list:")
     for entry in boxes.tiles.cutlist:
         print("  %-4s %-8s x %4d   blank %s" % (entry["label"], entry["kind"], entry["count"], " x ".join("%.0f" % (b / per_mm) for b in entry["blank"])))

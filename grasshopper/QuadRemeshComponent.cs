@@ -10,7 +10,7 @@ namespace TilePattern.Gh
     {
         public QuadRemeshComponent()
             : base("Quad Remesh", "QRemesh",
-                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, aligned with the principal curvature, a direction or a rotated curvature field. Solves in the background; right-click to cancel.",
+                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, or for level courses at least a course's height (width + joint), aligned with the principal curvature, a direction or a rotated curvature field. Solves in the background; right-click to cancel.",
                 "1 Mesh")
         {
         }
@@ -29,15 +29,22 @@ namespace TilePattern.Gh
             pManager.AddVectorParameter("Direction", "D", "Optional: align the quads with this direction (projected onto the surface) instead of the curvature", GH_ParamAccess.item);
             pManager.AddNumberParameter("Angle", "A", "Optional: rotate the curvature field by this angle", GH_ParamAccess.item);
             pManager.AddBooleanParameter("Shape-up", "S", "Pull faces towards squares without leaving the surface", GH_ParamAccess.item, false);
+            // Appended inputs keep the indices above (saved definitions wire by index).
+            pManager.AddNumberParameter("Tile width", "W", "Width of a tile in model units (default: 140 mm in the document's units); with level courses the quads are at least width + joint high", GH_ParamAccess.item);
+            pManager.AddIntegerParameter("Courses", "C", "As Tile Pattern's Courses: 1 = level (default), quads of max((length + joint) / 2, width + joint); 0 = free, quads of (length + joint) / 2", GH_ParamAccess.item, (int)Courses.Level);
             for (int i = 1; i <= 4; i++)
                 pManager[i].Optional = true;
+            pManager[6].Optional = true;
             ((Param_Number)pManager[4]).AngleParameter = true;
+            var courses = (Param_Integer)pManager[7];
+            courses.AddNamedValue("Level", (int)Courses.Level);
+            courses.AddNamedValue("Free", (int)Courses.Free);
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
         {
             pManager.AddMeshParameter("Quad mesh", "Q", "Near-square quads", GH_ParamAccess.item);
-            pManager.AddNumberParameter("Edge", "E", "Target quad edge used: (tile length + joint) / 2", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Edge", "E", "Target quad edge used: (tile length + joint) / 2, or max of that and width + joint for level courses", GH_ParamAccess.item);
         }
 
         protected override void SolveInstance(IGH_DataAccess DA)
@@ -46,7 +53,8 @@ namespace TilePattern.Gh
             if (!DA.GetData(0, ref mesh) || mesh == null)
                 return;
             TileDefaults defaults = Defaults();
-            double length = defaults.Length, joint = defaults.Joint, angle = 0.0;
+            double length = defaults.Length, joint = defaults.Joint, width = defaults.Width, angle = 0.0;
+            int courses = (int)Courses.Level;
             Vector3d direction = Vector3d.Unset;
             bool shapeUp = false;
             DA.GetData(1, ref length);
@@ -54,13 +62,20 @@ namespace TilePattern.Gh
             bool hasDirection = DA.GetData(3, ref direction) && direction.IsValid && !direction.IsZero;
             bool hasAngle = DA.GetData(4, ref angle);
             DA.GetData(5, ref shapeUp);
+            DA.GetData(6, ref width);
+            DA.GetData(7, ref courses);
+            if (courses != (int)Courses.Free && courses != (int)Courses.Level)
+            {
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
+                return;
+            }
             // An angle parameter gives radians unless the user switched it to degrees.
             if (hasAngle && !((Param_Number)Params.Input[4]).UseDegrees)
                 angle = angle * 180.0 / Math.PI;
             if (hasDirection && hasAngle)
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "Both a direction and an angle are given: the direction is used.");
 
-            var options = new RemeshOptions { TargetEdge = (length + joint) / 2.0, ShapeUp = shapeUp };
+            var options = new RemeshOptions { TargetEdge = TileOptions.QuadEdgeOf(length, width, joint, (Courses)courses), ShapeUp = shapeUp };
             if (hasDirection)
             {
                 options.Direction = FieldDirection.Vector;

@@ -1,6 +1,8 @@
-// Stage 3: a box per matched pair, a half tile per unpaired quad, boundary tiles cut to the
-// surface; one list of tiles parallel to their labels, frames, laying steps and kinds;
-// previewed with full, half and cut tiles in different colours.
+// Stage 3: a box per matched pair, a half tile per unpaired quad, moved by the fit stage so
+// that the joints come close to the mortar joint (what cannot fit is cut), boundary tiles cut
+// to the surface; one list of tiles parallel to their labels, frames, laying steps, kinds and
+// joint deviations; previewed with full, half, boundary-cut and fit-cut tiles in different
+// colours.
 using System;
 using System.Collections.Generic;
 using System.Drawing;
@@ -22,6 +24,7 @@ namespace TilePattern.Gh
         static readonly DisplayMaterial FullMaterial = new DisplayMaterial(Color.FromArgb(200, 96, 48));
         static readonly DisplayMaterial HalfMaterial = new DisplayMaterial(Color.FromArgb(60, 120, 200));
         static readonly DisplayMaterial BoundaryMaterial = new DisplayMaterial(Color.FromArgb(230, 190, 40));
+        static readonly DisplayMaterial FitCutMaterial = new DisplayMaterial(Color.FromArgb(200, 40, 120));
 
         // What the preview draws: the breps of the last solution, by kind (UI thread only).
         readonly List<KeyValuePair<Brep, string>> preview = new List<KeyValuePair<Brep, string>>();
@@ -29,7 +32,7 @@ namespace TilePattern.Gh
 
         public TileBoxesComponent()
             : base("Tile Boxes", "TBoxes",
-                "Builds the tiles of a pattern: a box per matched pair (full tile), a half tile per unpaired quad, tiles cut to the surface's boundary (every piece); one list of tiles with their cut-list labels, frames, laying order and kinds. Preview: full tiles terracotta, half tiles blue, cut tiles yellow.",
+                "Builds the tiles of a pattern: a box per matched pair (full tile), a half tile per unpaired quad, moved on the surface so that every joint comes close to the mortar joint (the fit; what cannot fit is cut), cut to the surface's boundary (every piece); one list of tiles with their cut-list labels, frames, laying order, kinds and joint deviations. Preview: full tiles terracotta, half tiles blue, tiles cut to the boundary yellow, tiles cut to fit magenta. Solves in the background; right-click to cancel.",
                 "3 Tiles")
         {
         }
@@ -49,6 +52,8 @@ namespace TilePattern.Gh
             pManager.AddNumberParameter("Thickness", "T", "Tile thickness in model units (default: 15 mm)", GH_ParamAccess.item);
             pManager.AddNumberParameter("Joint", "J", "Mortar joint in model units (default: 10 mm)", GH_ParamAccess.item);
             pManager.AddMeshParameter("Surface", "S", "Optional: the input surface; tiles are cut to its boundary (default: the quad mesh's boundary)", GH_ParamAccess.item);
+            // Appended inputs keep the indices above (saved definitions wire by index).
+            pManager.AddBooleanParameter("Fit", "F", "Move the tiles on the surface so that every joint comes close to the mortar joint, keeping the bond, and cut what cannot fit (default true); false keeps the paper's placement", GH_ParamAccess.item, true);
             for (int i = 1; i <= 6; i++)
                 pManager[i].Optional = true;
         }
@@ -59,8 +64,10 @@ namespace TilePattern.Gh
             pManager.AddTextParameter("Labels", "Lb", "Cut-list label of every tile (F, H, B1, ...), parallel to Tiles", GH_ParamAccess.list);
             pManager.AddPlaneParameter("Planes", "Pl", "Frame of every tile (origin, length axis x, width axis y), parallel to Tiles", GH_ParamAccess.list);
             pManager.AddIntegerParameter("Steps", "N", "Laying order of every tile, from 0, parallel to Tiles", GH_ParamAccess.list);
-            pManager.AddTextParameter("Kinds", "K", "full, half or boundary (cut), parallel to Tiles", GH_ParamAccess.list);
+            pManager.AddTextParameter("Kinds", "K", "full, half, boundary (cut to the boundary) or fit_cut (cut where it could not be fitted), parallel to Tiles", GH_ParamAccess.list);
             pManager.AddGenericParameter("Tiling", "Tg", "All tiles and the report, for Tile Report", GH_ParamAccess.item);
+            // Appended outputs keep the indices above.
+            pManager.AddNumberParameter("Deviation", "D", "Worst joint of every tile: the largest |gap - joint| to its neighbours, in model units, parallel to Tiles (e.g. through Bounds and Gradient into Custom Preview to colour the tiles by their joints)", GH_ParamAccess.list);
         }
 
         protected override void BeforeSolveInstance()
@@ -87,6 +94,8 @@ namespace TilePattern.Gh
             DA.GetData(4, ref thickness);
             DA.GetData(5, ref joint);
             bool hasSurface = DA.GetData(6, ref surfaceMesh) && surfaceMesh != null;
+            bool fit = true;
+            DA.GetData(7, ref fit);
             double tolerance = Tolerance();
 
             PolyMesh quads = null, surface = null;
@@ -96,7 +105,8 @@ namespace TilePattern.Gh
                 surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh) : null;
             }))
                 return;
-            var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint };
+            // UnitsPerMm from the document's units: the report's shares of joints within 2 and 5 mm.
+            var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm };
             // The pattern by identity and by content (identity hashes alone may collide).
             var flatPairs = new List<int>(2 * pattern.Pairs.Length);
             foreach (FacePair pair in pattern.Pairs)
@@ -104,10 +114,12 @@ namespace TilePattern.Gh
                 flatPairs.Add(pair.A);
                 flatPairs.Add(pair.B);
             }
-            var key = new InputKey().AddIdentity(pattern).Add(pattern.QuadMesh).Add(flatPairs).Add(pattern.Unpaired).Add(quads).Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(tolerance);
+            var key = new InputKey().AddIdentity(pattern).Add(pattern.QuadMesh).Add(flatPairs).Add(pattern.Unpaired).Add(quads).Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(tolerance).Add(fit).Add(options.UnitsPerMm);
             TileBoxesResult result = Solve(DA, key, (token, progress) =>
             {
-                Tiling tiling = quads != null ? TilePatternEngine.Tiles(quads, pattern, options, surface) : TilePatternEngine.Tiles(pattern, options, surface);
+                // The fit reports its progress and stops when the job is cancelled.
+                Tiling tiling = quads != null ? TilePatternEngine.Tiles(quads, pattern, options, surface, progress, token)
+                    : TilePatternEngine.Tiles(pattern, options, surface, progress, token);
                 token.ThrowIfCancellationRequested();
                 return new TileBoxesResult
                 {
@@ -137,8 +149,8 @@ namespace TilePattern.Gh
                 }
             }
             Report report = result.Tiling.Report;
-            if (report.Joints.Overlaps > 0)
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, report.Joints.Overlaps + " contacts between tiles overlap (tile too large for the quads?).");
+            foreach (UserMessage message in UserMessage.ForJoints(report))
+                Show(message);
             if (report.Cutting != null && report.Cutting.Slivers > 0)
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, report.Cutting.Slivers + " slivers were left out.");
             DA.SetDataList(0, tiles.Geometry);
@@ -147,16 +159,19 @@ namespace TilePattern.Gh
             DA.SetDataList(3, tiles.Steps);
             DA.SetDataList(4, tiles.Kinds);
             DA.SetData(5, result.Tiling);
+            DA.SetDataList(6, tiles.Deviations);
         }
 
         public override BoundingBox ClippingBox { get { return previewBox; } }
 
-        /// <summary>Full, half and cut tiles in their own colours (instead of the default preview).</summary>
+        /// <summary>Full, half, boundary-cut and fit-cut tiles in their own colours (instead of
+        /// the default preview).</summary>
         public override void DrawViewportMeshes(IGH_PreviewArgs args)
         {
             foreach (var item in preview)
             {
-                DisplayMaterial material = item.Value == "full" ? FullMaterial : item.Value == "half" ? HalfMaterial : BoundaryMaterial;
+                DisplayMaterial material = item.Value == "full" ? FullMaterial : item.Value == "half" ? HalfMaterial
+                    : item.Value == "fit_cut" ? FitCutMaterial : BoundaryMaterial;
                 args.Display.DrawBrepShaded(item.Key, material);
             }
         }

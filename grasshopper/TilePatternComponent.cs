@@ -13,7 +13,7 @@ namespace TilePattern.Gh
     {
         public TilePatternComponent()
             : base("Tile Pattern", "TPattern",
-                "Matches adjacent quads into tiles: stack bond (maximum matching), staggered bond (fewest continuous joints) or running bond, solved to a proven optimum or until the time limit. Solves in the background; right-click to cancel.",
+                "Matches adjacent quads into tiles: stack bond (maximum matching), staggered bond (fewest continuous joints) or running bond, solved to a proven optimum or until the time limit; tiles along level courses (default, they fit far better) or either way. Solves in the background; right-click to cancel.",
                 "2 Pattern")
         {
         }
@@ -32,12 +32,17 @@ namespace TilePattern.Gh
             pManager.AddNumberParameter("Time limit", "T", "Seconds; 0 returns the greedy start at once", GH_ParamAccess.item, 10.0);
             pManager.AddIntegerParameter("Forced pairs", "F", "Optional: face indices a0, b0, a1, b1, ... of adjacent quads that must form tiles", GH_ParamAccess.list);
             pManager.AddIntegerParameter("Excluded", "X", "Optional: faces that take part in no tile (openings, areas laid by hand)", GH_ParamAccess.list);
+            // Appended inputs keep the indices above (saved definitions wire by index).
+            pManager.AddIntegerParameter("Courses", "C", "1 = level: every tile along level courses (horizontal in the world's z), which the fit closes far better (default); 0 = free: tiles either way across any quad (the paper's model). For level courses remesh with quads of max((length + joint) / 2, width + joint) (Quad Remesh's Courses input)", GH_ParamAccess.item, (int)Courses.Level);
             pManager[4].Optional = true;
             pManager[5].Optional = true;
             var bond = (Param_Integer)pManager[1];
             bond.AddNamedValue("Stack", (int)Bond.Stack);
             bond.AddNamedValue("Staggered", (int)Bond.Staggered);
             bond.AddNamedValue("Running bond", (int)Bond.RunningBond);
+            var courses = (Param_Integer)pManager[6];
+            courses.AddNamedValue("Level", (int)Courses.Level);
+            courses.AddNamedValue("Free", (int)Courses.Free);
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
@@ -55,7 +60,7 @@ namespace TilePattern.Gh
         protected override void SolveInstance(IGH_DataAccess DA)
         {
             Mesh mesh = null;
-            int bond = 1;
+            int bond = 1, courses = (int)Courses.Level;
             double weight = 0.5, timeLimit = 10.0;
             var forced = new List<int>();
             var excluded = new List<int>();
@@ -66,6 +71,7 @@ namespace TilePattern.Gh
             DA.GetData(3, ref timeLimit);
             DA.GetDataList(4, forced);
             DA.GetDataList(5, excluded);
+            DA.GetData(6, ref courses);
             if (forced.Count % 2 != 0)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Forced pairs needs an even number of face indices (a0, b0, a1, b1, ...).");
@@ -76,7 +82,12 @@ namespace TilePattern.Gh
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Bond is 0 (stack), 1 (staggered) or 2 (running bond), not " + bond + ".");
                 return;
             }
-            var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit };
+            if (courses != (int)Courses.Free && courses != (int)Courses.Level)
+            {
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
+                return;
+            }
+            var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit, Courses = (Courses)courses };
             for (int k = 0; k < forced.Count; k += 2)
                 options.ForcedPairs.Add(new FacePair(forced[k], forced[k + 1]));
             foreach (int face in excluded)
@@ -84,7 +95,7 @@ namespace TilePattern.Gh
             PolyMesh quads = null;
             if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh)))
                 return;
-            var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded);
+            var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded).Add(courses);
             // Not disposed here: the pattern travels downstream; its SafeHandles free the native
             // memory (announced to the GC) once Grasshopper lets go of it.
             Pattern pattern = Solve(DA, key, (token, progress) => TilePatternEngine.Match(quads, options, progress, token));

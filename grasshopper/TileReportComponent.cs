@@ -1,4 +1,5 @@
-// The report of a tiling: counts, proof status, joint gaps and overlaps, coverage.
+// The report of a tiling: counts, proof status, joint gaps and overlaps (before and after the
+// fit), the fit's result, coverage.
 using System;
 using Grasshopper.Kernel;
 
@@ -8,7 +9,7 @@ namespace TilePattern.Gh
     {
         public TileReportComponent()
             : base("Tile Report", "TReport",
-                "Reads the report of a tiling: tile counts, continuous joints, joint gaps and overlaps between neighbouring tiles, coverage of the surface, proof status.",
+                "Reads the report of a tiling: tile counts, continuous joints, joint gaps and overlaps between neighbouring tiles (after the fit, and before it), the fit's result, coverage of the surface, proof status.",
                 "3 Tiles")
         {
         }
@@ -30,15 +31,21 @@ namespace TilePattern.Gh
             pManager.AddIntegerParameter("Half tiles", "H", "Tiles cut from half blanks (unpaired quads)", GH_ParamAccess.item);
             pManager.AddIntegerParameter("Cut tiles", "C", "Full or half tiles cut to the boundary", GH_ParamAccess.item);
             pManager.AddIntegerParameter("Continuous joints", "CJ", "Continuous joints left in the pattern", GH_ParamAccess.item);
-            pManager.AddIntegerParameter("Contacts", "N", "Mesh edges between two different tiles", GH_ParamAccess.item);
-            pManager.AddNumberParameter("Min gap", "Gmin", "Smallest gap between neighbouring tiles (negative: overlap)", GH_ParamAccess.item);
-            pManager.AddNumberParameter("Max gap", "Gmax", "Largest gap between neighbouring tiles", GH_ParamAccess.item);
-            pManager.AddNumberParameter("Mean gap", "Gmean", "Mean gap at the edge midpoints", GH_ParamAccess.item);
+            pManager.AddIntegerParameter("Contacts", "N", "Pairs of neighbouring tiles (joints measured)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Min gap", "Gmin", "Narrowest joint between neighbouring tiles (negative: overlap)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Max gap", "Gmax", "Widest joint between neighbouring tiles", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Mean gap", "Gmean", "Mean joint", GH_ParamAccess.item);
             pManager.AddNumberParameter("P95 deviation", "D95", "95th percentile of |gap - joint|", GH_ParamAccess.item);
-            pManager.AddIntegerParameter("Overlaps", "O", "Contacts where the tiles overlap", GH_ParamAccess.item);
+            pManager.AddIntegerParameter("Overlaps", "O", "Pairs of tiles that overlap", GH_ParamAccess.item);
             pManager.AddNumberParameter("Coverage", "Cov", "Share of the surface under a kept tile or its half joint (when cut to a surface)", GH_ParamAccess.item);
             pManager.AddTextParameter("Status", "S", "optimal (proven), time_limit or feasible", GH_ParamAccess.item);
             pManager.AddTextParameter("JSON", "J", "The whole report as JSON", GH_ParamAccess.item);
+            // Appended outputs keep the indices above.
+            pManager.AddTextParameter("Fit", "Fit", "How the fit of the joints ended: converged, iteration_limit or time_limit (empty without the fit)", GH_ParamAccess.item);
+            pManager.AddIntegerParameter("Fit cuts", "FC", "Tiles cut where they could not be fitted (labels C1, C2, ...)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Within 2 mm", "W2", "Share of joints with |gap - joint| at most 2 mm", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Within 5 mm", "W5", "Share of joints with |gap - joint| at most 5 mm", GH_ParamAccess.item);
+            pManager.AddNumberParameter("P95 deviation before fit", "D95b", "95th percentile of |gap - joint| as the paper places the tiles, before the fit (empty without the fit)", GH_ParamAccess.item);
         }
 
         protected override void SolveInstance(IGH_DataAccess DA)
@@ -64,8 +71,15 @@ namespace TilePattern.Gh
                 DA.SetData(10, r.Cutting.Coverage);
             DA.SetData(11, r.StatusText);
             DA.SetData(12, r.Json);
-            if (r.Joints.Overlaps > 0)
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, r.Joints.Overlaps + " contacts overlap; the largest overlap is " + r.Joints.MaxOverlap + ".");
+            if (r.Fit != null)
+                DA.SetData(13, r.Fit.StatusText);
+            DA.SetData(14, r.Joints.FitCuts);
+            DA.SetData(15, r.Joints.Within2Mm);
+            DA.SetData(16, r.Joints.Within5Mm);
+            if (r.Joints.BeforeFit != null)
+                DA.SetData(17, r.Joints.BeforeFit.P95Deviation);
+            foreach (UserMessage message in UserMessage.ForJoints(r))
+                Show(message);
         }
     }
 }

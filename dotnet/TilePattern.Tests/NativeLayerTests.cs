@@ -101,6 +101,9 @@ namespace TilePattern.Tests
             Assert.AreEqual(NativeMethods.TP_BOUND_LINEAR_RELAXATION, (int)BoundSource.LinearRelaxation);
             Assert.AreEqual(NativeMethods.TP_DIRECTION_ANGLE, (int)FieldDirection.Angle);
             Assert.AreEqual(NativeMethods.TP_TILE_HALF, (int)TileKind.Half);
+            Assert.AreEqual(NativeMethods.TP_TILE_FIT_CUT, (int)TileKind.FitCut);
+            Assert.AreEqual(NativeMethods.TP_COURSES_FREE, (int)Courses.Free);
+            Assert.AreEqual(NativeMethods.TP_COURSES_LEVEL, (int)Courses.Level);
         }
 
         [Test]
@@ -161,14 +164,18 @@ namespace TilePattern.Tests
         public void StructMirrorsHaveTheHeadersLayout()
         {
             Func<string, string> same = n => n;
-            AssertMirror(typeof(TpPatternOptions), "TpPatternOptions", same);
+            Func<string, string> up = n => n.StartsWith("up[") ? "up_" + "xyz"[n[3] - '0'] : n;
+            AssertMirror(typeof(TpPatternOptions), "TpPatternOptions", up);
             AssertMirror(typeof(TpPatternSummary), "TpPatternSummary", same);
-            AssertMirror(typeof(TpTileOptions), "TpTileOptions", n => n.StartsWith("up[") ? "up_" + "xyz"[n[3] - '0'] : n);
+            AssertMirror(typeof(TpTileOptions), "TpTileOptions", up);
             AssertMirror(typeof(TpRemeshOptions), "TpRemeshOptions", n => n.StartsWith("direction_vector[") ? "direction_" + "xyz"[n[17] - '0'] : n);
-            Assert.AreEqual(64, Marshal.SizeOf(typeof(TpPatternOptions)));
+            Assert.AreEqual(96, Marshal.SizeOf(typeof(TpPatternOptions)));
             Assert.AreEqual(96, Marshal.SizeOf(typeof(TpPatternSummary)));
             Assert.AreEqual(72, Marshal.SizeOf(typeof(TpRemeshOptions)));
-            Assert.AreEqual(88, Marshal.SizeOf(typeof(TpTileOptions)));
+            Assert.AreEqual(128, Marshal.SizeOf(typeof(TpTileOptions)));
+            // The ABI 2 sizes end where the ABI 3 fields begin.
+            Assert.AreEqual(64, (int)Marshal.OffsetOf(typeof(TpPatternOptions), "courses"));
+            Assert.AreEqual(88, (int)Marshal.OffsetOf(typeof(TpTileOptions), "fit"));
         }
 
         static void AssertLibrarySize(string name, uint library, Type mirror)

@@ -64,7 +64,11 @@ namespace TilePattern.Tests
                 Assert.IsNotNull(report.Cutting);
                 Assert.Greater(tiling.Tiles.Length, pattern.Pairs.Length / 2);
                 Assert.AreEqual(quads.FaceCount, report.Faces);
-                Assert.AreEqual(tiling.Tiles.Length, report.FullTiles + report.HalfTiles, "full and half count by blank");
+                Assert.AreEqual(tiling.Tiles.Length - report.Cutting.FillerTiles, report.FullTiles + report.HalfTiles,
+                    "full and half count the tiles on the quads by blank; filler pieces are counted apart");
+                Assert.AreEqual(report.Cutting.FillerTiles, tiling.Tiles.Count(t => t.Faces.Length == 0));
+                Assert.IsNotNull(report.Fit, "the fit runs by default");
+                Assert.IsNotNull(report.Joints.BeforeFit);
                 Assert.AreEqual(tiling.BoundaryCount, report.BoundaryTiles);
                 Assert.AreEqual(tiling.BoundaryCount, report.Cutting.BoundaryTiles);
                 Assert.That(report.Cutting.Coverage, Is.InRange(0.5, 1.0 + 1e-9));
@@ -95,7 +99,7 @@ namespace TilePattern.Tests
                     // Right-handed: z = x cross y (a Rhino Plane(origin, x, y) has the tile's z).
                     double[] x = t.XAxis, y = t.YAxis;
                     Assert.AreEqual(1.0, Dot(new[] { x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0] }, t.ZAxis), 1e-9);
-                    if (t.Kind == TileKind.Full)
+                    if (t.Kind == TileKind.Full && t.Faces.Length > 0)
                     {
                         Assert.AreEqual(2, t.Faces.Length);
                         Assert.AreEqual(tile.Length, t.Length, 1e-12);
@@ -106,11 +110,11 @@ namespace TilePattern.Tests
                         Assert.LessOrEqual(t.Faces.Length, 1);
                         Assert.AreEqual(tile.Length / 2, t.Length, 1e-12);
                     }
-                    if (t.Kind == TileKind.Boundary)
+                    if (t.Kind == TileKind.Boundary || t.Kind == TileKind.FitCut)
                     {
                         Assert.IsNotEmpty(t.Outline);
                         Assert.That(t.KeptFraction, Is.GreaterThan(0.0).And.LessThan(1.0));
-                        StringAssert.StartsWith("B", t.Label);
+                        StringAssert.StartsWith(t.Kind == TileKind.Boundary ? "B" : "C", t.Label);
                     }
                     else
                     {
@@ -147,8 +151,10 @@ namespace TilePattern.Tests
                     Assert.AreEqual(49.0, paper.Objective);
                 }
 
-                var tile = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1 };
+                // Placed as in the paper (section 3.5): no fit.
+                var tile = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1, Fit = false };
                 Tiling tiling = TilePatternEngine.Tiles(pattern, tile);
+                Assert.IsNull(tiling.Report.Fit);
                 Assert.AreEqual(51, tiling.Tiles.Length);
                 Assert.AreEqual(TileKind.Full, tiling.Tiles[0].Kind);
                 Assert.AreEqual(TileKind.Half, tiling.Tiles[50].Kind);
@@ -168,10 +174,11 @@ namespace TilePattern.Tests
         [Test]
         public void BoundaryTilesAreCutToTheSurface()
         {
-            // The C tests' case: quads reach x = 10, the surface ends at x = 6.5.
+            // The C tests' case: quads reach x = 10, the surface ends at x = 6.5; the paper's
+            // placement (no fit).
             PolyMesh grid = TestMeshes.Grid(10, 10);
             PolyMesh surface = TestMeshes.Grid(13, 20, 0.5);
-            var tile = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1 };
+            var tile = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1, Fit = false };
             using (Pattern pattern = TilePatternEngine.Match(grid, new PatternOptions { Weight = 2.0 }))
             {
                 Tiling cut = TilePatternEngine.Tiles(pattern, tile, surface);
@@ -281,6 +288,16 @@ namespace TilePattern.Tests
             Assert.Less(t.SupportBand, 0.0);
             CollectionAssert.AreEqual(new[] { 0.0, 0.0, 1.0 }, t.Up);
             Assert.AreEqual(0.145, RemeshOptions.ForTile(t).TargetEdge, 1e-15);
+            // ABI 3: courses and the fit.
+            Assert.AreEqual(Courses.Free, p.Courses);
+            CollectionAssert.AreEqual(new[] { 0.0, 0.0, 1.0 }, p.Up);
+            Assert.IsTrue(t.Fit);
+            Assert.AreEqual(10.0, t.FitTimeLimitSeconds);
+            Assert.Less(t.OverlapTolerance, 0.0, "negative: a twentieth of the joint");
+            Assert.Less(t.BondTolerance, 0.0, "negative: a tenth of the length");
+            Assert.AreEqual(0.001, t.UnitsPerMm, "a model in metres");
+            Assert.AreEqual(0.145, RemeshOptions.ForTile(t, Courses.Free).TargetEdge, 1e-15);
+            Assert.AreEqual(0.15, RemeshOptions.ForTile(t, Courses.Level).TargetEdge, 1e-15, "a course's height: width + joint");
         }
 
         [Test]

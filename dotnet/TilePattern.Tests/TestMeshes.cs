@@ -9,13 +9,20 @@ namespace TilePattern.Tests
         /// <summary>An nx x ny grid of square quads of side <paramref name="size"/> in the xy plane.</summary>
         public static PolyMesh Grid(int nx, int ny, double size = 1.0)
         {
+            return Grid(nx, ny, size, (x, y) => 0.0);
+        }
+
+        /// <summary>An nx x ny grid of quads of side <paramref name="size"/> (in plan) lifted to
+        /// z = height(x, y); faces numbered row by row along x.</summary>
+        public static PolyMesh Grid(int nx, int ny, double size, Func<double, double, double> height)
+        {
             var v = new List<double>();
             for (int j = 0; j <= ny; j++)
                 for (int i = 0; i <= nx; i++)
                 {
                     v.Add(i * size);
                     v.Add(j * size);
-                    v.Add(0.0);
+                    v.Add(height(i * size, j * size));
                 }
             var faces = new List<int[]>();
             for (int j = 0; j < ny; j++)
@@ -25,6 +32,22 @@ namespace TilePattern.Tests
                     faces.Add(new[] { a, a + 1, a + nx + 2, a + nx + 1 });
                 }
             return PolyMesh.FromFaces(v.ToArray(), faces);
+        }
+
+        /// <summary>A strongly curved wave of 2 x 1.6 (metres) as triangles, z = 0.6 sin(2x)
+        /// sin(3y): tiles of 280 x 140 mm on quads of 145 mm cannot all be fitted to it, so the
+        /// fit stage cuts some.</summary>
+        public static PolyMesh Wave()
+        {
+            PolyMesh quads = Grid(40, 32, 0.05, (x, y) => 0.6 * Math.Sin(2 * x) * Math.Sin(3 * y));
+            var faces = new List<int[]>();
+            for (int f = 0; f < quads.FaceCount; f++)
+            {
+                int[] q = quads.Face(f);
+                faces.Add(new[] { q[0], q[1], q[2] });
+                faces.Add(new[] { q[0], q[2], q[3] });
+            }
+            return PolyMesh.FromFaces(quads.Vertices, faces);
         }
 
         /// <summary>A doubly curved shell patch, side <paramref name="span"/> (metres), as

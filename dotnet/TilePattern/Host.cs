@@ -65,6 +65,7 @@ namespace TilePattern
                 Width = ModelUnits.FromMillimetres(WidthMillimetres, unitSystem),
                 Thickness = ModelUnits.FromMillimetres(ThicknessMillimetres, unitSystem),
                 Joint = ModelUnits.FromMillimetres(JointMillimetres, unitSystem),
+                UnitsPerMm = ModelUnits.FromMillimetres(1.0, unitSystem),
             };
         }
 
@@ -76,13 +77,25 @@ namespace TilePattern
         public double Thickness { get; private set; }
         public double Joint { get; private set; }
 
+        /// <summary>Model units per millimetre (1 when the units have no fixed length): the
+        /// fit's <see cref="TileOptions.UnitsPerMm"/>.</summary>
+        public double UnitsPerMm { get; private set; }
+
         /// <summary>The remesh stage's quad edge: (length + joint) / 2.</summary>
         public double QuadEdge { get { return (Length + Joint) / 2.0; } }
 
-        /// <summary>Tile options of this size (the other options keep the library's defaults).</summary>
+        /// <summary>The quad edge for tiles laid with <paramref name="courses"/>: (length + joint)
+        /// / 2, or for level courses at least width + joint (see <see cref="TileOptions.QuadEdge"/>).</summary>
+        public double QuadEdgeFor(Courses courses)
+        {
+            return TileOptions.QuadEdgeOf(Length, Width, Joint, courses);
+        }
+
+        /// <summary>Tile options of this size, with <see cref="TileOptions.UnitsPerMm"/> for the
+        /// document (the other options keep the library's defaults).</summary>
         public TileOptions ToTileOptions()
         {
-            return new TileOptions { Length = Length, Width = Width, Thickness = Thickness, Joint = Joint };
+            return new TileOptions { Length = Length, Width = Width, Thickness = Thickness, Joint = Joint, UnitsPerMm = UnitsPerMm };
         }
     }
 

@@ -70,6 +70,44 @@ namespace TilePattern
             return new UserMessage(MessageLevel.Error, e.GetType().Name + ": " + e.Message);
         }
 
+        /// <summary>What a host should say about a tiling's joints: the fit's result (a remark;
+        /// a warning when its time limit cut it short), and overlaps between tiles (a warning
+        /// when one is deeper than the fit leaves by default, a twentieth of the joint, or any
+        /// overlap without the fit; else a remark). Lengths in model units.</summary>
+        public static UserMessage[] ForJoints(Report report)
+        {
+            if (report == null)
+                throw new ArgumentNullException("report");
+            var messages = new System.Collections.Generic.List<UserMessage>();
+            var culture = System.Globalization.CultureInfo.InvariantCulture;
+            JointReport joints = report.Joints;
+            FitReport fit = report.Fit;
+            if (fit != null)
+            {
+                string figures = joints.BeforeFit == null ? "" : string.Format(culture, "; p95 |gap - joint| {0:G3} before, {1:G3} after",
+                    joints.BeforeFit.P95Deviation, joints.P95Deviation);
+                string cuts = joints.FitCuts > 0 ? string.Format(culture, "; {0} tiles cut where they could not fit", joints.FitCuts) : "";
+                if (fit.Status == FitStatus.TimeLimit)
+                    messages.Add(new UserMessage(MessageLevel.Warning, "The fit of the joints reached its time limit after "
+                        + fit.Iterations.ToString(culture) + " steps: the best placement so far is kept" + figures + cuts + "."));
+                else
+                    messages.Add(new UserMessage(MessageLevel.Remark, "Joints fitted (" + fit.StatusText + ", " + fit.Iterations.ToString(culture)
+                        + " steps)" + figures + cuts + "."));
+            }
+            if (joints.Overlaps > 0)
+            {
+                double tolerance = fit != null && report.Tile != null && report.Tile.Joint > 0 ? report.Tile.Joint / 20.0 : 0.0;
+                if (joints.MaxOverlap > tolerance * (1 + 1e-9))
+                    messages.Add(new UserMessage(MessageLevel.Warning, string.Format(culture,
+                        "{0} pairs of tiles overlap, the deepest by {1:G3}{2}.", joints.Overlaps, joints.MaxOverlap,
+                        fit == null ? " (turn the fit on, or is the tile too large for the quads?)" : "")));
+                else
+                    messages.Add(new UserMessage(MessageLevel.Remark, string.Format(culture,
+                        "{0} pairs of tiles overlap by at most {1:G3}, within the fit's tolerance (a twentieth of the joint).", joints.Overlaps, joints.MaxOverlap)));
+            }
+            return messages.ToArray();
+        }
+
         static string Where()
         {
             try

@@ -1,5 +1,5 @@
-// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 2: boundary
-// tiles and the tp_*_options_init functions), and
+// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 3: the fit
+// stage and level courses; 2 added boundary tiles and the tp_*_options_init functions), and
 // mirrors of its structs. Nothing here is public: the public API is TilePatternEngine.
 //
 // C to C# type map: size_t -> UIntPtr, uint32_t -> uint, int32_t / TpStatus -> int,
@@ -16,7 +16,8 @@ namespace TilePattern
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     internal delegate int TpProgressCallback(IntPtr user, uint stage, double fraction);
 
-    /// <summary>Mirror of TpPatternOptions (64 bytes on 64-bit targets).</summary>
+    /// <summary>Mirror of TpPatternOptions (96 bytes on 64-bit targets; 64 before ABI 3);
+    /// <c>double up[3]</c> is spelled as three doubles.</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct TpPatternOptions
     {
@@ -30,6 +31,11 @@ namespace TilePattern
         public UIntPtr forced_pair_count;    // size_t
         public IntPtr excluded_faces;        // const uint32_t*
         public UIntPtr excluded_face_count;  // size_t
+        // Since ABI 3.
+        public int courses;
+        public double up_x;
+        public double up_y;
+        public double up_z;
     }
 
     /// <summary>Mirror of TpPatternSummary (96 bytes on 64-bit targets).</summary>
@@ -67,7 +73,8 @@ namespace TilePattern
         public double time_limit_seconds;
     }
 
-    /// <summary>Mirror of TpTileOptions (88 bytes); <c>double up[3]</c> is spelled as three doubles.</summary>
+    /// <summary>Mirror of TpTileOptions (128 bytes; 88 before ABI 3); <c>double up[3]</c> is
+    /// spelled as three doubles.</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct TpTileOptions
     {
@@ -82,6 +89,12 @@ namespace TilePattern
         public double up_y;
         public double up_z;
         public double support_band;
+        // Since ABI 3: the fit stage.
+        public int fit;
+        public double fit_time_limit_seconds;
+        public double fit_overlap_tolerance;
+        public double fit_bond_tolerance;
+        public double units_per_mm;
     }
 
     // Return buffers of the tp_*_options_default() functions. These return their struct by
@@ -116,6 +129,7 @@ namespace TilePattern
         internal const int TP_ABI_VERSION = 3;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
+        internal const uint TP_STAGE_TILES = 3;
         internal const int TP_BOND_STACK = 0;
         internal const int TP_BOND_STAGGERED = 1;
         internal const int TP_BOND_RUNNING = 2;
@@ -130,12 +144,15 @@ namespace TilePattern
         internal const int TP_BOUND_PATCHES = 1;
         internal const int TP_BOUND_WHOLE_PROGRAM = 2;
         internal const int TP_BOUND_LINEAR_RELAXATION = 3;
+        internal const int TP_COURSES_FREE = 0;
+        internal const int TP_COURSES_LEVEL = 1;
         internal const int TP_DIRECTION_CURVATURE = 0;
         internal const int TP_DIRECTION_VECTOR = 1;
         internal const int TP_DIRECTION_ANGLE = 2;
         internal const int TP_TILE_FULL = 0;
         internal const int TP_TILE_HALF = 1;
         internal const int TP_TILE_BOUNDARY = 2;
+        internal const int TP_TILE_FIT_CUT = 3;
         internal const uint TP_NO_FACE = uint.MaxValue;
 
         // A safety net only: the public API calls Native.EnsureReady() before any P/Invoke.
@@ -250,9 +267,17 @@ namespace TilePattern
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern int tp_tiles_build_on_surface(MeshHandle mesh, PatternHandle pattern, MeshHandle surface, ref TpTileOptions options, out TilesHandle tiles);
 
-        /// <summary>tp_tiles_build_on_surface with surface = NULL (a SafeHandle parameter cannot be null).</summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, EntryPoint = "tp_tiles_build_on_surface")]
-        internal static extern int tp_tiles_build_on_surface_without_surface(MeshHandle mesh, PatternHandle pattern, IntPtr surface, ref TpTileOptions options, out TilesHandle tiles);
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_build_with_progress(MeshHandle mesh, PatternHandle pattern, MeshHandle surface, ref TpTileOptions options,
+            TpProgressCallback progress, IntPtr user, out TilesHandle tiles);
+
+        /// <summary>tp_tiles_build_with_progress with surface = NULL (a SafeHandle parameter cannot be null).</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, EntryPoint = "tp_tiles_build_with_progress")]
+        internal static extern int tp_tiles_build_with_progress_without_surface(MeshHandle mesh, PatternHandle pattern, IntPtr surface, ref TpTileOptions options,
+            TpProgressCallback progress, IntPtr user, out TilesHandle tiles);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_joint_deviations(TilesHandle tiles, [Out] double[] output, UIntPtr capacity);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern void tp_tiles_free(IntPtr tiles);

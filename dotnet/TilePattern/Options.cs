@@ -80,6 +80,22 @@ namespace TilePattern
         Half = 1,
         /// <summary>A full or half tile cut to the surface's boundary (see <see cref="Tile.Outline"/>).</summary>
         Boundary = 2,
+        /// <summary>A full or half tile cut by the fit stage where it could not be made to fit its
+        /// neighbours (labels C1, C2, ...; its <see cref="Tile.Outline"/> is read like a boundary
+        /// tile's). A tile cut both to the boundary and by the fit stays <see cref="Boundary"/>.</summary>
+        FitCut = 3,
+    }
+
+    /// <summary>TP_COURSES_*: which way tiles may lie.</summary>
+    public enum Courses
+    {
+        /// <summary>Either way across any quad (the paper's model; the library's default).</summary>
+        Free = 0,
+        /// <summary>Every tile along level courses, horizontal with respect to
+        /// <see cref="PatternOptions.Up"/>: these fit far better (a 280 x 140 mm tile with a 10 mm
+        /// joint turned across its neighbours needs 290 mm where two side by side take 300).
+        /// Remesh for them with <see cref="RemeshOptions.ForTile(TileOptions, Courses)"/>.</summary>
+        Level = 1,
     }
 
     /// <summary>Two face indices that form (or must form) one tile.</summary>
@@ -130,9 +146,16 @@ namespace TilePattern
         /// <summary>Quads whose edge is half a tile plus a joint: (length + joint) / 2.</summary>
         public static RemeshOptions ForTile(TileOptions tile)
         {
+            return ForTile(tile, Courses.Free);
+        }
+
+        /// <summary>Quads for tiles laid with <paramref name="courses"/>: edge
+        /// <see cref="TileOptions.QuadEdge"/>, as the command line's run does.</summary>
+        public static RemeshOptions ForTile(TileOptions tile, Courses courses)
+        {
             if (tile == null)
                 throw new ArgumentNullException("tile");
-            return new RemeshOptions { TargetEdge = (tile.Length + tile.Joint) / 2.0 };
+            return new RemeshOptions { TargetEdge = tile.QuadEdge(courses) };
         }
 
         /// <summary>Target quad edge in model units.</summary>
@@ -198,6 +221,8 @@ namespace TilePattern
             Formulation = (Formulation)d.formulation;
             ForcedPairs = new List<FacePair>();
             ExcludedFaces = new List<int>();
+            Courses = (Courses)d.courses;
+            Up = new[] { d.up_x, d.up_y, d.up_z };
         }
 
         public Bond Bond { get; set; }
@@ -218,6 +243,13 @@ namespace TilePattern
         /// <summary>Faces that take part in no tile (openings, areas laid by hand).</summary>
         public IList<int> ExcludedFaces { get; set; }
 
+        /// <summary>Which way tiles may lie: <see cref="TilePattern.Courses.Free"/> (default, the
+        /// paper's model) or all along level courses (<see cref="TilePattern.Courses.Level"/>).</summary>
+        public Courses Courses { get; set; }
+
+        /// <summary>Up direction of level courses, xyz; default (0, 0, 1).</summary>
+        public double[] Up { get; set; }
+
         /// <summary>The native struct, its arrays flattened into <paramref name="forced"/> and
         /// <paramref name="excluded"/>; the caller pins them and fills in the pointers.</summary>
         [MethodImpl(MethodImplOptions.NoInlining)]
@@ -230,6 +262,16 @@ namespace TilePattern
             o.time_limit_seconds = TimeLimitSeconds;
             o.method = (int)Method;
             o.formulation = (int)Formulation;
+            o.courses = (int)Courses;
+            double[] up = Up;
+            if (up != null)
+            {
+                if (up.Length != 3)
+                    throw new ArgumentException("Up needs 3 values (xyz), not " + up.Length, "Up");
+                o.up_x = up[0];
+                o.up_y = up[1];
+                o.up_z = up[2];
+            }
             var pairs = ForcedPairs ?? new List<FacePair>();
             forced = new uint[2 * pairs.Count];
             for (int k = 0; k < pairs.Count; k++)
@@ -279,6 +321,11 @@ namespace TilePattern
             MinKeptWidth = d.min_kept_width;
             Up = new[] { d.up_x, d.up_y, d.up_z };
             SupportBand = d.support_band;
+            Fit = d.fit != 0;
+            FitTimeLimitSeconds = d.fit_time_limit_seconds;
+            OverlapTolerance = d.fit_overlap_tolerance;
+            BondTolerance = d.fit_bond_tolerance;
+            UnitsPerMm = d.units_per_mm;
         }
 
         public double Length { get; set; }
@@ -305,6 +352,45 @@ namespace TilePattern
         /// stand on the supports. Negative (default): one tile width.</summary>
         public double SupportBand { get; set; }
 
+        /// <summary>True (default): the fit stage moves the tiles on the surface so that their
+        /// joints come close to <see cref="Joint"/>, keeping the bond, and cuts what cannot fit
+        /// (<see cref="TileKind.FitCut"/>); false keeps the paper's placement (section 3.5) and the
+        /// report has no <see cref="Report.Fit"/>.</summary>
+        public bool Fit { get; set; }
+
+        /// <summary>Wall-clock limit of the fit in seconds (default 10); when it passes the best
+        /// placement so far is kept (<see cref="FitStatus.TimeLimit"/>).</summary>
+        public double FitTimeLimitSeconds { get; set; }
+
+        /// <summary>Overlaps the fit may leave; deeper ones are cut. Negative (default): a
+        /// twentieth of the joint.</summary>
+        public double OverlapTolerance { get; set; }
+
+        /// <summary>How far the fit may move a running bond's half offset or an aligned joint.
+        /// Negative (default): a tenth of the tile length.</summary>
+        public double BondTolerance { get; set; }
+
+        /// <summary>Model units per millimetre, for the report's shares of joints within 2 and
+        /// 5 mm: 0.001 (default) for a model in metres, 1 in millimetres
+        /// (<see cref="TileDefaults.UnitsPerMm"/> gives it for a document's units).</summary>
+        public double UnitsPerMm { get; set; }
+
+        /// <summary>The quad edge to remesh with: (length + joint) / 2, the paper's choice, for
+        /// <see cref="Courses.Free"/>; for <see cref="Courses.Level"/> at least a course's height,
+        /// width + joint, since no placement can change the quads' height across the courses (the
+        /// fit then closes the head joints along each course).</summary>
+        public double QuadEdge(Courses courses)
+        {
+            return QuadEdgeOf(Length, Width, Joint, courses);
+        }
+
+        /// <summary><see cref="QuadEdge"/> for a tile of these dimensions (model units).</summary>
+        public static double QuadEdgeOf(double length, double width, double joint, Courses courses)
+        {
+            double edge = (length + joint) / 2.0;
+            return courses == Courses.Level ? Math.Max(edge, width + joint) : edge;
+        }
+
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal TpTileOptions ToNative()
         {
@@ -326,6 +412,11 @@ namespace TilePattern
                 o.up_z = up[2];
             }
             o.support_band = SupportBand;
+            o.fit = Fit ? 1 : 0;
+            o.fit_time_limit_seconds = FitTimeLimitSeconds;
+            o.fit_overlap_tolerance = OverlapTolerance;
+            o.fit_bond_tolerance = BondTolerance;
+            o.units_per_mm = UnitsPerMm;
             return o;
         }
     }

@@ -180,12 +180,18 @@ namespace TilePattern
         /// <summary>Kept area over face area: 1 for an uncut tile.</summary>
         public double KeptFraction { get; internal set; }
 
-        /// <summary>Cut-list label: F (full), H (half), B1, B2, ... (boundary shapes).</summary>
+        /// <summary>Cut-list label: F (full), H (half), B1, B2, ... (boundary shapes), C1, C2,
+        /// ... (shapes cut by the fit stage).</summary>
         public string Label { get; internal set; }
 
-        /// <summary>For a boundary tile, the part of its face to keep: loops of (x, y) points
-        /// in the tile's frame (x0, y0, x1, y1, ...), outer loops counter-clockwise, holes
-        /// clockwise seen from +z. Empty for an uncut tile.</summary>
+        /// <summary>This tile's worst joint: the largest |gap - joint| over the joints it takes
+        /// part in (0 for a tile with none), in model units (tp_tiles_copy_joint_deviations).
+        /// For a colour preview of the joints.</summary>
+        public double JointDeviation { get; internal set; }
+
+        /// <summary>For a cut tile (boundary or fit cut), the part of its face to keep: loops of
+        /// (x, y) points in the tile's frame (x0, y0, x1, y1, ...), outer loops
+        /// counter-clockwise, holes clockwise seen from +z. Empty for an uncut tile.</summary>
         public double[][] Outline { get; internal set; }
 
         /// <summary>Loop <paramref name="loop"/> of <see cref="Outline"/> in model
@@ -212,7 +218,7 @@ namespace TilePattern
     {
         /// <summary>F, H, B1, B2, ...</summary>
         public string Label { get; internal set; }
-        /// <summary>"full", "half" or "boundary".</summary>
+        /// <summary>"full", "half", "boundary" or "fit_cut".</summary>
         public string Kind { get; internal set; }
         public int Count { get; internal set; }
         /// <summary>Length of the blank the shape is cut from.</summary>
@@ -258,7 +264,13 @@ namespace TilePattern
 
         public int BoundaryCount { get { return Array.FindAll(Tiles, t => t.Kind == TileKind.Boundary).Length; } }
 
-        /// <summary>Full tiles in pair order, then half tiles in face order.</summary>
+        /// <summary>Tiles of kind <see cref="TileKind.FitCut"/> (see also
+        /// <see cref="JointReport.FitCuts"/>, which counts boundary tiles the fit cut too).</summary>
+        public int FitCutCount { get { return Array.FindAll(Tiles, t => t.Kind == TileKind.FitCut).Length; } }
+
+        /// <summary>Full tiles in pair order, then half tiles in face order, then filler pieces
+        /// on no quad (<see cref="CuttingReport.FillerTiles"/>; not counted in
+        /// <see cref="Report.FullTiles"/> or <see cref="Report.HalfTiles"/>).</summary>
         public Tile[] Tiles { get; private set; }
 
         public Report Report { get; private set; }
@@ -277,37 +289,133 @@ namespace TilePattern
         public double Joint { get; internal set; }
     }
 
-    /// <summary>Gaps between neighbouring tiles across each mesh edge that separates two tiles.</summary>
+    /// <summary>The joints between neighbouring tiles: for every pair of tiles whose faces share
+    /// a mesh edge, and every other pair whose outlines overlap, the signed separation of their
+    /// outlines in their mean plane (the joint's width; negative: an overlap).</summary>
     public sealed class JointReport
     {
-        /// <summary>Mesh edges between two different tiles.</summary>
+        /// <summary>Pairs of neighbouring tiles measured.</summary>
         public int Contacts { get; internal set; }
         /// <summary>Nominal joint.</summary>
         public double Joint { get; internal set; }
-        /// <summary>Smallest gap (negative: overlap).</summary>
+        /// <summary>Narrowest joint (negative: an overlap).</summary>
         public double MinGap { get; internal set; }
+        /// <summary>Widest joint.</summary>
         public double MaxGap { get; internal set; }
-        /// <summary>Mean gap at the edge midpoints.</summary>
+        /// <summary>Mean joint.</summary>
         public double MeanGap { get; internal set; }
         /// <summary>95th percentile of |gap - joint|.</summary>
         public double P95Deviation { get; internal set; }
-        /// <summary>Contacts where the tiles overlap somewhere.</summary>
+        /// <summary>Pairs of tiles that overlap.</summary>
         public int Overlaps { get; internal set; }
         /// <summary>95th percentile of the gap.</summary>
         public double P95Gap { get; internal set; }
-        /// <summary>Largest overlap (0 if none).</summary>
+        /// <summary>Deepest overlap (0 if none).</summary>
         public double MaxOverlap { get; internal set; }
+        /// <summary>Share of joints with |gap - joint| at most 2 mm (millimetres by
+        /// <see cref="TileOptions.UnitsPerMm"/>).</summary>
+        public double Within2Mm { get; internal set; }
+        /// <summary>Share of joints with |gap - joint| at most 5 mm.</summary>
+        public double Within5Mm { get; internal set; }
+        /// <summary>Tiles the fit stage cut because they could not be made to fit (of kind
+        /// <see cref="TileKind.FitCut"/>, or <see cref="TileKind.Boundary"/> when also cut to the
+        /// boundary).</summary>
+        public int FitCuts { get; internal set; }
+        /// <summary>The same figures for the paper's placement, before the fit moved the tiles;
+        /// null when the fit did not run (and on the figures before the fit themselves).</summary>
+        public JointReport BeforeFit { get; internal set; }
+
+        internal static JointReport Parse(Dictionary<string, object> joints)
+        {
+            if (joints == null)
+                return null;
+            return new JointReport
+            {
+                Contacts = JsonAccess.Integer(joints, "contacts"),
+                Joint = JsonAccess.Number(joints, "joint"),
+                MinGap = JsonAccess.Number(joints, "min_gap"),
+                MaxGap = JsonAccess.Number(joints, "max_gap"),
+                MeanGap = JsonAccess.Number(joints, "mean_gap"),
+                P95Deviation = JsonAccess.Number(joints, "p95_deviation"),
+                Overlaps = JsonAccess.Integer(joints, "overlaps"),
+                P95Gap = JsonAccess.Number(joints, "p95_gap"),
+                MaxOverlap = JsonAccess.Number(joints, "max_overlap"),
+                Within2Mm = JsonAccess.Number(joints, "within_2mm"),
+                Within5Mm = JsonAccess.Number(joints, "within_5mm"),
+                FitCuts = JsonAccess.Integer(joints, "fit_cuts"),
+                BeforeFit = Parse(JsonAccess.Object(joints, "before_fit")),
+            };
+        }
+    }
+
+    /// <summary>How the fit stage ended (the report's fit.status).</summary>
+    public enum FitStatus
+    {
+        /// <summary>Further steps no longer improved the joints.</summary>
+        Converged = 0,
+        /// <summary>The step limit was reached first.</summary>
+        IterationLimit = 1,
+        /// <summary>The time limit was reached first: the best placement so far is kept.</summary>
+        TimeLimit = 2,
+        /// <summary>The caller cancelled (the wrapper then throws instead of returning tiles).</summary>
+        Cancelled = 3,
+        /// <summary>A status this wrapper does not know (see <see cref="FitReport.StatusText"/>).</summary>
+        Unknown = -1,
+    }
+
+    /// <summary>What the fit stage did (the report's fit object).</summary>
+    public sealed class FitReport
+    {
+        /// <summary>Parsed from <see cref="StatusText"/>.</summary>
+        public FitStatus Status { get; internal set; }
+        /// <summary>"converged", "iteration_limit", "time_limit" or "cancelled".</summary>
+        public string StatusText { get; internal set; }
+        /// <summary>Levenberg-Marquardt steps taken.</summary>
+        public int Iterations { get; internal set; }
+        /// <summary>Sum of squared joint, bond and anchor residuals before the fit (model units squared).</summary>
+        public double ObjectiveBefore { get; internal set; }
+        /// <summary>The same after the fit.</summary>
+        public double ObjectiveAfter { get; internal set; }
+        /// <summary>Mean distance a tile's origin moved from the paper's placement.</summary>
+        public double MeanMove { get; internal set; }
+        /// <summary>Largest such distance.</summary>
+        public double MaxMove { get; internal set; }
+
+        internal static FitReport Parse(Dictionary<string, object> fit)
+        {
+            if (fit == null)
+                return null;
+            var r = new FitReport
+            {
+                StatusText = JsonAccess.Text(fit, "status") ?? "",
+                Iterations = JsonAccess.Integer(fit, "iterations"),
+                ObjectiveBefore = JsonAccess.Number(fit, "objective_before"),
+                ObjectiveAfter = JsonAccess.Number(fit, "objective_after"),
+                MeanMove = JsonAccess.Number(fit, "mean_move"),
+                MaxMove = JsonAccess.Number(fit, "max_move"),
+            };
+            switch (r.StatusText)
+            {
+                case "converged": r.Status = FitStatus.Converged; break;
+                case "iteration_limit": r.Status = FitStatus.IterationLimit; break;
+                case "time_limit": r.Status = FitStatus.TimeLimit; break;
+                case "cancelled": r.Status = FitStatus.Cancelled; break;
+                default: r.Status = FitStatus.Unknown; break;
+            }
+            return r;
+        }
     }
 
     /// <summary>Tiles cut to the surface's boundary, and how much of the surface the tiles cover.</summary>
     public sealed class CuttingReport
     {
         public int BoundaryTiles { get; internal set; }
-        /// <summary>Filler pieces laid beyond the quad mesh where it falls short of the surface's edge.</summary>
+        /// <summary>Filler pieces on no quad, where the quad mesh (or a course the fit left
+        /// short) ends before the surface's edge.</summary>
         public int FillerTiles { get; internal set; }
         /// <summary>Tiles entirely off the surface (dropped).</summary>
         public int OutsideTiles { get; internal set; }
-        /// <summary>Boundary pieces too narrow to keep (dropped).</summary>
+        /// <summary>Pieces too narrow to keep (dropped): cut to the boundary, or by the fit.</summary>
         public int Slivers { get; internal set; }
         /// <summary>Distinct boundary cut shapes (B labels).</summary>
         public int BoundaryShapes { get; internal set; }
@@ -351,7 +459,13 @@ namespace TilePattern
         public string StatusText { get; private set; }
 
         public TileDimensions Tile { get; private set; }
+
+        /// <summary>The joints as laid (after the fit when it ran; the figures before it in
+        /// <see cref="JointReport.BeforeFit"/>).</summary>
         public JointReport Joints { get; private set; }
+
+        /// <summary>What the fit stage did; null when it did not run (<see cref="TileOptions.Fit"/> false).</summary>
+        public FitReport Fit { get; private set; }
 
         /// <summary>Boundary cutting and coverage (null if the library did not report it).</summary>
         public CuttingReport Cutting { get; private set; }
@@ -362,8 +476,11 @@ namespace TilePattern
         /// <summary>Seconds of the pattern stage.</summary>
         public double PatternSeconds { get; private set; }
 
-        /// <summary>Seconds of the tile stage.</summary>
+        /// <summary>Seconds of the tile stage (the fit included).</summary>
         public double TileSeconds { get; private set; }
+
+        /// <summary>Seconds of the fit stage (0 when it did not run).</summary>
+        public double FitSeconds { get; private set; }
 
         /// <summary>The JSON text as the library wrote it.</summary>
         public string Json { get; private set; }
@@ -401,19 +518,8 @@ namespace TilePattern
                 Thickness = JsonAccess.Number(tile, "thickness"),
                 Joint = JsonAccess.Number(tile, "joint"),
             };
-            var joints = JsonAccess.Object(root, "joints");
-            r.Joints = new JointReport
-            {
-                Contacts = JsonAccess.Integer(joints, "contacts"),
-                Joint = JsonAccess.Number(joints, "joint"),
-                MinGap = JsonAccess.Number(joints, "min_gap"),
-                MaxGap = JsonAccess.Number(joints, "max_gap"),
-                MeanGap = JsonAccess.Number(joints, "mean_gap"),
-                P95Deviation = JsonAccess.Number(joints, "p95_deviation"),
-                Overlaps = JsonAccess.Integer(joints, "overlaps"),
-                P95Gap = JsonAccess.Number(joints, "p95_gap"),
-                MaxOverlap = JsonAccess.Number(joints, "max_overlap"),
-            };
+            r.Joints = JointReport.Parse(JsonAccess.Object(root, "joints")) ?? JointReport.Parse(new Dictionary<string, object>());
+            r.Fit = FitReport.Parse(JsonAccess.Object(root, "fit"));
             var cutting = JsonAccess.Object(root, "cutting");
             if (cutting != null)
             {
@@ -440,6 +546,7 @@ namespace TilePattern
             var seconds = JsonAccess.Object(root, "seconds");
             r.PatternSeconds = JsonAccess.Number(seconds, "pattern");
             r.TileSeconds = JsonAccess.Number(seconds, "tiles");
+            r.FitSeconds = JsonAccess.Number(seconds, "fit");
             return r;
         }
     }

@@ -186,7 +186,8 @@ namespace TilePattern
 
     /// <summary>The tiles of a <see cref="Tiling"/> as parallel lists, one slot per tile in
     /// tile order: <see cref="Geometry"/>[i], <see cref="Labels"/>[i], <see cref="Frames"/>[i],
-    /// <see cref="Steps"/>[i] and <see cref="Kinds"/>[i] describe the same tile. A tile whose
+    /// <see cref="Steps"/>[i], <see cref="Kinds"/>[i] and <see cref="Deviations"/>[i] describe the
+    /// same tile. A tile whose
     /// geometry could not be made keeps its slot with a null geometry and a warning naming it.</summary>
     public sealed class TileOutputs<T> where T : class
     {
@@ -230,6 +231,7 @@ namespace TilePattern
                 r.frames.Add(new TileFrame(tile));
                 r.steps.Add(tile.Step);
                 r.kinds.Add(KindName(tile.Kind));
+                r.deviations.Add(tile.JointDeviation);
             }
             return r;
         }
@@ -239,19 +241,23 @@ namespace TilePattern
         readonly List<TileFrame> frames = new List<TileFrame>();
         readonly List<int> steps = new List<int>();
         readonly List<string> kinds = new List<string>();
+        readonly List<double> deviations = new List<double>();
         readonly List<string> warnings = new List<string>();
 
         public IList<T> Geometry { get { return geometry.AsReadOnly(); } }
         public IList<string> Labels { get { return labels.AsReadOnly(); } }
         public IList<TileFrame> Frames { get { return frames.AsReadOnly(); } }
         public IList<int> Steps { get { return steps.AsReadOnly(); } }
-        /// <summary>"full", "half" or "boundary".</summary>
+        /// <summary>"full", "half", "boundary" or "fit_cut".</summary>
         public IList<string> Kinds { get { return kinds.AsReadOnly(); } }
+        /// <summary>Each tile's worst joint, |gap - joint| in model units
+        /// (<see cref="Tile.JointDeviation"/>): to colour a preview of the joints.</summary>
+        public IList<double> Deviations { get { return deviations.AsReadOnly(); } }
         /// <summary>One line per tile with a problem, naming the tile.</summary>
         public IList<string> Warnings { get { return warnings.AsReadOnly(); } }
         public int Count { get { return geometry.Count; } }
 
-        /// <summary>"full", "half", "boundary" (TileKind in lower case).</summary>
+        /// <summary>"full", "half", "boundary", "fit_cut" (as the report and cut list name them).</summary>
         public static string KindName(TileKind kind)
         {
             switch (kind)
@@ -259,6 +265,7 @@ namespace TilePattern
                 case TileKind.Full: return "full";
                 case TileKind.Half: return "half";
                 case TileKind.Boundary: return "boundary";
+                case TileKind.FitCut: return "fit_cut";
                 default: return ((int)kind).ToString(CultureInfo.InvariantCulture);
             }
         }

@@ -151,51 +151,80 @@ namespace TilePattern
         }
 
         /// <summary>Stage 3: a box per matched pair and a half tile per unpaired quad, on the
-        /// mesh the pattern was solved on, cut to <paramref name="surface"/>'s boundary (the
+        /// mesh the pattern was solved on, moved by the fit stage so that the joints come close
+        /// to the mortar joint (<see cref="TileOptions.Fit"/>, default on; what cannot fit is cut,
+        /// <see cref="TileKind.FitCut"/>), cut to <paramref name="surface"/>'s boundary (the
         /// input surface the quads were made from; null: the quad mesh's own boundary),
         /// labelled for the cut list and numbered in laying order; and the report.</summary>
         public static Tiling Tiles(Pattern pattern, TileOptions options = null, PolyMesh surface = null)
         {
+            return Tiles(pattern, options, surface, null, default(CancellationToken));
+        }
+
+        /// <summary>Stage 3 (see <see cref="Tiles(Pattern, TileOptions, PolyMesh)"/>) reporting the
+        /// fit stage's progress (the share of its step limit used) to <paramref name="progress"/>
+        /// on the calling thread; cancelling <paramref name="cancellationToken"/> stops the fit
+        /// soon after and throws <see cref="TilePatternCanceledException"/> (no tiles).</summary>
+        public static Tiling Tiles(Pattern pattern, TileOptions options, PolyMesh surface, IProgress<double> progress,
+            CancellationToken cancellationToken = default(CancellationToken))
+        {
             if (pattern == null)
                 throw new ArgumentNullException("pattern");
             Native.EnsureReady();
-            return Build(pattern.MeshHandle, pattern, options ?? new TileOptions(), surface);
+            return Build(null, pattern, options ?? new TileOptions(), surface, progress, cancellationToken);
         }
 
         /// <summary>Stage 3 on another copy of the quad mesh (throws
         /// <see cref="InvalidPatternException"/> if the pattern does not fit it).</summary>
         public static Tiling Tiles(PolyMesh quads, Pattern pattern, TileOptions options = null, PolyMesh surface = null)
         {
+            return Tiles(quads, pattern, options, surface, null, default(CancellationToken));
+        }
+
+        /// <summary>Stage 3 on another copy of the quad mesh, with progress and cancellation (see
+        /// <see cref="Tiles(Pattern, TileOptions, PolyMesh, IProgress{double}, CancellationToken)"/>).</summary>
+        public static Tiling Tiles(PolyMesh quads, Pattern pattern, TileOptions options, PolyMesh surface, IProgress<double> progress,
+            CancellationToken cancellationToken = default(CancellationToken))
+        {
             if (quads == null)
                 throw new ArgumentNullException("quads");
             if (pattern == null)
                 throw new ArgumentNullException("pattern");
             Native.EnsureReady();
-            return BuildOn(quads, pattern, options ?? new TileOptions(), surface);
+            return Build(quads, pattern, options ?? new TileOptions(), surface, progress, cancellationToken);
         }
 
+        /// <summary>Builds the tiles on <paramref name="quads"/> (null: the pattern's own mesh).</summary>
         [MethodImpl(MethodImplOptions.NoInlining)]
-        static Tiling BuildOn(PolyMesh quads, Pattern pattern, TileOptions options, PolyMesh surface)
-        {
-            using (MeshHandle mesh = quads.CreateHandle())
-                return Build(mesh, pattern, options, surface);
-        }
-
-        [MethodImpl(MethodImplOptions.NoInlining)]
-        static Tiling Build(MeshHandle mesh, Pattern pattern, TileOptions options, PolyMesh surface)
+        static Tiling Build(PolyMesh quads, Pattern pattern, TileOptions options, PolyMesh surface, IProgress<double> progress,
+            CancellationToken cancellationToken)
         {
             TpTileOptions native = options.ToNative();
-            TilesHandle tiles;
-            int status;
-            if (surface == null)
-                status = NativeMethods.tp_tiles_build_on_surface_without_surface(mesh, pattern.Handle, IntPtr.Zero, ref native, out tiles);
-            else
-                using (MeshHandle boundary = surface.CreateHandle())
-                    status = NativeMethods.tp_tiles_build_on_surface(mesh, pattern.Handle, boundary, ref native, out tiles);
-            using (tiles)
+            var bridge = new ProgressBridge(progress, cancellationToken);
+            bridge.ThrowIfCancelled();
+            MeshHandle own = quads == null ? null : quads.CreateHandle();
+            try
             {
-                Native.Check(status);
-                return ReadTiles(tiles);
+                MeshHandle mesh = own ?? pattern.MeshHandle;
+                TilesHandle tiles;
+                int status;
+                if (surface == null)
+                    status = NativeMethods.tp_tiles_build_with_progress_without_surface(mesh, pattern.Handle, IntPtr.Zero, ref native,
+                        bridge.Callback, IntPtr.Zero, out tiles);
+                else
+                    using (MeshHandle boundary = surface.CreateHandle())
+                        status = NativeMethods.tp_tiles_build_with_progress(mesh, pattern.Handle, boundary, ref native,
+                            bridge.Callback, IntPtr.Zero, out tiles);
+                using (tiles)
+                {
+                    bridge.Finish(status);
+                    return ReadTiles(tiles);
+                }
+            }
+            finally
+            {
+                if (own != null)
+                    own.Dispose();
             }
         }
 
@@ -212,7 +241,9 @@ namespace TilePattern
             var steps = new uint[n];
             var kept = new double[n];
             var loopCounts = new uint[n];
+            var deviations = new double[n];
             Native.Check(NativeMethods.tp_tiles_copy_kinds(handle, kinds, Native.Size(kinds.Length)));
+            Native.Check(NativeMethods.tp_tiles_copy_joint_deviations(handle, deviations, Native.Size(deviations.Length)));
             Native.Check(NativeMethods.tp_tiles_copy_corners(handle, corners, Native.Size(corners.Length)));
             Native.Check(NativeMethods.tp_tiles_copy_frames(handle, frames, Native.Size(frames.Length)));
             Native.Check(NativeMethods.tp_tiles_copy_sizes(handle, sizes, Native.Size(sizes.Length)));
@@ -246,6 +277,7 @@ namespace TilePattern
                     Thickness = sizes[3 * i + 2],
                     Step = checked((int)steps[i]),
                     KeptFraction = kept[i],
+                    JointDeviation = deviations[i],
                     Label = i < labels.Length ? labels[i] : "",
                 };
                 var covered = new List<int>(2);

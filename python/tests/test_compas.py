@@ -56,7 +56,14 @@ def test_sample_quad_meshes(name):
     assert_boxes_match_tiles(boxes, boxes.tiles)
     report = tpc.report(boxes)
     assert report["faces"] == mesh.number_of_faces() and report == tpc.report(boxes.tiles)
-    assert report["full_tiles"] >= len(pattern.pairs) - report["cutting"]["outside_tiles"]
+    # Pairs become full tiles unless they fall off the surface or the fit leaves a sliver.
+    cutting = report["cutting"]
+    assert report["full_tiles"] >= len(pattern.pairs) - cutting["outside_tiles"] - len(cutting["slivers"])
+    assert report["full_tiles"] + report["half_tiles"] == len(boxes) - cutting["filler_tiles"]
+    assert set(boxes.tiles.kinds.tolist()) <= {"full", "half", "boundary", "fit_cut"}
+    fit_cut = boxes.tiles.kinds == "fit_cut"
+    assert all(label.startswith("C") for label in np.array(boxes.tiles.labels)[fit_cut])
+    assert int(fit_cut.sum()) <= report["joints"]["fit_cuts"]
 
 
 def test_boxes_agree_with_the_c_abi():
@@ -83,7 +90,7 @@ def test_remesh_a_triangulated_sample_and_tile_it():
     boxes = tpc.tiles(quads, pattern, surface=surface, **tile)
     report = tpc.report(boxes)
     assert report["cutting"]["coverage"] > 0.9
-    assert report["full_tiles"] + report["half_tiles"] == len(boxes)
+    assert report["full_tiles"] + report["half_tiles"] == len(boxes) - report["cutting"]["filler_tiles"]
 
 
 def test_face_keys_are_translated():

@@ -74,12 +74,22 @@ def test_pipeline_on_a_curved_shell(curved):
     assert sorted(placed.steps.tolist()) == list(range(n))
     assert sum(entry["count"] for entry in placed.cutlist) == n
     report = placed.report
-    assert report["full_tiles"] + report["half_tiles"] == n
+    # Full and half tiles count the tiles laid on the quads; filler pieces close the courses
+    # that end short of the surface's edge.
+    fillers = report["cutting"]["filler_tiles"]
+    assert report["full_tiles"] + report["half_tiles"] == n - fillers
+    assert fillers == int(np.sum(placed.faces[:, 0] < 0))
     assert report["cutting"]["coverage"] > 0.9
     for kind, fraction, outline in zip(placed.kinds, placed.kept_fractions, placed.outlines):
-        assert (kind == "boundary") == (fraction < 1.0) == bool(outline)
+        assert (kind in ("boundary", "fit_cut")) == (fraction < 1.0) == bool(outline)
+    assert set(placed.kinds.tolist()) <= {"full", "half", "boundary", "fit_cut"}
     assert set(placed.blanks.tolist()) <= {"full", "half"}
-    assert (placed.blanks == "full").sum() == report["full_tiles"]
+    on_quads = placed.faces[:, 0] >= 0
+    assert (placed.blanks[on_quads] == "full").sum() == report["full_tiles"]
+    # The fit ran (default) and its figures are in the report.
+    assert report["fit"]["status"] in ("converged", "iteration_limit", "time_limit")
+    assert report["joints"]["before_fit"]["contacts"] > 0 and report["seconds"]["fit"] >= 0
+    assert placed.joint_deviations.shape == (n,) and np.all(placed.joint_deviations >= 0)
 
 
 def test_remesh_options_reach_the_library(curved):

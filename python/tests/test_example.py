@@ -30,4 +30,6 @@ def test_the_compas_example(tmp_path):
     assert report["full_tiles"] > 500
     assert (tmp_path / "tiles.3dm").stat().st_size > 0
     boxes = json.loads((tmp_path / "boxes.json").read_text())
-    assert len(boxes) == report["full_tiles"] + report["half_tiles"]
+    assert len(boxes) - report["cutting"]["filler_tiles"] == report["full_tiles"] + report["half_tiles"]
+    assert report["fit"]["status"] in ("converged", "iteration_limit", "time_limit")
+    assert "fit:" in result.stdout

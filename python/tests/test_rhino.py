@@ -45,6 +45,7 @@ def test_export_reads_back(tmp_path, placed):
         assert layers[obj.Attributes.LayerIndex] == "tiles::" + placed.blanks[i]
         assert obj.Attributes.GetUserString("kind") == placed.kinds[i]
         assert int(obj.Attributes.GetUserString("step")) == placed.steps[i]
+        assert float(obj.Attributes.GetUserString("joint_deviation")) == placed.joint_deviations[i]
         brep = obj.Geometry
         assert brep.IsSolid and len(brep.Faces) == 6 and len(brep.Vertices) == 8
         points = np.array([[v.Location.X, v.Location.Y, v.Location.Z] for v in brep.Vertices])
@@ -52,8 +53,10 @@ def test_export_reads_back(tmp_path, placed):
         assert np.all(distance.min(axis=0) < 1e-9) and np.all(distance.min(axis=1) < 1e-9)
     for obj in cuts:
         assert layers[obj.Attributes.LayerIndex] == "tiles::cuts"
-        assert placed.kinds[int(obj.Attributes.GetUserString("index"))] == "boundary"
-    full = sum(layers[o.Attributes.LayerIndex] == "tiles::full" for o in tiles)
+        assert placed.kinds[int(obj.Attributes.GetUserString("index"))] in ("boundary", "fit_cut")
+    # Filler pieces (on no quad) are not counted as full or half tiles by the report.
+    on_quads = [o for o in tiles if placed.faces[int(o.Attributes.GetUserString("index")), 0] >= 0]
+    full = sum(layers[o.Attributes.LayerIndex] == "tiles::full" for o in on_quads)
     assert full == placed.report["full_tiles"]
 
 

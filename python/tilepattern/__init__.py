@@ -37,7 +37,7 @@ from ._native import (
     library_path,
     version,
 )
-from .core import Pattern, Tiles, match, remesh, tiles
+from .core import Pattern, Tiles, match, quad_edge, remesh, tiles
 
 __version__ = "0.1.0"
 
@@ -45,6 +45,7 @@ __all__ = [
     "remesh",
     "match",
     "tiles",
+    "quad_edge",
     "Pattern",
     "Tiles",
     "TilePatternError",

@@ -51,6 +51,7 @@ ABI_VERSION = 3
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
+TP_STAGE_TILES = 3
 
 TP_BOND_STACK = 0
 TP_BOND_STAGGERED = 1
@@ -71,6 +72,9 @@ TP_BOUND_PATCHES = 1
 TP_BOUND_WHOLE_PROGRAM = 2
 TP_BOUND_LINEAR_RELAXATION = 3
 
+TP_COURSES_FREE = 0
+TP_COURSES_LEVEL = 1
+
 TP_DIRECTION_CURVATURE = 0
 TP_DIRECTION_VECTOR = 1
 TP_DIRECTION_ANGLE = 2
@@ -78,6 +82,7 @@ TP_DIRECTION_ANGLE = 2
 TP_TILE_FULL = 0
 TP_TILE_HALF = 1
 TP_TILE_BOUNDARY = 2
+TP_TILE_FIT_CUT = 3
 
 TP_NO_FACE = 0xFFFFFFFF
 
@@ -113,10 +118,11 @@ STATUS_NAMES = {
     TP_PANIC: "TP_PANIC",
 }
 
-STAGE_NAMES = {TP_STAGE_REMESH: "remesh", TP_STAGE_PATTERN: "pattern"}
+STAGE_NAMES = {TP_STAGE_REMESH: "remesh", TP_STAGE_PATTERN: "pattern", TP_STAGE_TILES: "tiles"}
 SOLVE_STATUS_NAMES = {TP_SOLVE_OPTIMAL: "optimal", TP_SOLVE_TIME_LIMIT: "time_limit", TP_SOLVE_FEASIBLE: "feasible"}
 BOUND_SOURCE_NAMES = {TP_BOUND_MATCHING: "matching", TP_BOUND_PATCHES: "patches", TP_BOUND_WHOLE_PROGRAM: "whole_program", TP_BOUND_LINEAR_RELAXATION: "linear_relaxation"}
-TILE_KIND_NAMES = {TP_TILE_FULL: "full", TP_TILE_HALF: "half", TP_TILE_BOUNDARY: "boundary"}
+TILE_KIND_NAMES = {TP_TILE_FULL: "full", TP_TILE_HALF: "half", TP_TILE_BOUNDARY: "boundary", TP_TILE_FIT_CUT: "fit_cut"}
+COURSES_NAMES = {TP_COURSES_FREE: "free", TP_COURSES_LEVEL: "level"}
 
 # ---------------------------------------------------------------------------------------
 # Errors
@@ -321,6 +327,9 @@ class TpPatternOptions(Structure):
         ("forced_pair_count", c_size_t),
         ("excluded_faces", POINTER(c_uint32)),
         ("excluded_face_count", c_size_t),
+        # Since ABI 3.
+        ("courses", c_int32),
+        ("up", c_double * 3),
     ]
 
 
@@ -370,6 +379,12 @@ class TpTileOptions(Structure):
         ("min_kept_width", c_double),
         ("up", c_double * 3),
         ("support_band", c_double),
+        # Since ABI 3: the fit stage.
+        ("fit", c_int32),
+        ("fit_time_limit_seconds", c_double),
+        ("fit_overlap_tolerance", c_double),
+        ("fit_bond_tolerance", c_double),
+        ("units_per_mm", c_double),
     ]
 
 
@@ -424,6 +439,11 @@ PROTOTYPES = {
     "tp_tile_options_init": (TpStatus, [POINTER(TpTileOptions), c_size_t]),
     "tp_tiles_build": (TpStatus, [TpMeshP, TpPatternP, POINTER(TpTileOptions), POINTER(TpTilesP)]),
     "tp_tiles_build_on_surface": (TpStatus, [TpMeshP, TpPatternP, TpMeshP, POINTER(TpTileOptions), POINTER(TpTilesP)]),
+    "tp_tiles_build_with_progress": (
+        TpStatus,
+        [TpMeshP, TpPatternP, TpMeshP, POINTER(TpTileOptions), TpProgressCallback, c_void_p, POINTER(TpTilesP)],
+    ),
+    "tp_tiles_copy_joint_deviations": (TpStatus, [TpTilesP, _f64p, c_size_t]),
     "tp_tiles_free": (None, [TpTilesP]),
     "tp_tiles_count": (TpStatus, [TpTilesP, _sizep]),
     "tp_tiles_copy_kinds": (TpStatus, [TpTilesP, _i32p, c_size_t]),
@@ -662,11 +682,12 @@ def _text(function, pointer):
 class ProgressBridge:
     """A Python callable as a ``TpProgressCallback``.
 
-    ``progress(stage, fraction)`` gets the stage name (``"remesh"`` or ``"pattern"``) and
-    the fraction done; a true return value cancels the stage. An exception raised by
-    ``progress`` (``KeyboardInterrupt`` included) never reaches C: it is stored, the stage
-    is cancelled, and :meth:`finish` raises it again once the native call returned. The
-    bridge is installed even without ``progress``, so that Ctrl-C cancels a long solve.
+    ``progress(stage, fraction)`` gets the stage name (``"remesh"``, ``"pattern"`` or
+    ``"tiles"``) and the fraction done; a true return value cancels the stage. An
+    exception raised by ``progress`` (``KeyboardInterrupt`` included) never reaches C: it
+    is stored, the stage is cancelled, and :meth:`finish` raises it again once the native
+    call returned. The bridge is installed even without ``progress``, so that Ctrl-C
+    cancels a long solve.
 
     Keep the bridge referenced for as long as the native call runs (the ctypes callback
     object must outlive it).
@@ -896,14 +917,32 @@ class PatternHandle(Handle):
         check(lib().tp_pattern_copy_unpaired(self.pointer, as_pointer(out, c_uint32), out.size))
         return out
 
-    def build_tiles(self, mesh, options, surface=None):
-        """``tp_tiles_build`` (or ``_on_surface``): a new :class:`TilesHandle`."""
+    def build_tiles(self, mesh, options, surface=None, progress=None):
+        """``tp_tiles_build_with_progress``: a new :class:`TilesHandle`.
+
+        ``surface`` (a :class:`MeshHandle` or ``None``: the quad mesh's own boundary) is
+        what the tiles are cut to; ``progress`` hears the fit stage (``"tiles"``) and may
+        cancel it (:class:`CancelledError`, no tiles).
+        """
         out = TpTilesP()
-        if surface is None:
-            check(lib().tp_tiles_build(mesh.pointer, self.pointer, ctypes.byref(options), ctypes.byref(out)))
+        bridge = ProgressBridge(progress)
+        status = lib().tp_tiles_build_with_progress(
+            mesh.pointer,
+            self.pointer,
+            None if surface is None else surface.pointer,
+            ctypes.byref(options),
+            bridge.callback,
+            None,
+            ctypes.byref(out),
+        )
+        if status == TP_OK and out:
+            result = TilesHandle(out)
         else:
-            check(lib().tp_tiles_build_on_surface(mesh.pointer, self.pointer, surface.pointer, ctypes.byref(options), ctypes.byref(out)))
-        return TilesHandle(out)
+            result = None
+            if out:  # never expected: the library leaves *out alone on failure
+                lib().tp_tiles_free(out)
+        bridge.finish(status)
+        return result
 
 
 class TilesHandle(Handle):
@@ -952,6 +991,11 @@ class TilesHandle(Handle):
     def kept_fractions(self, n):
         """``(n,)`` kept area over face area."""
         return self._copy("tp_tiles_copy_kept_fractions", n, np.float64, c_double)
+
+    def joint_deviations(self, n):
+        """``(n,)``: each tile's worst joint, the largest ``|gap - joint|`` of the joints it
+        takes part in (0 for a tile with none), in model units."""
+        return self._copy("tp_tiles_copy_joint_deviations", n, np.float64, c_double)
 
     def outline_counts(self):
         """``(loops, points)`` over all tiles."""

@@ -16,10 +16,20 @@ Examples
 >>> surface = Mesh.from_obj(compas.get("hypar.obj"))          # 64 quads, ~0.67 units each
 >>> pattern = tpc.match(surface, time_limit=5)
 >>> boxes = tpc.tiles(surface, pattern, length=1.2, width=0.6, thickness=0.05, joint=0.04)
->>> len(boxes), tpc.report(boxes)["full_tiles"]
-(32, 32)
+>>> report = tpc.report(boxes)
+>>> len(boxes), report["full_tiles"], report["cutting"]["filler_tiles"]
+(40, 32, 8)
 >>> boxes[0].name, round(boxes[0].xsize, 2)
 ('F', 1.2)
+
+The fit stage moved the tiles so that the joints come close to the 0.04 joint (filler pieces
+close the courses it left short of the edge); ``fit=False`` keeps the paper's placement:
+
+>>> report["fit"]["status"], report["joints"]["p95_deviation"] < report["joints"]["before_fit"]["p95_deviation"]
+('converged', True)
+>>> placed = tpc.tiles(surface, pattern, fit=False, length=1.2, width=0.6, thickness=0.05, joint=0.04)
+>>> len(placed), "fit" in tpc.report(placed)
+(32, False)
 """
 
 from __future__ import annotations
@@ -133,8 +143,8 @@ def match(mesh, forced_pairs=None, excluded_faces=None, **options):
     excluded_faces : list of int, optional
         Face keys that take part in no tile.
     **options
-        ``bond``, ``weight``, ``time_limit``, ``method``, ``formulation``, ``progress``:
-        see :func:`tilepattern.match`.
+        ``bond``, ``weight``, ``time_limit``, ``method``, ``formulation``, ``courses``
+        (``"free"`` or ``"level"``), ``up``, ``progress``: see :func:`tilepattern.match`.
 
     Returns
     -------
@@ -170,7 +180,7 @@ class TileBoxes(list):
     ----------
     tiles : tilepattern.Tiles
         Everything else about the tiles: kinds, frames, corners, faces (face keys), laying
-        steps, outlines of cut tiles, labels, cut list.
+        steps, outlines of cut tiles, labels, cut list, joint deviations.
     report : dict
         The tile report (``report.json``).
     """
@@ -250,13 +260,16 @@ def tiles(mesh, pattern, surface=None, **options):
         The surface the quads were made from: tiles are cut to its boundary.
     **options
         ``length``, ``width``, ``thickness``, ``joint``, ``cut_tolerance``,
-        ``min_kept_width``, ``up``, ``support_band``: see :func:`tilepattern.tiles`.
+        ``min_kept_width``, ``up``, ``support_band``, ``fit``, ``fit_time_limit``,
+        ``overlap_tolerance``, ``bond_tolerance``, ``units_per_mm``, ``progress``: see
+        :func:`tilepattern.tiles`.
 
     Returns
     -------
     TileBoxes
         A list of :class:`compas.geometry.Box` (frames at the box centres, named by
-        cut-list label ``F``, ``H``, ``B1``...), with ``.tiles`` and ``.report``.
+        cut-list label ``F``, ``H``, ``B1``..., ``C1``...), with ``.tiles`` (including
+        ``joint_deviations``, parallel to the boxes) and ``.report``.
 
     Examples
     --------
@@ -291,8 +304,9 @@ def report(result):
     -------
     dict
         ``faces``, ``full_tiles``, ``half_tiles``, ``boundary_tiles``, ``objective``,
-        ``bound``, ``gap``, ``status``, ``tile``, ``joints``, ``cutting``, ``sequence``,
-        ``seconds``... (``report.json`` of the command line).
+        ``bound``, ``gap``, ``status``, ``tile``, ``joints`` (with ``before_fit``),
+        ``fit``, ``cutting``, ``sequence``, ``seconds``... (``report.json`` of the command
+        line).
     """
     placed = getattr(result, "tiles", result)
     if not isinstance(placed, core.Tiles):

@@ -29,9 +29,11 @@ __all__ = [
     "tiles",
     "mesh_handle",
     "mesh_arrays",
+    "quad_edge",
     "BONDS",
     "METHODS",
     "FORMULATIONS",
+    "COURSES",
 ]
 
 #: ``bond`` names of :func:`match` and their ``TP_BOND_*`` codes.
@@ -40,6 +42,8 @@ BONDS = {"stack": nat.TP_BOND_STACK, "staggered": nat.TP_BOND_STAGGERED, "runnin
 METHODS = {"auto": nat.TP_METHOD_AUTO, "mip": nat.TP_METHOD_MIP}
 #: ``formulation`` names of :func:`match`.
 FORMULATIONS = {"strengthened": nat.TP_FORMULATION_STRENGTHENED, "paper": nat.TP_FORMULATION_PAPER}
+#: ``courses`` names of :func:`match` and their ``TP_COURSES_*`` codes.
+COURSES = {"free": nat.TP_COURSES_FREE, "level": nat.TP_COURSES_LEVEL}
 
 Progress = Callable[[str, float], Optional[bool]]
 
@@ -415,6 +419,17 @@ def _choice(value, choices, what):
     raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "%s %r: choose one of %s" % (what, value, ", ".join(repr(c) for c in choices)))
 
 
+def _three(values, what):
+    """Three floats from an (x, y, z) sequence (``InvalidArgumentError`` otherwise)."""
+    try:
+        a = np.asarray(values, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        a = None
+    if a is None or a.shape != (3,):
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "%s must be 3 numbers, got %r" % (what, values))
+    return a.tolist()
+
+
 def _index_array(values, what, shape_last=None):
     if values is None:
         return np.zeros(0, dtype=np.uint32)
@@ -441,6 +456,8 @@ def match(
     forced_pairs=None,
     excluded_faces=None,
     progress: Optional[Progress] = None,
+    courses: str = "free",
+    up: Sequence[float] = (0.0, 0.0, 1.0),
 ) -> Pattern:
     """Match adjacent quads into tiles with the paper's integer programs (stage 2).
 
@@ -472,6 +489,13 @@ def match(
         ``progress(stage, fraction)`` with ``stage == "pattern"`` and the share of the time
         limit used; return True to cancel (:class:`~tilepattern.CancelledError`). An
         exception raised in it cancels the solve and is raised again by ``match``.
+    courses : {"free", "level"}, optional
+        ``"free"`` (default, the paper's model): tiles may lie either way across any quad;
+        ``"level"``: every tile runs along level courses (horizontal with respect to
+        ``up``), which the fit stage of :func:`tiles` can close far better. Remesh for
+        level courses with :func:`quad_edge` ``(..., courses="level")``.
+    up : array_like (3,), optional
+        Up direction of level courses; default ``(0, 0, 1)``.
 
     Returns
     -------
@@ -500,11 +524,19 @@ def match(
     >>> pattern = match(V, F, bond="stack", excluded_faces=[0], forced_pairs=[[1, 2]], time_limit=5)
     >>> pattern.excluded, [1, 2] in pattern.pairs.tolist()
     (1, True)
+
+    In level courses every tile runs along x here (faces ``f`` and ``f + 1``):
+
+    >>> pattern = match(V, F, courses="level", up=(0, 1, 0), time_limit=5)
+    >>> all(b == a + 1 for a, b in pattern.pairs.tolist())
+    True
     """
     options = nat.pattern_options()
     options.bond = _choice(bond, BONDS, "bond")
     options.method = _choice(method, METHODS, "method")
     options.formulation = _choice(formulation, FORMULATIONS, "formulation")
+    options.courses = _choice(courses, COURSES, "courses")
+    options.up[:] = _three(up, "up")
     options.weight = float(weight)
     options.time_limit_seconds = float(time_limit)
     forced = _index_array(forced_pairs, "forced_pairs", shape_last=2)
@@ -535,13 +567,18 @@ class Tiles:
     """Placed tiles: the result of :func:`tiles`. All arrays have one row per tile.
 
     Tiles are full tiles in pair order, then half tiles in face order, then filler pieces
-    (when a surface is given); ``steps`` is their laying order.
+    on no quad (where the quad mesh, or a course the fit left short, ends before the
+    surface's edge; counted in ``report["cutting"]["filler_tiles"]``, not in
+    ``full_tiles`` or ``half_tiles``); tiles dropped as slivers or outside the surface are
+    left out. ``steps`` is their laying order.
 
     Attributes
     ----------
     kinds : ndarray (N,) str
-        ``"full"`` (over two faces), ``"half"`` (over one unmatched quad) or
-        ``"boundary"`` (a full or half tile cut to the surface's boundary).
+        ``"full"`` (over two faces), ``"half"`` (over one unmatched quad),
+        ``"boundary"`` (a full or half tile cut to the surface's boundary) or
+        ``"fit_cut"`` (a full or half tile cut where the fit could not make it fit its
+        neighbours; its outline is read like a boundary tile's).
     corners : ndarray (N, 8, 3) float64
         Box corners: the bottom face counter-clockwise from (-x, -y), then the top face in
         the same order.
@@ -563,13 +600,18 @@ class Tiles:
         loops counter-clockwise, holes clockwise); empty for uncut tiles.
     labels : list of str
         Cut-list label of each tile: ``"F"`` full, ``"H"`` half, ``"B1"``, ``"B2"``, ...
-        boundary shapes by falling count.
+        boundary shapes and ``"C1"``, ``"C2"``, ... fit cuts, by falling count.
     cutlist : list of dict
         One entry per cut shape: ``label``, ``kind``, ``count``, ``blank``, ``area``,
         ``outline`` (``cutlist.json``).
+    joint_deviations : ndarray (N,) float64
+        Each tile's worst joint: the largest ``|gap - joint|`` of the joints it takes part
+        in (0 for a tile with none), in model units; for a colour preview of the joints.
     report : dict
-        Counts, proof status, tile size, joint gaps, cutting and sequence
-        (``report.json`` of the command line, without ``units``).
+        Counts, proof status, tile size, joint gaps (``joints``, with the figures before
+        the fit under ``joints["before_fit"]``), the fit (``fit``: status, iterations,
+        objective before and after, mean and largest move; absent with ``fit=False``),
+        cutting and sequence (``report.json`` of the command line, without ``units``).
     """
 
     kinds: np.ndarray
@@ -583,6 +625,7 @@ class Tiles:
     labels: List[str]
     cutlist: List[dict]
     report: dict
+    joint_deviations: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def __len__(self) -> int:
         return len(self.kinds)
@@ -613,6 +656,7 @@ class Tiles:
             "kept_fractions": self.kept_fractions.tolist(),
             "outlines": [[loop.tolist() for loop in loops] for loops in self.outlines],
             "cutlist": self.cutlist,
+            "joint_deviations": self.joint_deviations.tolist(),
             "report": self.report,
         }
 
@@ -634,6 +678,7 @@ def _read_tiles(handle) -> Tiles:
         labels=handle.labels(),
         cutlist=json.loads(handle.cutlist_json()),
         report=json.loads(handle.report_json()),
+        joint_deviations=handle.joint_deviations(n),
     )
 
 
@@ -654,14 +699,24 @@ def tiles(
     min_kept_width: Optional[float] = None,
     up: Sequence[float] = (0.0, 0.0, 1.0),
     support_band: Optional[float] = None,
+    fit: bool = True,
+    fit_time_limit: float = 10.0,
+    overlap_tolerance: Optional[float] = None,
+    bond_tolerance: Optional[float] = None,
+    units_per_mm: float = 0.001,
+    progress: Optional[Progress] = None,
 ) -> Tiles:
     """Place a box per matched pair and a half tile per unpaired quad (stage 3).
 
-    Each box follows the paper's section 3.5: its origin at the midpoint of the two face
-    centroids, its length along the line between them, its thickness along the normal of
-    the least-squares plane of the pair's vertices, its bottom on that plane and the box
-    on the side the face normals point to. Tiles crossing the boundary (of ``surface``, or
-    of the quad mesh) are cut to it; the tiles are labelled and numbered in laying order.
+    Each box is first placed as in the paper's section 3.5: its origin at the midpoint of
+    the two face centroids, its length along the line between them, its thickness along
+    the normal of the least-squares plane of the pair's vertices, its bottom on that plane
+    and the box on the side the face normals point to. The fit stage (``fit=True``,
+    default) then moves every tile on the surface so that its joints come close to
+    ``joint``, keeping the bond; what still cannot fit is cut (kind ``"fit_cut"``, labels
+    ``C1``, ``C2``...) so that no two tiles overlap, and filler pieces close the courses
+    that end short of the edge. Tiles crossing the boundary (of ``surface``, or of the
+    quad mesh) are cut to it; the tiles are labelled and numbered in laying order.
 
     Parameters
     ----------
@@ -686,18 +741,37 @@ def tiles(
     support_band : float, optional
         Tiles with a boundary edge this close above the lowest boundary point stand on the
         supports (default one tile width).
+    fit : bool, optional
+        Run the fit stage (default True); False keeps the paper's placement, and the
+        report has no ``fit`` entry.
+    fit_time_limit : float, optional
+        Wall-clock seconds of the fit (default 10); when they pass, the best placement so
+        far is kept and ``report["fit"]["status"]`` is ``"time_limit"``.
+    overlap_tolerance : float, optional
+        Overlaps the fit may leave; deeper ones are cut (default a twentieth of the joint).
+    bond_tolerance : float, optional
+        How far the fit may move a running bond's half offset or an aligned joint
+        (default a tenth of the tile length).
+    units_per_mm : float, optional
+        Model units per millimetre (default 0.001: a model in metres; 1 for millimetres),
+        for the report's shares of joints within 2 and 5 mm.
+    progress : callable, optional
+        ``progress(stage, fraction)`` with ``stage == "tiles"`` and the share of the fit's
+        step limit used; return True to cancel (:class:`~tilepattern.CancelledError`, no
+        tiles). An exception raised in it cancels and is raised again by ``tiles``.
 
     Returns
     -------
     Tiles
         Kinds, corners ``(N, 8, 3)``, frames ``(N, 4, 3)``, sizes, faces, laying steps,
-        outlines of cut tiles, labels, cut list and the report.
+        outlines of cut tiles, labels, cut list, joint deviations and the report.
 
     Raises
     ------
     TilePatternError
-        ``InvalidArgumentError`` for a bad tile size, ``InvalidPatternError`` when the
-        pattern was solved on another mesh, ``InvalidMeshError``.
+        ``InvalidArgumentError`` for a bad tile size or fit option,
+        ``InvalidPatternError`` when the pattern was solved on another mesh,
+        ``InvalidMeshError``, ``CancelledError``.
     ValueError
         When ``pattern`` was closed.
 
@@ -724,16 +798,47 @@ def tiles(
     options.cut_tolerance = _optional(cut_tolerance)
     options.min_kept_width = _optional(min_kept_width)
     options.support_band = _optional(support_band)
-    u = np.asarray(up, dtype=np.float64).reshape(-1)
-    if u.shape != (3,):
-        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "up must be 3 numbers, got %r" % (up,))
-    options.up[:] = u.tolist()
+    options.up[:] = _three(up, "up")
+    options.fit = 1 if fit else 0
+    options.fit_time_limit_seconds = float(fit_time_limit)
+    options.fit_overlap_tolerance = _optional(overlap_tolerance)
+    options.fit_bond_tolerance = _optional(bond_tolerance)
+    options.units_per_mm = float(units_per_mm)
     pattern_pointer = pattern.handle  # raises ValueError below if closed
     with mesh_handle(vertices, faces) as quads:
         if surface is None:
-            built = pattern_pointer.build_tiles(quads, options)
+            built = pattern_pointer.build_tiles(quads, options, progress=progress)
         else:
             with mesh_handle(*surface) as reference:
-                built = pattern_pointer.build_tiles(quads, options, reference)
+                built = pattern_pointer.build_tiles(quads, options, reference, progress=progress)
     with built:
         return _read_tiles(built)
+
+
+def quad_edge(length=0.28, width=0.14, joint=0.01, courses="free"):
+    """The quad edge to remesh with for a tile (the command line's choice).
+
+    Tiles laid either way sit best on square quads of ``(length + joint) / 2`` (the
+    paper's choice). In level courses the quads' height across the courses is what no
+    placement can change, so they are made as high as a course, ``width + joint``, where
+    that is larger; the fit then closes the head joints along each course.
+
+    Parameters
+    ----------
+    length, width, joint : float, optional
+        Tile size and joint in model units (default 280 x 140 mm, 10 mm, in metres).
+    courses : {"free", "level"}, optional
+        As for :func:`match`.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(quad_edge(), 4), round(quad_edge(courses="level"), 4)
+    (0.145, 0.15)
+    """
+    code = _choice(courses, COURSES, "courses")
+    edge = (float(length) + float(joint)) / 2.0
+    return max(edge, float(width) + float(joint)) if code == nat.TP_COURSES_LEVEL else edge

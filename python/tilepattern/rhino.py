@@ -81,8 +81,9 @@ def export_3dm(tiles, path, units="Millimeters", outlines=True, geometry="brep",
 
     Each tile becomes a box (a Brep) on layer ``tiles::full`` or ``tiles::half`` (children
     of ``tiles``) by the blank it is cut from, named by its cut-list label (``F``, ``H``,
-    ``B1``...). Its user text holds ``index``, ``kind``, ``step`` (laying order),
-    ``faces`` and ``kept_fraction``. With ``outlines``, the part to keep of every cut
+    ``B1``..., ``C1``...). Its user text holds ``index``, ``kind``, ``step`` (laying
+    order), ``faces``, ``kept_fraction`` and ``joint_deviation`` (its worst joint's
+    ``|gap - joint|``, model units). With ``outlines``, the part to keep of every cut
     tile goes on layer ``tiles::cuts`` as closed polylines on the tile's bottom face.
 
     Parameters
@@ -151,6 +152,8 @@ def export_3dm(tiles, path, units="Millimeters", outlines=True, geometry="brep",
         attributes.SetUserString("step", str(int(placed.steps[index])))
         attributes.SetUserString("faces", " ".join(str(int(f)) for f in placed.faces[index] if f >= 0))
         attributes.SetUserString("kept_fraction", repr(float(placed.kept_fractions[index])))
+        if index < len(placed.joint_deviations):
+            attributes.SetUserString("joint_deviation", repr(float(placed.joint_deviations[index])))
         if isinstance(shape, rhino3dm.Mesh):
             model.Objects.AddMesh(shape, attributes)
         else:

@@ -279,6 +279,41 @@ int main(void) {
   po.struct_size = 1u << 20;
   row("struct_size absurd", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, "struct_size");
   row("NULL options", tp_pattern_solve(quads, NULL, NULL, NULL, &p), TP_NULL_POINTER, "options");
+  /* Courses (ABI 3). */
+  const int32_t bad_courses[] = {7, -1, 2};
+  for (size_t i = 0; i < sizeof bad_courses / sizeof *bad_courses; i++) {
+    tp_pattern_options_init(&po, sizeof po);
+    po.courses = bad_courses[i];
+    char what[64], words[32];
+    snprintf(what, sizeof what, "unknown courses %d", (int)bad_courses[i]);
+    snprintf(words, sizeof words, "courses %d", (int)bad_courses[i]);
+    row(what, tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, words);
+  }
+  const double bad_ups[][3] = {{0, 0, 0}, {NAN, 0, 1}, {0, INFINITY, 0}};
+  for (size_t i = 0; i < sizeof bad_ups / sizeof *bad_ups; i++) {
+    tp_pattern_options_init(&po, sizeof po);
+    po.courses = TP_COURSES_LEVEL;
+    memcpy(po.up, bad_ups[i], sizeof po.up);
+    char what[64];
+    snprintf(what, sizeof what, "level courses, up (%g, %g, %g)", bad_ups[i][0], bad_ups[i][1], bad_ups[i][2]);
+    row(what, tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, "up direction");
+  }
+  tp_pattern_options_init(&po, sizeof po);
+  po.up[0] = po.up[1] = po.up[2] = 0;
+  row("free courses, up (0, 0, 0) (graceful: up is only read for level courses)", tp_pattern_solve(quads, &po, NULL, NULL, &p),
+      TP_OK, NULL);
+  tp_pattern_free(p);
+  p = NULL;
+  {
+    /* Up along x: courses run along y, so faces 0 and 1 (side by side along x) lie in two. */
+    tp_pattern_options_init(&po, sizeof po);
+    po.courses = TP_COURSES_LEVEL;
+    po.up[0] = 1, po.up[1] = 0, po.up[2] = 0;
+    const uint32_t across[] = {0, 1};
+    po.forced_pairs = across;
+    po.forced_pair_count = 1;
+    row("forced pair across level courses", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, "two courses");
+  }
   tp_pattern_options_init(&po, sizeof po);
   row("NULL mesh", tp_pattern_solve(NULL, &po, NULL, NULL, &p), TP_NULL_POINTER, "mesh");
   row("options_init size 0", tp_pattern_options_init(&po, 0), TP_INVALID_ARGUMENT, "size 0");
@@ -309,6 +344,49 @@ int main(void) {
     *fields[tile_rows[i].field] = tile_rows[i].value;
     row(tile_rows[i].what, tp_tiles_build(quads, p, &to, &t), TP_INVALID_ARGUMENT, tile_rows[i].words);
   }
+  /* The fit stage's options (ABI 3). */
+  struct {
+    const char *what;
+    int field;
+    double value;
+    const char *words;
+  } fit_rows[] = {
+      {"NaN fit time limit", 0, NAN, "time_limit NaN"},
+      {"negative fit time limit", 0, -1, "time_limit -1"},
+      {"infinite fit time limit", 0, INFINITY, "time_limit inf"},
+      {"NaN fit overlap tolerance", 1, NAN, "overlap_tolerance NaN"},
+      {"infinite fit overlap tolerance", 1, INFINITY, "overlap_tolerance inf"},
+      {"NaN fit bond tolerance", 2, NAN, "bond_tolerance NaN"},
+      {"zero units per mm", 3, 0, " 0 must be"},
+      {"negative units per mm", 3, -1, "-1 must be"},
+      {"NaN units per mm", 3, NAN, "NaN must be"},
+  };
+  for (size_t i = 0; i < sizeof fit_rows / sizeof *fit_rows; i++) {
+    tp_tile_options_init(&to, sizeof to);
+    to.length = 1.9, to.width = 0.95;
+    double *fields[] = {&to.fit_time_limit_seconds, &to.fit_overlap_tolerance, &to.fit_bond_tolerance, &to.units_per_mm};
+    *fields[fit_rows[i].field] = fit_rows[i].value;
+    row(fit_rows[i].what, tp_tiles_build(quads, p, &to, &t), TP_INVALID_ARGUMENT, fit_rows[i].words);
+  }
+  tp_tile_options_init(&to, sizeof to);
+  to.length = 1.9, to.width = 0.95;
+  to.fit = 0;
+  to.fit_time_limit_seconds = NAN;
+  row("NaN fit time limit with the fit off (graceful: not read)", tp_tiles_build(quads, p, &to, &t), TP_OK, NULL);
+  tp_tiles_free(t);
+  t = NULL;
+  tp_tile_options_init(&to, sizeof to);
+  to.length = 1.9, to.width = 0.95;
+  to.fit = 7;
+  row("fit 7 (graceful: any non-zero value is on)", tp_tiles_build(quads, p, &to, &t), TP_OK, NULL);
+  tp_tiles_free(t);
+  t = NULL;
+  tp_tile_options_init(&to, sizeof to);
+  to.length = 1.9, to.width = 0.95;
+  row("NULL tiles out with progress", tp_tiles_build_with_progress(quads, p, NULL, &to, NULL, NULL, NULL), TP_NULL_POINTER, "out");
+  to.fit_time_limit_seconds = -1;
+  row("negative fit time limit with progress", tp_tiles_build_with_progress(quads, p, NULL, &to, NULL, NULL, &t),
+      TP_INVALID_ARGUMENT, "time_limit");
   tp_tile_options_init(&to, sizeof to);
   to.length = 100;
   row("tile larger than the shell", tp_tiles_build(quads, p, &to, &t), TP_INVALID_ARGUMENT, "larger than the whole mesh");
@@ -346,6 +424,11 @@ int main(void) {
   char one[1] = {'x'};
   tp_last_error_message(one, 1);
   expect("error message in a 1-byte buffer is empty", one[0] == '\0');
+  double deviations[2];
+  expect("two quads, one tile (and no more than two filler pieces)", n >= 1 && n <= 3);
+  row("joint deviations buffer too small", tp_tiles_copy_joint_deviations(t, deviations, n - 1), TP_BUFFER_TOO_SMALL, "are needed");
+  row("joint deviations NULL", tp_tiles_copy_joint_deviations(t, NULL, n), TP_NULL_POINTER, "out");
+  row("joint deviations of NULL tiles", tp_tiles_copy_joint_deviations(NULL, deviations, 2), TP_NULL_POINTER, "tiles");
   uint32_t pairs[1];
   row("pairs buffer too small", tp_pattern_copy_pairs(p, pairs, 1), TP_BUFFER_TOO_SMALL, "holds 1 items, 2 are needed");
   tp_tiles_free(t);

@@ -75,6 +75,25 @@ static TpMesh *grid_mesh(uint32_t nx, uint32_t ny) {
   return s == TP_OK ? mesh : NULL;
 }
 
+/* An nx x ny grid of unit squares lifted to z = rise * y (rise > 0: level lines along x) or,
+ * with `bump`, to a doubly curved cap. */
+static TpMesh *lifted_grid_mesh(uint32_t nx, uint32_t ny, double rise, int bump) {
+  double *v;
+  uint32_t *idx, *sz;
+  size_t nv, nf;
+  TpMesh *mesh = NULL;
+  grid(nx, ny, &v, &nv, &idx, &sz, &nf);
+  for (size_t k = 0; k < nv; k++) {
+    double x = v[3 * k], y = v[3 * k + 1];
+    v[3 * k + 2] = bump ? 0.8 * sin(x / 3.0) * sin(y / 2.5) : rise * y;
+  }
+  TpStatus s = tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &mesh);
+  free(v);
+  free(idx);
+  free(sz);
+  return s == TP_OK ? mesh : NULL;
+}
+
 static void test_version(void) {
   CHECK(tp_abi_version() == TP_ABI_VERSION);
   CHECK(strlen(tp_version()) > 0);
@@ -503,6 +522,216 @@ static void test_cancel_and_time_limit(void) {
   tp_mesh_free(mesh);
 }
 
+/* The tile options of the fit tests: 1.9 x 0.95 x 0.1 tiles, joint 0.1, on unit quads. */
+static TpTileOptions fit_tile(void) {
+  TpTileOptions tile;
+  tp_tile_options_init(&tile, sizeof tile);
+  tile.length = 1.9;
+  tile.width = 0.95;
+  tile.thickness = 0.1;
+  tile.joint = 0.1;
+  return tile;
+}
+
+/* The report of `tiles` as a string (caller frees). */
+static char *report_of(const TpTiles *tiles) {
+  size_t needed = 0;
+  if (tp_tiles_report_json(tiles, NULL, 0, &needed) != TP_BUFFER_TOO_SMALL) return NULL;
+  char *json = (char *)malloc(needed + 1);
+  if (tp_tiles_report_json(tiles, json, needed + 1, NULL) != TP_OK) {
+    free(json);
+    return NULL;
+  }
+  return json;
+}
+
+struct fit_progress {
+  int calls, other_stage, outside, backwards, cancel_at, calls_after_cancel, cancelled;
+  double last;
+};
+
+static int32_t watch_fit(void *user, uint32_t stage, double fraction) {
+  struct fit_progress *p = (struct fit_progress *)user;
+  if (p->cancelled) p->calls_after_cancel++;
+  p->other_stage += stage != TP_STAGE_TILES;
+  p->outside += !(fraction >= 0.0 && fraction <= 1.0);
+  if (p->calls > 0 && fraction < p->last) p->backwards++;
+  p->last = fraction;
+  p->calls++;
+  if (p->cancel_at > 0 && p->calls >= p->cancel_at) {
+    p->cancelled = 1;
+    return 1;
+  }
+  return 0;
+}
+
+/* The fit stage (stage 3b): on by default, its figures in the report, per-tile joint
+ * deviations, progress and cancel through TP_STAGE_TILES, callers with ABI 2 structs. */
+static void test_fit(void) {
+  TpMesh *mesh = lifted_grid_mesh(12, 10, 0.0, 1);
+  CHECK(mesh != NULL);
+  TpPatternOptions options = tp_pattern_options_default();
+  CHECK(options.courses == TP_COURSES_FREE && options.up[0] == 0.0 && options.up[2] == 1.0);
+  options.time_limit_seconds = 5.0;
+  TpPattern *pattern = NULL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &pattern) == TP_OK);
+
+  TpTileOptions tile = fit_tile();
+  CHECK(tile.fit == 1 && tile.fit_time_limit_seconds == 10.0 && tile.fit_overlap_tolerance < 0.0);
+  CHECK(tile.fit_bond_tolerance < 0.0 && tile.units_per_mm == 0.001);
+
+  /* Fitted (default): the report has the fit and the figures before it. */
+  TpTiles *fitted = NULL;
+  struct fit_progress watch = {0, 0, 0, 0, 0, 0, 0, 0.0};
+  CHECK(tp_tiles_build_with_progress(mesh, pattern, NULL, &tile, watch_fit, &watch, &fitted) == TP_OK && fitted != NULL);
+  CHECK(watch.calls > 0 && watch.other_stage == 0 && watch.outside == 0 && watch.backwards == 0);
+  char *json = report_of(fitted);
+  CHECK(json != NULL && strstr(json, "\"fit\": {") != NULL && strstr(json, "\"before_fit\"") != NULL);
+  CHECK(json != NULL && strstr(json, "\"within_2mm\"") != NULL && strstr(json, "\"fit_cuts\"") != NULL);
+  CHECK(json != NULL && (strstr(json, "\"status\": \"converged\"") != NULL || strstr(json, "\"status\": \"iteration_limit\"") != NULL));
+  free(json);
+
+  /* Joint deviations: one per tile, not negative, the largest is the report's worst joint. */
+  size_t n = 0;
+  CHECK(tp_tiles_count(fitted, &n) == TP_OK && n > 0);
+  double *deviations = (double *)malloc(n * sizeof(double));
+  CHECK(tp_tiles_copy_joint_deviations(fitted, deviations, n) == TP_OK);
+  int finite = 1, some = 0;
+  for (size_t t = 0; t < n; t++) {
+    finite &= isfinite(deviations[t]) && deviations[t] >= 0.0;
+    some |= deviations[t] > 0.0;
+  }
+  CHECK(finite && some);
+  CHECK(tp_tiles_copy_joint_deviations(fitted, deviations, n - 1) == TP_BUFFER_TOO_SMALL && last_error_contains("are needed"));
+  CHECK(tp_tiles_copy_joint_deviations(NULL, deviations, n) == TP_NULL_POINTER);
+  CHECK(tp_tiles_copy_joint_deviations(fitted, NULL, n) == TP_NULL_POINTER);
+  free(deviations);
+  tp_tiles_free(fitted);
+
+  /* fit = 0: the paper's placement, no fit in the report, no progress to report. */
+  tile.fit = 0;
+  TpTiles *paper = NULL;
+  struct fit_progress quiet = {0, 0, 0, 0, 0, 0, 0, 0.0};
+  CHECK(tp_tiles_build_with_progress(mesh, pattern, NULL, &tile, watch_fit, &quiet, &paper) == TP_OK);
+  json = report_of(paper);
+  CHECK(json != NULL && strstr(json, "\"fit\": {") == NULL && strstr(json, "\"before_fit\"") == NULL);
+  CHECK(quiet.calls == 0);
+  free(json);
+  tp_tiles_free(paper);
+  tile.fit = 1;
+
+  /* Cancelled at the second report: TP_CANCELLED, no tiles, no further calls (and no leak:
+     valgrind). */
+  TpTiles *none = NULL;
+  struct fit_progress cancel = {0, 0, 0, 0, 2, 0, 0, 0.0};
+  CHECK(tp_tiles_build_with_progress(mesh, pattern, NULL, &tile, watch_fit, &cancel, &none) == TP_CANCELLED && none == NULL);
+  CHECK(last_error_contains("cancelled") && cancel.cancelled && cancel.calls_after_cancel == 0 && cancel.calls == 2);
+  CHECK(tp_tiles_build_with_progress(mesh, NULL, NULL, &tile, NULL, NULL, &none) == TP_NULL_POINTER && none == NULL);
+  CHECK(tp_tiles_build_with_progress(mesh, pattern, NULL, &tile, NULL, NULL, NULL) == TP_NULL_POINTER);
+
+  /* No time at all: the best placement after one step, with an honest status. */
+  tile.fit_time_limit_seconds = 0.0;
+  TpTiles *hurried = NULL;
+  CHECK(tp_tiles_build(mesh, pattern, &tile, &hurried) == TP_OK);
+  json = report_of(hurried);
+  CHECK(json != NULL && strstr(json, "\"status\": \"time_limit\"") != NULL);
+  free(json);
+  tp_tiles_free(hurried);
+
+  /* A caller built against the ABI 2 header: its TpTileOptions ends before `fit`. The
+     initialiser writes no more than that, and the build keeps the fit on. */
+  {
+    unsigned char buffer[sizeof(TpTileOptions) + 16];
+    memset(buffer, 0xAB, sizeof buffer);
+    size_t old_size = offsetof(TpTileOptions, fit);
+    CHECK(old_size == offsetof(TpTileOptions, support_band) + sizeof(double));
+    CHECK(tp_tile_options_init((TpTileOptions *)(void *)buffer, old_size) == TP_OK);
+    int untouched = 1;
+    for (size_t b = old_size; b < sizeof buffer; b++) untouched &= buffer[b] == 0xAB;
+    CHECK(untouched);
+    TpTileOptions old;
+    memcpy(&old, buffer, sizeof old);
+    CHECK(old.struct_size == old_size);
+    old.length = 1.9, old.width = 0.95, old.thickness = 0.1, old.joint = 0.1;
+    old.fit = 0;                          /* beyond the old struct: never read */
+    old.fit_time_limit_seconds = -1.0;    /* likewise (would be refused) */
+    TpTiles *by_old = NULL;
+    CHECK(tp_tiles_build(mesh, pattern, &old, &by_old) == TP_OK);
+    json = report_of(by_old);
+    CHECK(json != NULL && strstr(json, "\"fit\": {") != NULL && strstr(json, "\"before_fit\"") != NULL);
+    free(json);
+    tp_tiles_free(by_old);
+  }
+  tp_pattern_free(pattern);
+  tp_mesh_free(mesh);
+}
+
+/* Level courses: on a grid rising along y every tile runs along x (faces f and f + 1). */
+static void test_courses(void) {
+  TpMesh *mesh = lifted_grid_mesh(8, 6, 0.3, 0);
+  CHECK(mesh != NULL);
+  TpPatternOptions options;
+  CHECK(tp_pattern_options_init(&options, sizeof options) == TP_OK && options.courses == TP_COURSES_FREE);
+  options.time_limit_seconds = 5.0;
+  uint32_t pairs[48];
+  TpPatternSummary summary;
+
+  /* Free: tiles lie both ways. */
+  TpPattern *free_pattern = NULL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &free_pattern) == TP_OK);
+  CHECK(tp_pattern_summary(free_pattern, &summary) == TP_OK && summary.pairs > 0 && summary.pairs <= 24);
+  CHECK(tp_pattern_copy_pairs(free_pattern, pairs, 48) == TP_OK);
+  int along_x = 1;
+  for (size_t k = 0; k < summary.pairs; k++) along_x &= pairs[2 * k + 1] == pairs[2 * k] + 1;
+  CHECK(!along_x);
+  tp_pattern_free(free_pattern);
+
+  /* Level (up +z): every pair runs one way. */
+  options.courses = TP_COURSES_LEVEL;
+  TpPattern *level = NULL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &level) == TP_OK);
+  CHECK(tp_pattern_summary(level, &summary) == TP_OK && summary.pairs > 0 && summary.pairs <= 24);
+  CHECK(tp_pattern_copy_pairs(level, pairs, 48) == TP_OK);
+  along_x = 1;
+  for (size_t k = 0; k < summary.pairs; k++) along_x &= pairs[2 * k + 1] == pairs[2 * k] + 1 && pairs[2 * k] % 8 != 7;
+  CHECK(along_x);
+  /* Tiles on it fit (the fit keeps the pattern's bond). */
+  TpTileOptions tile = fit_tile();
+  TpTiles *tiles = NULL;
+  CHECK(tp_tiles_build(mesh, level, &tile, &tiles) == TP_OK);
+  char *json = report_of(tiles);
+  CHECK(json != NULL && strstr(json, "\"fit\": {") != NULL);
+  free(json);
+  tp_tiles_free(tiles);
+  tp_pattern_free(level);
+
+  /* Up along x: courses along y, tiles pair f with f + 8. */
+  options.up[0] = 1.0, options.up[1] = 0.0, options.up[2] = 0.0;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &level) == TP_OK);
+  CHECK(tp_pattern_summary(level, &summary) == TP_OK && summary.pairs > 0);
+  CHECK(tp_pattern_copy_pairs(level, pairs, 48) == TP_OK);
+  int along_y = 1;
+  for (size_t k = 0; k < summary.pairs; k++) along_y &= pairs[2 * k + 1] == pairs[2 * k] + 8;
+  CHECK(along_y);
+  tp_pattern_free(level);
+
+  /* A caller built against the ABI 2 header (struct ends before `courses`): free courses. */
+  TpPatternOptions old;
+  memset(&old, 0xAB, sizeof old);
+  CHECK(tp_pattern_options_init(&old, offsetof(TpPatternOptions, courses)) == TP_OK);
+  CHECK(old.struct_size == offsetof(TpPatternOptions, courses) && old.courses != TP_COURSES_FREE);
+  old.time_limit_seconds = 5.0;
+  old.courses = TP_COURSES_LEVEL; /* beyond the old struct: never read */
+  TpPattern *by_old = NULL;
+  CHECK(tp_pattern_solve(mesh, &old, NULL, NULL, &by_old) == TP_OK);
+  CHECK(tp_pattern_summary(by_old, &summary) == TP_OK && tp_pattern_copy_pairs(by_old, pairs, 48) == TP_OK);
+  along_x = 1;
+  for (size_t k = 0; k < summary.pairs; k++) along_x &= pairs[2 * k + 1] == pairs[2 * k] + 1;
+  CHECK(!along_x);
+  tp_pattern_free(by_old);
+  tp_mesh_free(mesh);
+}
+
 static void test_panic_boundary(void) {
 #if defined(TP_TEST_PANIC)
   CHECK(tp_test_panic() == TP_PANIC);
@@ -522,6 +751,8 @@ int main(void) {
   test_pattern_and_tiles();
   test_remesh();
   test_cancel_and_time_limit();
+  test_fit();
+  test_courses();
   test_panic_boundary();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
