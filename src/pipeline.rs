@@ -187,7 +187,7 @@ pub fn tiles_for_pattern_with(
     }
     check_tile_scale(Some(quads), surface, spec)?;
     let boxes = tiles::build(quads, &pattern, spec)?;
-    let mm = finish.millimetre;
+    let mm = finish.units_per_mm;
     let (boxes, fitted) = match &finish.fit {
         Some(options) => {
             let before = JointSummary::of(&report::gaps::joints(quads, &boxes), spec.joint, mm);

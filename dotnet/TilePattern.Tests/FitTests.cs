@@ -125,8 +125,8 @@ namespace TilePattern.Tests
             {
                 var cases = new[]
                 {
-                    new KeyValuePair<TileOptions, string>(new TileOptions { FitTimeLimitSeconds = double.NaN }, "time_limit NaN"),
-                    new KeyValuePair<TileOptions, string>(new TileOptions { FitTimeLimitSeconds = -1 }, "time_limit -1"),
+                    new KeyValuePair<TileOptions, string>(new TileOptions { FitTimeLimitSeconds = double.NaN }, "fit_time_limit_seconds NaN"),
+                    new KeyValuePair<TileOptions, string>(new TileOptions { FitTimeLimitSeconds = -1 }, "fit_time_limit_seconds -1"),
                     new KeyValuePair<TileOptions, string>(new TileOptions { OverlapTolerance = double.PositiveInfinity }, "overlap_tolerance"),
                     new KeyValuePair<TileOptions, string>(new TileOptions { BondTolerance = double.NaN }, "bond_tolerance"),
                     new KeyValuePair<TileOptions, string>(new TileOptions { UnitsPerMm = 0 }, "must be"),

@@ -455,7 +455,7 @@ impl TileArgs {
                 time_limit: self.fit_time_limit,
                 ..fit
             }),
-            millimetre: scale,
+            units_per_mm: scale,
         }
     }
 

@@ -90,7 +90,7 @@ impl TpTileOptions {
                 support_band: or_auto(self.support_band, auto.sequence.support_band),
             },
             fit,
-            millimetre: self.units_per_mm,
+            units_per_mm: self.units_per_mm,
         }
     }
 }
@@ -167,9 +167,9 @@ pub unsafe extern "C" fn tp_tiles_build_on_surface(
 }
 
 /// [`tp_tiles_build_on_surface`] reporting the fit stage's progress: `progress` (may be NULL)
-/// is called with `TP_STAGE_TILES` and the share of the fit's step limit used; a non-zero
-/// return cancels the fit (the placement so far is kept, the report's `fit.status` is
-/// `cancelled`) and the call returns `TP_CANCELLED` without tiles.
+/// is called with `TP_STAGE_TILES` and the share of the fit's step limit used (1 when the fit
+/// is done); a non-zero return cancels the fit and the call returns `TP_CANCELLED` without
+/// tiles (the Rust API keeps the placement so far, with `fit.status` `cancelled`).
 ///
 /// # Safety
 /// As [`tp_tiles_build_on_surface`]; `user` is passed to `progress` untouched.
@@ -358,7 +358,8 @@ pub unsafe extern "C" fn tp_tiles_copy_kept_fractions(tiles: *const TpTiles, out
     unsafe { copy_per_tile(tiles, out, capacity, |t| vec![t.cut.as_ref().map_or(1.0, |c| c.kept_fraction)]) }
 }
 
-/// Writes the total number of outline loops and of their points over all boundary tiles: the
+/// Writes the total number of outline loops and of their points over all cut tiles (cut to
+/// the boundary, `TP_TILE_BOUNDARY`, or to fit, `TP_TILE_FIT_CUT`): the
 /// capacities for [`tp_tiles_copy_loop_sizes`] and (times 2) [`tp_tiles_copy_loop_points`].
 /// Either pointer may be NULL.
 ///

@@ -146,7 +146,7 @@ pub struct FinishOptions {
     pub fit: Option<FitOptions>,
     /// Model units per millimetre, for figures stated in millimetres (the report's share of
     /// joints within 2 and 5 mm); 0.001 for a model in metres.
-    pub millimetre: f64,
+    pub units_per_mm: f64,
 }
 
 impl FinishOptions {
@@ -159,7 +159,7 @@ impl FinishOptions {
             min_kept_width: spec.width / 5.0,
             sequence: SequenceOptions { up: Vector3::z(), support_band: spec.width },
             fit: Some(FitOptions::for_spec(spec)),
-            millimetre: 0.001,
+            units_per_mm: 0.001,
         }
     }
 
@@ -174,8 +174,8 @@ impl FinishOptions {
                 return Err(TileError::InvalidSpec { name, value });
             }
         }
-        if !(self.millimetre.is_finite() && self.millimetre > 0.0) {
-            return Err(TileError::InvalidSpec { name: "millimetre", value: self.millimetre });
+        if !(self.units_per_mm.is_finite() && self.units_per_mm > 0.0) {
+            return Err(TileError::InvalidSpec { name: "units_per_mm", value: self.units_per_mm });
         }
         if let Some(fit) = &self.fit {
             fit.validate()?;
@@ -334,7 +334,7 @@ pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, sp
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum TileError {
     /// A tile dimension or finishing option is out of range.
-    #[error("tile {name} {value} must be a finite number > 0 (joint, tolerances >= 0; up a non-zero direction)")]
+    #[error("tile option {name} {value} must be a finite number > 0 (joint, tolerances and time limits >= 0; up a non-zero direction)")]
     InvalidSpec {
         /// Which dimension.
         name: &'static str,

@@ -351,9 +351,9 @@ int main(void) {
     double value;
     const char *words;
   } fit_rows[] = {
-      {"NaN fit time limit", 0, NAN, "time_limit NaN"},
-      {"negative fit time limit", 0, -1, "time_limit -1"},
-      {"infinite fit time limit", 0, INFINITY, "time_limit inf"},
+      {"NaN fit time limit", 0, NAN, "fit_time_limit_seconds NaN"},
+      {"negative fit time limit", 0, -1, "fit_time_limit_seconds -1"},
+      {"infinite fit time limit", 0, INFINITY, "fit_time_limit_seconds inf"},
       {"NaN fit overlap tolerance", 1, NAN, "overlap_tolerance NaN"},
       {"infinite fit overlap tolerance", 1, INFINITY, "overlap_tolerance inf"},
       {"NaN fit bond tolerance", 2, NAN, "bond_tolerance NaN"},

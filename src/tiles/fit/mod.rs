@@ -79,7 +79,7 @@ impl FitOptions {
     /// # Errors
     /// [`TileError::InvalidSpec`] naming the first bad value.
     pub fn validate(&self) -> Result<(), TileError> {
-        let values = [("fit bond_tolerance", self.bond_tolerance), ("fit overlap_tolerance", self.overlap_tolerance), ("fit time_limit", self.time_limit)];
+        let values = [("fit_bond_tolerance", self.bond_tolerance), ("fit_overlap_tolerance", self.overlap_tolerance), ("fit_time_limit_seconds", self.time_limit)];
         for (name, value) in values {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(TileError::InvalidSpec { name, value });
@@ -119,6 +119,8 @@ pub struct FitSummary {
     pub mean_move: f64,
     /// Largest such distance.
     pub max_move: f64,
+    /// Overlaps up to this depth were left, deeper ones cut ([`FitOptions::overlap_tolerance`]).
+    pub overlap_tolerance: f64,
 }
 
 /// Moves `tiles` (as built by [`crate::tiles::build`] on `quads`) to fit their joints,
@@ -185,7 +187,11 @@ pub fn fit(
         objective_after: outcome.end,
         mean_move: moves.iter().sum::<f64>() / moves.len().max(1) as f64,
         max_move: moves.iter().copied().fold(0.0, f64::max),
+        overlap_tolerance: options.overlap_tolerance,
     };
+    if status != FitStatus::Cancelled {
+        control.keep_going(1.0);
+    }
     Ok((placed, summary))
 }
 
