@@ -190,7 +190,7 @@ pub fn tiles_for_pattern_with(
     let mm = finish.units_per_mm;
     let (boxes, fitted) = match &finish.fit {
         Some(options) => {
-            let before = JointSummary::of(&report::gaps::joints(quads, &boxes), spec.joint, mm);
+            let before = JointSummary::of(&report::gaps::joints(quads, &boxes, spec.joint), spec.joint, mm);
             let fit_started = Instant::now();
             let (moved, summary) = tiles::fit::fit(quads, surface, boxes, spec, options, control)?;
             (moved, Some((before, summary, fit_started.elapsed().as_secs_f64())))
@@ -198,7 +198,7 @@ pub fn tiles_for_pattern_with(
         None => (boxes, None),
     };
     let (tiles, finished) = tiles::finish(quads, surface, boxes, spec, finish);
-    let joints = report::gaps::joints(quads, &tiles);
+    let joints = report::gaps::joints(quads, &tiles, spec.joint);
     let mut report = Report::measured(quads, &pattern, &tiles, &joints, spec, mm);
     if let Some((before, summary, seconds)) = fitted {
         report.joints.before_fit = Some(Box::new(before));

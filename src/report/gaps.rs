@@ -1,5 +1,6 @@
 //! Joints between neighbouring tiles, as a mason meets them: for every pair of tiles that
-//! meet (their faces share a mesh edge) and every other pair whose outlines overlap, the
+//! meet (their faces share a mesh edge) and every other pair that comes within three joints
+//! of each other (filler pieces included), the
 //! signed separation of their outlines in their mean plane
 //! ([`crate::tiles::outline::separation`]): the joint's width where positive, the depth of
 //! an overlap where negative. Paper section 4.1, Figure 8: with the section 3.5 placement
@@ -59,9 +60,12 @@ pub struct JointSummary {
     pub before_fit: Option<Box<JointSummary>>,
 }
 
-/// Every joint of `tiles` placed on `mesh`: pairs of tiles whose faces share a mesh edge, and
-/// pairs of any tiles (filler pieces too) whose outlines overlap, in index order.
-pub fn joints(mesh: &PolyMesh, tiles: &[Tile]) -> Vec<Joint> {
+/// Every joint of `tiles` placed on `mesh`, in index order: pairs of tiles whose faces share
+/// a mesh edge, pairs of any tiles (filler pieces too) that overlap, and pairs that come
+/// within three joints of each other (with `joint` 0: three hundredths of the widest tile)
+/// along a stretch of at least a quarter of the narrower one's width (tiles that only meet
+/// at a corner share no joint).
+pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let mut tile_of = vec![usize::MAX; mesh.face_count()];
     for (t, tile) in tiles.iter().enumerate() {
@@ -76,18 +80,21 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile]) -> Vec<Joint> {
             }
         }
     }
-    let outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_outline).collect();
+    let outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_corners).collect();
     let reach = tiles.iter().map(|t| t.size[0].hypot(t.size[1])).fold(0.0, f64::max);
-    let gap = |a: usize, b: usize| outline::separation_of(&tiles[a], &outlines[a], &tiles[b], &outlines[b]).gap;
+    let near = 3.0 * joint.max(tiles.iter().map(|t| t.size[1]).fold(0.0, f64::max) / 100.0);
+    let separation = |a: usize, b: usize| outline::separation_of(&tiles[a], &outlines[a], &tiles[b], &outlines[b]);
+    let gap = |a: usize, b: usize| separation(a, b).gap;
     let mut found: Vec<Joint> = Vec::with_capacity(meeting.len());
     if reach > 0.0 {
         let grid = HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
         for a in 0..tiles.len() {
             for b in grid.near(&tiles[a].frame.origin, reach) {
                 if b > a && !meeting.contains(&[a, b]) {
-                    let g = gap(a, b);
-                    if g < 0.0 {
-                        found.push(Joint { tiles: [a, b], gap: g });
+                    let s = separation(a, b);
+                    let stretch = tiles[a].size[1].min(tiles[b].size[1]) / 4.0;
+                    if s.gap < 0.0 || (s.gap < near && s.along >= stretch) {
+                        found.push(Joint { tiles: [a, b], gap: s.gap });
                     }
                 }
             }

@@ -97,7 +97,7 @@ pub struct CuttingSummary {
 impl Report {
     /// Summarises a tiling built from `pattern` on `mesh`, in metres (see [`Report::measured`]).
     pub fn new(mesh: &PolyMesh, pattern: &Pattern, tiles: &[Tile], spec: &TileSpec) -> Self {
-        Self::measured(mesh, pattern, tiles, &gaps::joints(mesh, tiles), spec, 0.001)
+        Self::measured(mesh, pattern, tiles, &gaps::joints(mesh, tiles, spec.joint), spec, 0.001)
     }
 
     /// Summarises a tiling built from `pattern` on `mesh`, whose `joints` were measured with

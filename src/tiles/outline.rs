@@ -1,11 +1,13 @@
 //! The joint between two tiles, measured on their outlines: the one rule by which the fit
 //! stage places tiles, the report judges joints and the overlap check finds overlaps.
 //!
-//! Both tiles' kept faces (the bottom face; for a cut tile the hull of its kept loops) are
-//! projected onto their mean plane (the plane through the midpoint of their origins, normal
-//! to the mean of their normals) and separated by separating axes
-//! ([`crate::geom::polygon::separation`]): a positive value is the width of the joint
-//! between them, a negative one how deep they overlap.
+//! Both tiles as solids (the corners of the kept face at the bottom and at the top: for a
+//! cut tile the hull of its kept loops) are projected onto their mean plane (the plane
+//! through the midpoint of their origins, normal to the mean of their normals) and separated
+//! by separating axes ([`crate::geom::polygon::separation`]): a positive value is the width
+//! of the joint between them, a negative one how deep they overlap. On a concave surface the
+//! tops of two tiles lean together, on a convex one the bottoms: either edge can close a
+//! joint.
 
 use nalgebra::{Point3, Vector3};
 
@@ -29,6 +31,14 @@ pub fn world_outline(tile: &Tile) -> Vec<Point3<f64>> {
     local_outline(tile).iter().map(|p| tile.frame.origin + tile.frame.x * p[0] + tile.frame.y * p[1]).collect()
 }
 
+/// The corners of `tile` as a solid: its kept face ([`world_outline`]) at the bottom and
+/// the same at the top, a thickness up.
+pub fn world_corners(tile: &Tile) -> Vec<Point3<f64>> {
+    let bottom = world_outline(tile);
+    let up = tile.frame.z * tile.size[2];
+    bottom.iter().copied().chain(bottom.iter().map(|p| p + up)).collect()
+}
+
 /// How two tiles meet.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Separation {
@@ -37,14 +47,18 @@ pub struct Separation {
     /// Unit direction (in the mean plane) along which it was measured, from the first tile
     /// towards the second.
     pub axis: Vector3<f64>,
+    /// Length of the stretch over which the two run along each other across `axis` (the
+    /// overlap of their projections onto the direction normal to it): the length of the
+    /// joint between them; zero or negative for tiles that only meet at a corner.
+    pub along: f64,
 }
 
-/// Separation of the outlines of `a` and `b` projected onto their mean plane.
+/// Separation of the solids of `a` and `b` projected onto their mean plane.
 pub fn separation(a: &Tile, b: &Tile) -> Separation {
-    separation_of(a, &world_outline(a), b, &world_outline(b))
+    separation_of(a, &world_corners(a), b, &world_corners(b))
 }
 
-/// [`separation`] with the world outlines given (to reuse them over many pairs).
+/// [`separation`] with the tiles' [`world_corners`] given (to reuse them over many pairs).
 pub fn separation_of(a: &Tile, outline_a: &[Point3<f64>], b: &Tile, outline_b: &[Point3<f64>]) -> Separation {
     let mut n = a.frame.z + b.frame.z;
     if n.norm() < 1e-9 {
@@ -58,13 +72,16 @@ pub fn separation_of(a: &Tile, outline_a: &[Point3<f64>], b: &Tile, outline_b: &
     }
     let e1 = e1.normalize();
     let e2 = n.cross(&e1);
-    let project = |outline: &[Point3<f64>]| -> Vec<Point2> {
-        let pts: Vec<Point2> = outline.iter().map(|p| [(p - origin).dot(&e1), (p - origin).dot(&e2)]).collect();
-        // A tile tilted past the mean plane would come out clockwise.
-        if polygon::signed_area(&pts) < 0.0 { pts.into_iter().rev().collect() } else { pts }
+    // The hull of the bottom and top corners: a counter-clockwise convex outline.
+    let project = |corners: &[Point3<f64>]| -> Vec<Point2> {
+        polygon::convex_hull(&corners.iter().map(|p| [(p - origin).dot(&e1), (p - origin).dot(&e2)]).collect::<Vec<_>>())
     };
-    let (gap, axis) = polygon::separation(&project(outline_a), &project(outline_b));
-    Separation { gap, axis: e1 * axis[0] + e2 * axis[1] }
+    let (pa, pb) = (project(outline_a), project(outline_b));
+    let (gap, axis) = polygon::separation(&pa, &pb);
+    let across = [-axis[1], axis[0]];
+    let span = |p: &[Point2]| p.iter().map(|&v| polygon::dot(across, v)).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)));
+    let ((a0, a1), (b0, b1)) = (span(&pa), span(&pb));
+    Separation { gap, axis: e1 * axis[0] + e2 * axis[1], along: a1.min(b1) - a0.max(b0) }
 }
 
 #[cfg(test)]
@@ -85,7 +102,9 @@ mod tests {
         let a = tile_at(0.0, 0.0, 0.0, 0.0);
         // End to end, 10 mm apart.
         let s = separation(&a, &tile_at(0.29, 0.0, 0.0, 0.0));
-        assert!((s.gap - 0.01).abs() < 1e-12 && (s.axis.x - 1.0).abs() < 1e-12);
+        assert!((s.gap - 0.01).abs() < 1e-12 && (s.axis.x - 1.0).abs() < 1e-12 && (s.along - 0.14).abs() < 1e-12);
+        // Corner to corner, diagonally: a gap, but no stretch of joint between them.
+        assert!(separation(&a, &tile_at(0.29, 0.15, 0.0, 0.0)).along <= 0.0);
         // Side by side, offset by half a tile, 7 mm apart.
         assert!((separation(&a, &tile_at(0.145, 0.147, 0.0, 0.0)).gap - 0.007).abs() < 1e-12);
         // Overlapping by 20 mm.
@@ -108,7 +127,16 @@ mod tests {
         };
         let gap = separation(&at(-1.0), &at(1.0)).gap;
         // In the mean (horizontal) plane the origins are 290 mm apart and each tile, tilted by
-        // `half`, reaches 140 cos(half) mm towards the other.
+        // `half`, reaches 140 cos(half) mm towards the other at its bottom; on this convex
+        // surface the tops lean apart, so the bottoms close the joint.
         assert!((gap - (0.29 - 0.28 * half.cos())).abs() < 1e-12, "{gap}");
+        // Laid inside the barrel instead (a concave surface), the tops lean together and
+        // close the joint by the thickness times the tilt.
+        let flip = |t: Tile| {
+            let f = t.frame;
+            Tile::new(TileKind::Full, vec![], crate::tiles::Frame { origin: f.origin, x: f.x, y: -f.y, z: -f.z }, t.size)
+        };
+        let inside = separation(&flip(at(-1.0)), &flip(at(1.0))).gap;
+        assert!((inside - (0.29 - 0.28 * half.cos() - 2.0 * 0.015 * half.sin())).abs() < 1e-12, "{inside}");
     }
 }

@@ -15,7 +15,7 @@ use crate::tiles::{Cut, Tile, TileKind};
 /// (cut from a blank anyway), and of two alike the one that loses less area. Returns the
 /// indices of the tiles cut, in order.
 pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<usize> {
-    let mut outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_outline).collect();
+    let mut outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_corners).collect();
     let reach = tiles.iter().map(|t| t.size[0].hypot(t.size[1])).fold(0.0, f64::max);
     if reach <= 0.0 {
         return Vec::new();
@@ -33,7 +33,7 @@ pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<u
             }
             // The cut that each choice would make, and what it would keep.
             let keep_b = beyond(&tiles[b], &outlines[a], &s, joint);
-            let flipped = Separation { gap: s.gap, axis: -s.axis };
+            let flipped = Separation { axis: -s.axis, ..s };
             let keep_a = beyond(&tiles[a], &outlines[b], &flipped, joint);
             let area = |c: &Option<Cut>| c.as_ref().map_or(0.0, Cut::area);
             let rank = |t: &Tile| match (t.faces.is_empty(), t.cut.is_some(), t.kind == TileKind::Half) {
@@ -52,7 +52,7 @@ pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<u
                 tile.kind = TileKind::FitCut;
             }
             tile.cut = Some(kept.unwrap_or(Cut { loops: Vec::new(), kept_fraction: 0.0 }));
-            outlines[victim] = outline::world_outline(tile);
+            outlines[victim] = outline::world_corners(tile);
             if !cut.contains(&victim) {
                 cut.push(victim);
             }
@@ -61,11 +61,13 @@ pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<u
     cut
 }
 
-/// What remains of `tile` beyond `other` (an outline) along `s.axis` (pointing from `other`
-/// towards `tile`) plus `joint`: `None` when nothing does.
+/// What remains of `tile` beyond `other` (the corners of a solid) along `s.axis` (pointing
+/// from `other` towards `tile`) plus `joint`: `None` when nothing does.
 fn beyond(tile: &Tile, other: &[Point3<f64>], s: &Separation, joint: f64) -> Option<Cut> {
     let n = s.axis;
-    let reach = other.iter().map(|p| n.dot(&p.coords)).fold(f64::NEG_INFINITY, f64::max) + joint;
+    // Beyond the other solid plus a joint, with the tile's top edge as well as its bottom.
+    let lean = tile.size[2] * (-n.dot(&tile.frame.z)).max(0.0);
+    let reach = other.iter().map(|p| n.dot(&p.coords)).fold(f64::NEG_INFINITY, f64::max) + joint + lean;
     // In the tile's frame the kept side is k . (x, y) >= c.
     let k = [n.dot(&tile.frame.x), n.dot(&tile.frame.y)];
     let c = reach - n.dot(&tile.frame.origin.coords);

@@ -4,8 +4,8 @@
 //! conjugate gradients with a block-Jacobi preconditioner.
 //!
 //! Residuals, each with its gradient over the (at most two) tiles it involves:
-//! - **joints**: for every [`Contact`], the distance from each corner of either facing side
-//!   to the other tile's side plane, minus the joint;
+//! - **joints**: for every [`Contact`], the distance from each corner (bottom and top) of
+//!   either facing side to the other tile's side plane, minus the joint;
 //!   an overlap (negative distance) counts `overlap_slope` times as much per unit, so the
 //!   stage would rather open a joint than press two tiles into each other;
 //! - **bond**: for two full tiles side by side (a bed joint), the offset of their centres
@@ -120,8 +120,9 @@ impl Problem<'_> {
             for (point_tile, fp, t_own, c_own, l_own, plane_tile, fq, m_other, c_other) in
                 [(a, fa, ta, ca, la, b, fb, mb, cb), (b, fb, tb, cb, lb, a, fa, ma, ca)]
             {
-                for sign in [-1.0, 1.0] {
-                    let corner = c_own + t_own * (sign * l_own);
+                // Bottom and top corners: either edge can close the joint.
+                for (sign, lift) in [(-1.0, 0.0), (1.0, 0.0), (-1.0, 1.0), (1.0, 1.0)] {
+                    let corner = c_own + t_own * (sign * l_own) + fp.z * (lift * self.sizes[point_tile][2]);
                     let (d, g_point, g_plane) = plane_distance(fp, &corner, fq, &m_other, &c_other);
                     let slope = if d < 0.0 { k } else { 1.0 };
                     let excess = d - j + (k - 1.0) * d.min(0.0);
