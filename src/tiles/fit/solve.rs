@@ -4,8 +4,9 @@
 //! conjugate gradients with a block-Jacobi preconditioner.
 //!
 //! Residuals, each with its gradient over the (at most two) tiles it involves:
-//! - **joints**: for every [`Contact`], the distance from each corner (bottom and top) of
-//!   either facing side to the other tile's side plane, minus the joint;
+//! - **joints**: for every [`Contact`], the distance from each end of either facing side to
+//!   the other tile's side plane (at the bottom or the top, whichever is closer), minus the
+//!   joint;
 //!   an overlap (negative distance) counts `overlap_slope` times as much per unit, so the
 //!   stage would rather open a joint than press two tiles into each other;
 //! - **bond**: for two full tiles side by side (a bed joint), the offset of their centres
@@ -120,10 +121,14 @@ impl Problem<'_> {
             for (point_tile, fp, t_own, c_own, l_own, plane_tile, fq, m_other, c_other) in
                 [(a, fa, ta, ca, la, b, fb, mb, cb), (b, fb, tb, cb, lb, a, fa, ma, ca)]
             {
-                // Bottom and top corners: either edge can close the joint.
-                for (sign, lift) in [(-1.0, 0.0), (1.0, 0.0), (-1.0, 1.0), (1.0, 1.0)] {
-                    let corner = c_own + t_own * (sign * l_own) + fp.z * (lift * self.sizes[point_tile][2]);
-                    let (d, g_point, g_plane) = plane_distance(fp, &corner, fq, &m_other, &c_other);
+                // At each end the bottom or the top corner, whichever is closer: on a convex
+                // surface the bottoms close the joint, on a concave one the tops.
+                for sign in [-1.0, 1.0] {
+                    let bottom = c_own + t_own * (sign * l_own);
+                    let top = bottom + fp.z * self.sizes[point_tile][2];
+                    let (db, gpb, gqb) = plane_distance(fp, &bottom, fq, &m_other, &c_other);
+                    let (dt, gpt, gqt) = plane_distance(fp, &top, fq, &m_other, &c_other);
+                    let (d, g_point, g_plane) = if dt < db { (dt, gpt, gqt) } else { (db, gpb, gqb) };
                     let slope = if d < 0.0 { k } else { 1.0 };
                     let excess = d - j + (k - 1.0) * d.min(0.0);
                     row(Some(ci), point_tile, g_point * slope, plane_tile, g_plane * slope, excess);
