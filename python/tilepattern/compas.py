@@ -279,7 +279,7 @@ def tiles(mesh, pattern, surface=None, **options):
     >>> quads = Mesh.from_obj(compas.get("hypar.obj"))
     >>> boxes = tpc.tiles(quads, tpc.match(quads, time_limit=5), length=1.2, width=0.6, thickness=0.05, joint=0.04)
     >>> boxes.tiles.kinds[:2].tolist(), boxes.report["half_tiles"]
-    (['full', 'full'], 0)
+    (['full', 'boundary'], 0)
     """
     vertices, faces, keys = mesh_vertices_faces(mesh)
     reference = None

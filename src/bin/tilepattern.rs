@@ -118,6 +118,9 @@ enum Command {
         span: f64,
         #[command(flatten)]
         pattern: PatternArgs,
+        /// Keep the paper's placement (section 3.5): no fit stage.
+        #[arg(long)]
+        no_fit: bool,
     },
 }
 
@@ -316,11 +319,11 @@ fn run(cli: Cli) -> Result<()> {
             println!("{}", tiling_summary(&tiling, units));
             Ok(())
         }
-        Command::Demo { out, span, pattern } => demo(&out, span, &pattern),
+        Command::Demo { out, span, pattern, no_fit } => demo(&out, span, &pattern, no_fit),
     }
 }
 
-fn demo(out: &Path, span: f64, args: &PatternArgs) -> Result<()> {
+fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
     if !(span.is_finite() && (0.5..=100.0).contains(&span)) {
         bail!("--span {span} m: give a shell size between 0.5 and 100 metres");
     }
@@ -329,7 +332,7 @@ fn demo(out: &Path, span: f64, args: &PatternArgs) -> Result<()> {
     let surface = mesh::generate::triangulate_quads(&mesh::generate::corner_supported_shell(span, spec.target_edge() / 3.0));
     let options = args.options(true, [0.0, 0.0, 1.0])?;
     let remesh = RemeshOptions { target_edge: spec.quad_edge(options.courses != Courses::Free), ..RemeshOptions::default() };
-    let finish = FinishOptions::for_spec(&spec);
+    let finish = FinishOptions { fit: FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit), ..FinishOptions::for_spec(&spec) };
     let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &options, &spec, &finish, &mut Control::none())?;
     write_outputs(out, &remeshed.quads, &tiling, Units::M, Some(&remeshed.metrics))?;
     println!("demo: {span} m corner-supported shell, {} triangles", surface.face_count());
