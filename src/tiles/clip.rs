@@ -13,10 +13,10 @@ use std::collections::HashMap;
 use nalgebra::{Point3, Vector3};
 
 use super::Tile;
+use crate::geom::{HashGrid, closest};
+pub use crate::geom::polygon::{Point2, signed_area};
+use crate::geom::polygon::{clip_to_convex, cross, dist, point_segment, sub};
 use crate::mesh::{PolyMesh, Topology};
-
-/// A point in a tile's frame (`x` along its length, `y` across it).
-pub type Point2 = [f64; 2];
 
 /// The part of a tile kept after cutting.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -76,11 +76,10 @@ struct Segment {
 #[derive(Debug, Clone)]
 pub struct SurfaceBoundary {
     segments: Vec<Segment>,
-    cell: f64,
-    grid: HashMap<[i64; 3], Vec<usize>>,
+    grid: HashGrid,
     /// Each face as its corners and unit normal.
     faces: Vec<(Vec<Point3<f64>>, Vector3<f64>)>,
-    face_grid: HashMap<[i64; 3], Vec<usize>>,
+    face_grid: HashGrid,
 }
 
 impl SurfaceBoundary {
@@ -99,43 +98,18 @@ impl SurfaceBoundary {
                 }
             }
         }
-        let cell = if cell.is_finite() && cell > 0.0 { cell } else { 1.0 };
-        let grid = bucket(segments.iter().map(|s| [s.a, s.b]), cell);
+        let grid = HashGrid::of_points(cell, segments.iter().map(|s| [s.a, s.b]));
         let faces: Vec<(Vec<Point3<f64>>, Vector3<f64>)> = (0..surface.face_count())
             .map(|f| (surface.face_points(f).collect(), surface.face_area_vector(f).try_normalize(0.0).unwrap_or_else(Vector3::z)))
             .collect();
-        let face_grid = bucket(faces.iter().map(|(corners, _)| corners.clone()), cell);
-        Self { segments, cell, grid, faces, face_grid }
-    }
-
-    /// Items of `grid` whose cells meet the box of half-side `radius` around `p`.
-    fn candidates(&self, grid: &HashMap<[i64; 3], Vec<usize>>, p: &Point3<f64>, radius: f64) -> Vec<usize> {
-        let r = Vector3::repeat(radius);
-        let (lo, hi) = (cell_of(&(p - r), self.cell), cell_of(&(p + r), self.cell));
-        let mut found = Vec::new();
-        let box_cells: f64 = (0..3).map(|k| (hi[k] as f64 - lo[k] as f64) + 1.0).product();
-        if box_cells > grid.len() as f64 {
-            // A box larger than the grid (a radius of many cells): read the grid instead.
-            let inside = |c: &[i64; 3]| (0..3).all(|k| (lo[k]..=hi[k]).contains(&c[k]));
-            found.extend(grid.iter().filter(|(c, _)| inside(c)).flat_map(|(_, items)| items.iter().copied()));
-        } else {
-            for x in lo[0]..=hi[0] {
-                for y in lo[1]..=hi[1] {
-                    for z in lo[2]..=hi[2] {
-                        found.extend(grid.get(&[x, y, z]).into_iter().flatten().copied());
-                    }
-                }
-            }
-        }
-        found.sort_unstable();
-        found.dedup();
-        found
+        let face_grid = HashGrid::of_points(cell, faces.iter().map(|(corners, _)| corners.as_slice()));
+        Self { segments, grid, faces, face_grid }
     }
 
     /// Boundary edges within `radius` of `p`, in index order.
     fn near(&self, p: &Point3<f64>, radius: f64) -> Vec<usize> {
-        let mut found = self.candidates(&self.grid, p, radius);
-        found.retain(|&s| segment_distance(p, &self.segments[s].a, &self.segments[s].b) <= radius);
+        let mut found = self.grid.near(p, radius);
+        found.retain(|&s| (closest::on_segment(&p.coords, &self.segments[s].a.coords, &self.segments[s].b.coords) - p.coords).norm() <= radius);
         found
     }
 
@@ -147,7 +121,7 @@ impl SurfaceBoundary {
     /// The point of the surface closest to `p`, if one lies within `radius`.
     pub fn closest(&self, p: &Point3<f64>, radius: f64) -> Option<Point3<f64>> {
         let mut best: Option<(f64, Point3<f64>)> = None;
-        for f in self.candidates(&self.face_grid, p, radius) {
+        for f in self.face_grid.near(p, radius) {
             let (corners, normal) = &self.faces[f];
             let n = corners.len();
             // Over the face (inside every edge's side plane): its foot on the face's plane;
@@ -157,7 +131,7 @@ impl SurfaceBoundary {
                 p - normal * (p - corners[0]).dot(normal)
             } else {
                 (0..n)
-                    .map(|i| segment_closest(p, &corners[i], &corners[(i + 1) % n]))
+                    .map(|i| Point3::from(closest::on_segment(&p.coords, &corners[i].coords, &corners[(i + 1) % n].coords)))
                     .min_by(|a, b| (a - p).norm_squared().total_cmp(&(b - p).norm_squared()))
                     .expect("a face has corners")
             };
@@ -277,33 +251,11 @@ impl Cut {
     /// nothing is left. Each loop is clipped on its own (Sutherland-Hodgman), which keeps the
     /// area exact.
     pub(crate) fn within(loops: &[Vec<Point2>], window: &[Point2], full: f64) -> Option<Cut> {
-        let mut kept = Vec::new();
-        for l in loops {
-            let mut poly = l.clone();
-            for i in 0..window.len() {
-                let (a, b) = (window[i], window[(i + 1) % window.len()]);
-                let side = |p: Point2| cross(sub(b, a), sub(p, a));
-                let mut next = Vec::with_capacity(poly.len() + 2);
-                for k in 0..poly.len() {
-                    let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
-                    let (sp, sq) = (side(p), side(q));
-                    if sp >= 0.0 {
-                        next.push(p);
-                    }
-                    if (sp >= 0.0) != (sq >= 0.0) {
-                        let t = sp / (sp - sq);
-                        next.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-                    }
-                }
-                poly = next;
-                if poly.is_empty() {
-                    break;
-                }
-            }
-            if poly.len() >= 3 && signed_area(&poly).abs() > 0.0 {
-                kept.push(poly);
-            }
-        }
+        let kept: Vec<Vec<Point2>> = loops
+            .iter()
+            .map(|l| clip_to_convex(l, window))
+            .filter(|poly| poly.len() >= 3 && signed_area(poly).abs() > 0.0)
+            .collect();
         let area: f64 = kept.iter().map(|l| signed_area(l)).sum();
         (area > 0.0).then(|| Cut { loops: kept, kept_fraction: (area / full).min(1.0) })
     }
@@ -489,66 +441,11 @@ impl Rect {
     }
 }
 
-/// A grid of cells of side `cell` listing the items whose points' bounding box meets them.
-fn bucket(items: impl Iterator<Item = impl AsRef<[Point3<f64>]>>, cell: f64) -> HashMap<[i64; 3], Vec<usize>> {
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
-    for (k, points) in items.enumerate() {
-        let points = points.as_ref();
-        let (lo, hi) = points.iter().fold((points[0], points[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
-        let (lo, hi) = (cell_of(&lo, cell), cell_of(&hi, cell));
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    grid.entry([x, y, z]).or_default().push(k);
-                }
-            }
-        }
-    }
-    grid
-}
 
-fn cell_of(p: &Point3<f64>, cell: f64) -> [i64; 3] {
-    [p.x, p.y, p.z].map(|c| (c / cell).floor() as i64)
-}
 
-fn segment_closest(p: &Point3<f64>, a: &Point3<f64>, b: &Point3<f64>) -> Point3<f64> {
-    let ab = b - a;
-    let t = if ab.norm_squared() > 0.0 { ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
-    a + ab * t
-}
 
-fn segment_distance(p: &Point3<f64>, a: &Point3<f64>, b: &Point3<f64>) -> f64 {
-    (p - segment_closest(p, a, b)).norm()
-}
 
-/// Distance from `q` to segment `ab`, and which end is closest when it is an end (0 or 1).
-fn point_segment(q: Point2, a: Point2, b: Point2) -> (f64, Option<usize>) {
-    let ab = sub(b, a);
-    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-    let t = if len2 > 0.0 { ((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / len2 } else { 0.0 };
-    let (t, end) = if t <= 0.0 {
-        (0.0, Some(0))
-    } else if t >= 1.0 {
-        (1.0, Some(1))
-    } else {
-        (t, None)
-    };
-    (dist(q, [a[0] + t * ab[0], a[1] + t * ab[1]]), end)
-}
 
-fn sub(a: Point2, b: Point2) -> Point2 {
-    [a[0] - b[0], a[1] - b[1]]
-}
 
-fn cross(a: Point2, b: Point2) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
 
-fn dist(a: Point2, b: Point2) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
-}
 
-/// Shoelace area, positive for counter-clockwise loops.
-pub fn signed_area(points: &[Point2]) -> f64 {
-    (0..points.len()).map(|i| cross(points[i], points[(i + 1) % points.len()])).sum::<f64>() / 2.0
-}

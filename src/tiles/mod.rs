@@ -434,16 +434,10 @@ fn filler_neighbours(tiles: &[Tile]) -> Vec<[usize; 2]> {
     if reach <= 0.0 {
         return Vec::new();
     }
-    let key = |t: &Tile| [t.frame.origin.x, t.frame.origin.y, t.frame.origin.z].map(|c| (c / reach).floor() as i64);
-    let mut grid: std::collections::HashMap<[i64; 3], Vec<usize>> = std::collections::HashMap::new();
-    for (i, t) in tiles.iter().enumerate() {
-        grid.entry(key(t)).or_default().push(i);
-    }
+    let grid = crate::geom::HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
     let mut links = Vec::new();
     for (i, t) in tiles.iter().enumerate().filter(|(_, t)| t.faces.is_empty()) {
-        let k = key(t);
-        let around = (-1..=1).flat_map(|x| (-1..=1).flat_map(move |y| (-1..=1).map(move |z| [k[0] + x, k[1] + y, k[2] + z])));
-        for j in around.filter_map(|c| grid.get(&c)).flatten().copied() {
+        for j in grid.near(&t.frame.origin, reach) {
             let u = &tiles[j];
             let close = (u.frame.origin - t.frame.origin).norm() <= (t.size[0] + u.size[0]) / 2.0 * 1.25;
             if j != i && close && (!u.faces.is_empty() || j > i) {
