@@ -202,7 +202,6 @@ pub fn tiles_for_pattern_with(
     let mut report = Report::measured(quads, &pattern, &tiles, &joints, spec, mm);
     if let Some((before, summary, seconds)) = fitted {
         report.joints.before_fit = Some(Box::new(before));
-        report.joints.fit_cuts = tiles.iter().filter(|t| t.kind == tiles::TileKind::FitCut).count();
         report.fit = Some(summary);
         report.seconds.fit = seconds;
     }

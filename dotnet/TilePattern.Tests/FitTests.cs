@@ -318,7 +318,7 @@ namespace TilePattern.Tests
                 + "\"joints\": {\"contacts\": 10, \"joint\": 0.01, \"p95_deviation\": 0.002, \"overlaps\": " + overlaps
                 + ", \"max_overlap\": " + maxOverlap.ToString(System.Globalization.CultureInfo.InvariantCulture) + ", \"fit_cuts\": 3"
                 + (fit == null ? "" : ", \"before_fit\": {\"contacts\": 10, \"p95_deviation\": 0.02}") + "}"
-                + (fit == null ? "" : ", \"fit\": {\"status\": \"" + fit + "\", \"iterations\": 12}") + "}");
+                + (fit == null ? "" : ", \"fit\": {\"status\": \"" + fit + "\", \"iterations\": 12, \"overlap_tolerance\": 0.0005}") + "}");
         }
 
         [Test]

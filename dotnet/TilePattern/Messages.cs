@@ -96,14 +96,15 @@ namespace TilePattern
             }
             if (joints.Overlaps > 0)
             {
-                double tolerance = fit != null && report.Tile != null && report.Tile.Joint > 0 ? report.Tile.Joint / 20.0 : 0.0;
+                // A report without the figure (an older library) leaves no overlap uncut.
+                double tolerance = fit != null && !double.IsNaN(fit.OverlapTolerance) ? fit.OverlapTolerance : 0.0;
                 if (joints.MaxOverlap > tolerance * (1 + 1e-9))
                     messages.Add(new UserMessage(MessageLevel.Warning, string.Format(culture,
                         "{0} pairs of tiles overlap, the deepest by {1:G3}{2}.", joints.Overlaps, joints.MaxOverlap,
                         fit == null ? " (turn the fit on, or is the tile too large for the quads?)" : "")));
                 else
                     messages.Add(new UserMessage(MessageLevel.Remark, string.Format(culture,
-                        "{0} pairs of tiles overlap by at most {1:G3}, within the fit's tolerance (a twentieth of the joint).", joints.Overlaps, joints.MaxOverlap)));
+                        "{0} pairs of tiles overlap by at most {1:G3}, within the fit's tolerance.", joints.Overlaps, joints.MaxOverlap)));
             }
             return messages.ToArray();
         }

@@ -184,15 +184,7 @@ namespace TilePattern
             o.struct_size = (uint)Marshal.SizeOf(typeof(TpRemeshOptions));
             o.target_edge = TargetEdge;
             o.direction = (int)Direction;
-            double[] v = DirectionVector;
-            if (v != null)
-            {
-                if (v.Length != 3)
-                    throw new ArgumentException("DirectionVector needs 3 values (xyz), not " + v.Length, "DirectionVector");
-                o.direction_x = v[0];
-                o.direction_y = v[1];
-                o.direction_z = v[2];
-            }
+            Xyz.Read(DirectionVector, "DirectionVector", ref o.direction_x, ref o.direction_y, ref o.direction_z);
             o.angle_degrees = AngleDegrees;
             o.shapeup = ShapeUp ? 1 : 0;
             o.time_limit_seconds = TimeLimitSeconds;
@@ -263,15 +255,7 @@ namespace TilePattern
             o.method = (int)Method;
             o.formulation = (int)Formulation;
             o.courses = (int)Courses;
-            double[] up = Up;
-            if (up != null)
-            {
-                if (up.Length != 3)
-                    throw new ArgumentException("Up needs 3 values (xyz), not " + up.Length, "Up");
-                o.up_x = up[0];
-                o.up_y = up[1];
-                o.up_z = up[2];
-            }
+            Xyz.Read(Up, "Up", ref o.up_x, ref o.up_y, ref o.up_z);
             var pairs = ForcedPairs ?? new List<FacePair>();
             forced = new uint[2 * pairs.Count];
             for (int k = 0; k < pairs.Count; k++)
@@ -402,15 +386,7 @@ namespace TilePattern
             o.joint = Joint;
             o.cut_tolerance = CutTolerance;
             o.min_kept_width = MinKeptWidth;
-            double[] up = Up;
-            if (up != null)
-            {
-                if (up.Length != 3)
-                    throw new ArgumentException("Up needs 3 values (xyz), not " + up.Length, "Up");
-                o.up_x = up[0];
-                o.up_y = up[1];
-                o.up_z = up[2];
-            }
+            Xyz.Read(Up, "Up", ref o.up_x, ref o.up_y, ref o.up_z);
             o.support_band = SupportBand;
             o.fit = Fit ? 1 : 0;
             o.fit_time_limit_seconds = FitTimeLimitSeconds;
@@ -418,6 +394,23 @@ namespace TilePattern
             o.fit_bond_tolerance = BondTolerance;
             o.units_per_mm = UnitsPerMm;
             return o;
+        }
+    }
+
+    /// <summary>Vectors given as xyz arrays.</summary>
+    internal static class Xyz
+    {
+        /// <summary>Copies <paramref name="v"/> (3 values) into x, y, z; a null array leaves them
+        /// as they are (the library's default).</summary>
+        internal static void Read(double[] v, string name, ref double x, ref double y, ref double z)
+        {
+            if (v == null)
+                return;
+            if (v.Length != 3)
+                throw new ArgumentException(name + " needs 3 values (xyz), not " + v.Length, name);
+            x = v[0];
+            y = v[1];
+            z = v[2];
         }
     }
 }

@@ -317,9 +317,9 @@ namespace TilePattern
         public double Within2Mm { get; internal set; }
         /// <summary>Share of joints with |gap - joint| at most 5 mm.</summary>
         public double Within5Mm { get; internal set; }
-        /// <summary>Tiles the fit stage cut because they could not be made to fit (of kind
-        /// <see cref="TileKind.FitCut"/>, or <see cref="TileKind.Boundary"/> when also cut to the
-        /// boundary).</summary>
+        /// <summary>Tiles the fit stage cut because they could not be made to fit: those of kind
+        /// <see cref="TileKind.FitCut"/> (filler pieces and tiles cut to the boundary that the fit
+        /// trims too are cut anyway and not counted).</summary>
         public int FitCuts { get; internal set; }
         /// <summary>The same figures for the paper's placement, before the fit moved the tiles;
         /// null when the fit did not run (and on the figures before the fit themselves).</summary>
@@ -380,6 +380,8 @@ namespace TilePattern
         public double MeanMove { get; internal set; }
         /// <summary>Largest such distance.</summary>
         public double MaxMove { get; internal set; }
+        /// <summary>Overlaps up to this depth were left, deeper ones cut (model units).</summary>
+        public double OverlapTolerance { get; internal set; }
 
         internal static FitReport Parse(Dictionary<string, object> fit)
         {
@@ -393,6 +395,7 @@ namespace TilePattern
                 ObjectiveAfter = JsonAccess.Number(fit, "objective_after"),
                 MeanMove = JsonAccess.Number(fit, "mean_move"),
                 MaxMove = JsonAccess.Number(fit, "max_move"),
+                OverlapTolerance = JsonAccess.Number(fit, "overlap_tolerance"),
             };
             switch (r.StatusText)
             {

@@ -12,7 +12,7 @@ use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, Pa
 use tilepattern::control::Control;
 use tilepattern::pipeline::{self, Tiling};
 use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
-use tilepattern::report::{self, JointSummary, Report, svg};
+use tilepattern::report::{JointSummary, Report, svg};
 use tilepattern::tiles::{self, CutGroup, FinishOptions, FitOptions, Sequence, SequenceOptions, Tile, TileSpec};
 
 #[derive(Parser)]

@@ -54,11 +54,13 @@ impl Bvh {
     }
 
     /// Number of primitives.
+    #[cfg(test)]
     pub fn len(&self) -> usize {
         self.order.len()
     }
 
     /// Whether it holds no primitive.
+    #[cfg(test)]
     pub fn is_empty(&self) -> bool {
         self.order.is_empty()
     }

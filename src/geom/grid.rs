@@ -30,12 +30,8 @@ impl HashGrid {
         grid
     }
 
-    /// The side of a cell.
-    pub fn cell(&self) -> f64 {
-        self.cell
-    }
-
     /// Cells that hold at least one item.
+    #[cfg(test)]
     pub fn occupied(&self) -> usize {
         self.cells.len()
     }

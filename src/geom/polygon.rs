@@ -196,7 +196,7 @@ mod tests {
         let hull = convex_hull(&pts);
         assert_eq!(hull.len(), 4);
         assert!((signed_area(&hull) - 4.0).abs() < 1e-12);
-        assert_eq!(winding(&[hull.clone()], [1.0, 1.0]), 1);
+        assert_eq!(winding(std::slice::from_ref(&hull), [1.0, 1.0]), 1);
         assert_eq!(winding(&[hull], [3.0, 1.0]), 0);
         assert_eq!(point_segment([0.5, 1.0], [0.0, 0.0], [1.0, 0.0]), (1.0, None));
         assert_eq!(point_segment([-1.0, 0.0], [0.0, 0.0], [1.0, 0.0]), (1.0, Some(0)));

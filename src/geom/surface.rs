@@ -94,11 +94,6 @@ impl SurfaceIndex {
         Self::new(pos, tris)
     }
 
-    /// Number of triangles.
-    pub fn triangles(&self) -> usize {
-        self.tris.len()
-    }
-
     /// The point of the surface closest to `p` (ties go to the lower triangle), `None` for a
     /// surface with no triangles.
     pub fn closest(&self, p: &Vector3<f64>) -> Option<SurfacePoint> {

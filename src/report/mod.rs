@@ -120,7 +120,7 @@ impl Report {
             gap: pattern.gap,
             status: pattern.status,
             tile: *spec,
-            joints: JointSummary::of(joints, spec.joint, mm),
+            joints: JointSummary { fit_cuts: count(TileKind::FitCut), ..JointSummary::of(joints, spec.joint, mm) },
             fit: None,
             cutting: None,
             sequence: None,

@@ -314,11 +314,8 @@ pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, sp
             for slot in kept_index.iter_mut() {
                 *slot = slot.and_then(|k| renumber[k]);
             }
-            let mut t = 0;
-            kept.retain(|_| {
-                t += 1;
-                keep[t - 1]
-            });
+            let mut keeps = keep.iter();
+            kept.retain(|_| *keeps.next().expect("one flag per tile"));
         }
     }
     let mut links: Vec<[usize; 2]> =

@@ -149,8 +149,7 @@ pub fn fit(
     let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
     let found = contacts::contacts(quads, &topology, &tiles);
     let index = SurfaceIndex::from_polymesh(surface.unwrap_or(quads));
-    let anchors: Vec<_> = tiles.iter().map(|t| solve::place_on(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z)).collect();
-    let beyond_start = solve::beyond_edge(&index, &anchors);
+    let (anchors, beyond_start): (Vec<_>, Vec<_>) = tiles.iter().map(|t| solve::place(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z)).unzip();
     let sizes: Vec<[f64; 3]> = tiles.iter().map(|t| t.size).collect();
     let bands: Vec<Option<BondBand>> = found.iter().map(|c| bond_band(c, &tiles, &anchors, spec, options)).collect();
     let problem = Problem {

@@ -329,22 +329,18 @@ impl Problem<'_> {
     }
 }
 
-/// A frame with its origin at the surface point closest to `origin`, `z` the surface normal
-/// there (turned to agree with `up`), and `x` the direction `along` laid into that plane.
-/// Beyond the surface's edge the surface is continued by its tangent plane at the edge, so
-/// that tiles of the outer courses can move out past it (they are cut to it later).
-pub(crate) fn place_on(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vector3<f64>, up: &Vector3<f64>) -> Frame {
-    place(surface, origin, along, up).0
-}
-
 /// How far beyond the surface's edge each of `frames` lies (see [`place`]).
-pub(crate) fn beyond_edge(surface: &SurfaceIndex, frames: &[Frame]) -> Vec<Vector3<f64>> {
+fn beyond_edge(surface: &SurfaceIndex, frames: &[Frame]) -> Vec<Vector3<f64>> {
     frames.iter().map(|f| place(surface, &f.origin.coords, &f.x, &f.z).1).collect()
 }
 
-/// [`place_on`], and the offset (in the tangent plane at the edge) of the origin beyond the
-/// surface's edge: zero over the surface.
-fn place(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vector3<f64>, up: &Vector3<f64>) -> (Frame, Vector3<f64>) {
+/// A frame with its origin at the surface point closest to `origin`, `z` the surface normal
+/// there (turned to agree with `up`), and `x` the direction `along` laid into that plane;
+/// and the offset (in the tangent plane at the edge) of the origin beyond the surface's
+/// edge, zero over the surface. Beyond the edge the surface is continued by its tangent
+/// plane there, so that tiles of the outer courses can move out past it (they are cut to it
+/// later).
+pub(crate) fn place(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vector3<f64>, up: &Vector3<f64>) -> (Frame, Vector3<f64>) {
     let (point, mut z, beyond) = match surface.closest(origin) {
         // Beyond the edge the offset to the closest point runs along the surface, not across.
         Some(sp) if sp.on_boundary || beside(&(origin - sp.point), &sp.face_normal) => {
@@ -422,7 +418,7 @@ mod tests {
                 f.origin += Vector3::new(0.03 * (k * 1.7).sin(), 0.04 * (k * 2.3).cos(), 0.0);
                 let a: f64 = 0.05 * (k * 0.9).sin();
                 let x = f.x * a.cos() + f.y * a.sin();
-                place_on(&surface, &f.origin.coords, &x, &f.z)
+                place(&surface, &f.origin.coords, &x, &f.z).0
             })
             .collect();
         (tiles.iter().map(|t| t.size).collect(), found, frames, surface)
