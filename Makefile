@@ -6,7 +6,7 @@ LIB_DIR := target/release
 C_FLAGS := -Wall -Wextra -Werror -DTP_TEST_PANIC -Iinclude
 C_LINK := -L$(LIB_DIR) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(LIB_DIR)
 
-.PHONY: demo test setup build bench header header-check rust-test c-test asan-test dotnet-test gh-compile python-test
+.PHONY: demo test setup build bench header header-check lint rust-test c-test asan-test dotnet-test gh-compile python-test
 
 setup:
 	@scripts/setup.sh
@@ -17,12 +17,20 @@ build: setup
 demo: build
 	./target/release/tilepattern demo --out demo
 
-# Every test: the header matches the code, the Rust tests, the C tests under valgrind, the C#
+# Every test: the house rules (format, clippy, rustdoc), the header matches the code, the Rust tests, the C tests under valgrind, the C#
 # wrapper's NUnit tests under mono, the Grasshopper components compiled against checked
 # RhinoCommon/Grasshopper stubs, the Python package's pytest suite.
 test: setup
+	$(MAKE) lint
 	scripts/check-header.sh
 	$(MAKE) rust-test c-test dotnet-test gh-compile python-test
+
+# House rules: rustfmt's layout, no clippy warning on any target, rustdoc without warnings
+# (maintainers' docs, private items included).
+lint:
+	$(CARGO) fmt --check
+	$(CARGO) clippy --all-targets -- -D warnings
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --document-private-items
 
 rust-test:
 	$(CARGO) test --release

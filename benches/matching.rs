@@ -33,11 +33,17 @@ fn main() {
         solve_one(&args[1..]);
         return;
     }
-    let limit: f64 = std::env::var("TP_BENCH_LIMIT").ok().and_then(|s| s.parse().ok()).unwrap_or(20.0);
+    let limit: f64 = std::env::var("TP_BENCH_LIMIT")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20.0);
     let wanted: Vec<String> = args.into_iter().filter(|a| !a.starts_with('-')).collect();
     let picked = |name: &str| wanted.is_empty() || wanted.iter().any(|w| name.contains(w.as_str()));
-    let mut cases: Vec<(String, PolyMesh)> =
-        [10, 14, 17, 24, 41, 100].iter().map(|&n| (format!("grid{n}"), generate::grid(n, n))).filter(|(name, _)| picked(name)).collect();
+    let mut cases: Vec<(String, PolyMesh)> = [10, 14, 17, 24, 41, 100]
+        .iter()
+        .map(|&n| (format!("grid{n}"), generate::grid(n, n)))
+        .filter(|(name, _)| picked(name))
+        .collect();
     let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/surfaces");
     for name in ["hypar", "tubemesh", "vault", "dome"] {
         if picked(&format!("quadriflow-{name}")) {
@@ -46,13 +52,29 @@ fn main() {
             }
         }
     }
-    for (name, edge) in [("hypar", 0.14), ("tubemesh", 0.14), ("vault", 0.14), ("dome", 0.14), ("dome", 0.038)] {
-        let label = if edge == 0.14 { format!("remeshed-{name}") } else { format!("remeshed-{name}-{edge}") };
+    for (name, edge) in [
+        ("hypar", 0.14),
+        ("tubemesh", 0.14),
+        ("vault", 0.14),
+        ("dome", 0.14),
+        ("dome", 0.038),
+    ] {
+        let label = if edge == 0.14 {
+            format!("remeshed-{name}")
+        } else {
+            format!("remeshed-{name}-{edge}")
+        };
         if !picked(&label) {
             continue;
         }
-        let Ok(surface) = obj::read(&shared.join(format!("{name}.obj"))) else { continue };
-        let options = RemeshOptions { target_edge: edge, time_limit: Duration::from_secs(600), ..RemeshOptions::default() };
+        let Ok(surface) = obj::read(&shared.join(format!("{name}.obj"))) else {
+            continue;
+        };
+        let options = RemeshOptions {
+            target_edge: edge,
+            time_limit: Duration::from_secs(600),
+            ..RemeshOptions::default()
+        };
         match remesh(&surface, &options) {
             Ok(remeshed) => cases.push((label, remeshed.quads)),
             Err(e) => eprintln!("{label}: remesh failed: {e}"),
@@ -67,19 +89,40 @@ fn main() {
     print!("{header}");
     let mut speedups = Vec::new();
     for (name, mesh) in &cases {
-        let short = if mesh.face_count() >= LARGE { 30.0 } else { 1.0 };
-        let runs = [("auto", "auto", short), ("auto", "auto", limit), ("paper MIP (CBC)", "paper", limit)];
+        let short = if mesh.face_count() >= LARGE {
+            30.0
+        } else {
+            1.0
+        };
+        let runs = [
+            ("auto", "auto", short),
+            ("auto", "auto", limit),
+            ("paper MIP (CBC)", "paper", limit),
+        ];
         let path = out.join("meshes").join(format!("{name}.obj"));
         obj::write(mesh, &path).expect("target is writable");
         let mut results: Vec<Pattern> = Vec::new();
         for (label, method, seconds) in runs {
-            let child = std::process::Command::new(std::env::current_exe().expect("the bench knows itself"))
-                .args(["--solve", &path.display().to_string(), method, &seconds.to_string()])
-                .output()
-                .expect("the bench can start itself");
+            let child = std::process::Command::new(
+                std::env::current_exe().expect("the bench knows itself"),
+            )
+            .args([
+                "--solve",
+                &path.display().to_string(),
+                method,
+                &seconds.to_string(),
+            ])
+            .output()
+            .expect("the bench can start itself");
             let text = String::from_utf8_lossy(&child.stdout);
             let mut lines = text.lines();
-            let found: Pattern = serde_json::from_str(lines.next().unwrap_or_default()).unwrap_or_else(|e| panic!("{name} {label}: {e}: {}", String::from_utf8_lossy(&child.stderr)));
+            let found: Pattern = serde_json::from_str(lines.next().unwrap_or_default())
+                .unwrap_or_else(|e| {
+                    panic!(
+                        "{name} {label}: {e}: {}",
+                        String::from_utf8_lossy(&child.stderr)
+                    )
+                });
             let peak = lines.next().unwrap_or("-").to_string();
             let row = format!(
                 "| {name} | {} | {label} | {seconds} | {:.2} | {:?} | {} | {:.1} | {:.2} | {:?} | {peak} |\n",
@@ -99,7 +142,11 @@ fn main() {
         // (short or long run, the faster that reached it) proved the same.
         let paper = &results[2];
         if paper.status == SolveStatus::Optimal {
-            let engine = results[..2].iter().filter(|r| r.status == SolveStatus::Optimal && r.objective == paper.objective).map(|r| r.seconds).fold(f64::INFINITY, f64::min);
+            let engine = results[..2]
+                .iter()
+                .filter(|r| r.status == SolveStatus::Optimal && r.objective == paper.objective)
+                .map(|r| r.seconds)
+                .fold(f64::INFINITY, f64::min);
             if engine.is_finite() {
                 speedups.push((name.clone(), mesh.face_count(), paper.seconds, engine));
             }
@@ -114,7 +161,9 @@ fn main() {
         );
     }
     print!("{summary}");
-    let text = format!("Staggered matching (eq. 2, w = 0.5); short limit 1 s (30 s from {LARGE} faces), long limit {limit} s.\n\n{table}{summary}");
+    let text = format!(
+        "Staggered matching (eq. 2, w = 0.5); short limit 1 s (30 s from {LARGE} faces), long limit {limit} s.\n\n{table}{summary}"
+    );
     std::fs::write(out.join("matching.md"), text).expect("target is writable");
 }
 
@@ -122,12 +171,28 @@ fn main() {
 /// prints the pattern as one JSON line, then its peak resident memory in MB (or `-`).
 fn solve_one(args: &[String]) {
     let mesh = obj::read(Path::new(&args[0])).expect("the bench wrote this mesh");
-    let (method, formulation) = if args[1] == "paper" { (Method::Mip, Formulation::Paper) } else { (Method::Auto, Formulation::Strengthened) };
+    let (method, formulation) = if args[1] == "paper" {
+        (Method::Mip, Formulation::Paper)
+    } else {
+        (Method::Auto, Formulation::Strengthened)
+    };
     let seconds: f64 = args[2].parse().expect("a number of seconds");
-    let options = PatternOptions { bond: Bond::Staggered { weight: 0.5 }, time_limit: Duration::from_secs_f64(seconds), method, formulation, ..PatternOptions::default() };
+    let options = PatternOptions {
+        bond: Bond::Staggered { weight: 0.5 },
+        time_limit: Duration::from_secs_f64(seconds),
+        method,
+        formulation,
+        ..PatternOptions::default()
+    };
     let found = pattern::solve(&mesh, &options).expect("bench meshes are valid");
-    println!("{}", serde_json::to_string(&found).expect("a pattern serialises"));
-    println!("{}", peak_memory_mb().map_or("-".to_string(), |mb| format!("{mb:.0}")));
+    println!(
+        "{}",
+        serde_json::to_string(&found).expect("a pattern serialises")
+    );
+    println!(
+        "{}",
+        peak_memory_mb().map_or("-".to_string(), |mb| format!("{mb:.0}"))
+    );
     // A CBC worker still busy past the limit ends with the process.
     std::process::exit(0);
 }

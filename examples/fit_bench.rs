@@ -20,32 +20,102 @@ use tilepattern::remesh::{self, RemeshOptions};
 use tilepattern::report::JointSummary;
 use tilepattern::tiles::{FinishOptions, TileSpec};
 
-const SPEC: TileSpec = TileSpec { length: 0.28, width: 0.14, thickness: 0.015, joint: 0.01 };
+const SPEC: TileSpec = TileSpec {
+    length: 0.28,
+    width: 0.14,
+    thickness: 0.015,
+    joint: 0.01,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let dir = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "/work/shared/surfaces".into()));
-    let limit: f64 = std::env::var("TP_BENCH_PATTERN_LIMIT").ok().and_then(|v| v.parse().ok()).unwrap_or(20.0);
-    let mut cases: Vec<(String, PolyMesh)> = vec![("demo (3 m)".into(), generate::triangulate_quads(&generate::corner_supported_shell(3.0, SPEC.target_edge() / 3.0)))];
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|x| x == "obj")).collect();
+    let dir = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "/work/shared/surfaces".into()),
+    );
+    let limit: f64 = std::env::var("TP_BENCH_PATTERN_LIMIT")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(20.0);
+    let mut cases: Vec<(String, PolyMesh)> = vec![(
+        "demo (3 m)".into(),
+        generate::triangulate_quads(&generate::corner_supported_shell(
+            3.0,
+            SPEC.target_edge() / 3.0,
+        )),
+    )];
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
     files.sort();
     for file in &files {
-        cases.push((file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(), obj::read(file)?));
+        cases.push((
+            file.file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            obj::read(file)?,
+        ));
     }
-    if let Some(dome) = files.iter().find(|f| f.file_stem().is_some_and(|s| s == "dome")) {
+    if let Some(dome) = files
+        .iter()
+        .find(|f| f.file_stem().is_some_and(|s| s == "dome"))
+    {
         let dome = obj::read(dome)?;
         let scaled = dome.positions().iter().map(|p| p * 4.0).collect();
-        cases.push(("dome x4 (48 m)".into(), PolyMesh::new(scaled, dome.faces().to_vec())?));
+        cases.push((
+            "dome x4 (48 m)".into(),
+            PolyMesh::new(scaled, dome.faces().to_vec())?,
+        ));
     }
-    println!("| surface | tiles | p95 dev. before / after mm | within 2 mm before / after | overlapping pairs before / after | deepest overlap before / after mm | cut to fit | full + half kept, no fit / fit | fit status | fit s |");
+    println!(
+        "| surface | tiles | p95 dev. before / after mm | within 2 mm before / after | overlapping pairs before / after | deepest overlap before / after mm | cut to fit | full + half kept, no fit / fit | fit status | fit s |"
+    );
     println!("|---|---|---|---|---|---|---|---|---|---|");
     for (name, surface) in cases {
-        let courses = Courses::Level { up: [0.0, 0.0, 1.0] };
-        let remeshed = remesh::remesh(&surface, &RemeshOptions { target_edge: SPEC.quad_edge(true), ..RemeshOptions::default() })?;
-        let options = PatternOptions { time_limit: Duration::from_secs_f64(limit), courses, ..PatternOptions::default() };
+        let courses = Courses::Level {
+            up: [0.0, 0.0, 1.0],
+        };
+        let remeshed = remesh::remesh(
+            &surface,
+            &RemeshOptions {
+                target_edge: SPEC.quad_edge(true),
+                ..RemeshOptions::default()
+            },
+        )?;
+        let options = PatternOptions {
+            time_limit: Duration::from_secs_f64(limit),
+            courses,
+            ..PatternOptions::default()
+        };
         let found = pattern::solve(&remeshed.quads, &options)?;
-        let finish = FinishOptions { fit: FinishOptions::for_spec(&SPEC).fit.map(|f| tilepattern::tiles::FitOptions { time_limit: 60.0, ..f }), ..FinishOptions::for_spec(&SPEC) };
-        let fitted = pipeline::tiles_for_pattern_with(&remeshed.quads, Some(&surface), found.clone(), &SPEC, &finish, &mut Control::none())?;
-        let paper = pipeline::tiles_for_pattern(&remeshed.quads, Some(&surface), found, &SPEC, &FinishOptions { fit: None, ..finish })?;
+        let finish = FinishOptions {
+            fit: FinishOptions::for_spec(&SPEC)
+                .fit
+                .map(|f| tilepattern::tiles::FitOptions {
+                    time_limit: 60.0,
+                    ..f
+                }),
+            ..FinishOptions::for_spec(&SPEC)
+        };
+        let fitted = pipeline::tiles_for_pattern_with(
+            &remeshed.quads,
+            Some(&surface),
+            found.clone(),
+            &SPEC,
+            &finish,
+            &mut Control::none(),
+        )?;
+        let paper = pipeline::tiles_for_pattern(
+            &remeshed.quads,
+            Some(&surface),
+            found,
+            &SPEC,
+            &FinishOptions {
+                fit: None,
+                ..finish
+            },
+        )?;
         let j = &fitted.report.joints;
         let b: &JointSummary = j.before_fit.as_deref().expect("the fit ran");
         let fit = fitted.report.fit.expect("the fit ran");

@@ -11,18 +11,29 @@ use tilepattern::remesh::{RemeshOptions, remesh};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let dir = PathBuf::from(args.next().unwrap_or_else(|| "/work/shared/surfaces".into()));
+    let dir = PathBuf::from(
+        args.next()
+            .unwrap_or_else(|| "/work/shared/surfaces".into()),
+    );
     let out = args.next().map(PathBuf::from);
-    let mut files: Vec<PathBuf> =
-        std::fs::read_dir(&dir)?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|x| x == "obj")).collect();
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
     files.sort();
-    let options = RemeshOptions { target_edge: 0.14, ..RemeshOptions::default() };
+    let options = RemeshOptions {
+        target_edge: 0.14,
+        ..RemeshOptions::default()
+    };
     println!(
         "| surface | faces | pure quad | irregular | bdry off | mean edge | edges ±20% | areas ±20% | p95 angle dev | max dist/t | covered | seconds |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for file in files {
-        let name = file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        let name = file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
         let input = obj::read(&file)?;
         match remesh(&input, &options) {
             Ok(result) => {

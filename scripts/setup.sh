@@ -39,6 +39,14 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
+# make lint: rustfmt and clippy come with rustup's default profile, not its minimal one.
+if command -v rustup >/dev/null 2>&1; then
+  for component in rustfmt clippy; do
+    rustup component list --installed 2>/dev/null | grep -q "^$component" ||
+      rustup component add "$component"
+  done
+fi
+
 cbindgen_version="0.29.2"
 if [ "$(cbindgen --version 2>/dev/null || true)" != "cbindgen $cbindgen_version" ]; then
   echo "installing cbindgen $cbindgen_version ..."

@@ -20,7 +20,10 @@ impl<'a> Control<'a> {
 
     /// A control that reports progress in `[0, 1]` to `progress`; returning `false` cancels.
     pub fn with_progress(progress: &'a mut dyn FnMut(f64) -> bool) -> Self {
-        Self { progress: Some(progress), cancelled: false }
+        Self {
+            progress: Some(progress),
+            cancelled: false,
+        }
     }
 
     /// Reports `fraction` done and returns `false` once the caller has asked to stop (and

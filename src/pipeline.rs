@@ -28,7 +28,9 @@ pub enum Error {
     #[error(transparent)]
     Remesh(#[from] RemeshError),
     /// The pattern was made for a mesh with another number of faces.
-    #[error("the pattern was made for a mesh of {pattern_faces} faces, but this mesh has {mesh_faces}: give the quad mesh the pattern was solved on")]
+    #[error(
+        "the pattern was made for a mesh of {pattern_faces} faces, but this mesh has {mesh_faces}: give the quad mesh the pattern was solved on"
+    )]
     PatternMismatch {
         /// Faces of the mesh the pattern was solved on.
         pattern_faces: usize,
@@ -122,16 +124,31 @@ pub fn tile_surface(
     // Progress: the remesh stage reports the first half, the pattern stage the second.
     let remeshed = {
         let mut first_half = |fraction: f64| control.keep_going(0.5 * fraction);
-        remesh::remesh_with(surface, remesh, &mut Control::with_progress(&mut first_half))?
+        remesh::remesh_with(
+            surface,
+            remesh,
+            &mut Control::with_progress(&mut first_half),
+        )?
     };
     let pattern = {
         let mut second_half = |fraction: f64| control.keep_going(0.5 + 0.5 * fraction);
-        pattern::solve_with(&remeshed.quads, options, &mut Control::with_progress(&mut second_half))?
+        pattern::solve_with(
+            &remeshed.quads,
+            options,
+            &mut Control::with_progress(&mut second_half),
+        )?
     };
     // The fit stage is fast next to the others: it reports as done, and can still cancel.
     let mut last = |_: f64| control.keep_going(1.0);
     let finish = with_bond(finish, options.bond);
-    let tiling = tiles_for_pattern_with(&remeshed.quads, Some(surface), pattern, spec, &finish, &mut Control::with_progress(&mut last))?;
+    let tiling = tiles_for_pattern_with(
+        &remeshed.quads,
+        Some(surface),
+        pattern,
+        spec,
+        &finish,
+        &mut Control::with_progress(&mut last),
+    )?;
     Ok((remeshed, tiling))
 }
 
@@ -151,7 +168,14 @@ pub fn tile_quad_mesh(
     spec.validate()?;
     let pattern = pattern::solve_with(quads, options, control)?;
     let mut last = |_: f64| control.keep_going(1.0);
-    tiles_for_pattern_with(quads, surface, pattern, spec, &with_bond(finish, options.bond), &mut Control::with_progress(&mut last))
+    tiles_for_pattern_with(
+        quads,
+        surface,
+        pattern,
+        spec,
+        &with_bond(finish, options.bond),
+        &mut Control::with_progress(&mut last),
+    )
 }
 
 /// Builds the tiles and report for a matching found earlier (e.g. read from `match` JSON),
@@ -161,7 +185,13 @@ pub fn tile_quad_mesh(
 /// An invalid spec or finishing option, a pattern that does not fit the mesh
 /// ([`Error::PatternMismatch`], [`TileError`]), a tile far too small for the meshes
 /// ([`Error::TileTooSmall`]).
-pub fn tiles_for_pattern(quads: &PolyMesh, surface: Option<&PolyMesh>, pattern: Pattern, spec: &TileSpec, finish: &FinishOptions) -> Result<Tiling, Error> {
+pub fn tiles_for_pattern(
+    quads: &PolyMesh,
+    surface: Option<&PolyMesh>,
+    pattern: Pattern,
+    spec: &TileSpec,
+    finish: &FinishOptions,
+) -> Result<Tiling, Error> {
     tiles_for_pattern_with(quads, surface, pattern, spec, finish, &mut Control::none())
 }
 
@@ -183,17 +213,27 @@ pub fn tiles_for_pattern_with(
     spec.validate()?;
     finish.validate()?;
     if pattern.faces != quads.face_count() {
-        return Err(Error::PatternMismatch { pattern_faces: pattern.faces, mesh_faces: quads.face_count() });
+        return Err(Error::PatternMismatch {
+            pattern_faces: pattern.faces,
+            mesh_faces: quads.face_count(),
+        });
     }
     check_tile_scale(Some(quads), surface, spec)?;
     let boxes = tiles::build(quads, &pattern, spec)?;
     let mm = finish.units_per_mm;
     let (boxes, fitted) = match &finish.fit {
         Some(options) => {
-            let before = JointSummary::of(&report::gaps::joints(quads, &boxes, spec.joint), spec.joint, mm);
+            let before = JointSummary::of(
+                &report::gaps::joints(quads, &boxes, spec.joint),
+                spec.joint,
+                mm,
+            );
             let fit_started = Instant::now();
             let (moved, summary) = tiles::fit::fit(quads, surface, boxes, spec, options, control)?;
-            (moved, Some((before, summary, fit_started.elapsed().as_secs_f64())))
+            (
+                moved,
+                Some((before, summary, fit_started.elapsed().as_secs_f64())),
+            )
         }
         None => (boxes, None),
     };
@@ -207,7 +247,14 @@ pub fn tiles_for_pattern_with(
     }
     report.add_finish(&tiles, &finished, surface.unwrap_or(quads));
     report.seconds.tiles = started.elapsed().as_secs_f64();
-    Ok(Tiling { pattern, tiles, dropped: finished.dropped, cut_list: finished.cut_list, joints, report })
+    Ok(Tiling {
+        pattern,
+        tiles,
+        dropped: finished.dropped,
+        cut_list: finished.cut_list,
+        joints,
+        report,
+    })
 }
 
 /// `finish` with its fit keeping `bond`, the bond the pattern was matched for.
@@ -221,28 +268,45 @@ fn with_bond(finish: &FinishOptions, bond: pattern::Bond) -> FinishOptions {
 
 /// Refuses a tile far smaller than the faces of `quads` or `surface` before cutting builds its
 /// grids of tile-sized cells (see [`MAX_GRID_CELLS`]).
-fn check_tile_scale(quads: Option<&PolyMesh>, surface: Option<&PolyMesh>, spec: &TileSpec) -> Result<(), Error> {
+fn check_tile_scale(
+    quads: Option<&PolyMesh>,
+    surface: Option<&PolyMesh>,
+    spec: &TileSpec,
+) -> Result<(), Error> {
     // The smallest cell any grid of the tile stage uses.
     let cell = spec.length.max(spec.width);
     let meshes = [("quad mesh", quads), ("surface", surface)];
-    let faces: usize = meshes.iter().filter_map(|(_, m)| m.map(PolyMesh::face_count)).sum();
+    let faces: usize = meshes
+        .iter()
+        .filter_map(|(_, m)| m.map(PolyMesh::face_count))
+        .sum();
     let limit = MAX_GRID_CELLS.max(GRID_CELLS_PER_FACE * faces as f64);
     // Cells a box meets; NaN only when a ratio overflowed: as bad as it gets.
     let cells_of = |points: &mut dyn Iterator<Item = nalgebra::Point3<f64>>| -> (f64, f64) {
         let first = points.next().expect("faces and edges have points");
         let (lo, hi) = points.fold((first, first), |(lo, hi), p| (lo.inf(&p), hi.sup(&p)));
-        let cells: f64 = (0..3).map(|k| (hi[k] / cell).floor() - (lo[k] / cell).floor() + 1.0).product();
-        (if cells.is_nan() { f64::INFINITY } else { cells }, (hi - lo).amax())
+        let cells: f64 = (0..3)
+            .map(|k| (hi[k] / cell).floor() - (lo[k] / cell).floor() + 1.0)
+            .product();
+        (
+            if cells.is_nan() { f64::INFINITY } else { cells },
+            (hi - lo).amax(),
+        )
     };
     let mut cells = 0.0;
     let mut worst = (0.0, "quad mesh", 0, 0.0);
     for (name, mesh) in meshes {
         let Some(mesh) = mesh else { continue };
-        let topology = crate::mesh::Topology::new(mesh).expect("a PolyMesh is manifold by construction");
+        let topology =
+            crate::mesh::Topology::new(mesh).expect("a PolyMesh is manifold by construction");
         for f in 0..mesh.face_count() {
             let (mut here, span) = cells_of(&mut mesh.face_points(f));
             // The face's boundary edges are entered in the boundary grid too.
-            for &e in topology.face_edges(f).iter().filter(|&&e| topology.edges()[e].is_boundary()) {
+            for &e in topology
+                .face_edges(f)
+                .iter()
+                .filter(|&&e| topology.edges()[e].is_boundary())
+            {
                 let [a, b] = topology.edges()[e].vertices;
                 here += cells_of(&mut [mesh.positions()[a], mesh.positions()[b]].into_iter()).0;
             }
@@ -254,7 +318,14 @@ fn check_tile_scale(quads: Option<&PolyMesh>, surface: Option<&PolyMesh>, spec: 
     }
     if cells > limit {
         let (_, mesh, face, span) = worst;
-        return Err(Error::TileTooSmall { mesh, face, span, length: spec.length, cells, limit });
+        return Err(Error::TileTooSmall {
+            mesh,
+            face,
+            span,
+            length: spec.length,
+            cells,
+            limit,
+        });
     }
     Ok(())
 }

@@ -4,7 +4,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn tilepattern(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tilepattern")).args(args).output().expect("the binary runs")
+    Command::new(env!("CARGO_BIN_EXE_tilepattern"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -26,7 +29,11 @@ fn s(path: &Path) -> &str {
 fn demo_writes_the_four_files() {
     let dir = scratch("demo");
     let out = tilepattern(&["demo", "--out", s(&dir), "--span", "1.5"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for file in ["quads.obj", "tiles.obj", "report.json", "pattern.svg"] {
         assert!(dir.join(file).is_file(), "{file} missing");
     }
@@ -34,20 +41,53 @@ fn demo_writes_the_four_files() {
     assert_eq!(report["status"], "optimal");
     assert_eq!(report["units"], "m");
     assert!(report["full_tiles"].as_u64().unwrap() > 0);
-    assert!(std::fs::read_to_string(dir.join("pattern.svg")).unwrap().starts_with("<svg"));
+    assert!(
+        std::fs::read_to_string(dir.join("pattern.svg"))
+            .unwrap()
+            .starts_with("<svg")
+    );
     assert!(String::from_utf8_lossy(&out.stdout).contains("full tiles"));
 }
 
 #[test]
 fn match_then_tiles_round_trip_with_stable_fields() {
     let dir = scratch("match");
-    assert!(tilepattern(&["demo", "--out", s(&dir), "--span", "1.5"]).status.success());
+    assert!(
+        tilepattern(&["demo", "--out", s(&dir), "--span", "1.5"])
+            .status
+            .success()
+    );
     let quads = dir.join("quads.obj");
     let pairs = dir.join("pairs.json");
-    let out = tilepattern(&["match", s(&quads), "--pattern", "staggered", "--weight", "2", "--time-limit", "30", "--json", s(&pairs)]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = tilepattern(&[
+        "match",
+        s(&quads),
+        "--pattern",
+        "staggered",
+        "--weight",
+        "2",
+        "--time-limit",
+        "30",
+        "--json",
+        s(&pairs),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let found = json(&pairs);
-    for field in ["faces", "pairs", "unpaired", "continuous_joints", "shifted_pairs", "objective", "bound", "status", "seconds"] {
+    for field in [
+        "faces",
+        "pairs",
+        "unpaired",
+        "continuous_joints",
+        "shifted_pairs",
+        "objective",
+        "bound",
+        "status",
+        "seconds",
+    ] {
         assert!(found.get(field).is_some(), "field {field} missing");
     }
     assert_eq!(found["continuous_joints"], 0);
@@ -56,8 +96,28 @@ fn match_then_tiles_round_trip_with_stable_fields() {
     let report = dir.join("report.json");
     let svg = dir.join("p.svg");
     // The paper's placement (section 3.5): every pair is a full tile on the quads.
-    let out = tilepattern(&["tiles", s(&quads), "--pairs", s(&pairs), "--tile", "280x140x15", "--joint", "10", "--no-fit", "-o", s(&tiles), "--json", s(&report), "--svg", s(&svg)]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = tilepattern(&[
+        "tiles",
+        s(&quads),
+        "--pairs",
+        s(&pairs),
+        "--tile",
+        "280x140x15",
+        "--joint",
+        "10",
+        "--no-fit",
+        "-o",
+        s(&tiles),
+        "--json",
+        s(&report),
+        "--svg",
+        s(&svg),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let paper = json(&report);
     let paired = found["pairs"].as_array().unwrap().len() as u64;
     assert_eq!(paper["full_tiles"].as_u64().unwrap(), paired);
@@ -66,32 +126,86 @@ fn match_then_tiles_round_trip_with_stable_fields() {
     assert!(paper.get("fit").is_none() && paper["joints"].get("before_fit").is_none());
 
     // The fit (default): the report gives the joints before and after, and what the fit did.
-    let out = tilepattern(&["tiles", s(&quads), "--pairs", s(&pairs), "--tile", "280x140x15", "--joint", "10", "-o", s(&tiles), "--json", s(&report)]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = tilepattern(&[
+        "tiles",
+        s(&quads),
+        "--pairs",
+        s(&pairs),
+        "--tile",
+        "280x140x15",
+        "--joint",
+        "10",
+        "-o",
+        s(&tiles),
+        "--json",
+        s(&report),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(String::from_utf8_lossy(&out.stderr).contains("after the fit"));
     let fitted = json(&report);
-    for field in ["contacts", "overlaps", "max_overlap", "p95_deviation", "within_2mm", "within_5mm", "max_gap", "fit_cuts", "before_fit"] {
-        assert!(fitted["joints"].get(field).is_some(), "joints.{field} missing");
+    for field in [
+        "contacts",
+        "overlaps",
+        "max_overlap",
+        "p95_deviation",
+        "within_2mm",
+        "within_5mm",
+        "max_gap",
+        "fit_cuts",
+        "before_fit",
+    ] {
+        assert!(
+            fitted["joints"].get(field).is_some(),
+            "joints.{field} missing"
+        );
     }
-    for field in ["status", "iterations", "objective_before", "objective_after", "mean_move", "max_move"] {
+    for field in [
+        "status",
+        "iterations",
+        "objective_before",
+        "objective_after",
+        "mean_move",
+        "max_move",
+    ] {
         assert!(fitted["fit"].get(field).is_some(), "fit.{field} missing");
     }
-    assert_eq!(fitted["joints"]["before_fit"]["p95_deviation"], paper["joints"]["p95_deviation"]);
-    assert!(fitted["joints"]["p95_deviation"].as_f64().unwrap() < paper["joints"]["p95_deviation"].as_f64().unwrap());
+    assert_eq!(
+        fitted["joints"]["before_fit"]["p95_deviation"],
+        paper["joints"]["p95_deviation"]
+    );
+    assert!(
+        fitted["joints"]["p95_deviation"].as_f64().unwrap()
+            < paper["joints"]["p95_deviation"].as_f64().unwrap()
+    );
 }
 
 #[test]
 fn same_input_gives_byte_identical_json_apart_from_timings() {
     let dir = scratch("determinism");
-    assert!(tilepattern(&["demo", "--out", s(&dir), "--span", "0.7"]).status.success());
+    assert!(
+        tilepattern(&["demo", "--out", s(&dir), "--span", "0.7"])
+            .status
+            .success()
+    );
     let quads = dir.join("quads.obj");
     let run = |name: &str| {
         let path = dir.join(name);
         for pattern in ["stack", "staggered", "running-bond"] {
-            assert!(tilepattern(&["match", s(&quads), "--pattern", pattern, "--json", s(&path)]).status.success());
+            assert!(
+                tilepattern(&["match", s(&quads), "--pattern", pattern, "--json", s(&path)])
+                    .status
+                    .success()
+            );
         }
         let text = std::fs::read_to_string(&path).unwrap();
-        text.lines().filter(|l| !l.contains("\"seconds\"")).collect::<Vec<_>>().join("\n")
+        text.lines()
+            .filter(|l| !l.contains("\"seconds\""))
+            .collect::<Vec<_>>()
+            .join("\n")
     };
     assert_eq!(run("a.json"), run("b.json"));
 }
@@ -110,7 +224,16 @@ fn errors_say_what_is_wrong_and_exit_non_zero() {
     let message = String::from_utf8_lossy(&out.stderr);
     assert!(message.contains("face 1 refers to vertex 8"), "{message}");
 
-    let out = tilepattern(&["tiles", s(&bad), "--pairs", "x.json", "--tile", "280x140", "-o", "t.obj"]);
+    let out = tilepattern(&[
+        "tiles",
+        s(&bad),
+        "--pairs",
+        "x.json",
+        "--tile",
+        "280x140",
+        "-o",
+        "t.obj",
+    ]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("length x width x thickness"));
 
@@ -125,14 +248,25 @@ fn saddle_obj() -> String {
     let mut text = String::new();
     for j in 0..=n {
         for i in 0..=n {
-            let (x, y) = (-1.0 + 2.0 * i as f64 / n as f64, -1.0 + 2.0 * j as f64 / n as f64);
+            let (x, y) = (
+                -1.0 + 2.0 * i as f64 / n as f64,
+                -1.0 + 2.0 * j as f64 / n as f64,
+            );
             text += &format!("v {x} {y} {}\n", (x * x - y * y) / 4.0);
         }
     }
     for j in 0..n {
         for i in 0..n {
             let v = |i: usize, j: usize| i + (n + 1) * j + 1;
-            text += &format!("f {} {} {}\nf {} {} {}\n", v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j), v(i + 1, j + 1), v(i, j + 1));
+            text += &format!(
+                "f {} {} {}\nf {} {} {}\n",
+                v(i, j),
+                v(i + 1, j),
+                v(i + 1, j + 1),
+                v(i, j),
+                v(i + 1, j + 1),
+                v(i, j + 1)
+            );
         }
     }
     text
@@ -146,8 +280,21 @@ fn remesh_and_run_go_from_triangles_to_tiles() {
 
     let quads = dir.join("quads.obj");
     let metrics = dir.join("metrics.json");
-    let out = tilepattern(&["remesh", s(&surface), "--edge", "0.145", "-o", s(&quads), "--json", s(&metrics)]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = tilepattern(&[
+        "remesh",
+        s(&surface),
+        "--edge",
+        "0.145",
+        "-o",
+        s(&quads),
+        "--json",
+        s(&metrics),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let m = json(&metrics);
     assert_eq!(m["pure_quad"], true);
     for field in [
@@ -166,8 +313,25 @@ fn remesh_and_run_go_from_triangles_to_tiles() {
     }
 
     let run_dir = dir.join("out");
-    let out = tilepattern(&["run", s(&surface), "--tile", "280x140x15", "--joint", "10", "--pattern", "staggered", "--time-limit", "20", "--out", s(&run_dir)]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = tilepattern(&[
+        "run",
+        s(&surface),
+        "--tile",
+        "280x140x15",
+        "--joint",
+        "10",
+        "--pattern",
+        "staggered",
+        "--time-limit",
+        "20",
+        "--out",
+        s(&run_dir),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for file in ["quads.obj", "tiles.obj", "report.json", "pattern.svg"] {
         assert!(run_dir.join(file).is_file(), "{file} missing");
     }

@@ -24,11 +24,19 @@ use tilepattern::pipeline::{self, Tiling};
 use tilepattern::remesh::RemeshOptions;
 use tilepattern::tiles::{FinishOptions, TileSpec};
 
-const SPEC: TileSpec = TileSpec { length: 1.9, width: 0.95, thickness: 0.1, joint: 0.1 };
+const SPEC: TileSpec = TileSpec {
+    length: 1.9,
+    width: 0.95,
+    thickness: 0.1,
+    joint: 0.1,
+};
 
 /// A fixed shuffle of 0..n (a multiplicative step coprime to n).
 fn shuffle(n: usize) -> Vec<usize> {
-    let step = (1..n).rev().find(|s| gcd(*s, n) == 1 && *s > n / 3).unwrap_or(1);
+    let step = (1..n)
+        .rev()
+        .find(|s| gcd(*s, n) == 1 && *s > n / 3)
+        .unwrap_or(1);
     (0..n).map(|i| (i * step + 7) % n).collect()
 }
 
@@ -40,14 +48,24 @@ fn gcd(a: usize, b: usize) -> usize {
 /// (new index k holds old index order[k]).
 fn permuted(mesh: &PolyMesh, faces: &[usize], vertices: &[usize]) -> PolyMesh {
     let mut new_index = vec![0; vertices.len()];
-    vertices.iter().enumerate().for_each(|(k, &old)| new_index[old] = k);
+    vertices
+        .iter()
+        .enumerate()
+        .for_each(|(k, &old)| new_index[old] = k);
     let positions = vertices.iter().map(|&old| mesh.positions()[old]).collect();
-    let polygons = faces.iter().map(|&f| mesh.faces()[f].iter().map(|&v| new_index[v]).collect()).collect();
+    let polygons = faces
+        .iter()
+        .map(|&f| mesh.faces()[f].iter().map(|&v| new_index[v]).collect())
+        .collect();
     PolyMesh::new(positions, polygons).unwrap()
 }
 
 fn options(bond: Bond) -> PatternOptions {
-    PatternOptions { bond, time_limit: Duration::from_secs(20), ..PatternOptions::default() }
+    PatternOptions {
+        bond,
+        time_limit: Duration::from_secs(20),
+        ..PatternOptions::default()
+    }
 }
 
 /// Everything a run writes, as text, with the wall-clock seconds zeroed.
@@ -56,17 +74,35 @@ fn outputs(tiling: &Tiling) -> [String; 4] {
     pattern["seconds"] = 0.into();
     let mut report = serde_json::to_value(&tiling.report).unwrap();
     report["seconds"] = serde_json::Value::Null;
-    [pattern.to_string(), report.to_string(), serde_json::to_string(&tiling.tiles).unwrap(), tilepattern::tiles::to_obj(&tiling.tiles)]
+    [
+        pattern.to_string(),
+        report.to_string(),
+        serde_json::to_string(&tiling.tiles).unwrap(),
+        tilepattern::tiles::to_obj(&tiling.tiles),
+    ]
 }
 
 /// Meshes, bonds and tiles the permutation tests run on: all solve to a proven optimum fast.
 fn cases() -> [(PolyMesh, Bond, TileSpec); 4] {
-    let shell_tile = TileSpec { length: 0.58, width: 0.29, thickness: 0.015, joint: 0.02 };
+    let shell_tile = TileSpec {
+        length: 0.58,
+        width: 0.29,
+        thickness: 0.015,
+        joint: 0.02,
+    };
     [
         (generate::grid(8, 7), Bond::Staggered { weight: 0.5 }, SPEC),
         (generate::grid(6, 6), Bond::Stack, SPEC),
-        (generate::grid(7, 5), Bond::RunningBond { weight: 0.5 }, SPEC),
-        (generate::corner_supported_shell(2.0, 0.3), Bond::Staggered { weight: 0.5 }, shell_tile),
+        (
+            generate::grid(7, 5),
+            Bond::RunningBond { weight: 0.5 },
+            SPEC,
+        ),
+        (
+            generate::corner_supported_shell(2.0, 0.3),
+            Bond::Staggered { weight: 0.5 },
+            shell_tile,
+        ),
     ]
 }
 
@@ -77,11 +113,20 @@ fn tiling(mesh: &PolyMesh, found: Pattern, spec: &TileSpec) -> Tiling {
 #[test]
 fn the_same_input_gives_byte_identical_output() {
     let shell = generate::corner_supported_shell(2.0, 0.145);
-    let spec = TileSpec { length: 0.28, width: 0.14, thickness: 0.015, joint: 0.01 };
+    let spec = TileSpec {
+        length: 0.28,
+        width: 0.14,
+        thickness: 0.015,
+        joint: 0.01,
+    };
     for bond in [Bond::Stack, Bond::Staggered { weight: 0.5 }] {
         let run = || {
             let found = pattern::solve(&shell, &options(bond)).unwrap();
-            assert_eq!(found.status, SolveStatus::Optimal, "{bond:?}: a solve cut short may differ");
+            assert_eq!(
+                found.status,
+                SolveStatus::Optimal,
+                "{bond:?}: a solve cut short may differ"
+            );
             outputs(&tiling(&shell, found, &spec))
         };
         assert_eq!(run(), run(), "{bond:?}");
@@ -90,13 +135,30 @@ fn the_same_input_gives_byte_identical_output() {
 
 #[test]
 fn the_whole_pipeline_is_deterministic_from_a_triangle_surface() {
-    let spec = TileSpec { length: 0.28, width: 0.14, thickness: 0.015, joint: 0.01 };
-    let surface = generate::triangulate_quads(&generate::corner_supported_shell(1.2, spec.target_edge() / 3.0));
-    let remesh = RemeshOptions { target_edge: spec.target_edge(), ..RemeshOptions::default() };
+    let spec = TileSpec {
+        length: 0.28,
+        width: 0.14,
+        thickness: 0.015,
+        joint: 0.01,
+    };
+    let surface = generate::triangulate_quads(&generate::corner_supported_shell(
+        1.2,
+        spec.target_edge() / 3.0,
+    ));
+    let remesh = RemeshOptions {
+        target_edge: spec.target_edge(),
+        ..RemeshOptions::default()
+    };
     let run = || {
-        let (remeshed, tiling) =
-            pipeline::tile_surface(&surface, &remesh, &options(Bond::Staggered { weight: 0.5 }), &spec, &FinishOptions::for_spec(&spec), &mut Control::none())
-                .unwrap();
+        let (remeshed, tiling) = pipeline::tile_surface(
+            &surface,
+            &remesh,
+            &options(Bond::Staggered { weight: 0.5 }),
+            &spec,
+            &FinishOptions::for_spec(&spec),
+            &mut Control::none(),
+        )
+        .unwrap();
         assert_eq!(tiling.pattern.status, SolveStatus::Optimal);
         (obj::to_string(&remeshed.quads), outputs(&tiling))
     };
@@ -111,8 +173,15 @@ fn permuted_vertices_give_the_same_pairs_and_tiles() {
         let a = pattern::solve(&mesh, &options(bond)).unwrap();
         let b = pattern::solve(&shuffled, &options(bond)).unwrap();
         assert_eq!(a.status, SolveStatus::Optimal, "{bond:?}");
-        assert_eq!((&a.pairs, &a.unpaired, a.objective), (&b.pairs, &b.unpaired, b.objective), "{bond:?}");
-        let (x, y) = (outputs(&tiling(&mesh, a, &spec)), outputs(&tiling(&shuffled, b, &spec)));
+        assert_eq!(
+            (&a.pairs, &a.unpaired, a.objective),
+            (&b.pairs, &b.unpaired, b.objective),
+            "{bond:?}"
+        );
+        let (x, y) = (
+            outputs(&tiling(&mesh, a, &spec)),
+            outputs(&tiling(&shuffled, b, &spec)),
+        );
         assert_eq!(x[3], y[3], "{bond:?}: tiles OBJ");
         assert_eq!(x[1], y[1], "{bond:?}: report");
     }
@@ -126,7 +195,11 @@ fn permuted_faces_and_vertices_give_the_same_optimum() {
         let shuffled = permuted(&mesh, &faces, &vertices);
         let a = pattern::solve(&mesh, &options(bond)).unwrap();
         let b = pattern::solve(&shuffled, &options(bond)).unwrap();
-        assert_eq!((a.status, b.status), (SolveStatus::Optimal, SolveStatus::Optimal), "{bond:?}");
+        assert_eq!(
+            (a.status, b.status),
+            (SolveStatus::Optimal, SolveStatus::Optimal),
+            "{bond:?}"
+        );
         // The bond's own count follows from the objective; the other one is free to differ.
         let numbers = |p: &Pattern| {
             let term = match bond {
@@ -143,7 +216,14 @@ fn permuted_faces_and_vertices_give_the_same_optimum() {
             let (f, g) = (faces[x], faces[y]);
             assert!(!used[f] && !used[g]);
             (used[f], used[g]) = (true, true);
-            assert!(mesh.faces()[f].iter().filter(|v| mesh.faces()[g].contains(v)).count() == 2, "faces {f} and {g} share an edge");
+            assert!(
+                mesh.faces()[f]
+                    .iter()
+                    .filter(|v| mesh.faces()[g].contains(v))
+                    .count()
+                    == 2,
+                "faces {f} and {g} share an edge"
+            );
         }
         // Tiles built on either list the same kinds.
         let count = |m: &PolyMesh, p| {

@@ -10,11 +10,19 @@ use tilepattern::pipeline::{self, Tiling};
 use tilepattern::tiles::{self, DropReason, FinishOptions, Tile, TileKind, TileSpec};
 
 /// A flat quad lattice over `[x0, x1] x [y0, y1]` with `nx x ny` cells, lifted by `height`.
-fn lattice(x: [f64; 2], y: [f64; 2], n: [usize; 2], height: impl Fn(f64, f64) -> f64) -> (Vec<Point3<f64>>, Vec<Vec<usize>>) {
+fn lattice(
+    x: [f64; 2],
+    y: [f64; 2],
+    n: [usize; 2],
+    height: impl Fn(f64, f64) -> f64,
+) -> (Vec<Point3<f64>>, Vec<Vec<usize>>) {
     let mut positions = Vec::new();
     for j in 0..=n[1] {
         for i in 0..=n[0] {
-            let (px, py) = (x[0] + (x[1] - x[0]) * i as f64 / n[0] as f64, y[0] + (y[1] - y[0]) * j as f64 / n[1] as f64);
+            let (px, py) = (
+                x[0] + (x[1] - x[0]) * i as f64 / n[0] as f64,
+                y[0] + (y[1] - y[0]) * j as f64 / n[1] as f64,
+            );
             positions.push(Point3::new(px, py, height(px, py)));
         }
     }
@@ -29,32 +37,67 @@ fn lattice(x: [f64; 2], y: [f64; 2], n: [usize; 2], height: impl Fn(f64, f64) ->
 }
 
 /// Quads of `(positions, faces)` kept where `keep` holds at their centroid.
-fn keep_faces(positions: Vec<Point3<f64>>, faces: Vec<Vec<usize>>, keep: impl Fn(&Point3<f64>) -> bool) -> PolyMesh {
-    let centroid = |f: &Vec<usize>| Point3::from(f.iter().map(|&v| positions[v].coords).sum::<Vector3<f64>>() / f.len() as f64);
+fn keep_faces(
+    positions: Vec<Point3<f64>>,
+    faces: Vec<Vec<usize>>,
+    keep: impl Fn(&Point3<f64>) -> bool,
+) -> PolyMesh {
+    let centroid = |f: &Vec<usize>| {
+        Point3::from(f.iter().map(|&v| positions[v].coords).sum::<Vector3<f64>>() / f.len() as f64)
+    };
     let kept: Vec<Vec<usize>> = faces.into_iter().filter(|f| keep(&centroid(f))).collect();
     PolyMesh::new(positions, kept).unwrap()
 }
 
 /// The pattern made of exactly these pairs (the rest unpaired).
 fn pattern_of(mesh: &PolyMesh, pairs: &[[usize; 2]]) -> Pattern {
-    let mut found = pattern::solve(mesh, &PatternOptions { bond: Bond::Stack, time_limit: Duration::ZERO, ..PatternOptions::default() }).unwrap();
+    let mut found = pattern::solve(
+        mesh,
+        &PatternOptions {
+            bond: Bond::Stack,
+            time_limit: Duration::ZERO,
+            ..PatternOptions::default()
+        },
+    )
+    .unwrap();
     found.pairs = pairs.to_vec();
-    found.unpaired = (0..mesh.face_count()).filter(|f| !pairs.iter().any(|p| p.contains(f))).collect();
+    found.unpaired = (0..mesh.face_count())
+        .filter(|f| !pairs.iter().any(|p| p.contains(f)))
+        .collect();
     found
 }
 
 /// The tiles on the quad mesh's faces (not the filler pieces beyond it).
 fn on_quads(tiling: &Tiling) -> Vec<&Tile> {
-    tiling.tiles.iter().filter(|t| !t.faces.is_empty()).collect()
+    tiling
+        .tiles
+        .iter()
+        .filter(|t| !t.faces.is_empty())
+        .collect()
 }
 
-const SQUARE: TileSpec = TileSpec { length: 2.0, width: 1.0, thickness: 0.1, joint: 0.0 };
+const SQUARE: TileSpec = TileSpec {
+    length: 2.0,
+    width: 1.0,
+    thickness: 0.1,
+    joint: 0.0,
+};
 
 /// One 2 x 1 tile over two unit quads of `[0, 2] x [0, 1]`, cut to `surface`.
 fn one_tile_on(surface: &PolyMesh) -> Tiling {
     let quads = generate::grid(2, 1);
-    let finish = FinishOptions { min_kept_width: 0.05, ..FinishOptions::for_spec(&SQUARE) };
-    pipeline::tiles_for_pattern(&quads, Some(surface), pattern_of(&quads, &[[0, 1]]), &SQUARE, &finish).unwrap()
+    let finish = FinishOptions {
+        min_kept_width: 0.05,
+        ..FinishOptions::for_spec(&SQUARE)
+    };
+    pipeline::tiles_for_pattern(
+        &quads,
+        Some(surface),
+        pattern_of(&quads, &[[0, 1]]),
+        &SQUARE,
+        &finish,
+    )
+    .unwrap()
 }
 
 #[test]
@@ -70,19 +113,31 @@ fn a_tile_over_the_edge_keeps_the_part_on_the_surface() {
     assert_eq!(cut.loops.len(), 1);
     // In the tile's frame (x from face 0 to face 1) the kept part is [-1, 0.5] x [-0.5, 0.5].
     for point in &cut.loops[0] {
-        assert!(point[0] >= -1.0 - 1e-9 && point[0] <= 0.5 + 1e-9 && point[1].abs() <= 0.5 + 1e-9, "{point:?}");
+        assert!(
+            point[0] >= -1.0 - 1e-9 && point[0] <= 0.5 + 1e-9 && point[1].abs() <= 0.5 + 1e-9,
+            "{point:?}"
+        );
     }
 }
 
 #[test]
 fn an_opening_inside_a_tile_becomes_a_hole_in_its_outline() {
     let (p, f) = lattice([-1.0, 3.0], [-1.0, 2.0], [20, 15], |_, _| 0.0);
-    let surface = keep_faces(p, f, |c| !((0.8..1.2).contains(&c.x) && (0.4..0.6).contains(&c.y)));
+    let surface = keep_faces(p, f, |c| {
+        !((0.8..1.2).contains(&c.x) && (0.4..0.6).contains(&c.y))
+    });
     let tiling = one_tile_on(&surface);
     let cut = on_quads(&tiling)[0].cut.as_ref().unwrap();
     assert_eq!(cut.loops.len(), 2, "{cut:?}");
-    assert!((cut.area() - (2.0 - 0.4 * 0.2)).abs() < 1e-9, "{}", cut.area());
-    assert!(cut.loops.iter().any(|l| tiles::clip::signed_area(l) < 0.0), "the hole runs clockwise");
+    assert!(
+        (cut.area() - (2.0 - 0.4 * 0.2)).abs() < 1e-9,
+        "{}",
+        cut.area()
+    );
+    assert!(
+        cut.loops.iter().any(|l| tiles::clip::signed_area(l) < 0.0),
+        "the hole runs clockwise"
+    );
 }
 
 #[test]
@@ -119,7 +174,10 @@ fn outside_plan(surface: &PolyMesh, p: &Point3<f64>) -> f64 {
     let q = plan(p);
     let mut best = f64::INFINITY;
     for face in surface.faces() {
-        let corners: Vec<[f64; 2]> = face.iter().map(|&v| plan(&surface.positions()[v])).collect();
+        let corners: Vec<[f64; 2]> = face
+            .iter()
+            .map(|&v| plan(&surface.positions()[v]))
+            .collect();
         let n = corners.len();
         let mut inside = true;
         for i in 0..n {
@@ -143,7 +201,10 @@ fn kept_points(tile: &Tile) -> Vec<Point3<f64>> {
         Some(cut) => cut.loops.iter().flatten().copied().collect(),
         None => vec![[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]],
     };
-    local.iter().map(|p| tile.to_world(Vector3::new(p[0], p[1], 0.0))).collect()
+    local
+        .iter()
+        .map(|p| tile.to_world(Vector3::new(p[0], p[1], 0.0)))
+        .collect()
 }
 
 /// Checks that no point of the surface lies deeper than `margin` inside two tiles' kept
@@ -151,9 +212,24 @@ fn kept_points(tile: &Tile) -> Vec<Point3<f64>> {
 fn assert_no_overlaps(surface: &PolyMesh, tiling: &Tiling, margin: f64) {
     for f in 0..surface.face_count() {
         let p = surface.face_centroid(f);
-        let inside: Vec<usize> = (0..tiling.tiles.len()).filter(|&t| deep_inside(&tiling.tiles[t], &p, margin)).collect();
-        let described: Vec<_> = inside.iter().map(|&t| (t, tiling.tiles[t].kind, tiling.tiles[t].faces.clone(), tiling.tiles[t].frame.origin)).collect();
-        assert!(inside.len() <= 1, "surface point {p:?} lies in tiles {described:?}");
+        let inside: Vec<usize> = (0..tiling.tiles.len())
+            .filter(|&t| deep_inside(&tiling.tiles[t], &p, margin))
+            .collect();
+        let described: Vec<_> = inside
+            .iter()
+            .map(|&t| {
+                (
+                    t,
+                    tiling.tiles[t].kind,
+                    tiling.tiles[t].faces.clone(),
+                    tiling.tiles[t].frame.origin,
+                )
+            })
+            .collect();
+        assert!(
+            inside.len() <= 1,
+            "surface point {p:?} lies in tiles {described:?}"
+        );
     }
 }
 
@@ -171,7 +247,8 @@ fn deep_inside(tile: &Tile, p: &Point3<f64>, margin: f64) -> bool {
         for i in 0..l.len() {
             let (a, b) = (l[i], l[(i + 1) % l.len()]);
             let d = [b[0] - a[0], b[1] - a[1]];
-            let t = (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / (d[0] * d[0] + d[1] * d[1])).clamp(0.0, 1.0);
+            let t = (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / (d[0] * d[0] + d[1] * d[1]))
+                .clamp(0.0, 1.0);
             if (q[0] - a[0] - t * d[0]).hypot(q[1] - a[1] - t * d[1]) < margin {
                 return false;
             }
@@ -191,26 +268,57 @@ fn check_fabrication(surface: &PolyMesh, tiling: &Tiling, tolerance: f64) {
     for (t, tile) in tiling.tiles.iter().enumerate() {
         for p in kept_points(tile) {
             let off = outside_plan(surface, &p);
-            assert!(off <= tolerance, "tile {t} ({:?}) reaches {p:?}, {off} off the surface", tile.kind);
+            assert!(
+                off <= tolerance,
+                "tile {t} ({:?}) reaches {p:?}, {off} off the surface",
+                tile.kind
+            );
         }
     }
     let counted: usize = tiling.cut_list.iter().map(|g| g.count).sum();
-    assert_eq!(counted, tiling.tiles.len(), "the cut list counts every tile once");
+    assert_eq!(
+        counted,
+        tiling.tiles.len(),
+        "the cut list counts every tile once"
+    );
     for tile in &tiling.tiles {
-        assert!(tiling.cut_list.iter().any(|g| g.label == tile.label && g.kind == tile.kind), "label {}", tile.label);
+        assert!(
+            tiling
+                .cut_list
+                .iter()
+                .any(|g| g.label == tile.label && g.kind == tile.kind),
+            "label {}",
+            tile.label
+        );
     }
     let mut steps: Vec<usize> = tiling.tiles.iter().map(|t| t.step).collect();
     steps.sort_unstable();
-    assert_eq!(steps, (0..tiling.tiles.len()).collect::<Vec<_>>(), "the laying order is a permutation");
+    assert_eq!(
+        steps,
+        (0..tiling.tiles.len()).collect::<Vec<_>>(),
+        "the laying order is a permutation"
+    );
     let sequence = tiling.report.sequence.as_ref().unwrap();
     assert!(sequence.support_tiles > 0);
     let first = tiling.tiles.iter().find(|t| t.step == 0).unwrap();
-    let lowest = tiling.tiles.iter().map(|t| t.frame.origin.z).fold(f64::INFINITY, f64::min);
-    assert!(first.frame.origin.z <= lowest + 0.3, "the order starts at the supports, low down");
+    let lowest = tiling
+        .tiles
+        .iter()
+        .map(|t| t.frame.origin.z)
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        first.frame.origin.z <= lowest + 0.3,
+        "the order starts at the supports, low down"
+    );
 }
 
 /// Tiles for quads of edge 0.1: (0.19 + 0.01) / 2.
-const SMALL: TileSpec = TileSpec { length: 0.19, width: 0.095, thickness: 0.01, joint: 0.01 };
+const SMALL: TileSpec = TileSpec {
+    length: 0.19,
+    width: 0.095,
+    thickness: 0.01,
+    joint: 0.01,
+};
 
 /// Quads of edge 0.1 over the hypar's whole square, ignoring the opening.
 fn hypar_quads() -> PolyMesh {
@@ -224,11 +332,29 @@ fn tiles_on_a_hypar_with_an_opening_stay_on_the_surface_and_cover_it() {
     let quads = hypar_quads();
     let spec = SMALL;
     let finish = FinishOptions::for_spec(&spec);
-    let options = PatternOptions { time_limit: Duration::from_secs(5), ..PatternOptions::default() };
-    let tiling = pipeline::tile_quad_mesh(&quads, Some(&surface), &options, &spec, &finish, &mut tilepattern::control::Control::none()).unwrap();
+    let options = PatternOptions {
+        time_limit: Duration::from_secs(5),
+        ..PatternOptions::default()
+    };
+    let tiling = pipeline::tile_quad_mesh(
+        &quads,
+        Some(&surface),
+        &options,
+        &spec,
+        &finish,
+        &mut tilepattern::control::Control::none(),
+    )
+    .unwrap();
     let cutting = tiling.report.cutting.as_ref().unwrap();
-    assert!(tiling.report.boundary_tiles >= 8, "tiles around the opening are cut: {}", tiling.report.boundary_tiles);
-    assert!(cutting.outside_tiles + cutting.slivers.len() >= 3, "tiles over the opening are left out");
+    assert!(
+        tiling.report.boundary_tiles >= 8,
+        "tiles around the opening are cut: {}",
+        tiling.report.boundary_tiles
+    );
+    assert!(
+        cutting.outside_tiles + cutting.slivers.len() >= 3,
+        "tiles over the opening are left out"
+    );
     // Kept outlines lie on the surface, up to the flat tile's departure from the hypar.
     check_fabrication(&surface, &tiling, 0.002);
     // Tiles with their joints cover the surface but for the slivers left out at the opening.
@@ -244,20 +370,27 @@ fn tiles_on_a_ragged_quad_mesh_are_cut_to_the_surface() {
     let surface = hypar_with_opening();
     let (cos, sin) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
     let (p, f) = lattice([-1.5, 1.5], [-1.5, 1.5], [30, 30], |_, _| 0.0);
-    let turned: Vec<Point3<f64>> = p.iter().map(|q| {
-        let (x, y) = (cos * q.x - sin * q.y, sin * q.x + cos * q.y);
-        Point3::new(x, y, 0.3 * x * y)
-    }).collect();
+    let turned: Vec<Point3<f64>> = p
+        .iter()
+        .map(|q| {
+            let (x, y) = (cos * q.x - sin * q.y, sin * q.x + cos * q.y);
+            Point3::new(x, y, 0.3 * x * y)
+        })
+        .collect();
     let quads = keep_faces(turned, f, |c| c.x.abs() < 0.93 && c.y.abs() < 0.93);
     let spec = SMALL;
     let finish = FinishOptions::for_spec(&spec);
     // Every pair of neighbouring quads becomes a tile in one of these patterns: greedy
     // rounds over the mesh's interior edges.
     let topology = Topology::new(&quads).unwrap();
-    let mut candidates: Vec<[usize; 2]> = topology.edges().iter().filter_map(|e| match e.faces[..] {
-        [a, b] => Some([a, b]),
-        _ => None,
-    }).collect();
+    let mut candidates: Vec<[usize; 2]> = topology
+        .edges()
+        .iter()
+        .filter_map(|e| match e.faces[..] {
+            [a, b] => Some([a, b]),
+            _ => None,
+        })
+        .collect();
     while !candidates.is_empty() {
         let mut used = vec![false; quads.face_count()];
         let mut pairs = Vec::new();
@@ -269,8 +402,19 @@ fn tiles_on_a_ragged_quad_mesh_are_cut_to_the_surface() {
             }
             !free
         });
-        let tiling = pipeline::tiles_for_pattern(&quads, Some(&surface), pattern_of(&quads, &pairs), &spec, &finish).unwrap();
-        assert!(tiling.report.boundary_tiles >= 20, "{}", tiling.report.boundary_tiles);
+        let tiling = pipeline::tiles_for_pattern(
+            &quads,
+            Some(&surface),
+            pattern_of(&quads, &pairs),
+            &spec,
+            &finish,
+        )
+        .unwrap();
+        assert!(
+            tiling.report.boundary_tiles >= 20,
+            "{}",
+            tiling.report.boundary_tiles
+        );
         check_fabrication(&surface, &tiling, 0.002);
         // Filler pieces close the strip between the staircase and the surface's edge (without
         // them the tiles cover 0.87 of it); what is left are slivers and corners where the
@@ -289,12 +433,27 @@ fn equal_cuts_share_a_label_and_mirrored_cuts_too() {
     let surface = PolyMesh::new(p, f).unwrap();
     let quads = generate::grid(2, 4);
     let found = pattern_of(&quads, &[[0, 1], [2, 3], [5, 4], [7, 6]]);
-    let finish = FinishOptions { min_kept_width: 0.05, ..FinishOptions::for_spec(&SQUARE) };
-    let tiling = pipeline::tiles_for_pattern(&quads, Some(&surface), found, &SQUARE, &finish).unwrap();
-    let cut: Vec<&Tile> = on_quads(&tiling).into_iter().filter(|t| t.kind == TileKind::Boundary).collect();
+    let finish = FinishOptions {
+        min_kept_width: 0.05,
+        ..FinishOptions::for_spec(&SQUARE)
+    };
+    let tiling =
+        pipeline::tiles_for_pattern(&quads, Some(&surface), found, &SQUARE, &finish).unwrap();
+    let cut: Vec<&Tile> = on_quads(&tiling)
+        .into_iter()
+        .filter(|t| t.kind == TileKind::Boundary)
+        .collect();
     assert_eq!(cut.len(), 4);
-    assert!(cut.iter().all(|t| t.label == cut[0].label), "{:?}", cut.iter().map(|t| &t.label).collect::<Vec<_>>());
-    let group = tiling.cut_list.iter().find(|g| g.label == cut[0].label).unwrap();
+    assert!(
+        cut.iter().all(|t| t.label == cut[0].label),
+        "{:?}",
+        cut.iter().map(|t| &t.label).collect::<Vec<_>>()
+    );
+    let group = tiling
+        .cut_list
+        .iter()
+        .find(|g| g.label == cut[0].label)
+        .unwrap();
     assert!(group.count >= 4);
 }
 
@@ -304,10 +463,26 @@ fn the_fabrication_output_is_deterministic() {
     let quads = hypar_quads();
     let spec = SMALL;
     let run = || {
-        let found = pattern::solve(&quads, &PatternOptions { time_limit: Duration::ZERO, ..PatternOptions::default() }).unwrap();
-        let tiling = pipeline::tiles_for_pattern(&quads, Some(&surface), found, &spec, &FinishOptions::for_spec(&spec)).unwrap();
-        (serde_json::to_string(&tiling.tiles).unwrap(), serde_json::to_string(&tiling.cut_list).unwrap())
+        let found = pattern::solve(
+            &quads,
+            &PatternOptions {
+                time_limit: Duration::ZERO,
+                ..PatternOptions::default()
+            },
+        )
+        .unwrap();
+        let tiling = pipeline::tiles_for_pattern(
+            &quads,
+            Some(&surface),
+            found,
+            &spec,
+            &FinishOptions::for_spec(&spec),
+        )
+        .unwrap();
+        (
+            serde_json::to_string(&tiling.tiles).unwrap(),
+            serde_json::to_string(&tiling.cut_list).unwrap(),
+        )
     };
     assert_eq!(run(), run());
 }
-

@@ -15,7 +15,12 @@ use tilepattern::remesh::RemeshOptions;
 use tilepattern::tiles::{FinishOptions, FitStatus, TileError, TileKind, TileSpec};
 
 /// 280 x 140 x 15 mm tiles with a 10 mm joint, in metres.
-const SPEC: TileSpec = TileSpec { length: 0.28, width: 0.14, thickness: 0.015, joint: 0.01 };
+const SPEC: TileSpec = TileSpec {
+    length: 0.28,
+    width: 0.14,
+    thickness: 0.015,
+    joint: 0.01,
+};
 
 /// A triangle mesh over `nu` x `nv` cells of the parameter square, lifted by `at`.
 fn sheet(nu: usize, nv: usize, at: impl Fn(f64, f64) -> [f64; 3]) -> PolyMesh {
@@ -49,16 +54,39 @@ fn barrel() -> PolyMesh {
 /// pieces, which are cut to whatever room the courses leave, aside).
 fn pattern_p95(tiling: &Tiling) -> f64 {
     let on_quads = |t: usize| !tiling.tiles[t].faces.is_empty();
-    let mut d: Vec<f64> = tiling.joints.iter().filter(|j| on_quads(j.tiles[0]) && on_quads(j.tiles[1])).map(|j| (j.gap - SPEC.joint).abs()).collect();
+    let mut d: Vec<f64> = tiling
+        .joints
+        .iter()
+        .filter(|j| on_quads(j.tiles[0]) && on_quads(j.tiles[1]))
+        .map(|j| (j.gap - SPEC.joint).abs())
+        .collect();
     d.sort_by(f64::total_cmp);
     d[(d.len() * 95).div_ceil(100) - 1]
 }
 
 /// The whole pipeline in level courses, as `tilepattern run` lays tiles.
 fn tile(surface: &PolyMesh, finish: &FinishOptions) -> Tiling {
-    let options = PatternOptions { time_limit: Duration::from_secs(5), courses: Courses::Level { up: [0.0, 0.0, 1.0] }, ..PatternOptions::default() };
-    let remesh = RemeshOptions { target_edge: SPEC.quad_edge(true), ..RemeshOptions::default() };
-    pipeline::tile_surface(surface, &remesh, &options, &SPEC, finish, &mut Control::none()).unwrap().1
+    let options = PatternOptions {
+        time_limit: Duration::from_secs(5),
+        courses: Courses::Level {
+            up: [0.0, 0.0, 1.0],
+        },
+        ..PatternOptions::default()
+    };
+    let remesh = RemeshOptions {
+        target_edge: SPEC.quad_edge(true),
+        ..RemeshOptions::default()
+    };
+    pipeline::tile_surface(
+        surface,
+        &remesh,
+        &options,
+        &SPEC,
+        finish,
+        &mut Control::none(),
+    )
+    .unwrap()
+    .1
 }
 
 #[test]
@@ -66,10 +94,25 @@ fn on_a_developable_barrel_every_joint_fits() {
     let tiling = tile(&barrel(), &FinishOptions::for_spec(&SPEC));
     let joints = &tiling.report.joints;
     let before = joints.before_fit.as_ref().expect("the fit ran");
-    assert!(pattern_p95(&tiling) <= 0.0005, "p95 |gap - joint| {} m between tiles (before the fit {})", pattern_p95(&tiling), before.p95_deviation);
-    assert!(joints.p95_deviation < before.p95_deviation, "all joints, filler pieces included: {joints:?}");
-    assert!(before.p95_deviation > 0.002, "the section 3.5 placement does not fit: {}", before.p95_deviation);
-    assert!(joints.max_overlap <= 0.001 && joints.fit_cuts == 0, "{joints:?}");
+    assert!(
+        pattern_p95(&tiling) <= 0.0005,
+        "p95 |gap - joint| {} m between tiles (before the fit {})",
+        pattern_p95(&tiling),
+        before.p95_deviation
+    );
+    assert!(
+        joints.p95_deviation < before.p95_deviation,
+        "all joints, filler pieces included: {joints:?}"
+    );
+    assert!(
+        before.p95_deviation > 0.002,
+        "the section 3.5 placement does not fit: {}",
+        before.p95_deviation
+    );
+    assert!(
+        joints.max_overlap <= 0.001 && joints.fit_cuts == 0,
+        "{joints:?}"
+    );
     assert!(common::overlapping_tiles(&tiling.tiles, 0.001, 0.004).is_empty());
     assert_eq!(tiling.report.fit.unwrap().status, FitStatus::Converged);
     // Every tile stays on the surface: origin on it, thickness axis along its normal.
@@ -77,9 +120,15 @@ fn on_a_developable_barrel_every_joint_fits() {
     for t in &tiling.tiles {
         let o = t.frame.origin;
         let radial = nalgebra::Vector3::new(o.x, 0.0, o.z);
-        assert!((radial.norm() - 1.5).abs() < 0.001 || t.faces.is_empty(), "origin {o} off the barrel");
+        assert!(
+            (radial.norm() - 1.5).abs() < 0.001 || t.faces.is_empty(),
+            "origin {o} off the barrel"
+        );
         if !t.faces.is_empty() {
-            assert!(t.frame.z.dot(&radial.normalize()) > 1.0_f64.to_radians().cos() - 1e-3, "tile normal off the surface's at {o}");
+            assert!(
+                t.frame.z.dot(&radial.normalize()) > 1.0_f64.to_radians().cos() - 1e-3,
+                "tile normal off the surface's at {o}"
+            );
         }
     }
     assert!(surface.face_count() > 0);
@@ -98,16 +147,51 @@ fn no_two_tiles_overlap_on_doubly_curved_shells() {
         let tiling = tile(&surface, &FinishOptions::for_spec(&SPEC));
         let joints = &tiling.report.joints;
         let before = joints.before_fit.as_ref().unwrap();
-        assert!(joints.p95_deviation < before.p95_deviation, "{name}: {joints:?}");
-        assert!(pattern_p95(&tiling) <= 0.003, "{name}: p95 {} between tiles", pattern_p95(&tiling));
-        assert!(joints.max_overlap <= 0.001, "{name}: deepest overlap {}", joints.max_overlap);
+        assert!(
+            joints.p95_deviation < before.p95_deviation,
+            "{name}: {joints:?}"
+        );
+        assert!(
+            pattern_p95(&tiling) <= 0.003,
+            "{name}: p95 {} between tiles",
+            pattern_p95(&tiling)
+        );
+        assert!(
+            joints.max_overlap <= 0.001,
+            "{name}: deepest overlap {}",
+            joints.max_overlap
+        );
         let overlaps = common::overlapping_tiles(&tiling.tiles, 0.001, 0.004);
-        assert!(overlaps.is_empty(), "{name}: overlapping tiles {overlaps:?}");
+        assert!(
+            overlaps.is_empty(),
+            "{name}: overlapping tiles {overlaps:?}"
+        );
         // Cutting to fit stays rare, and cut tiles are listed like boundary cuts.
-        let cut = tiling.tiles.iter().filter(|t| t.kind == TileKind::FitCut).count();
-        assert!(cut * 50 <= tiling.tiles.len(), "{name}: {cut} of {} tiles cut to fit", tiling.tiles.len());
-        assert_eq!(cut, tiling.tiles.iter().filter(|t| t.fit_cut && t.kind == TileKind::FitCut).count());
-        assert!(tiling.cut_list.iter().filter(|g| g.kind == TileKind::FitCut).all(|g| g.label.starts_with('C') && !g.outline.is_empty()));
+        let cut = tiling
+            .tiles
+            .iter()
+            .filter(|t| t.kind == TileKind::FitCut)
+            .count();
+        assert!(
+            cut * 50 <= tiling.tiles.len(),
+            "{name}: {cut} of {} tiles cut to fit",
+            tiling.tiles.len()
+        );
+        assert_eq!(
+            cut,
+            tiling
+                .tiles
+                .iter()
+                .filter(|t| t.fit_cut && t.kind == TileKind::FitCut)
+                .count()
+        );
+        assert!(
+            tiling
+                .cut_list
+                .iter()
+                .filter(|g| g.kind == TileKind::FitCut)
+                .all(|g| g.label.starts_with('C') && !g.outline.is_empty())
+        );
     }
 }
 
@@ -115,11 +199,28 @@ fn no_two_tiles_overlap_on_doubly_curved_shells() {
 fn without_the_fit_tiles_keep_the_papers_placement() {
     let surface = generate::triangulate_quads(&generate::corner_supported_shell(1.5, 0.05));
     let fitted = tile(&surface, &FinishOptions::for_spec(&SPEC));
-    let paper = tile(&surface, &FinishOptions { fit: None, ..FinishOptions::for_spec(&SPEC) });
+    let paper = tile(
+        &surface,
+        &FinishOptions {
+            fit: None,
+            ..FinishOptions::for_spec(&SPEC)
+        },
+    );
     assert!(paper.report.fit.is_none() && paper.report.joints.before_fit.is_none());
-    assert!(paper.tiles.iter().all(|t| !t.fit_cut && t.kind != TileKind::FitCut));
+    assert!(
+        paper
+            .tiles
+            .iter()
+            .all(|t| !t.fit_cut && t.kind != TileKind::FitCut)
+    );
     // The same blanks either way: the fit moves tiles, it does not change the pattern.
-    assert_eq!((fitted.report.full_tiles, fitted.report.half_tiles), (paper.report.full_tiles, paper.report.half_tiles), "dropped {:?} vs {:?}", fitted.dropped, paper.dropped);
+    assert_eq!(
+        (fitted.report.full_tiles, fitted.report.half_tiles),
+        (paper.report.full_tiles, paper.report.half_tiles),
+        "dropped {:?} vs {:?}",
+        fitted.dropped,
+        paper.dropped
+    );
     let before = fitted.report.joints.before_fit.as_ref().unwrap();
     assert_eq!(before.contacts, paper.report.joints.contacts);
 }
@@ -127,7 +228,13 @@ fn without_the_fit_tiles_keep_the_papers_placement() {
 #[test]
 fn a_cancelled_or_timed_out_fit_keeps_the_placement_so_far() {
     let quads = generate::corner_supported_shell(1.5, SPEC.quad_edge(true));
-    let options = PatternOptions { time_limit: Duration::from_secs(2), courses: Courses::Level { up: [0.0, 0.0, 1.0] }, ..PatternOptions::default() };
+    let options = PatternOptions {
+        time_limit: Duration::from_secs(2),
+        courses: Courses::Level {
+            up: [0.0, 0.0, 1.0],
+        },
+        ..PatternOptions::default()
+    };
     let pattern = tilepattern::pattern::solve(&quads, &options).unwrap();
     let mut finish = FinishOptions::for_spec(&SPEC);
     let mut calls = 0;
@@ -135,33 +242,74 @@ fn a_cancelled_or_timed_out_fit_keeps_the_placement_so_far() {
         calls += 1;
         false
     };
-    let tiling = pipeline::tiles_for_pattern_with(&quads, None, pattern.clone(), &SPEC, &finish, &mut Control::with_progress(&mut stop)).unwrap();
+    let tiling = pipeline::tiles_for_pattern_with(
+        &quads,
+        None,
+        pattern.clone(),
+        &SPEC,
+        &finish,
+        &mut Control::with_progress(&mut stop),
+    )
+    .unwrap();
     assert_eq!(tiling.report.fit.unwrap().status, FitStatus::Cancelled);
     assert!(calls >= 1);
     finish.fit.as_mut().unwrap().time_limit = 0.0;
     let tiling = pipeline::tiles_for_pattern(&quads, None, pattern, &SPEC, &finish).unwrap();
     assert_eq!(tiling.report.fit.unwrap().status, FitStatus::TimeLimit);
-    assert!(tiling.tiles.iter().all(|t| t.corners.iter().flatten().all(|c| c.is_finite())));
+    assert!(
+        tiling
+            .tiles
+            .iter()
+            .all(|t| t.corners.iter().flatten().all(|c| c.is_finite()))
+    );
 }
 
 #[test]
 fn bad_fit_options_and_foreign_patterns_are_refused() {
     let quads = generate::grid(4, 2);
-    let spec = TileSpec { length: 1.9, width: 0.95, thickness: 0.1, joint: 0.1 };
-    let pattern = tilepattern::pattern::solve(&quads, &PatternOptions { bond: Bond::Stack, ..PatternOptions::default() }).unwrap();
+    let spec = TileSpec {
+        length: 1.9,
+        width: 0.95,
+        thickness: 0.1,
+        joint: 0.1,
+    };
+    let pattern = tilepattern::pattern::solve(
+        &quads,
+        &PatternOptions {
+            bond: Bond::Stack,
+            ..PatternOptions::default()
+        },
+    )
+    .unwrap();
     let with = |change: &dyn Fn(&mut tilepattern::tiles::FitOptions)| {
         let mut finish = FinishOptions::for_spec(&spec);
         change(finish.fit.as_mut().unwrap());
-        pipeline::tiles_for_pattern(&quads, None, pattern.clone(), &spec, &finish).unwrap_err().to_string()
+        pipeline::tiles_for_pattern(&quads, None, pattern.clone(), &spec, &finish)
+            .unwrap_err()
+            .to_string()
     };
     assert!(with(&|f| f.overlap_tolerance = f64::NAN).contains("overlap_tolerance"));
     assert!(with(&|f| f.time_limit = -1.0).contains("time_limit"));
     assert!(with(&|f| f.bond_tolerance = f64::INFINITY).contains("bond_tolerance"));
     let other = generate::grid(3, 3);
-    let foreign = pipeline::tiles_for_pattern(&other, None, pattern.clone(), &spec, &FinishOptions::for_spec(&spec)).unwrap_err();
+    let foreign = pipeline::tiles_for_pattern(
+        &other,
+        None,
+        pattern.clone(),
+        &spec,
+        &FinishOptions::for_spec(&spec),
+    )
+    .unwrap_err();
     assert!(matches!(foreign, pipeline::Error::PatternMismatch { .. }));
     // A tile the wrong way round for the half-tile model is still placed and fitted.
-    let ok = pipeline::tiles_for_pattern(&quads, None, pattern, &spec, &FinishOptions::for_spec(&spec)).unwrap();
+    let ok = pipeline::tiles_for_pattern(
+        &quads,
+        None,
+        pattern,
+        &spec,
+        &FinishOptions::for_spec(&spec),
+    )
+    .unwrap();
     assert!(ok.report.fit.is_some());
     let _: Option<TileError> = None;
 }

@@ -6,13 +6,22 @@ use nalgebra::Point3;
 use tilepattern::mesh::{MeshError, PolyMesh, generate, obj};
 
 fn square() -> Vec<Point3<f64>> {
-    vec![Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 0.0), Point3::new(0.0, 1.0, 0.0)]
+    vec![
+        Point3::new(0.0, 0.0, 0.0),
+        Point3::new(1.0, 0.0, 0.0),
+        Point3::new(1.0, 1.0, 0.0),
+        Point3::new(0.0, 1.0, 0.0),
+    ]
 }
 
 #[test]
 fn obj_round_trip_keeps_order_precision_and_ngons() {
     let mut mesh = common::split_into_quads(&common::polygon(5));
-    let positions: Vec<Point3<f64>> = mesh.positions().iter().map(|p| p * (1.0 / 3.0) + nalgebra::Vector3::new(0.1, 1e-9, 7.0)).collect();
+    let positions: Vec<Point3<f64>> = mesh
+        .positions()
+        .iter()
+        .map(|p| p * (1.0 / 3.0) + nalgebra::Vector3::new(0.1, 1e-9, 7.0))
+        .collect();
     let mut faces = mesh.faces().to_vec();
     faces.reverse();
     faces.push(vec![0, 1, 2]);
@@ -41,26 +50,56 @@ fn obj_reader_understands_common_face_forms() {
 #[test]
 fn obj_reader_names_the_bad_line() {
     let bad_number = obj::parse("v 0 0 0\nv 1 zero 0\n").unwrap_err();
-    assert_eq!(bad_number, MeshError::ObjSyntax { line: 2, message: "'zero' is not a number".into() });
+    assert_eq!(
+        bad_number,
+        MeshError::ObjSyntax {
+            line: 2,
+            message: "'zero' is not a number".into()
+        }
+    );
     let zero = obj::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n").unwrap_err();
-    assert!(matches!(zero, MeshError::ObjSyntax { line: 4, .. }), "{zero}");
+    assert!(
+        matches!(zero, MeshError::ObjSyntax { line: 4, .. }),
+        "{zero}"
+    );
     let before_first = obj::parse("v 0 0 0\nf -1 -2 -3\n").unwrap_err();
-    assert!(matches!(before_first, MeshError::ObjSyntax { line: 2, .. }), "{before_first}");
+    assert!(
+        matches!(before_first, MeshError::ObjSyntax { line: 2, .. }),
+        "{before_first}"
+    );
     let missing = obj::read(std::path::Path::new("/nonexistent/shell.obj")).unwrap_err();
     assert!(matches!(missing, MeshError::Io { .. }), "{missing}");
 }
 
 #[test]
 fn every_validation_error_names_its_culprit() {
-    assert_eq!(PolyMesh::new(vec![], vec![]).unwrap_err(), MeshError::Empty { vertices: 0, faces: 0 });
-    assert_eq!(PolyMesh::new(square(), vec![]).unwrap_err(), MeshError::Empty { vertices: 4, faces: 0 });
+    assert_eq!(
+        PolyMesh::new(vec![], vec![]).unwrap_err(),
+        MeshError::Empty {
+            vertices: 0,
+            faces: 0
+        }
+    );
+    assert_eq!(
+        PolyMesh::new(square(), vec![]).unwrap_err(),
+        MeshError::Empty {
+            vertices: 4,
+            faces: 0
+        }
+    );
 
     let mut nan = square();
     nan[2].y = f64::NAN;
-    assert_eq!(PolyMesh::new(nan, vec![vec![0, 1, 2, 3]]).unwrap_err(), MeshError::NonFiniteCoordinate { vertex: 2 });
+    assert_eq!(
+        PolyMesh::new(nan, vec![vec![0, 1, 2, 3]]).unwrap_err(),
+        MeshError::NonFiniteCoordinate { vertex: 2 }
+    );
     let mut inf = square();
     inf[3].z = f64::INFINITY;
-    assert_eq!(PolyMesh::new(inf, vec![vec![0, 1, 2, 3]]).unwrap_err(), MeshError::NonFiniteCoordinate { vertex: 3 });
+    assert_eq!(
+        PolyMesh::new(inf, vec![vec![0, 1, 2, 3]]).unwrap_err(),
+        MeshError::NonFiniteCoordinate { vertex: 3 }
+    );
 
     assert_eq!(
         PolyMesh::new(square(), vec![vec![0, 1, 2, 3], vec![0, 1]]).unwrap_err(),
@@ -68,14 +107,29 @@ fn every_validation_error_names_its_culprit() {
     );
     assert_eq!(
         PolyMesh::new(square(), vec![vec![0, 1, 9, 3]]).unwrap_err(),
-        MeshError::IndexOutOfRange { face: 0, index: 9, vertex_count: 4 }
+        MeshError::IndexOutOfRange {
+            face: 0,
+            index: 9,
+            vertex_count: 4
+        }
     );
-    assert_eq!(PolyMesh::new(square(), vec![vec![0, 1, 2, 1]]).unwrap_err(), MeshError::RepeatedIndex { face: 0, vertex: 1 });
+    assert_eq!(
+        PolyMesh::new(square(), vec![vec![0, 1, 2, 1]]).unwrap_err(),
+        MeshError::RepeatedIndex { face: 0, vertex: 1 }
+    );
 
     let mut fan = square();
     fan.push(Point3::new(0.5, -1.0, 1.0));
     let err = PolyMesh::new(fan, vec![vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]]).unwrap_err();
-    assert_eq!(err, MeshError::NonManifoldEdge { a: 0, b: 1, face_count: 3, faces: vec![0, 1, 2] });
+    assert_eq!(
+        err,
+        MeshError::NonManifoldEdge {
+            a: 0,
+            b: 1,
+            face_count: 3,
+            faces: vec![0, 1, 2]
+        }
+    );
     assert!(err.to_string().contains("edge 0-1"), "{err}");
 }
 
@@ -91,5 +145,7 @@ fn generated_shell_has_square_quads_of_the_requested_edge() {
         }
     }
     let (min, max) = shell.bounding_box();
-    assert!((max.x - min.x - 3.0).abs() < 1e-9 && min.z.abs() < 1e-9 && (max.z - 0.75).abs() < 1e-9);
+    assert!(
+        (max.x - min.x - 3.0).abs() < 1e-9 && min.z.abs() < 1e-9 && (max.z - 0.75).abs() < 1e-9
+    );
 }

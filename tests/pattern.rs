@@ -6,10 +6,15 @@ use std::time::Duration;
 
 use nalgebra::Point3;
 use tilepattern::mesh::{PolyMesh, Topology, generate};
-use tilepattern::pattern::{self, Bond, DualGraph, Formulation, Method, PatternError, PatternOptions, SolveStatus, score};
+use tilepattern::pattern::{
+    self, Bond, DualGraph, Formulation, Method, PatternError, PatternOptions, SolveStatus, score,
+};
 
 fn options(bond: Bond) -> PatternOptions {
-    PatternOptions { bond, ..PatternOptions::default() }
+    PatternOptions {
+        bond,
+        ..PatternOptions::default()
+    }
 }
 
 fn graph_of(mesh: &PolyMesh) -> DualGraph {
@@ -47,15 +52,31 @@ fn staggered_weight_decides_between_a_joint_and_two_half_tiles() {
     // Paper, Figure 5: no perfect matching of 10 x 10 avoids every continuous joint.
     let grid = generate::grid(10, 10);
     for formulation in [Formulation::Paper, Formulation::Strengthened] {
-        let heavy = PatternOptions { bond: Bond::Staggered { weight: 2.0 }, formulation, ..PatternOptions::default() };
+        let heavy = PatternOptions {
+            bond: Bond::Staggered { weight: 2.0 },
+            formulation,
+            ..PatternOptions::default()
+        };
         let found = pattern::solve(&grid, &heavy).unwrap();
-        assert_eq!((found.pairs.len(), found.continuous_joints, found.objective), (49, 0, 49.0), "{formulation:?}");
+        assert_eq!(
+            (found.pairs.len(), found.continuous_joints, found.objective),
+            (49, 0, 49.0),
+            "{formulation:?}"
+        );
         assert_eq!(found.status, SolveStatus::Optimal);
         assert_eq!(found.bound, 49.0);
 
-        let light = PatternOptions { bond: Bond::Staggered { weight: 0.5 }, formulation, ..PatternOptions::default() };
+        let light = PatternOptions {
+            bond: Bond::Staggered { weight: 0.5 },
+            formulation,
+            ..PatternOptions::default()
+        };
         let found = pattern::solve(&grid, &light).unwrap();
-        assert_eq!((found.pairs.len(), found.continuous_joints, found.objective), (50, 1, 49.5), "{formulation:?}");
+        assert_eq!(
+            (found.pairs.len(), found.continuous_joints, found.objective),
+            (50, 1, 49.5),
+            "{formulation:?}"
+        );
         assert_eq!(found.status, SolveStatus::Optimal);
     }
 }
@@ -101,7 +122,11 @@ fn joint_and_shift_relations_match_a_geometric_brute_force_on_grids() {
         let mut joints = graph.continuous_joints().to_vec();
         joints.sort_unstable();
         assert_eq!(joints, aligned, "{nx} x {ny} continuous joints");
-        assert_eq!(graph.shifted_pairs(), &shifted[..], "{nx} x {ny} shifted pairs");
+        assert_eq!(
+            graph.shifted_pairs(),
+            &shifted[..],
+            "{nx} x {ny} shifted pairs"
+        );
         // Interior vertices: (nx-1)(ny-1), each with one horizontal and one vertical joint.
         assert_eq!(graph.continuous_joints().len(), 2 * (nx - 1) * (ny - 1));
         assert_eq!(graph.regular_vertex_stars().len(), (nx - 1) * (ny - 1));
@@ -116,7 +141,10 @@ fn singular_vertices_carry_no_continuous_joint() {
         let graph = graph_of(&mesh);
         assert_eq!(graph.tiles().len(), n);
         assert!(graph.continuous_joints().is_empty(), "valence {n}");
-        assert!(graph.shifted_pairs().is_empty(), "valence {n}: only {n} faces, every pair shares one");
+        assert!(
+            graph.shifted_pairs().is_empty(),
+            "valence {n}: only {n} faces, every pair shares one"
+        );
     }
 }
 
@@ -140,10 +168,25 @@ fn solver_equals_exhaustive_search_on_tiny_meshes() {
         let tiles: Vec<[usize; 2]> = graph.tiles().iter().map(|t| t.faces).collect();
         let matchings = common::all_matchings(mesh.face_count(), &tiles);
         for bond in BONDS {
-            let best = matchings.iter().map(|m| score(&graph, m, bond).objective).fold(f64::NEG_INFINITY, f64::max);
+            let best = matchings
+                .iter()
+                .map(|m| score(&graph, m, bond).objective)
+                .fold(f64::NEG_INFINITY, f64::max);
             for formulation in [Formulation::Paper, Formulation::Strengthened] {
-                let found = pattern::solve(&mesh, &PatternOptions { bond, formulation, ..PatternOptions::default() }).unwrap();
-                assert!((found.objective - best).abs() < 1e-9, "{name} {bond:?} {formulation:?}: {} vs {best}", found.objective);
+                let found = pattern::solve(
+                    &mesh,
+                    &PatternOptions {
+                        bond,
+                        formulation,
+                        ..PatternOptions::default()
+                    },
+                )
+                .unwrap();
+                assert!(
+                    (found.objective - best).abs() < 1e-9,
+                    "{name} {bond:?} {formulation:?}: {} vs {best}",
+                    found.objective
+                );
                 assert_eq!(found.status, SolveStatus::Optimal, "{name} {bond:?}");
                 assert!(common::is_valid_matching(&mesh, &found.pairs));
             }
@@ -156,9 +199,20 @@ fn score_counts_agree_with_the_pattern_it_reports() {
     let grid = generate::grid(6, 6);
     let found = pattern::solve(&grid, &options(Bond::RunningBond { weight: 0.5 })).unwrap();
     let graph = graph_of(&grid);
-    let chosen: Vec<bool> = graph.tiles().iter().map(|t| found.pairs.contains(&t.faces)).collect();
+    let chosen: Vec<bool> = graph
+        .tiles()
+        .iter()
+        .map(|t| found.pairs.contains(&t.faces))
+        .collect();
     let s = score(&graph, &chosen, Bond::RunningBond { weight: 0.5 });
-    assert_eq!((s.tiles, s.shifted_pairs, s.continuous_joints), (found.pairs.len(), found.shifted_pairs, found.continuous_joints));
+    assert_eq!(
+        (s.tiles, s.shifted_pairs, s.continuous_joints),
+        (
+            found.pairs.len(),
+            found.shifted_pairs,
+            found.continuous_joints
+        )
+    );
     assert_eq!(found.objective, s.objective);
     assert_eq!(found.status, SolveStatus::Optimal);
     assert!(found.shifted_pairs > 0);
@@ -167,11 +221,20 @@ fn score_counts_agree_with_the_pattern_it_reports() {
 #[test]
 fn forced_pairs_are_kept_and_excluded_faces_left_out() {
     let grid = generate::grid(4, 4);
-    let opts = PatternOptions { forced_pairs: vec![[5, 6]], excluded_faces: vec![0, 15], ..options(Bond::Staggered { weight: 0.5 }) };
+    let opts = PatternOptions {
+        forced_pairs: vec![[5, 6]],
+        excluded_faces: vec![0, 15],
+        ..options(Bond::Staggered { weight: 0.5 })
+    };
     let found = pattern::solve(&grid, &opts).unwrap();
     assert!(found.pairs.contains(&[5, 6]));
     assert_eq!(found.excluded, vec![0, 15]);
-    assert!(found.pairs.iter().all(|p| !p.contains(&0) && !p.contains(&15)));
+    assert!(
+        found
+            .pairs
+            .iter()
+            .all(|p| !p.contains(&0) && !p.contains(&15))
+    );
     assert!(!found.unpaired.contains(&0));
     assert_eq!(found.pairs.len() * 2 + found.unpaired.len() + 2, 16);
 }
@@ -194,18 +257,71 @@ fn bad_options_get_specific_errors() {
     let grid = generate::grid(3, 3);
     let run = |opts: PatternOptions| pattern::solve(&grid, &opts).unwrap_err();
     let base = PatternOptions::default();
-    assert_eq!(run(PatternOptions { bond: Bond::Staggered { weight: f64::NAN }, ..base.clone() }).to_string(), "bond weight NaN is not a finite number >= 0");
-    assert!(matches!(run(PatternOptions { bond: Bond::RunningBond { weight: -1.0 }, ..base.clone() }), PatternError::InvalidWeight { .. }));
-    assert_eq!(run(PatternOptions { excluded_faces: vec![9], ..base.clone() }), PatternError::FaceOutOfRange { face: 9, face_count: 9 });
-    assert_eq!(run(PatternOptions { forced_pairs: vec![[0, 4]], ..base.clone() }), PatternError::ForcedNotAdjacent { a: 0, b: 4 });
-    assert_eq!(run(PatternOptions { forced_pairs: vec![[0, 1], [1, 2]], ..base.clone() }), PatternError::ForcedTwice { face: 1 });
     assert_eq!(
-        run(PatternOptions { forced_pairs: vec![[0, 1]], excluded_faces: vec![1], ..base.clone() }),
+        run(PatternOptions {
+            bond: Bond::Staggered { weight: f64::NAN },
+            ..base.clone()
+        })
+        .to_string(),
+        "bond weight NaN is not a finite number >= 0"
+    );
+    assert!(matches!(
+        run(PatternOptions {
+            bond: Bond::RunningBond { weight: -1.0 },
+            ..base.clone()
+        }),
+        PatternError::InvalidWeight { .. }
+    ));
+    assert_eq!(
+        run(PatternOptions {
+            excluded_faces: vec![9],
+            ..base.clone()
+        }),
+        PatternError::FaceOutOfRange {
+            face: 9,
+            face_count: 9
+        }
+    );
+    assert_eq!(
+        run(PatternOptions {
+            forced_pairs: vec![[0, 4]],
+            ..base.clone()
+        }),
+        PatternError::ForcedNotAdjacent { a: 0, b: 4 }
+    );
+    assert_eq!(
+        run(PatternOptions {
+            forced_pairs: vec![[0, 1], [1, 2]],
+            ..base.clone()
+        }),
+        PatternError::ForcedTwice { face: 1 }
+    );
+    assert_eq!(
+        run(PatternOptions {
+            forced_pairs: vec![[0, 1]],
+            excluded_faces: vec![1],
+            ..base.clone()
+        }),
         PatternError::ForcedExcluded { face: 1 }
     );
-    assert_eq!(run(PatternOptions { forced_pairs: vec![[0, 99]], ..base }), PatternError::FaceOutOfRange { face: 99, face_count: 9 });
-    assert!(matches!(PatternOptions::time_limit_from_secs(-1.0), Err(PatternError::InvalidTimeLimit { .. })));
-    assert!(matches!(PatternOptions::time_limit_from_secs(f64::NAN), Err(PatternError::InvalidTimeLimit { .. })));
+    assert_eq!(
+        run(PatternOptions {
+            forced_pairs: vec![[0, 99]],
+            ..base
+        }),
+        PatternError::FaceOutOfRange {
+            face: 99,
+            face_count: 9
+        }
+    );
+    assert!(matches!(
+        PatternOptions::time_limit_from_secs(-1.0),
+        Err(PatternError::InvalidTimeLimit { .. })
+    ));
+    assert!(matches!(
+        PatternOptions::time_limit_from_secs(f64::NAN),
+        Err(PatternError::InvalidTimeLimit { .. })
+    ));
 }
 
 #[test]
@@ -225,7 +341,14 @@ fn time_limit_returns_a_valid_unproven_pattern() {
     assert!(common::is_valid_matching(&grid, &found.pairs));
     assert!(found.bound >= found.objective && found.gap > 0.0);
 
-    let instant = pattern::solve(&grid, &PatternOptions { time_limit: Duration::ZERO, ..opts }).unwrap();
+    let instant = pattern::solve(
+        &grid,
+        &PatternOptions {
+            time_limit: Duration::ZERO,
+            ..opts
+        },
+    )
+    .unwrap();
     assert_eq!(instant.status, SolveStatus::TimeLimit);
     assert!(common::is_valid_matching(&grid, &instant.pairs) && !instant.pairs.is_empty());
     assert_eq!(instant.bound, 1800.0);
@@ -249,26 +372,51 @@ fn shared_quadriflow_meshes_get_valid_matchings() {
         eprintln!("skipped: {} not found", dir.display());
         return;
     };
-    let mut paths: Vec<_> = entries.map(|e| e.unwrap().path()).filter(|p| p.extension().is_some_and(|x| x == "obj")).collect();
+    let mut paths: Vec<_> = entries
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
     paths.sort();
     assert!(!paths.is_empty());
     for path in paths {
         let mesh = tilepattern::mesh::obj::read(&path).unwrap();
-        let opts = PatternOptions { time_limit: Duration::from_secs(3), ..PatternOptions::default() };
+        let opts = PatternOptions {
+            time_limit: Duration::from_secs(3),
+            ..PatternOptions::default()
+        };
         let found = pattern::solve(&mesh, &opts).unwrap();
-        assert!(common::is_valid_matching(&mesh, &found.pairs), "{}", path.display());
+        assert!(
+            common::is_valid_matching(&mesh, &found.pairs),
+            "{}",
+            path.display()
+        );
         assert!(found.bound >= found.objective, "{}", path.display());
-        assert_eq!(found.pairs.len() * 2 + found.unpaired.len() + found.non_quad.len(), mesh.face_count());
+        assert_eq!(
+            found.pairs.len() * 2 + found.unpaired.len() + found.non_quad.len(),
+            mesh.face_count()
+        );
     }
 }
 
 /// Mid-size meshes with singular vertices of valence 3, 5 and 6 and with boundaries.
 fn singular_meshes() -> Vec<(&'static str, PolyMesh)> {
     vec![
-        ("valence 3, 48 faces", common::subdivided(&common::polygon(3), 3)),
-        ("valence 5, 80 faces", common::subdivided(&common::polygon(5), 3)),
-        ("valence 6, 96 faces", common::subdivided(&common::polygon(6), 3)),
-        ("valence 3+5+6, 116 faces", common::subdivided(&common::mixed_polygons(), 2)),
+        (
+            "valence 3, 48 faces",
+            common::subdivided(&common::polygon(3), 3),
+        ),
+        (
+            "valence 5, 80 faces",
+            common::subdivided(&common::polygon(5), 3),
+        ),
+        (
+            "valence 6, 96 faces",
+            common::subdivided(&common::polygon(6), 3),
+        ),
+        (
+            "valence 3+5+6, 116 faces",
+            common::subdivided(&common::mixed_polygons(), 2),
+        ),
         ("ragged 12 x 12", common::ragged_grid(12)),
     ]
 }
@@ -278,15 +426,34 @@ fn the_engine_reaches_the_paper_models_proven_optimum() {
     // Wherever the paper's program on CBC proves its optimum, the default engine must give
     // the same objective (and prove it).
     for (name, mesh) in singular_meshes() {
-        for bond in [Bond::Staggered { weight: 0.5 }, Bond::Staggered { weight: 2.0 }] {
+        for bond in [
+            Bond::Staggered { weight: 0.5 },
+            Bond::Staggered { weight: 2.0 },
+        ] {
             let limit = Duration::from_secs(15);
-            let paper = PatternOptions { bond, method: Method::Mip, formulation: Formulation::Paper, time_limit: limit, ..PatternOptions::default() };
+            let paper = PatternOptions {
+                bond,
+                method: Method::Mip,
+                formulation: Formulation::Paper,
+                time_limit: limit,
+                ..PatternOptions::default()
+            };
             let reference = pattern::solve(&mesh, &paper).unwrap();
             if reference.status != SolveStatus::Optimal {
-                eprintln!("{name} {bond:?}: the paper's model did not finish in {limit:?}; nothing to compare");
+                eprintln!(
+                    "{name} {bond:?}: the paper's model did not finish in {limit:?}; nothing to compare"
+                );
                 continue;
             }
-            let engine = pattern::solve(&mesh, &PatternOptions { bond, time_limit: limit, ..PatternOptions::default() }).unwrap();
+            let engine = pattern::solve(
+                &mesh,
+                &PatternOptions {
+                    bond,
+                    time_limit: limit,
+                    ..PatternOptions::default()
+                },
+            )
+            .unwrap();
             assert!(common::is_valid_matching(&mesh, &engine.pairs), "{name}");
             assert_eq!(engine.objective, reference.objective, "{name} {bond:?}");
             assert_eq!(engine.status, SolveStatus::Optimal, "{name} {bond:?}");
@@ -299,7 +466,14 @@ fn bounds_are_never_below_a_pattern_found_and_gaps_are_honest() {
     // On a mesh too large for a quick proof, the pattern, its bound and gap must agree.
     let mesh = common::subdivided(&common::mixed_polygons(), 4);
     assert!(mesh.face_count() > 1000);
-    let found = pattern::solve(&mesh, &PatternOptions { time_limit: Duration::from_secs(3), ..PatternOptions::default() }).unwrap();
+    let found = pattern::solve(
+        &mesh,
+        &PatternOptions {
+            time_limit: Duration::from_secs(3),
+            ..PatternOptions::default()
+        },
+    )
+    .unwrap();
     assert!(common::is_valid_matching(&mesh, &found.pairs));
     assert!(found.bound >= found.objective);
     assert!((found.gap - (found.bound - found.objective) / found.bound.max(1.0)).abs() < 1e-12);

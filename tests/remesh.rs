@@ -10,11 +10,19 @@ use std::time::Duration;
 use nalgebra::Point3;
 use tilepattern::control::Control;
 use tilepattern::mesh::{PolyMesh, obj};
-use tilepattern::remesh::{BoundaryAlignment, FieldDirection, Metrics, RemeshError, RemeshOptions, metrics, remesh, remesh_with};
+use tilepattern::remesh::{
+    BoundaryAlignment, FieldDirection, Metrics, RemeshError, RemeshOptions, metrics, remesh,
+    remesh_with,
+};
 
 /// Triangulates a regular (u, v) grid of `nu x nv` cells mapped through `f`, alternating the
 /// diagonal so the mesh has no preferred direction.
-fn grid_surface(nu: usize, nv: usize, closed_u: bool, f: impl Fn(f64, f64) -> [f64; 3]) -> PolyMesh {
+fn grid_surface(
+    nu: usize,
+    nv: usize,
+    closed_u: bool,
+    f: impl Fn(f64, f64) -> [f64; 3],
+) -> PolyMesh {
     let cols = if closed_u { nu } else { nu + 1 };
     let mut positions = Vec::new();
     for j in 0..=nv {
@@ -55,7 +63,10 @@ fn cap() -> PolyMesh {
     let rim = radius * 40f64.to_radians().sin();
     grid_surface(40, 40, false, |u, v| {
         let (x, y) = (2.0 * u - 1.0, 2.0 * v - 1.0);
-        let (dx, dy) = (x * (1.0 - y * y / 2.0).sqrt(), y * (1.0 - x * x / 2.0).sqrt());
+        let (dx, dy) = (
+            x * (1.0 - y * y / 2.0).sqrt(),
+            y * (1.0 - x * x / 2.0).sqrt(),
+        );
         let (px, py) = (dx * rim, dy * rim);
         [px, py, (radius * radius - px * px - py * py).sqrt()]
     })
@@ -88,7 +99,11 @@ fn holed() -> PolyMesh {
         let inner = [0.6 * c, 0.6 * s];
         let reach = 1.5 / c.abs().max(s.abs());
         let outer = [reach * c, reach * s];
-        [inner[0] + (outer[0] - inner[0]) * v, inner[1] + (outer[1] - inner[1]) * v, 0.0]
+        [
+            inner[0] + (outer[0] - inner[0]) * v,
+            inner[1] + (outer[1] - inner[1]) * v,
+            0.0,
+        ]
     })
 }
 
@@ -97,7 +112,8 @@ fn holed() -> PolyMesh {
 fn acute_hypar() -> PolyMesh {
     let corners = [[0.0, 0.0], [3.0, 0.0], [3.2, 1.6], [0.9, 0.35]];
     grid_surface(48, 24, false, |u, v| {
-        let lerp = |a: [f64; 2], b: [f64; 2], s: f64| [a[0] + (b[0] - a[0]) * s, a[1] + (b[1] - a[1]) * s];
+        let lerp =
+            |a: [f64; 2], b: [f64; 2], s: f64| [a[0] + (b[0] - a[0]) * s, a[1] + (b[1] - a[1]) * s];
         let bottom = lerp(corners[0], corners[1], u);
         let top = lerp(corners[3], corners[2], u);
         let [x, y] = lerp(bottom, top, v);
@@ -119,7 +135,11 @@ fn comb_patch() -> PolyMesh {
     for i in 1..6 {
         let (a, b) = (positions[i], positions[i + 1]);
         let lift = if i % 2 == 0 { 0.12 } else { -0.12 };
-        positions.push(Point3::new(0.5 * (a.x + b.x) - 0.3 + 0.12 * (i - 1) as f64, -0.6, a.z + lift));
+        positions.push(Point3::new(
+            0.5 * (a.x + b.x) - 0.3 + 0.12 * (i - 1) as f64,
+            -0.6,
+            a.z + lift,
+        ));
         // The boundary edge i -> i+1 has the patch on its left; the tooth goes on its right.
         faces.push(vec![i + 1, i, positions.len() - 1]);
     }
@@ -132,7 +152,11 @@ fn comb_patch() -> PolyMesh {
 fn folded_corner() -> PolyMesh {
     grid_surface(36, 30, false, |u, v| {
         let (x, y) = (3.0 * u, 2.5 * v);
-        if y < 0.45 && x < 1.2 { [x, 0.45, 0.45 - y] } else { [x, y, 0.0] }
+        if y < 0.45 && x < 1.2 {
+            [x, 0.45, 0.45 - y]
+        } else {
+            [x, y, 0.0]
+        }
     })
 }
 
@@ -168,7 +192,10 @@ fn vertex_manifold(mesh: &PolyMesh) -> bool {
 }
 
 fn options(t: f64) -> RemeshOptions {
-    RemeshOptions { target_edge: t, ..RemeshOptions::default() }
+    RemeshOptions {
+        target_edge: t,
+        ..RemeshOptions::default()
+    }
 }
 
 /// The thresholds every generated surface must meet at its target edge.
@@ -176,14 +203,45 @@ fn check(name: &str, m: &Metrics, max_irregular: usize) {
     println!("{name}: {m:?}");
     assert!(m.pure_quad, "{name}: not pure quad");
     assert!(m.faces > 50, "{name}: only {} faces", m.faces);
-    assert!(m.interior_irregular_vertices <= max_irregular, "{name}: {} irregular vertices", m.interior_irregular_vertices);
-    assert_eq!(m.boundary_vertices_off_input, 0, "{name}: boundary vertices off the input boundary");
-    assert!((m.mean_edge_ratio - 1.0).abs() <= 0.08, "{name}: mean edge ratio {}", m.mean_edge_ratio);
-    assert!(m.edges_within_20pct >= 0.8, "{name}: edges within 20%: {}", m.edges_within_20pct);
-    assert!(m.faces_area_within_20pct >= 0.7, "{name}: areas within 20%: {}", m.faces_area_within_20pct);
-    assert!(m.p95_corner_angle_deviation_deg <= 20.0, "{name}: p95 angle deviation {}", m.p95_corner_angle_deviation_deg);
-    assert!(m.max_distance_to_input_ratio <= 0.1, "{name}: max distance {}", m.max_distance_to_input_ratio);
-    assert!(m.area_covered_ratio >= 0.98, "{name}: area covered {}", m.area_covered_ratio);
+    assert!(
+        m.interior_irregular_vertices <= max_irregular,
+        "{name}: {} irregular vertices",
+        m.interior_irregular_vertices
+    );
+    assert_eq!(
+        m.boundary_vertices_off_input, 0,
+        "{name}: boundary vertices off the input boundary"
+    );
+    assert!(
+        (m.mean_edge_ratio - 1.0).abs() <= 0.08,
+        "{name}: mean edge ratio {}",
+        m.mean_edge_ratio
+    );
+    assert!(
+        m.edges_within_20pct >= 0.8,
+        "{name}: edges within 20%: {}",
+        m.edges_within_20pct
+    );
+    assert!(
+        m.faces_area_within_20pct >= 0.7,
+        "{name}: areas within 20%: {}",
+        m.faces_area_within_20pct
+    );
+    assert!(
+        m.p95_corner_angle_deviation_deg <= 20.0,
+        "{name}: p95 angle deviation {}",
+        m.p95_corner_angle_deviation_deg
+    );
+    assert!(
+        m.max_distance_to_input_ratio <= 0.1,
+        "{name}: max distance {}",
+        m.max_distance_to_input_ratio
+    );
+    assert!(
+        m.area_covered_ratio >= 0.98,
+        "{name}: area covered {}",
+        m.area_covered_ratio
+    );
 }
 
 #[test]
@@ -194,7 +252,10 @@ fn hypar_patch_becomes_regular_quads() {
     // The public metrics function agrees with what remesh reported.
     let again = metrics(&input, &result.quads, 0.15);
     assert_eq!(again.faces, result.metrics.faces);
-    assert_eq!(again.interior_irregular_vertices, result.metrics.interior_irregular_vertices);
+    assert_eq!(
+        again.interior_irregular_vertices,
+        result.metrics.interior_irregular_vertices
+    );
 }
 
 #[test]
@@ -211,9 +272,21 @@ fn a_bend_gets_rows_that_end_inside_rather_than_stretched_quads() {
     let result = remesh(&bent_vault(), &options(0.12)).expect("remesh");
     let m = &result.metrics;
     check("bent vault", m, 40);
-    assert!(m.edges_within_20pct >= 0.85, "edges within 20%: {}", m.edges_within_20pct);
-    assert!(m.faces_area_within_20pct >= 0.75, "areas within 20%: {}", m.faces_area_within_20pct);
-    assert!(m.p95_corner_angle_deviation_deg <= 15.0, "p95 angle deviation {}", m.p95_corner_angle_deviation_deg);
+    assert!(
+        m.edges_within_20pct >= 0.85,
+        "edges within 20%: {}",
+        m.edges_within_20pct
+    );
+    assert!(
+        m.faces_area_within_20pct >= 0.75,
+        "areas within 20%: {}",
+        m.faces_area_within_20pct
+    );
+    assert!(
+        m.p95_corner_angle_deviation_deg <= 15.0,
+        "p95 angle deviation {}",
+        m.p95_corner_angle_deviation_deg
+    );
 }
 
 #[test]
@@ -231,8 +304,15 @@ fn hole_keeps_its_boundary() {
 #[test]
 fn other_field_directions_still_give_pure_quads() {
     let input = vault();
-    for direction in [FieldDirection::Vector([0.0, 1.0, 0.0]), FieldDirection::Angle(45.0)] {
-        let o = RemeshOptions { target_edge: 0.15, direction, ..RemeshOptions::default() };
+    for direction in [
+        FieldDirection::Vector([0.0, 1.0, 0.0]),
+        FieldDirection::Angle(45.0),
+    ] {
+        let o = RemeshOptions {
+            target_edge: 0.15,
+            direction,
+            ..RemeshOptions::default()
+        };
         let result = remesh(&input, &o).expect("remesh");
         let m = &result.metrics;
         println!("{direction:?}: {m:?}");
@@ -247,15 +327,31 @@ fn every_boundary_mode_gives_a_sound_mesh() {
     // Always: rows follow the round rim too, which costs cones and dislocations but must
     // stay a clean cover; Never: quads are trimmed at the square's edges.
     for boundary in [BoundaryAlignment::Always, BoundaryAlignment::Never] {
-        let o = RemeshOptions { target_edge: 0.15, boundary, ..RemeshOptions::default() };
+        let o = RemeshOptions {
+            target_edge: 0.15,
+            boundary,
+            ..RemeshOptions::default()
+        };
         let result = remesh(&cap(), &o).expect("remesh");
         let m = &result.metrics;
         println!("{boundary:?}: {m:?}");
         assert!(m.pure_quad);
         assert_eq!(m.boundary_vertices_off_input, 0);
-        assert!((m.mean_edge_ratio - 1.0).abs() <= 0.2, "{boundary:?}: mean edge {}", m.mean_edge_ratio);
-        assert!(m.max_distance_to_input_ratio <= 0.1, "{boundary:?}: distance {}", m.max_distance_to_input_ratio);
-        assert!(m.area_covered_ratio >= 0.98, "{boundary:?}: covered {}", m.area_covered_ratio);
+        assert!(
+            (m.mean_edge_ratio - 1.0).abs() <= 0.2,
+            "{boundary:?}: mean edge {}",
+            m.mean_edge_ratio
+        );
+        assert!(
+            m.max_distance_to_input_ratio <= 0.1,
+            "{boundary:?}: distance {}",
+            m.max_distance_to_input_ratio
+        );
+        assert!(
+            m.area_covered_ratio >= 0.98,
+            "{boundary:?}: covered {}",
+            m.area_covered_ratio
+        );
     }
 }
 
@@ -264,11 +360,30 @@ fn check_fit(name: &str, mesh: &PolyMesh, m: &Metrics, max_irregular: usize, min
     println!("{name}: {m:?}");
     assert!(m.pure_quad, "{name}: not pure quad");
     assert!(vertex_manifold(mesh), "{name}: a vertex is pinched");
-    assert_eq!(m.boundary_vertices_off_input, 0, "{name}: boundary vertices off the input boundary");
-    assert!(m.max_distance_to_input_ratio <= 0.1, "{name}: max distance {}", m.max_distance_to_input_ratio);
-    assert!(m.area_covered_ratio >= min_covered, "{name}: area covered {}", m.area_covered_ratio);
-    assert!(m.interior_irregular_vertices <= max_irregular, "{name}: {} irregular vertices", m.interior_irregular_vertices);
-    assert!((m.mean_edge_ratio - 1.0).abs() <= 0.08, "{name}: mean edge ratio {}", m.mean_edge_ratio);
+    assert_eq!(
+        m.boundary_vertices_off_input, 0,
+        "{name}: boundary vertices off the input boundary"
+    );
+    assert!(
+        m.max_distance_to_input_ratio <= 0.1,
+        "{name}: max distance {}",
+        m.max_distance_to_input_ratio
+    );
+    assert!(
+        m.area_covered_ratio >= min_covered,
+        "{name}: area covered {}",
+        m.area_covered_ratio
+    );
+    assert!(
+        m.interior_irregular_vertices <= max_irregular,
+        "{name}: {} irregular vertices",
+        m.interior_irregular_vertices
+    );
+    assert!(
+        (m.mean_edge_ratio - 1.0).abs() <= 0.08,
+        "{name}: mean edge ratio {}",
+        m.mean_edge_ratio
+    );
 }
 
 #[test]
@@ -278,7 +393,11 @@ fn acute_corner_stays_on_the_surface() {
     let input = acute_hypar();
     let result = remesh(&input, &options(0.15)).expect("remesh");
     check_fit("acute hypar", &result.quads, &result.metrics, 6, 0.99);
-    assert!(result.metrics.edges_within_20pct >= 0.55, "acute hypar: edges within 20%: {}", result.metrics.edges_within_20pct);
+    assert!(
+        result.metrics.edges_within_20pct >= 0.55,
+        "acute hypar: edges within 20%: {}",
+        result.metrics.edges_within_20pct
+    );
 }
 
 #[test]
@@ -287,8 +406,16 @@ fn needle_teeth_are_not_bridged() {
     let result = remesh(&input, &options(0.15)).expect("remesh");
     // The teeth themselves (2 % of the area) are narrower than a quad.
     check_fit("comb", &result.quads, &result.metrics, 4, 0.975);
-    assert!(result.metrics.edges_within_20pct >= 0.9, "comb: edges within 20%: {}", result.metrics.edges_within_20pct);
-    assert!(result.metrics.faces_area_within_20pct >= 0.85, "comb: areas within 20%: {}", result.metrics.faces_area_within_20pct);
+    assert!(
+        result.metrics.edges_within_20pct >= 0.9,
+        "comb: edges within 20%: {}",
+        result.metrics.edges_within_20pct
+    );
+    assert!(
+        result.metrics.faces_area_within_20pct >= 0.85,
+        "comb: areas within 20%: {}",
+        result.metrics.faces_area_within_20pct
+    );
 }
 
 #[test]
@@ -296,14 +423,24 @@ fn folded_corner_is_followed_not_spanned() {
     let input = folded_corner();
     let result = remesh(&input, &options(0.15)).expect("remesh");
     check_fit("folded corner", &result.quads, &result.metrics, 8, 0.99);
-    assert!(result.metrics.edges_within_20pct >= 0.85, "folded: edges within 20%: {}", result.metrics.edges_within_20pct);
+    assert!(
+        result.metrics.edges_within_20pct >= 0.85,
+        "folded: edges within 20%: {}",
+        result.metrics.edges_within_20pct
+    );
 }
 
 #[test]
 fn a_hole_leaves_every_vertex_manifold() {
     let result = remesh(&holed(), &options(0.15)).expect("remesh");
     assert!(vertex_manifold(&result.quads));
-    assert!(result.quads.faces().iter().enumerate().all(|(f, _)| result.quads.face_area_vector(f).norm() > 1e-6));
+    assert!(
+        result.quads.faces().iter().enumerate().all(|(f, _)| result
+            .quads
+            .face_area_vector(f)
+            .norm()
+            > 1e-6)
+    );
 }
 
 #[test]
@@ -314,12 +451,19 @@ fn progress_is_reported_and_cancel_stops_the_stage() {
         seen.push(fraction);
         true
     };
-    let result = remesh_with(&input, &options(0.15), &mut Control::with_progress(&mut record));
+    let result = remesh_with(
+        &input,
+        &options(0.15),
+        &mut Control::with_progress(&mut record),
+    );
     assert!(result.is_ok());
     assert!(seen.len() >= 5, "{seen:?}");
     assert_eq!(seen.first(), Some(&0.0));
     assert_eq!(seen.last(), Some(&1.0));
-    assert!(seen.windows(2).all(|w| w[0] <= w[1]), "progress went backwards: {seen:?}");
+    assert!(
+        seen.windows(2).all(|w| w[0] <= w[1]),
+        "progress went backwards: {seen:?}"
+    );
     assert!(seen.iter().any(|&f| f > 0.0 && f < 1.0));
 
     // Cancelled in every part of the stage: an error, and no callback after the cancel.
@@ -333,7 +477,12 @@ fn progress_is_reported_and_cancel_stops_the_stage() {
             stopped = fraction >= stop_at;
             !stopped
         };
-        let error = remesh_with(&input, &options(0.15), &mut Control::with_progress(&mut cancel)).err();
+        let error = remesh_with(
+            &input,
+            &options(0.15),
+            &mut Control::with_progress(&mut cancel),
+        )
+        .err();
         assert_eq!(error, Some(RemeshError::Cancelled), "stop at {stop_at}");
         assert_eq!(calls_after, 0);
     }
@@ -342,31 +491,63 @@ fn progress_is_reported_and_cancel_stops_the_stage() {
 #[test]
 fn time_limit_without_a_mesh_is_an_error() {
     let input = hypar();
-    let none = RemeshOptions { time_limit: Duration::ZERO, ..options(0.15) };
-    assert!(matches!(remesh(&input, &none), Err(RemeshError::TimeLimit { .. })));
+    let none = RemeshOptions {
+        time_limit: Duration::ZERO,
+        ..options(0.15)
+    };
+    assert!(matches!(
+        remesh(&input, &none),
+        Err(RemeshError::TimeLimit { .. })
+    ));
     // A generous limit changes nothing.
-    let generous = RemeshOptions { time_limit: Duration::from_secs(600), ..options(0.15) };
-    let (a, b) = (remesh(&input, &generous).expect("remesh"), remesh(&input, &options(0.15)).expect("remesh"));
+    let generous = RemeshOptions {
+        time_limit: Duration::from_secs(600),
+        ..options(0.15)
+    };
+    let (a, b) = (
+        remesh(&input, &generous).expect("remesh"),
+        remesh(&input, &options(0.15)).expect("remesh"),
+    );
     assert_eq!(obj::to_string(&a.quads), obj::to_string(&b.quads));
-    assert!(matches!(RemeshOptions::time_limit_from_secs(-1.0), Err(RemeshError::BadTimeLimit(_))));
-    assert!(matches!(RemeshOptions::time_limit_from_secs(f64::NAN), Err(RemeshError::BadTimeLimit(_))));
+    assert!(matches!(
+        RemeshOptions::time_limit_from_secs(-1.0),
+        Err(RemeshError::BadTimeLimit(_))
+    ));
+    assert!(matches!(
+        RemeshOptions::time_limit_from_secs(f64::NAN),
+        Err(RemeshError::BadTimeLimit(_))
+    ));
 }
 
 #[test]
 fn pinched_input_is_refused() {
     // Two triangles meeting at one vertex: the surface is not a manifold there.
-    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]
-        .map(|p| Point3::new(p[0], p[1], p[2]))
-        .to_vec();
-    let input = PolyMesh::new(positions, vec![vec![0, 1, 2], vec![0, 3, 4]]).expect("valid polygon soup");
+    let positions = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+    ]
+    .map(|p| Point3::new(p[0], p[1], p[2]))
+    .to_vec();
+    let input =
+        PolyMesh::new(positions, vec![vec![0, 1, 2], vec![0, 3, 4]]).expect("valid polygon soup");
     let error = remesh(&input, &options(0.1)).err();
-    assert!(matches!(error, Some(RemeshError::UnsupportedInput(_))), "{error:?}");
+    assert!(
+        matches!(error, Some(RemeshError::UnsupportedInput(_))),
+        "{error:?}"
+    );
 }
 
 #[test]
 fn shapeup_stays_on_the_surface() {
     let input = cap();
-    let o = RemeshOptions { target_edge: 0.15, shapeup: true, ..RemeshOptions::default() };
+    let o = RemeshOptions {
+        target_edge: 0.15,
+        shapeup: true,
+        ..RemeshOptions::default()
+    };
     let result = remesh(&input, &o).expect("remesh");
     check("cap+shapeup", &result.metrics, 16);
 }
@@ -386,17 +567,51 @@ fn runs_are_byte_identical() {
 fn bad_options_are_refused() {
     let input = hypar();
     for t in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        assert!(matches!(remesh(&input, &options(t)), Err(RemeshError::BadTargetEdge(_))), "t = {t}");
+        assert!(
+            matches!(
+                remesh(&input, &options(t)),
+                Err(RemeshError::BadTargetEdge(_))
+            ),
+            "t = {t}"
+        );
     }
-    assert!(matches!(remesh(&input, &options(100.0)), Err(RemeshError::TargetEdgeTooLarge { .. })));
-    assert!(matches!(remesh(&input, &options(1e-5)), Err(RemeshError::TargetEdgeTooSmall { .. })));
-    let zero = RemeshOptions { direction: FieldDirection::Vector([0.0; 3]), ..options(0.15) };
-    assert!(matches!(remesh(&input, &zero), Err(RemeshError::BadDirection(_))));
-    let nan = RemeshOptions { direction: FieldDirection::Angle(f64::NAN), ..options(0.15) };
-    assert!(matches!(remesh(&input, &nan), Err(RemeshError::BadAngle(_))));
-    let tolerance = RemeshOptions { shapeup: true, shapeup_tolerance: -1.0, ..options(0.15) };
-    assert!(matches!(remesh(&input, &tolerance), Err(RemeshError::BadShapeupTolerance(_))));
+    assert!(matches!(
+        remesh(&input, &options(100.0)),
+        Err(RemeshError::TargetEdgeTooLarge { .. })
+    ));
+    assert!(matches!(
+        remesh(&input, &options(1e-5)),
+        Err(RemeshError::TargetEdgeTooSmall { .. })
+    ));
+    let zero = RemeshOptions {
+        direction: FieldDirection::Vector([0.0; 3]),
+        ..options(0.15)
+    };
+    assert!(matches!(
+        remesh(&input, &zero),
+        Err(RemeshError::BadDirection(_))
+    ));
+    let nan = RemeshOptions {
+        direction: FieldDirection::Angle(f64::NAN),
+        ..options(0.15)
+    };
+    assert!(matches!(
+        remesh(&input, &nan),
+        Err(RemeshError::BadAngle(_))
+    ));
+    let tolerance = RemeshOptions {
+        shapeup: true,
+        shapeup_tolerance: -1.0,
+        ..options(0.15)
+    };
+    assert!(matches!(
+        remesh(&input, &tolerance),
+        Err(RemeshError::BadShapeupTolerance(_))
+    ));
     // Messages name the problem.
-    let message = remesh(&input, &options(-1.0)).err().map(|e| e.to_string()).unwrap_or_default();
+    let message = remesh(&input, &options(-1.0))
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
     assert!(message.contains("-1"), "{message}");
 }

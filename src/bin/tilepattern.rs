@@ -7,16 +7,22 @@ use std::process::ExitCode;
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use serde::Serialize;
+use tilepattern::control::Control;
 use tilepattern::mesh::{self, MeshError, PolyMesh};
 use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, PatternOptions};
-use tilepattern::control::Control;
 use tilepattern::pipeline::{self, Tiling};
 use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
 use tilepattern::report::{JointSummary, Report, svg};
-use tilepattern::tiles::{self, CutGroup, FinishOptions, FitOptions, Sequence, SequenceOptions, Tile, TileSpec};
+use tilepattern::tiles::{
+    self, CutGroup, FinishOptions, FitOptions, Sequence, SequenceOptions, Tile, TileSpec,
+};
 
 #[derive(Parser)]
-#[command(name = "tilepattern", version, about = "Tile laying patterns for free-form shells that need little cutting")]
+#[command(
+    name = "tilepattern",
+    version,
+    about = "Tile laying patterns for free-form shells that need little cutting"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -145,7 +151,12 @@ impl FieldArgs {
             (None, Some(a)) => FieldDirection::Angle(a),
             (None, None) => FieldDirection::Curvature,
         };
-        RemeshOptions { target_edge, direction, shapeup: self.shapeup, ..RemeshOptions::default() }
+        RemeshOptions {
+            target_edge,
+            direction,
+            shapeup: self.shapeup,
+            ..RemeshOptions::default()
+        }
     }
 }
 
@@ -270,24 +281,45 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Match { quads, pattern, up, json } => {
+        Command::Match {
+            quads,
+            pattern,
+            up,
+            json,
+        } => {
             let mesh = read_mesh(&quads)?;
             let found = pattern::solve(&mesh, &pattern.options(false, up)?)?;
             eprintln!("{}", pattern_summary(&found));
             write_json(json.as_deref(), &found)
         }
-        Command::Tiles { quads, pairs, tile, output, json, svg, surface, fabrication, pattern } => {
+        Command::Tiles {
+            quads,
+            pairs,
+            tile,
+            output,
+            json,
+            svg,
+            surface,
+            fabrication,
+            pattern,
+        } => {
             let mesh = read_mesh(&quads)?;
             let surface = surface.map(|path| read_mesh(&path)).transpose()?;
-            let text = std::fs::read_to_string(&pairs).with_context(|| format!("cannot read {}", pairs.display()))?;
-            let found: Pattern = serde_json::from_str(&text)
-                .with_context(|| format!("{} is not the JSON written by `tilepattern match`", pairs.display()))?;
+            let text = std::fs::read_to_string(&pairs)
+                .with_context(|| format!("cannot read {}", pairs.display()))?;
+            let found: Pattern = serde_json::from_str(&text).with_context(|| {
+                format!(
+                    "{} is not the JSON written by `tilepattern match`",
+                    pairs.display()
+                )
+            })?;
             let (spec, units) = tile.spec(&mesh);
             let mut finish = tile.finish(&spec, units);
             if let Some(fit) = finish.fit.as_mut() {
                 fit.bond = pattern.bond(pattern::DEFAULT_WEIGHT);
             }
-            let tiling = pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &finish)?;
+            let tiling =
+                pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &finish)?;
             write_text(&output, &tiles::to_obj(&tiling.tiles))?;
             if let Some(svg_path) = svg {
                 write_text(&svg_path, &svg::pattern_svg(&mesh, &tiling.tiles))?;
@@ -296,30 +328,77 @@ fn run(cli: Cli) -> Result<()> {
                 write_fabrication(&dir, &mesh, &tiling, units.per_mm())?;
             }
             eprintln!("{}", tiling_summary(&tiling, units));
-            json.map_or(Ok(()), |path| write_json(Some(&path), &ReportFile { units: units.name(), remesh: None, report: &tiling.report }))
+            json.map_or(Ok(()), |path| {
+                write_json(
+                    Some(&path),
+                    &ReportFile {
+                        units: units.name(),
+                        remesh: None,
+                        report: &tiling.report,
+                    },
+                )
+            })
         }
-        Command::Remesh { input, edge, field, output, json, time_limit } => {
+        Command::Remesh {
+            input,
+            edge,
+            field,
+            output,
+            json,
+            time_limit,
+        } => {
             let surface = read_mesh(&input)?;
-            let options = RemeshOptions { time_limit: RemeshOptions::time_limit_from_secs(time_limit)?, ..field.options(edge) };
+            let options = RemeshOptions {
+                time_limit: RemeshOptions::time_limit_from_secs(time_limit)?,
+                ..field.options(edge)
+            };
             let remeshed = tilepattern::remesh::remesh(&surface, &options)?;
             mesh::obj::write(&remeshed.quads, &output)?;
             eprintln!("{}", remesh_summary(&remeshed.metrics));
             json.map_or(Ok(()), |path| write_json(Some(&path), &remeshed.metrics))
         }
-        Command::Run { input, tile, field, pattern, remesh_time_limit, out } => {
+        Command::Run {
+            input,
+            tile,
+            field,
+            pattern,
+            remesh_time_limit,
+            out,
+        } => {
             let surface = read_mesh(&input)?;
             let (spec, units) = tile.spec(&surface);
             let finish = tile.finish(&spec, units);
             let options = pattern.options(true, tile.up)?;
             let edge = spec.quad_edge(options.courses != Courses::Free);
-            let remesh = RemeshOptions { time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?, ..field.options(edge) };
-            let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &options, &spec, &finish, &mut Control::none())?;
-            write_outputs(&out, &remeshed.quads, &tiling, units, Some(&remeshed.metrics))?;
+            let remesh = RemeshOptions {
+                time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?,
+                ..field.options(edge)
+            };
+            let (remeshed, tiling) = pipeline::tile_surface(
+                &surface,
+                &remesh,
+                &options,
+                &spec,
+                &finish,
+                &mut Control::none(),
+            )?;
+            write_outputs(
+                &out,
+                &remeshed.quads,
+                &tiling,
+                units,
+                Some(&remeshed.metrics),
+            )?;
             println!("{}", remesh_summary(&remeshed.metrics));
             println!("{}", tiling_summary(&tiling, units));
             Ok(())
         }
-        Command::Demo { out, span, pattern, no_fit } => demo(&out, span, &pattern, no_fit),
+        Command::Demo {
+            out,
+            span,
+            pattern,
+            no_fit,
+        } => demo(&out, span, &pattern, no_fit),
     }
 }
 
@@ -327,29 +406,78 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
     if !(span.is_finite() && (0.5..=100.0).contains(&span)) {
         bail!("--span {span} m: give a shell size between 0.5 and 100 metres");
     }
-    let spec = TileSpec { length: 0.280, width: 0.140, thickness: 0.015, joint: 0.010 };
+    let spec = TileSpec {
+        length: 0.280,
+        width: 0.140,
+        thickness: 0.015,
+        joint: 0.010,
+    };
     // The surface a designer would export: the shell as a fine triangle mesh.
-    let surface = mesh::generate::triangulate_quads(&mesh::generate::corner_supported_shell(span, spec.target_edge() / 3.0));
+    let surface = mesh::generate::triangulate_quads(&mesh::generate::corner_supported_shell(
+        span,
+        spec.target_edge() / 3.0,
+    ));
     let options = args.options(true, [0.0, 0.0, 1.0])?;
-    let remesh = RemeshOptions { target_edge: spec.quad_edge(options.courses != Courses::Free), ..RemeshOptions::default() };
-    let finish = FinishOptions { fit: FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit), ..FinishOptions::for_spec(&spec) };
-    let (remeshed, tiling) = pipeline::tile_surface(&surface, &remesh, &options, &spec, &finish, &mut Control::none())?;
-    write_outputs(out, &remeshed.quads, &tiling, Units::M, Some(&remeshed.metrics))?;
-    println!("demo: {span} m corner-supported shell, {} triangles", surface.face_count());
+    let remesh = RemeshOptions {
+        target_edge: spec.quad_edge(options.courses != Courses::Free),
+        ..RemeshOptions::default()
+    };
+    let finish = FinishOptions {
+        fit: FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit),
+        ..FinishOptions::for_spec(&spec)
+    };
+    let (remeshed, tiling) = pipeline::tile_surface(
+        &surface,
+        &remesh,
+        &options,
+        &spec,
+        &finish,
+        &mut Control::none(),
+    )?;
+    write_outputs(
+        out,
+        &remeshed.quads,
+        &tiling,
+        Units::M,
+        Some(&remeshed.metrics),
+    )?;
+    println!(
+        "demo: {span} m corner-supported shell, {} triangles",
+        surface.face_count()
+    );
     println!("{}", remesh_summary(&remeshed.metrics));
     println!("{}", tiling_summary(&tiling, Units::M));
-    println!("wrote {}/{{quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv, cutlist.json, sequence.json, gaps.svg}}", out.display());
+    println!(
+        "wrote {}/{{quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv, cutlist.json, sequence.json, gaps.svg}}",
+        out.display()
+    );
     Ok(())
 }
 
 /// Writes quads.obj, tiles.obj, pattern.svg, report.json and the fabrication output into
 /// `out`.
-fn write_outputs(out: &Path, quads: &PolyMesh, tiling: &Tiling, units: Units, remesh: Option<&Metrics>) -> Result<()> {
+fn write_outputs(
+    out: &Path,
+    quads: &PolyMesh,
+    tiling: &Tiling,
+    units: Units,
+    remesh: Option<&Metrics>,
+) -> Result<()> {
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     mesh::obj::write(quads, &out.join("quads.obj"))?;
     write_text(&out.join("tiles.obj"), &tiles::to_obj(&tiling.tiles))?;
-    write_text(&out.join("pattern.svg"), &svg::pattern_svg(quads, &tiling.tiles))?;
-    write_json(Some(&out.join("report.json")), &ReportFile { units: units.name(), remesh, report: &tiling.report })?;
+    write_text(
+        &out.join("pattern.svg"),
+        &svg::pattern_svg(quads, &tiling.tiles),
+    )?;
+    write_json(
+        Some(&out.join("report.json")),
+        &ReportFile {
+            units: units.name(),
+            remesh,
+            report: &tiling.report,
+        },
+    )?;
     write_fabrication(out, quads, tiling, units.per_mm())
 }
 
@@ -360,10 +488,30 @@ fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: 
     write_json(Some(&dir.join("cutlist.json")), &tiling.cut_list)?;
     let mut order: Vec<&Tile> = tiling.tiles.iter().collect();
     order.sort_by_key(|t| t.step);
-    let steps: Vec<SequenceStep> = order.iter().map(|t| SequenceStep { step: t.step, label: &t.label, faces: &t.faces, origin: t.frame.origin.into() }).collect();
+    let steps: Vec<SequenceStep> = order
+        .iter()
+        .map(|t| SequenceStep {
+            step: t.step,
+            label: &t.label,
+            faces: &t.faces,
+            origin: t.frame.origin.into(),
+        })
+        .collect();
     let summary = tiling.report.sequence.as_ref();
-    write_json(Some(&dir.join("sequence.json")), &SequenceFile { summary, steps })?;
-    write_text(&dir.join("gaps.svg"), &svg::gaps_svg(quads, &tiling.tiles, &tiling.joints, tiling.report.tile.joint, millimetre))
+    write_json(
+        Some(&dir.join("sequence.json")),
+        &SequenceFile { summary, steps },
+    )?;
+    write_text(
+        &dir.join("gaps.svg"),
+        &svg::gaps_svg(
+            quads,
+            &tiling.tiles,
+            &tiling.joints,
+            tiling.report.tile.joint,
+            millimetre,
+        ),
+    )
 }
 
 /// `cutlist.csv`: one row per cut shape; outlines (boundary shapes) as loops separated by
@@ -371,9 +519,30 @@ fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: 
 fn cutlist_csv(groups: &[CutGroup]) -> String {
     let mut csv = String::from("label,kind,count,blank_length,blank_width,area,outline\n");
     for g in groups {
-        let outline: Vec<String> = g.outline.iter().map(|l| l.iter().map(|p| format!("{:.6} {:.6}", p[0], p[1])).collect::<Vec<_>>().join(";")).collect();
-        let kind = serde_json::to_value(g.kind).ok().and_then(|v| v.as_str().map(str::to_owned)).unwrap_or_default();
-        csv.push_str(&format!("{},{},{},{},{},{:.6},{}\n", g.label, kind, g.count, g.blank[0], g.blank[1], g.area, outline.join("|")));
+        let outline: Vec<String> = g
+            .outline
+            .iter()
+            .map(|l| {
+                l.iter()
+                    .map(|p| format!("{:.6} {:.6}", p[0], p[1]))
+                    .collect::<Vec<_>>()
+                    .join(";")
+            })
+            .collect();
+        let kind = serde_json::to_value(g.kind)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_owned))
+            .unwrap_or_default();
+        csv.push_str(&format!(
+            "{},{},{},{},{},{:.6},{}\n",
+            g.label,
+            kind,
+            g.count,
+            g.blank[0],
+            g.blank[1],
+            g.area,
+            outline.join("|")
+        ));
     }
     csv
 }
@@ -419,7 +588,9 @@ impl PatternArgs {
     /// The options, with tiles in level courses (with respect to `up`) unless `--courses`
     /// says otherwise and `level_by_default` is false.
     fn options(&self, level_by_default: bool, up: [f64; 3]) -> Result<PatternOptions> {
-        let level = self.courses.map_or(level_by_default, |c| c == CoursesArg::Level);
+        let level = self
+            .courses
+            .map_or(level_by_default, |c| c == CoursesArg::Level);
         let bond = self.pattern.bond(self.weight);
         let formulation = match self.formulation {
             FormulationArg::Paper => Formulation::Paper,
@@ -435,7 +606,11 @@ impl PatternArgs {
                 MethodArg::Auto => Method::Auto,
                 MethodArg::Mip => Method::Mip,
             },
-            courses: if level { Courses::Level { up } } else { Courses::Free },
+            courses: if level {
+                Courses::Level { up }
+            } else {
+                Courses::Free
+            },
         })
     }
 }
@@ -447,14 +622,22 @@ impl TileArgs {
         let auto = FinishOptions::for_spec(spec);
         FinishOptions {
             tolerance: self.cut_tolerance.map_or(auto.tolerance, |v| v * scale),
-            min_kept_width: self.min_kept_width.map_or(auto.min_kept_width, |v| v * scale),
+            min_kept_width: self
+                .min_kept_width
+                .map_or(auto.min_kept_width, |v| v * scale),
             sequence: SequenceOptions {
                 up: nalgebra::Vector3::from(self.up),
-                support_band: self.support_band.map_or(auto.sequence.support_band, |v| v * scale),
+                support_band: self
+                    .support_band
+                    .map_or(auto.sequence.support_band, |v| v * scale),
             },
             fit: auto.fit.filter(|_| !self.no_fit).map(|fit| FitOptions {
-                overlap_tolerance: self.overlap_tolerance.map_or(fit.overlap_tolerance, |v| v * scale),
-                bond_tolerance: self.bond_tolerance.map_or(fit.bond_tolerance, |v| v * scale),
+                overlap_tolerance: self
+                    .overlap_tolerance
+                    .map_or(fit.overlap_tolerance, |v| v * scale),
+                bond_tolerance: self
+                    .bond_tolerance
+                    .map_or(fit.bond_tolerance, |v| v * scale),
                 time_limit: self.fit_time_limit,
                 ..fit
             }),
@@ -467,13 +650,25 @@ impl TileArgs {
         let units = match self.units {
             Units::Auto => {
                 let (min, max) = mesh.bounding_box();
-                if (max - min).norm() >= 1000.0 { Units::Mm } else { Units::M }
+                if (max - min).norm() >= 1000.0 {
+                    Units::Mm
+                } else {
+                    Units::M
+                }
             }
             chosen => chosen,
         };
         let mm = units.per_mm();
         let [length, width, thickness] = self.tile.map(|d| d * mm);
-        (TileSpec { length, width, thickness, joint: self.joint * mm }, units)
+        (
+            TileSpec {
+                length,
+                width,
+                thickness,
+                joint: self.joint * mm,
+            },
+            units,
+        )
     }
 }
 
@@ -509,7 +704,9 @@ fn parse_tile(text: &str) -> Result<[f64; 3], String> {
             }
             Ok([l, w, t])
         }
-        _ => Err(format!("'{text}' is not a tile size; write length x width x thickness in mm, e.g. 280x140x15")),
+        _ => Err(format!(
+            "'{text}' is not a tile size; write length x width x thickness in mm, e.g. 280x140x15"
+        )),
     }
 }
 
@@ -526,7 +723,9 @@ fn parse_vector(text: &str) -> Result<[f64; 3], String> {
     let numbers: Option<Vec<f64>> = text.split(',').map(|p| p.trim().parse().ok()).collect();
     match numbers.as_deref() {
         Some(&[x, y, z]) => Ok([x, y, z]),
-        _ => Err(format!("'{text}' is not a direction; write x,y,z, e.g. 1,0,0")),
+        _ => Err(format!(
+            "'{text}' is not a direction; write x,y,z, e.g. 1,0,0"
+        )),
     }
 }
 
@@ -607,7 +806,12 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
             c.coverage
         )
     });
-    let laying = t.report.sequence.as_ref().map_or(String::new(), |s| format!("\nlaying order: {} tiles on the supports, {} need a prop", s.support_tiles, s.unsupported));
+    let laying = t.report.sequence.as_ref().map_or(String::new(), |s| {
+        format!(
+            "\nlaying order: {} tiles on the supports, {} need a prop",
+            s.support_tiles, s.unsupported
+        )
+    });
     let mm = units.per_mm();
     let figures = |j: &JointSummary| {
         format!(
@@ -632,7 +836,11 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
             figures(j),
             j.fit_cuts
         ),
-        _ => format!("joints (nominal {:.1} mm, placement of section 3.5): {}", j.joint / mm, figures(j)),
+        _ => format!(
+            "joints (nominal {:.1} mm, placement of section 3.5): {}",
+            j.joint / mm,
+            figures(j)
+        ),
     };
     format!(
         "{}\n{} full tiles, {} half tiles ({} of them cut to the boundary){cutting}{laying}\n{joints}",

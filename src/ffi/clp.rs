@@ -74,15 +74,26 @@ pub(crate) fn barrier(program: &LinearProgram, seconds: f64) -> Option<BarrierDu
         && program.rows.len() == program.values.len()
         && program.starts.first() == Some(&0)
         && program.starts.windows(2).all(|w| w[0] <= w[1])
-        && program.starts.last().is_some_and(|&end| usize::try_from(end).ok() == Some(program.rows.len()))
-        && program.rows.iter().all(|&r| usize::try_from(r).is_ok_and(|r| r < row_count));
-    let (Ok(numcols), Ok(numrows)) = (c_int::try_from(columns), c_int::try_from(row_count)) else { return None };
+        && program
+            .starts
+            .last()
+            .is_some_and(|&end| usize::try_from(end).ok() == Some(program.rows.len()))
+        && program
+            .rows
+            .iter()
+            .all(|&r| usize::try_from(r).is_ok_and(|r| r < row_count));
+    let (Ok(numcols), Ok(numrows)) = (c_int::try_from(columns), c_int::try_from(row_count)) else {
+        return None;
+    };
     if !well_formed {
         return None;
     }
     if columns == 0 || row_count == 0 {
         // Nothing for Clp to do: no row needs a price.
-        return Some(BarrierDuals { row_duals: vec![0.0; row_count], converged: true });
+        return Some(BarrierDuals {
+            row_duals: vec![0.0; row_count],
+            converged: true,
+        });
     }
     // SAFETY: the model is created, used and deleted here; every array passed has the
     // length Clp reads from it (checked above: `starts` has columns + 1 entries ending at
@@ -114,8 +125,15 @@ pub(crate) fn barrier(program: &LinearProgram, seconds: f64) -> Option<BarrierDu
         Clp_initialBarrierNoCrossSolve(model);
         let converged = Clp_status(model) == 0;
         let duals = Clp_dualRowSolution(model);
-        let row_duals = if duals.is_null() { vec![0.0; row_count] } else { std::slice::from_raw_parts(duals, row_count).to_vec() };
+        let row_duals = if duals.is_null() {
+            vec![0.0; row_count]
+        } else {
+            std::slice::from_raw_parts(duals, row_count).to_vec()
+        };
         Clp_deleteModel(model);
-        Some(BarrierDuals { row_duals, converged })
+        Some(BarrierDuals {
+            row_duals,
+            converged,
+        })
     }
 }

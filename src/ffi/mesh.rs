@@ -47,23 +47,41 @@ pub unsafe extern "C" fn tp_mesh_new(
         }
         // Refuse absurd counts before reading or allocating anything for them.
         crate::mesh::check_size(vertex_count, face_count, index_count)?;
-        let coordinates_len = vertex_count
-            .checked_mul(3)
-            .ok_or_else(|| Failure::new(TP_INVALID_ARGUMENT, format!("vertex_count {vertex_count} is too large")))?;
+        let coordinates_len = vertex_count.checked_mul(3).ok_or_else(|| {
+            Failure::new(
+                TP_INVALID_ARGUMENT,
+                format!("vertex_count {vertex_count} is too large"),
+            )
+        })?;
         // SAFETY: sizes as promised by the caller.
         let (coordinates, indices, sizes) = unsafe {
-            (input(vertices, coordinates_len, "vertices")?, input(face_indices, index_count, "face_indices")?, input(face_sizes, face_count, "face_sizes")?)
+            (
+                input(vertices, coordinates_len, "vertices")?,
+                input(face_indices, index_count, "face_indices")?,
+                input(face_sizes, face_count, "face_sizes")?,
+            )
         };
         let total: u64 = sizes.iter().map(|&s| u64::from(s)).sum();
         if total != index_count as u64 {
-            return Err(Failure::new(TP_INVALID_ARGUMENT, format!("face_sizes add up to {total}, but index_count is {index_count}")));
+            return Err(Failure::new(
+                TP_INVALID_ARGUMENT,
+                format!("face_sizes add up to {total}, but index_count is {index_count}"),
+            ));
         }
-        let positions = coordinates.chunks_exact(3).map(|c| Point3::new(c[0], c[1], c[2])).collect();
+        let positions = coordinates
+            .chunks_exact(3)
+            .map(|c| Point3::new(c[0], c[1], c[2]))
+            .collect();
         let mut faces = Vec::with_capacity(face_count);
         let mut next = 0;
         for &size in sizes {
             let size = size as usize;
-            faces.push(indices[next..next + size].iter().map(|&i| i as usize).collect());
+            faces.push(
+                indices[next..next + size]
+                    .iter()
+                    .map(|&i| i as usize)
+                    .collect(),
+            );
             next += size;
         }
         let mesh = PolyMesh::new(positions, faces)?;
@@ -87,12 +105,21 @@ pub unsafe extern "C" fn tp_mesh_free(mesh: *mut TpMesh) {
 /// # Safety
 /// `mesh` must be a live mesh; non-NULL out pointers must be writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_mesh_counts(mesh: *const TpMesh, vertex_count: *mut usize, face_count: *mut usize, index_count: *mut usize) -> TpStatus {
+pub unsafe extern "C" fn tp_mesh_counts(
+    mesh: *const TpMesh,
+    vertex_count: *mut usize,
+    face_count: *mut usize,
+    index_count: *mut usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let mesh = &unsafe { borrow(mesh, "mesh") }?.mesh;
         let indices = mesh.faces().iter().map(Vec::len).sum();
-        for (out, value) in [(vertex_count, mesh.positions().len()), (face_count, mesh.face_count()), (index_count, indices)] {
+        for (out, value) in [
+            (vertex_count, mesh.positions().len()),
+            (face_count, mesh.face_count()),
+            (index_count, indices),
+        ] {
             if !out.is_null() {
                 // SAFETY: non-null and writable by the caller's promise.
                 unsafe { write_out(out, value, "count") }?;
@@ -107,11 +134,19 @@ pub unsafe extern "C" fn tp_mesh_counts(mesh: *const TpMesh, vertex_count: *mut 
 /// # Safety
 /// `mesh` must be a live mesh; `out` must hold `capacity` doubles.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_mesh_copy_vertices(mesh: *const TpMesh, out: *mut f64, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_mesh_copy_vertices(
+    mesh: *const TpMesh,
+    out: *mut f64,
+    capacity: usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let mesh = &unsafe { borrow(mesh, "mesh") }?.mesh;
-        let xyz: Vec<f64> = mesh.positions().iter().flat_map(|p| [p.x, p.y, p.z]).collect();
+        let xyz: Vec<f64> = mesh
+            .positions()
+            .iter()
+            .flat_map(|p| [p.x, p.y, p.z])
+            .collect();
         // SAFETY: capacity as promised.
         unsafe { output(&xyz, out, capacity, "out") }
     })
@@ -123,7 +158,13 @@ pub unsafe extern "C" fn tp_mesh_copy_vertices(mesh: *const TpMesh, out: *mut f6
 /// # Safety
 /// `mesh` must be a live mesh; the buffers must hold their stated capacities.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_mesh_copy_faces(mesh: *const TpMesh, indices: *mut u32, index_capacity: usize, sizes: *mut u32, size_capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_mesh_copy_faces(
+    mesh: *const TpMesh,
+    indices: *mut u32,
+    index_capacity: usize,
+    sizes: *mut u32,
+    size_capacity: usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let mesh = &unsafe { borrow(mesh, "mesh") }?.mesh;

@@ -50,7 +50,8 @@ pub const TP_STAGE_TILES: u32 = 3;
 
 /// A progress callback: `fraction` in `[0, 1]` of `stage` (a `TP_STAGE_*`) is done; return
 /// non-zero to cancel. Called on the thread that called the stage.
-pub type TpProgressCallback = Option<unsafe extern "C" fn(user: *mut c_void, stage: u32, fraction: f64) -> i32>;
+pub type TpProgressCallback =
+    Option<unsafe extern "C" fn(user: *mut c_void, stage: u32, fraction: f64) -> i32>;
 
 /// The library version as a static NUL-terminated string, e.g. "0.1.0".
 #[unsafe(no_mangle)]
@@ -82,8 +83,14 @@ unsafe fn input<'a, T>(ptr: *const T, count: usize, name: &str) -> Result<&'a [T
     if ptr.is_null() {
         return Err(Failure::null(name));
     }
-    if count.checked_mul(size_of::<T>()).is_none_or(|bytes| bytes > isize::MAX as usize) {
-        return Err(Failure::new(TP_INVALID_ARGUMENT, format!("{name}: count {count} is too large")));
+    if count
+        .checked_mul(size_of::<T>())
+        .is_none_or(|bytes| bytes > isize::MAX as usize)
+    {
+        return Err(Failure::new(
+            TP_INVALID_ARGUMENT,
+            format!("{name}: count {count} is too large"),
+        ));
     }
     // SAFETY: non-null, size checked, validity promised by the caller.
     Ok(unsafe { std::slice::from_raw_parts(ptr, count) })
@@ -93,12 +100,20 @@ unsafe fn input<'a, T>(ptr: *const T, count: usize, name: &str) -> Result<&'a [T
 ///
 /// # Safety
 /// `out` must point to `capacity` writable items.
-unsafe fn output<T: Copy>(data: &[T], out: *mut T, capacity: usize, name: &str) -> Result<(), Failure> {
+unsafe fn output<T: Copy>(
+    data: &[T],
+    out: *mut T,
+    capacity: usize,
+    name: &str,
+) -> Result<(), Failure> {
     if data.is_empty() {
         return Ok(());
     }
     if capacity < data.len() {
-        return Err(Failure::new(TP_BUFFER_TOO_SMALL, format!("{name} holds {capacity} items, {} are needed", data.len())));
+        return Err(Failure::new(
+            TP_BUFFER_TOO_SMALL,
+            format!("{name} holds {capacity} items, {} are needed", data.len()),
+        ));
     }
     if out.is_null() {
         return Err(Failure::null(name));
@@ -143,12 +158,19 @@ unsafe fn read_options<T: Copy>(options: *const T, defaults: T, name: &str) -> R
     // SAFETY: every options struct starts with its `u32` size.
     let size = unsafe { options.cast::<u32>().read_unaligned() } as usize;
     if size < size_of::<u32>() || size > 1 << 16 {
-        return Err(Failure::new(TP_INVALID_ARGUMENT, format!("{name}->struct_size is {size}: initialise options with their tp_*_options_default()")));
+        return Err(Failure::new(
+            TP_INVALID_ARGUMENT,
+            format!(
+                "{name}->struct_size is {size}: initialise options with their tp_*_options_default()"
+            ),
+        ));
     }
     let mut merged = defaults;
     let n = size.min(size_of::<T>());
     // SAFETY: the caller's struct has `size >= n` bytes; ours has `size_of::<T>() >= n`.
-    unsafe { std::ptr::copy_nonoverlapping(options.cast::<u8>(), (&raw mut merged).cast::<u8>(), n) };
+    unsafe {
+        std::ptr::copy_nonoverlapping(options.cast::<u8>(), (&raw mut merged).cast::<u8>(), n)
+    };
     Ok(merged)
 }
 
@@ -159,12 +181,22 @@ unsafe fn read_options<T: Copy>(options: *const T, defaults: T, name: &str) -> R
 ///
 /// # Safety
 /// `out` must be NULL or point to `size` writable bytes.
-unsafe fn init_options<T: Copy>(out: *mut T, size: usize, defaults: T, name: &str) -> Result<(), Failure> {
+unsafe fn init_options<T: Copy>(
+    out: *mut T,
+    size: usize,
+    defaults: T,
+    name: &str,
+) -> Result<(), Failure> {
     if out.is_null() {
         return Err(Failure::null(name));
     }
     if size < size_of::<u32>() || size > 1 << 16 {
-        return Err(Failure::new(TP_INVALID_ARGUMENT, format!("{name}: size {size} is not the size of an options struct; pass sizeof(*{name})")));
+        return Err(Failure::new(
+            TP_INVALID_ARGUMENT,
+            format!(
+                "{name}: size {size} is not the size of an options struct; pass sizeof(*{name})"
+            ),
+        ));
     }
     let known = size.min(size_of::<T>());
     let bytes = out.cast::<u8>();
@@ -199,7 +231,11 @@ unsafe fn release<T>(handle: *mut T) {
 }
 
 /// Calls the caller's progress callback for `stage`; `false` means cancel.
-fn progress_reporter(callback: TpProgressCallback, user: *mut c_void, stage: u32) -> impl FnMut(f64) -> bool {
+fn progress_reporter(
+    callback: TpProgressCallback,
+    user: *mut c_void,
+    stage: u32,
+) -> impl FnMut(f64) -> bool {
     move |fraction| match callback {
         // SAFETY: the caller gave this callback and user pointer for the duration of the call.
         Some(f) => (unsafe { f(user, stage, fraction) }) == 0,
@@ -213,7 +249,12 @@ fn progress_reporter(callback: TpProgressCallback, user: *mut c_void, stage: u32
 ///
 /// # Safety
 /// `buf` must hold `len` bytes; `needed` must be NULL or writable.
-unsafe fn output_text(text: &str, buf: *mut c_char, len: usize, needed: *mut usize) -> Result<(), Failure> {
+unsafe fn output_text(
+    text: &str,
+    buf: *mut c_char,
+    len: usize,
+    needed: *mut usize,
+) -> Result<(), Failure> {
     if !needed.is_null() {
         // SAFETY: non-null and writable by the caller's promise.
         unsafe { write_out(needed, text.len(), "needed") }?;

@@ -3,9 +3,14 @@
 use std::ffi::c_void;
 
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
-use super::{TP_STAGE_PATTERN, TpMesh, TpProgressCallback, borrow, hand_over, init_options, input, output, progress_reporter, read_options, release, write_out};
+use super::{
+    TP_STAGE_PATTERN, TpMesh, TpProgressCallback, borrow, hand_over, init_options, input, output,
+    progress_reporter, read_options, release, write_out,
+};
 use crate::control::Control;
-use crate::pattern::{self, Bond, BoundSource, Courses, Formulation, Method, Pattern, PatternOptions, SolveStatus};
+use crate::pattern::{
+    self, Bond, BoundSource, Courses, Formulation, Method, Pattern, PatternOptions, SolveStatus,
+};
 
 /// `bond`: maximum matching, the paper's eq. (1).
 pub const TP_BOND_STACK: i32 = 0;
@@ -139,7 +144,10 @@ pub extern "C" fn tp_pattern_options_default() -> TpPatternOptions {
 /// # Safety
 /// `options` must point to `size` writable bytes.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_pattern_options_init(options: *mut TpPatternOptions, size: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_pattern_options_init(
+    options: *mut TpPatternOptions,
+    size: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
     guard(|| unsafe { init_options(options, size, tp_pattern_options_default(), "options") })
 }
@@ -165,12 +173,27 @@ pub unsafe extern "C" fn tp_pattern_solve(
             return Err(Failure::null("out"));
         }
         // SAFETY: live handle and valid options by the caller's promise.
-        let (mesh, raw) = unsafe { (&borrow(mesh, "mesh")?.mesh, read_options(options, tp_pattern_options_default(), "options")?) };
+        let (mesh, raw) = unsafe {
+            (
+                &borrow(mesh, "mesh")?.mesh,
+                read_options(options, tp_pattern_options_default(), "options")?,
+            )
+        };
         let options = pattern_options(&raw)?;
         let mut report = progress_reporter(progress, user, TP_STAGE_PATTERN);
-        let pattern = pattern::solve_with(mesh, &options, &mut Control::with_progress(&mut report))?;
+        let pattern =
+            pattern::solve_with(mesh, &options, &mut Control::with_progress(&mut report))?;
         // SAFETY: checked non-null above.
-        unsafe { hand_over(out, TpPattern { pattern, bond: options.bond }, "out") }
+        unsafe {
+            hand_over(
+                out,
+                TpPattern {
+                    pattern,
+                    bond: options.bond,
+                },
+                "out",
+            )
+        }
     })
 }
 
@@ -181,39 +204,72 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
         TP_BOND_STACK => Bond::Stack,
         TP_BOND_STAGGERED => Bond::Staggered { weight: raw.weight },
         TP_BOND_RUNNING => Bond::RunningBond { weight: raw.weight },
-        other => return Err(invalid(format!("bond {other} is not one of TP_BOND_STACK, TP_BOND_STAGGERED, TP_BOND_RUNNING"))),
+        other => {
+            return Err(invalid(format!(
+                "bond {other} is not one of TP_BOND_STACK, TP_BOND_STAGGERED, TP_BOND_RUNNING"
+            )));
+        }
     };
     let method = match raw.method {
         TP_METHOD_AUTO => Method::Auto,
         TP_METHOD_MIP => Method::Mip,
-        other => return Err(invalid(format!("method {other} is not one of TP_METHOD_AUTO, TP_METHOD_MIP"))),
+        other => {
+            return Err(invalid(format!(
+                "method {other} is not one of TP_METHOD_AUTO, TP_METHOD_MIP"
+            )));
+        }
     };
     let formulation = match raw.formulation {
         TP_FORMULATION_STRENGTHENED => Formulation::Strengthened,
         TP_FORMULATION_PAPER => Formulation::Paper,
-        other => return Err(invalid(format!("formulation {other} is not one of TP_FORMULATION_STRENGTHENED, TP_FORMULATION_PAPER"))),
+        other => {
+            return Err(invalid(format!(
+                "formulation {other} is not one of TP_FORMULATION_STRENGTHENED, TP_FORMULATION_PAPER"
+            )));
+        }
     };
     // Refuse absurd counts before reading or copying the arrays: no mesh has more faces.
-    for (name, count) in [("forced_pair_count", raw.forced_pair_count), ("excluded_face_count", raw.excluded_face_count)] {
+    for (name, count) in [
+        ("forced_pair_count", raw.forced_pair_count),
+        ("excluded_face_count", raw.excluded_face_count),
+    ] {
         if count > crate::mesh::MAX_FACES {
-            return Err(invalid(format!("options->{name} is {count}; a mesh has at most {} faces", crate::mesh::MAX_FACES)));
+            return Err(invalid(format!(
+                "options->{name} is {count}; a mesh has at most {} faces",
+                crate::mesh::MAX_FACES
+            )));
         }
     }
     let pair_values = 2 * raw.forced_pair_count;
     // SAFETY: the arrays hold their stated counts by the caller's promise.
-    let (forced, excluded) =
-        unsafe { (input(raw.forced_pairs, pair_values, "options->forced_pairs")?, input(raw.excluded_faces, raw.excluded_face_count, "options->excluded_faces")?) };
+    let (forced, excluded) = unsafe {
+        (
+            input(raw.forced_pairs, pair_values, "options->forced_pairs")?,
+            input(
+                raw.excluded_faces,
+                raw.excluded_face_count,
+                "options->excluded_faces",
+            )?,
+        )
+    };
     Ok(PatternOptions {
         bond,
         time_limit: PatternOptions::time_limit_from_secs(raw.time_limit_seconds)?,
-        forced_pairs: forced.chunks_exact(2).map(|p| [p[0] as usize, p[1] as usize]).collect(),
+        forced_pairs: forced
+            .chunks_exact(2)
+            .map(|p| [p[0] as usize, p[1] as usize])
+            .collect(),
         excluded_faces: excluded.iter().map(|&f| f as usize).collect(),
         formulation,
         method,
         courses: match raw.courses {
             TP_COURSES_FREE => Courses::Free,
             TP_COURSES_LEVEL => Courses::Level { up: raw.up },
-            other => return Err(invalid(format!("courses {other} is not one of TP_COURSES_FREE, TP_COURSES_LEVEL"))),
+            other => {
+                return Err(invalid(format!(
+                    "courses {other} is not one of TP_COURSES_FREE, TP_COURSES_LEVEL"
+                )));
+            }
         },
     })
 }
@@ -233,7 +289,10 @@ pub unsafe extern "C" fn tp_pattern_free(pattern: *mut TpPattern) {
 /// # Safety
 /// `pattern` must be a live pattern and `out` writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_pattern_summary(pattern: *const TpPattern, out: *mut TpPatternSummary) -> TpStatus {
+pub unsafe extern "C" fn tp_pattern_summary(
+    pattern: *const TpPattern,
+    out: *mut TpPatternSummary,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let p = &unsafe { borrow(pattern, "pattern") }?.pattern;
@@ -267,7 +326,10 @@ pub unsafe extern "C" fn tp_pattern_summary(pattern: *const TpPattern, out: *mut
 /// # Safety
 /// `pattern` must be a live pattern and `out` writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_pattern_bound_source(pattern: *const TpPattern, out: *mut i32) -> TpStatus {
+pub unsafe extern "C" fn tp_pattern_bound_source(
+    pattern: *const TpPattern,
+    out: *mut i32,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let p = &unsafe { borrow(pattern, "pattern") }?.pattern;
@@ -288,7 +350,11 @@ pub unsafe extern "C" fn tp_pattern_bound_source(pattern: *const TpPattern, out:
 /// # Safety
 /// `pattern` must be a live pattern and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_pattern_copy_pairs(pattern: *const TpPattern, out: *mut u32, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_pattern_copy_pairs(
+    pattern: *const TpPattern,
+    out: *mut u32,
+    capacity: usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let p = &unsafe { borrow(pattern, "pattern") }?.pattern;
@@ -304,7 +370,11 @@ pub unsafe extern "C" fn tp_pattern_copy_pairs(pattern: *const TpPattern, out: *
 /// # Safety
 /// `pattern` must be a live pattern and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_pattern_copy_unpaired(pattern: *const TpPattern, out: *mut u32, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_pattern_copy_unpaired(
+    pattern: *const TpPattern,
+    out: *mut u32,
+    capacity: usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let p = &unsafe { borrow(pattern, "pattern") }?.pattern;

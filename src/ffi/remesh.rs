@@ -3,7 +3,10 @@
 use std::ffi::c_void;
 
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
-use super::{TP_STAGE_REMESH, TpMesh, TpProgressCallback, borrow, hand_over, init_options, progress_reporter, read_options};
+use super::{
+    TP_STAGE_REMESH, TpMesh, TpProgressCallback, borrow, hand_over, init_options,
+    progress_reporter, read_options,
+};
 use crate::control::Control;
 use crate::remesh::{self, FieldDirection, RemeshError, RemeshOptions};
 
@@ -58,7 +61,10 @@ pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
 /// # Safety
 /// `options` must point to `size` writable bytes.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_remesh_options_init(options: *mut TpRemeshOptions, size: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_remesh_options_init(
+    options: *mut TpRemeshOptions,
+    size: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
     guard(|| unsafe { init_options(options, size, tp_remesh_options_default(), "options") })
 }
@@ -84,22 +90,50 @@ pub unsafe extern "C" fn tp_remesh(
             return Err(Failure::null("out"));
         }
         // SAFETY: live handle and valid options by the caller's promise.
-        let (surface, raw) = unsafe { (&borrow(mesh, "mesh")?.mesh, read_options(options, tp_remesh_options_default(), "options")?) };
+        let (surface, raw) = unsafe {
+            (
+                &borrow(mesh, "mesh")?.mesh,
+                read_options(options, tp_remesh_options_default(), "options")?,
+            )
+        };
         let direction = match raw.direction {
             TP_DIRECTION_CURVATURE => FieldDirection::Curvature,
             TP_DIRECTION_VECTOR => FieldDirection::Vector(raw.direction_vector),
             TP_DIRECTION_ANGLE => FieldDirection::Angle(raw.angle_degrees),
-            other => return Err(Failure::new(TP_INVALID_ARGUMENT, format!("direction {other} is not one of TP_DIRECTION_CURVATURE, TP_DIRECTION_VECTOR, TP_DIRECTION_ANGLE"))),
+            other => {
+                return Err(Failure::new(
+                    TP_INVALID_ARGUMENT,
+                    format!(
+                        "direction {other} is not one of TP_DIRECTION_CURVATURE, TP_DIRECTION_VECTOR, TP_DIRECTION_ANGLE"
+                    ),
+                ));
+            }
         };
         let time_limit = RemeshOptions::time_limit_from_secs(raw.time_limit_seconds)?;
-        let options = RemeshOptions { target_edge: raw.target_edge, direction, shapeup: raw.shapeup != 0, time_limit, ..RemeshOptions::default() };
+        let options = RemeshOptions {
+            target_edge: raw.target_edge,
+            direction,
+            shapeup: raw.shapeup != 0,
+            time_limit,
+            ..RemeshOptions::default()
+        };
         let mut report = progress_reporter(progress, user, TP_STAGE_REMESH);
-        let remeshed = remesh::remesh_with(surface, &options, &mut Control::with_progress(&mut report)).map_err(|e| match e {
-            RemeshError::Cancelled => Failure::new(TP_CANCELLED, e.to_string()),
-            RemeshError::TimeLimit { .. } => Failure::new(TP_TIME_LIMIT, e.to_string()),
-            other => other.into(),
-        })?;
+        let remeshed =
+            remesh::remesh_with(surface, &options, &mut Control::with_progress(&mut report))
+                .map_err(|e| match e {
+                    RemeshError::Cancelled => Failure::new(TP_CANCELLED, e.to_string()),
+                    RemeshError::TimeLimit { .. } => Failure::new(TP_TIME_LIMIT, e.to_string()),
+                    other => other.into(),
+                })?;
         // SAFETY: checked non-null above.
-        unsafe { hand_over(out, TpMesh { mesh: remeshed.quads }, "out") }
+        unsafe {
+            hand_over(
+                out,
+                TpMesh {
+                    mesh: remeshed.quads,
+                },
+                "out",
+            )
+        }
     })
 }

@@ -48,7 +48,10 @@ pub(super) struct Failure {
 
 impl Failure {
     pub fn new(status: TpStatus, message: impl Into<String>) -> Self {
-        Self { status, message: message.into() }
+        Self {
+            status,
+            message: message.into(),
+        }
     }
 
     pub fn null(name: &str) -> Self {
@@ -59,7 +62,11 @@ impl Failure {
 impl From<MeshError> for Failure {
     fn from(e: MeshError) -> Self {
         // Counts over the limits are bad arguments (nothing was read), the rest bad meshes.
-        let status = if matches!(e, MeshError::TooLarge { .. }) { TpStatus::TP_INVALID_ARGUMENT } else { TpStatus::TP_INVALID_MESH };
+        let status = if matches!(e, MeshError::TooLarge { .. }) {
+            TpStatus::TP_INVALID_ARGUMENT
+        } else {
+            TpStatus::TP_INVALID_MESH
+        };
         Self::new(status, e.to_string())
     }
 }
@@ -87,10 +94,13 @@ impl From<PatternError> for Failure {
 impl From<TileError> for Failure {
     fn from(e: TileError) -> Self {
         let status = match e {
-            TileError::InvalidSpec { .. } | TileError::TileLargerThanMesh { .. } => TpStatus::TP_INVALID_ARGUMENT,
-            TileError::FaceOutOfRange { .. } | TileError::NotAdjacent { .. } | TileError::FaceUsedTwice { .. } | TileError::NotQuad { .. } => {
-                TpStatus::TP_INVALID_PATTERN
+            TileError::InvalidSpec { .. } | TileError::TileLargerThanMesh { .. } => {
+                TpStatus::TP_INVALID_ARGUMENT
             }
+            TileError::FaceOutOfRange { .. }
+            | TileError::NotAdjacent { .. }
+            | TileError::FaceUsedTwice { .. }
+            | TileError::NotQuad { .. } => TpStatus::TP_INVALID_PATTERN,
         };
         Self::new(status, e.to_string())
     }
@@ -99,7 +109,9 @@ impl From<TileError> for Failure {
 impl From<RemeshError> for Failure {
     fn from(e: RemeshError) -> Self {
         let status = match e {
-            RemeshError::Mesh(_) | RemeshError::UnsupportedInput(_) | RemeshError::NothingExtracted(_) => TpStatus::TP_INVALID_MESH,
+            RemeshError::Mesh(_)
+            | RemeshError::UnsupportedInput(_)
+            | RemeshError::NothingExtracted(_) => TpStatus::TP_INVALID_MESH,
             _ => TpStatus::TP_INVALID_ARGUMENT,
         };
         Self::new(status, e.to_string())
@@ -132,7 +144,10 @@ pub(super) fn guard(body: impl FnOnce() -> Result<(), Failure>) -> TpStatus {
             .map(|s| s.to_string())
             .or_else(|| panic.downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "unknown panic".into());
-        Err(Failure::new(TpStatus::TP_PANIC, format!("internal error (please report it): {what}")))
+        Err(Failure::new(
+            TpStatus::TP_PANIC,
+            format!("internal error (please report it): {what}"),
+        ))
     });
     let (status, message) = match outcome {
         Ok(()) => (TpStatus::TP_OK, String::new()),

@@ -3,11 +3,16 @@
 use std::ffi::{c_char, c_void};
 
 use super::status::{Failure, TpStatus, guard};
-use super::{TP_STAGE_TILES, TpMesh, TpPattern, TpProgressCallback, borrow, progress_reporter, hand_over, init_options, output, output_text, read_options, release, write_out};
-use crate::pipeline::{self, Tiling};
+use super::{
+    TP_STAGE_TILES, TpMesh, TpPattern, TpProgressCallback, borrow, hand_over, init_options, output,
+    output_text, progress_reporter, read_options, release, write_out,
+};
 use crate::control::Control;
 use crate::pattern::Bond;
-use crate::tiles::{FinishOptions, FitOptions, FitStatus, SequenceOptions, Tile, TileKind, TileSpec};
+use crate::pipeline::{self, Tiling};
+use crate::tiles::{
+    FinishOptions, FitOptions, FitStatus, SequenceOptions, Tile, TileKind, TileSpec,
+};
 
 /// Tile kind: a standard tile over two faces.
 pub const TP_TILE_FULL: i32 = 0;
@@ -67,7 +72,12 @@ pub struct TpTileOptions {
 
 impl TpTileOptions {
     fn spec(&self) -> TileSpec {
-        TileSpec { length: self.length, width: self.width, thickness: self.thickness, joint: self.joint }
+        TileSpec {
+            length: self.length,
+            width: self.width,
+            thickness: self.thickness,
+            joint: self.joint,
+        }
     }
 
     /// The finishing options, negative values replaced by their defaults for the tile; the fit
@@ -128,7 +138,10 @@ pub extern "C" fn tp_tile_options_default() -> TpTileOptions {
 /// # Safety
 /// `options` must point to `size` writable bytes.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tile_options_init(options: *mut TpTileOptions, size: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tile_options_init(
+    options: *mut TpTileOptions,
+    size: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
     guard(|| unsafe { init_options(options, size, tp_tile_options_default(), "options") })
 }
@@ -141,7 +154,12 @@ pub unsafe extern "C" fn tp_tile_options_init(options: *mut TpTileOptions, size:
 /// # Safety
 /// `mesh` and `pattern` must be live handles, `options` valid, `out` writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_build(mesh: *const TpMesh, pattern: *const TpPattern, options: *const TpTileOptions, out: *mut *mut TpTiles) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_build(
+    mesh: *const TpMesh,
+    pattern: *const TpPattern,
+    options: *const TpTileOptions,
+    out: *mut *mut TpTiles,
+) -> TpStatus {
     // SAFETY: forwarded.
     unsafe { tp_tiles_build_on_surface(mesh, pattern, std::ptr::null(), options, out) }
 }
@@ -163,7 +181,17 @@ pub unsafe extern "C" fn tp_tiles_build_on_surface(
     out: *mut *mut TpTiles,
 ) -> TpStatus {
     // SAFETY: forwarded.
-    unsafe { tp_tiles_build_with_progress(mesh, pattern, surface, options, None, std::ptr::null_mut(), out) }
+    unsafe {
+        tp_tiles_build_with_progress(
+            mesh,
+            pattern,
+            surface,
+            options,
+            None,
+            std::ptr::null_mut(),
+            out,
+        )
+    }
 }
 
 /// [`tp_tiles_build_on_surface`] reporting the fit stage's progress: `progress` (may be NULL)
@@ -188,14 +216,38 @@ pub unsafe extern "C" fn tp_tiles_build_with_progress(
             return Err(Failure::null("out"));
         }
         // SAFETY: live handles and valid options by the caller's promise.
-        let (mesh, pattern, raw) = unsafe { (&borrow(mesh, "mesh")?.mesh, borrow(pattern, "pattern")?, read_options(options, tp_tile_options_default(), "options")?) };
+        let (mesh, pattern, raw) = unsafe {
+            (
+                &borrow(mesh, "mesh")?.mesh,
+                borrow(pattern, "pattern")?,
+                read_options(options, tp_tile_options_default(), "options")?,
+            )
+        };
         // SAFETY: NULL or a live handle by the caller's promise.
-        let surface = if surface.is_null() { None } else { Some(&unsafe { borrow(surface, "surface") }?.mesh) };
+        let surface = if surface.is_null() {
+            None
+        } else {
+            Some(&unsafe { borrow(surface, "surface") }?.mesh)
+        };
         let mut report = progress_reporter(progress, user, TP_STAGE_TILES);
         let mut control = Control::with_progress(&mut report);
-        let tiling = pipeline::tiles_for_pattern_with(mesh, surface, pattern.pattern.clone(), &raw.spec(), &raw.finish(pattern.bond), &mut control)?;
-        if tiling.report.fit.is_some_and(|f| f.status == FitStatus::Cancelled) {
-            return Err(Failure::new(TpStatus::TP_CANCELLED, "cancelled by the progress callback during the fit stage"));
+        let tiling = pipeline::tiles_for_pattern_with(
+            mesh,
+            surface,
+            pattern.pattern.clone(),
+            &raw.spec(),
+            &raw.finish(pattern.bond),
+            &mut control,
+        )?;
+        if tiling
+            .report
+            .fit
+            .is_some_and(|f| f.status == FitStatus::Cancelled)
+        {
+            return Err(Failure::new(
+                TpStatus::TP_CANCELLED,
+                "cancelled by the progress callback during the fit stage",
+            ));
         }
         // SAFETY: checked non-null above.
         unsafe { hand_over(out, TpTiles { tiling }, "out") }
@@ -209,7 +261,11 @@ pub unsafe extern "C" fn tp_tiles_build_with_progress(
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_joint_deviations(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_joint_deviations(
+    tiles: *const TpTiles,
+    out: *mut f64,
+    capacity: usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let tiles = unsafe { borrow(tiles, "tiles") }?;
@@ -245,7 +301,12 @@ pub unsafe extern "C" fn tp_tiles_count(tiles: *const TpTiles, out: *mut usize) 
 ///
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
-unsafe fn copy_per_tile<T: Copy>(tiles: *const TpTiles, out: *mut T, capacity: usize, values: impl Fn(&Tile) -> Vec<T>) -> TpStatus {
+unsafe fn copy_per_tile<T: Copy>(
+    tiles: *const TpTiles,
+    out: *mut T,
+    capacity: usize,
+    values: impl Fn(&Tile) -> Vec<T>,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
@@ -260,7 +321,11 @@ unsafe fn copy_per_tile<T: Copy>(tiles: *const TpTiles, out: *mut T, capacity: u
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_kinds(tiles: *const TpTiles, out: *mut i32, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_kinds(
+    tiles: *const TpTiles,
+    out: *mut i32,
+    capacity: usize,
+) -> TpStatus {
     let kind = |t: &Tile| {
         vec![match t.kind {
             TileKind::Full => TP_TILE_FULL,
@@ -279,9 +344,17 @@ pub unsafe extern "C" fn tp_tiles_copy_kinds(tiles: *const TpTiles, out: *mut i3
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` doubles.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_corners(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_corners(
+    tiles: *const TpTiles,
+    out: *mut f64,
+    capacity: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
-    unsafe { copy_per_tile(tiles, out, capacity, |t| t.corners.iter().flatten().copied().collect()) }
+    unsafe {
+        copy_per_tile(tiles, out, capacity, |t| {
+            t.corners.iter().flatten().copied().collect()
+        })
+    }
 }
 
 /// Copies each tile's frame (12 doubles per tile): origin, length axis x, height axis y,
@@ -290,10 +363,17 @@ pub unsafe extern "C" fn tp_tiles_copy_corners(tiles: *const TpTiles, out: *mut 
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` doubles.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_frames(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_frames(
+    tiles: *const TpTiles,
+    out: *mut f64,
+    capacity: usize,
+) -> TpStatus {
     let frame = |t: &Tile| {
         let f = &t.frame;
-        [f.origin.coords, f.x, f.y, f.z].iter().flat_map(|v| [v.x, v.y, v.z]).collect()
+        [f.origin.coords, f.x, f.y, f.z]
+            .iter()
+            .flat_map(|v| [v.x, v.y, v.z])
+            .collect()
     };
     // SAFETY: forwarded.
     unsafe { copy_per_tile(tiles, out, capacity, frame) }
@@ -304,7 +384,11 @@ pub unsafe extern "C" fn tp_tiles_copy_frames(tiles: *const TpTiles, out: *mut f
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` doubles.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_sizes(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_sizes(
+    tiles: *const TpTiles,
+    out: *mut f64,
+    capacity: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
     unsafe { copy_per_tile(tiles, out, capacity, |t| t.size.to_vec()) }
 }
@@ -315,8 +399,16 @@ pub unsafe extern "C" fn tp_tiles_copy_sizes(tiles: *const TpTiles, out: *mut f6
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_faces(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
-    let faces = |t: &Tile| (0..2).map(|k| t.faces.get(k).map_or(TP_NO_FACE, |&f| f as u32)).collect();
+pub unsafe extern "C" fn tp_tiles_copy_faces(
+    tiles: *const TpTiles,
+    out: *mut u32,
+    capacity: usize,
+) -> TpStatus {
+    let faces = |t: &Tile| {
+        (0..2)
+            .map(|k| t.faces.get(k).map_or(TP_NO_FACE, |&f| f as u32))
+            .collect()
+    };
     // SAFETY: forwarded.
     unsafe { copy_per_tile(tiles, out, capacity, faces) }
 }
@@ -328,11 +420,17 @@ pub unsafe extern "C" fn tp_tiles_copy_faces(tiles: *const TpTiles, out: *mut u3
 /// # Safety
 /// `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_report_json(tiles: *const TpTiles, buf: *mut c_char, len: usize, needed: *mut usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_report_json(
+    tiles: *const TpTiles,
+    buf: *mut c_char,
+    len: usize,
+    needed: *mut usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
-        let json = serde_json::to_string_pretty(&tiling.report).map_err(|e| Failure::new(TpStatus::TP_PANIC, e.to_string()))?;
+        let json = serde_json::to_string_pretty(&tiling.report)
+            .map_err(|e| Failure::new(TpStatus::TP_PANIC, e.to_string()))?;
         // SAFETY: forwarded.
         unsafe { output_text(&json, buf, len, needed) }
     })
@@ -343,7 +441,11 @@ pub unsafe extern "C" fn tp_tiles_report_json(tiles: *const TpTiles, buf: *mut c
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_steps(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_steps(
+    tiles: *const TpTiles,
+    out: *mut u32,
+    capacity: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
     unsafe { copy_per_tile(tiles, out, capacity, |t| vec![t.step as u32]) }
 }
@@ -353,9 +455,17 @@ pub unsafe extern "C" fn tp_tiles_copy_steps(tiles: *const TpTiles, out: *mut u3
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_kept_fractions(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_kept_fractions(
+    tiles: *const TpTiles,
+    out: *mut f64,
+    capacity: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
-    unsafe { copy_per_tile(tiles, out, capacity, |t| vec![t.cut.as_ref().map_or(1.0, |c| c.kept_fraction)]) }
+    unsafe {
+        copy_per_tile(tiles, out, capacity, |t| {
+            vec![t.cut.as_ref().map_or(1.0, |c| c.kept_fraction)]
+        })
+    }
 }
 
 /// Writes the total number of outline loops and of their points over all cut tiles (cut to
@@ -366,11 +476,20 @@ pub unsafe extern "C" fn tp_tiles_copy_kept_fractions(tiles: *const TpTiles, out
 /// # Safety
 /// `tiles` must be a live handle, `loops` and `points` NULL or writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_outline_counts(tiles: *const TpTiles, loops: *mut usize, points: *mut usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_outline_counts(
+    tiles: *const TpTiles,
+    loops: *mut usize,
+    points: *mut usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
-        let all = || tiling.tiles.iter().flat_map(|t| t.cut.iter().flat_map(|c| &c.loops));
+        let all = || {
+            tiling
+                .tiles
+                .iter()
+                .flat_map(|t| t.cut.iter().flat_map(|c| &c.loops))
+        };
         for (out, value) in [(loops, all().count()), (points, all().map(Vec::len).sum())] {
             if !out.is_null() {
                 // SAFETY: non-null and writable by the caller's promise.
@@ -386,9 +505,17 @@ pub unsafe extern "C" fn tp_tiles_outline_counts(tiles: *const TpTiles, loops: *
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_loop_counts(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_loop_counts(
+    tiles: *const TpTiles,
+    out: *mut u32,
+    capacity: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
-    unsafe { copy_per_tile(tiles, out, capacity, |t| vec![t.cut.as_ref().map_or(0, |c| c.loops.len() as u32)]) }
+    unsafe {
+        copy_per_tile(tiles, out, capacity, |t| {
+            vec![t.cut.as_ref().map_or(0, |c| c.loops.len() as u32)]
+        })
+    }
 }
 
 /// Copies the number of points of every outline loop, tile by tile (capacity: the loop
@@ -397,9 +524,21 @@ pub unsafe extern "C" fn tp_tiles_copy_loop_counts(tiles: *const TpTiles, out: *
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` items.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_loop_sizes(tiles: *const TpTiles, out: *mut u32, capacity: usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_copy_loop_sizes(
+    tiles: *const TpTiles,
+    out: *mut u32,
+    capacity: usize,
+) -> TpStatus {
     // SAFETY: forwarded.
-    unsafe { copy_per_tile(tiles, out, capacity, |t| t.cut.iter().flat_map(|c| &c.loops).map(|l| l.len() as u32).collect()) }
+    unsafe {
+        copy_per_tile(tiles, out, capacity, |t| {
+            t.cut
+                .iter()
+                .flat_map(|c| &c.loops)
+                .map(|l| l.len() as u32)
+                .collect()
+        })
+    }
 }
 
 /// Copies the points of every outline loop as (x, y) in the tile's frame (2 doubles per
@@ -409,8 +548,19 @@ pub unsafe extern "C" fn tp_tiles_copy_loop_sizes(tiles: *const TpTiles, out: *m
 /// # Safety
 /// `tiles` must be a live handle and `out` hold `capacity` doubles.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_copy_loop_points(tiles: *const TpTiles, out: *mut f64, capacity: usize) -> TpStatus {
-    let points = |t: &Tile| t.cut.iter().flat_map(|c| &c.loops).flatten().flat_map(|p| *p).collect();
+pub unsafe extern "C" fn tp_tiles_copy_loop_points(
+    tiles: *const TpTiles,
+    out: *mut f64,
+    capacity: usize,
+) -> TpStatus {
+    let points = |t: &Tile| {
+        t.cut
+            .iter()
+            .flat_map(|c| &c.loops)
+            .flatten()
+            .flat_map(|p| *p)
+            .collect()
+    };
     // SAFETY: forwarded.
     unsafe { copy_per_tile(tiles, out, capacity, points) }
 }
@@ -422,11 +572,20 @@ pub unsafe extern "C" fn tp_tiles_copy_loop_points(tiles: *const TpTiles, out: *
 /// # Safety
 /// `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_labels(tiles: *const TpTiles, buf: *mut c_char, len: usize, needed: *mut usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_labels(
+    tiles: *const TpTiles,
+    buf: *mut c_char,
+    len: usize,
+    needed: *mut usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
-        let text: String = tiling.tiles.iter().map(|t| format!("{}\n", t.label)).collect();
+        let text: String = tiling
+            .tiles
+            .iter()
+            .map(|t| format!("{}\n", t.label))
+            .collect();
         // SAFETY: forwarded.
         unsafe { output_text(&text, buf, len, needed) }
     })
@@ -438,11 +597,17 @@ pub unsafe extern "C" fn tp_tiles_labels(tiles: *const TpTiles, buf: *mut c_char
 /// # Safety
 /// `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tp_tiles_cutlist_json(tiles: *const TpTiles, buf: *mut c_char, len: usize, needed: *mut usize) -> TpStatus {
+pub unsafe extern "C" fn tp_tiles_cutlist_json(
+    tiles: *const TpTiles,
+    buf: *mut c_char,
+    len: usize,
+    needed: *mut usize,
+) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
         let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
-        let json = serde_json::to_string_pretty(&tiling.cut_list).map_err(|e| Failure::new(TpStatus::TP_PANIC, e.to_string()))?;
+        let json = serde_json::to_string_pretty(&tiling.cut_list)
+            .map_err(|e| Failure::new(TpStatus::TP_PANIC, e.to_string()))?;
         // SAFETY: forwarded.
         unsafe { output_text(&json, buf, len, needed) }
     })

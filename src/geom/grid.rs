@@ -15,16 +15,30 @@ pub struct HashGrid {
 impl HashGrid {
     /// An empty grid of cells of side `cell` (a non-positive or non-finite side becomes 1).
     pub fn new(cell: f64) -> Self {
-        Self { cell: if cell.is_finite() && cell > 0.0 { cell } else { 1.0 }, cells: HashMap::new() }
+        Self {
+            cell: if cell.is_finite() && cell > 0.0 {
+                cell
+            } else {
+                1.0
+            },
+            cells: HashMap::new(),
+        }
     }
 
     /// A grid with item `k` entered over the bounding box of the `k`-th set of points.
-    pub fn of_points<P: AsRef<[Point3<f64>]>>(cell: f64, items: impl IntoIterator<Item = P>) -> Self {
+    pub fn of_points<P: AsRef<[Point3<f64>]>>(
+        cell: f64,
+        items: impl IntoIterator<Item = P>,
+    ) -> Self {
         let mut grid = Self::new(cell);
         for (k, points) in items.into_iter().enumerate() {
             let points = points.as_ref();
-            let Some(first) = points.first() else { continue };
-            let (lo, hi) = points.iter().fold((*first, *first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+            let Some(first) = points.first() else {
+                continue;
+            };
+            let (lo, hi) = points
+                .iter()
+                .fold((*first, *first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
             grid.insert(k, &lo, &hi);
         }
         grid
@@ -67,12 +81,23 @@ impl HashGrid {
         if box_cells > self.cells.len() as f64 {
             // A box of more cells than the grid holds: read the grid instead.
             let inside = |c: &[i64; 3]| (0..3).all(|k| (a[k]..=b[k]).contains(&c[k]));
-            found.extend(self.cells.iter().filter(|(c, _)| inside(c)).flat_map(|(_, items)| items.iter().map(|&i| i as usize)));
+            found.extend(
+                self.cells
+                    .iter()
+                    .filter(|(c, _)| inside(c))
+                    .flat_map(|(_, items)| items.iter().map(|&i| i as usize)),
+            );
         } else {
             for x in a[0]..=b[0] {
                 for y in a[1]..=b[1] {
                     for z in a[2]..=b[2] {
-                        found.extend(self.cells.get(&[x, y, z]).into_iter().flatten().map(|&i| i as usize));
+                        found.extend(
+                            self.cells
+                                .get(&[x, y, z])
+                                .into_iter()
+                                .flatten()
+                                .map(|&i| i as usize),
+                        );
                     }
                 }
             }
@@ -89,11 +114,26 @@ mod tests {
 
     #[test]
     fn finds_what_a_scan_finds() {
-        let points: Vec<Point3<f64>> = (0..400).map(|i| Point3::new((i % 20) as f64 * 0.37, (i / 20) as f64 * 0.41, (i % 7) as f64 * 0.1)).collect();
+        let points: Vec<Point3<f64>> = (0..400)
+            .map(|i| {
+                Point3::new(
+                    (i % 20) as f64 * 0.37,
+                    (i / 20) as f64 * 0.41,
+                    (i % 7) as f64 * 0.1,
+                )
+            })
+            .collect();
         let grid = HashGrid::of_points(0.5, points.iter().map(|p| [*p]));
-        for (q, r) in [(Point3::new(1.0, 1.0, 0.0), 0.6), (Point3::new(-3.0, 2.0, 0.3), 4.0), (Point3::new(5.0, 5.0, 0.2), 0.01)] {
+        for (q, r) in [
+            (Point3::new(1.0, 1.0, 0.0), 0.6),
+            (Point3::new(-3.0, 2.0, 0.3), 4.0),
+            (Point3::new(5.0, 5.0, 0.2), 0.01),
+        ] {
             let found = grid.near(&q, r);
-            assert!(found.windows(2).all(|w| w[0] < w[1]), "sorted and each once");
+            assert!(
+                found.windows(2).all(|w| w[0] < w[1]),
+                "sorted and each once"
+            );
             for (i, p) in points.iter().enumerate() {
                 if (p - q).amax() <= r {
                     assert!(found.contains(&i), "point {i} within the box is found");
@@ -104,14 +144,20 @@ mod tests {
 
     #[test]
     fn a_box_larger_than_the_grid_reads_the_grid() {
-        let grid = HashGrid::of_points(1.0, [[Point3::new(0.5, 0.5, 0.5)], [Point3::new(1e6, 0.0, 0.0)]]);
+        let grid = HashGrid::of_points(
+            1.0,
+            [[Point3::new(0.5, 0.5, 0.5)], [Point3::new(1e6, 0.0, 0.0)]],
+        );
         assert_eq!(grid.near(&Point3::origin(), 1e9), vec![0, 1]);
         assert_eq!(grid.near(&Point3::origin(), 2.0), vec![0]);
     }
 
     #[test]
     fn items_spanning_cells_are_entered_in_each() {
-        let grid = HashGrid::of_points(1.0, [[Point3::new(0.1, 0.1, 0.0), Point3::new(3.9, 0.2, 0.0)]]);
+        let grid = HashGrid::of_points(
+            1.0,
+            [[Point3::new(0.1, 0.1, 0.0), Point3::new(3.9, 0.2, 0.0)]],
+        );
         assert_eq!(grid.occupied(), 4);
         assert_eq!(grid.near(&Point3::new(3.5, 0.0, 0.0), 0.1), vec![0]);
     }

@@ -31,14 +31,21 @@ pub fn lerp(a: Point2, b: Point2, t: f64) -> Point2 {
 
 /// Shoelace area, positive for counter-clockwise loops.
 pub fn signed_area(points: &[Point2]) -> f64 {
-    (0..points.len()).map(|i| cross(points[i], points[(i + 1) % points.len()])).sum::<f64>() / 2.0
+    (0..points.len())
+        .map(|i| cross(points[i], points[(i + 1) % points.len()]))
+        .sum::<f64>()
+        / 2.0
 }
 
 /// Distance from `q` to segment `ab`, and which end is closest when it is an end (0 or 1).
 pub fn point_segment(q: Point2, a: Point2, b: Point2) -> (f64, Option<usize>) {
     let ab = sub(b, a);
     let len2 = dot(ab, ab);
-    let t = if len2 > 0.0 { dot(sub(q, a), ab) / len2 } else { 0.0 };
+    let t = if len2 > 0.0 {
+        dot(sub(q, a), ab) / len2
+    } else {
+        0.0
+    };
     let (t, end) = if t <= 0.0 {
         (0.0, Some(0))
     } else if t >= 1.0 {
@@ -115,7 +122,10 @@ pub fn separation(p: &[Point2], q: &[Point2]) -> (f64, Point2) {
             }
             // Outward normal of a counter-clockwise polygon's edge.
             let n = [e[1] / len, -e[0] / len];
-            let reach = from.iter().map(|&v| dot(n, v)).fold(f64::NEG_INFINITY, f64::max);
+            let reach = from
+                .iter()
+                .map(|&v| dot(n, v))
+                .fold(f64::NEG_INFINITY, f64::max);
             let start = to.iter().map(|&v| dot(n, v)).fold(f64::INFINITY, f64::min);
             let gap = start - reach;
             if gap > best.0 {
@@ -138,9 +148,18 @@ pub fn convex_hull(points: &[Point2]) -> Vec<Point2> {
     let mut hull: Vec<Point2> = Vec::with_capacity(2 * pts.len());
     for pass in 0..2 {
         let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Point2>> = if pass == 0 { Box::new(pts.iter()) } else { Box::new(pts.iter().rev()) };
+        let iter: Box<dyn Iterator<Item = &Point2>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
         for &p in iter {
-            while hull.len() >= start + 2 && cross(sub(hull[hull.len() - 1], hull[hull.len() - 2]), sub(p, hull[hull.len() - 2])) <= 0.0 {
+            while hull.len() >= start + 2
+                && cross(
+                    sub(hull[hull.len() - 1], hull[hull.len() - 2]),
+                    sub(p, hull[hull.len() - 2]),
+                ) <= 0.0
+            {
                 hull.pop();
             }
             hull.push(p);
@@ -155,7 +174,12 @@ mod tests {
     use super::*;
 
     fn rect(cx: f64, cy: f64, hx: f64, hy: f64) -> Vec<Point2> {
-        vec![[cx - hx, cy - hy], [cx + hx, cy - hy], [cx + hx, cy + hy], [cx - hx, cy + hy]]
+        vec![
+            [cx - hx, cy - hy],
+            [cx + hx, cy - hy],
+            [cx + hx, cy + hy],
+            [cx - hx, cy + hy],
+        ]
     }
 
     #[test]
@@ -174,9 +198,18 @@ mod tests {
         let a = rect(0.0, 0.0, 1.0, 1.0);
         // A square turned 45 degrees whose corner points at a's right side, 0.1 away.
         let h = std::f64::consts::SQRT_2;
-        let b = vec![[1.1, 0.0], [1.1 + h, -h], [1.1 + 2.0 * h, 0.0], [1.1 + h, h]];
+        let b = vec![
+            [1.1, 0.0],
+            [1.1 + h, -h],
+            [1.1 + 2.0 * h, 0.0],
+            [1.1 + h, h],
+        ];
         let b: Vec<Point2> = b.into_iter().rev().collect::<Vec<_>>();
-        let b = if signed_area(&b) < 0.0 { b.into_iter().rev().collect() } else { b };
+        let b = if signed_area(&b) < 0.0 {
+            b.into_iter().rev().collect()
+        } else {
+            b
+        };
         assert!((separation(&a, &b).0 - 0.1).abs() < 1e-12);
     }
 
@@ -192,13 +225,26 @@ mod tests {
 
     #[test]
     fn hull_winding_and_segment_distance() {
-        let pts = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.5], [2.0, 2.0], [0.0, 2.0], [1.0, 2.0]];
+        let pts = [
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [1.0, 0.5],
+            [2.0, 2.0],
+            [0.0, 2.0],
+            [1.0, 2.0],
+        ];
         let hull = convex_hull(&pts);
         assert_eq!(hull.len(), 4);
         assert!((signed_area(&hull) - 4.0).abs() < 1e-12);
         assert_eq!(winding(std::slice::from_ref(&hull), [1.0, 1.0]), 1);
         assert_eq!(winding(&[hull], [3.0, 1.0]), 0);
-        assert_eq!(point_segment([0.5, 1.0], [0.0, 0.0], [1.0, 0.0]), (1.0, None));
-        assert_eq!(point_segment([-1.0, 0.0], [0.0, 0.0], [1.0, 0.0]), (1.0, Some(0)));
+        assert_eq!(
+            point_segment([0.5, 1.0], [0.0, 0.0], [1.0, 0.0]),
+            (1.0, None)
+        );
+        assert_eq!(
+            point_segment([-1.0, 0.0], [0.0, 0.0], [1.0, 0.0]),
+            (1.0, Some(0))
+        );
     }
 }

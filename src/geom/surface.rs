@@ -113,7 +113,10 @@ impl SurfaceIndex {
         // On an edge (one weight zero) or at a corner (two zero) of the triangle: is that
         // edge, or an edge at that corner, on the boundary?
         let corners = [a, b, c];
-        let used: Vec<usize> = (0..3).filter(|&k| w[k] > 1e-12).map(|k| corners[k]).collect();
+        let used: Vec<usize> = (0..3)
+            .filter(|&k| w[k] > 1e-12)
+            .map(|k| corners[k])
+            .collect();
         let is_boundary =
             |x: usize, y: usize| self.boundary.binary_search(&[x.min(y), x.max(y)]).is_ok();
         let on_boundary = match used[..] {

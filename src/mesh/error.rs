@@ -19,7 +19,9 @@ pub enum MeshError {
         vertex: usize,
     },
     /// A coordinate is larger in magnitude than [`super::MAX_COORDINATE`].
-    #[error("vertex {vertex} has a coordinate of magnitude {value:e}; coordinates may be at most {limit:e} (wrong units?)")]
+    #[error(
+        "vertex {vertex} has a coordinate of magnitude {value:e}; coordinates may be at most {limit:e} (wrong units?)"
+    )]
     CoordinateTooLarge {
         /// The vertex at fault.
         vertex: usize,
@@ -37,7 +39,9 @@ pub enum MeshError {
         count: usize,
     },
     /// A face refers to a vertex that does not exist.
-    #[error("face {face} refers to vertex {index}, but the mesh has only {vertex_count} vertices (valid: 0..{vertex_count})")]
+    #[error(
+        "face {face} refers to vertex {index}, but the mesh has only {vertex_count} vertices (valid: 0..{vertex_count})"
+    )]
     IndexOutOfRange {
         /// The face at fault.
         face: usize,
@@ -55,7 +59,9 @@ pub enum MeshError {
         vertex: usize,
     },
     /// An edge is shared by more than two faces.
-    #[error("edge {a}-{b} is shared by {face_count} faces (faces {faces:?}); a surface edge may border at most 2 faces")]
+    #[error(
+        "edge {a}-{b} is shared by {face_count} faces (faces {faces:?}); a surface edge may border at most 2 faces"
+    )]
     NonManifoldEdge {
         /// First vertex of the edge.
         a: usize,
@@ -76,7 +82,9 @@ pub enum MeshError {
     },
     /// Two faces run along their shared edge in the same direction: their normals point to
     /// opposite sides.
-    #[error("faces {faces:?} both run from vertex {a} to vertex {b}: their orientations disagree; unify the face normals (Rhino: UnifyMeshNormals)")]
+    #[error(
+        "faces {faces:?} both run from vertex {a} to vertex {b}: their orientations disagree; unify the face normals (Rhino: UnifyMeshNormals)"
+    )]
     InconsistentOrientation {
         /// Start of the shared edge in both faces.
         a: usize,
@@ -86,7 +94,9 @@ pub enum MeshError {
         faces: [usize; 2],
     },
     /// The mesh is larger than one call may take.
-    #[error("the mesh has {count} {what}; one call takes at most {limit}: split the shell into parts")]
+    #[error(
+        "the mesh has {count} {what}; one call takes at most {limit}: split the shell into parts"
+    )]
     TooLarge {
         /// `"vertices"`, `"faces"` or `"face indices"`.
         what: &'static str,

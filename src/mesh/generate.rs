@@ -12,7 +12,10 @@ use super::PolyMesh;
 /// # Panics
 /// If `nx` or `ny` is zero.
 pub fn grid(nx: usize, ny: usize) -> PolyMesh {
-    assert!(nx > 0 && ny > 0, "a grid needs at least one face in each direction");
+    assert!(
+        nx > 0 && ny > 0,
+        "a grid needs at least one face in each direction"
+    );
     let xs: Vec<f64> = (0..=nx).map(|i| i as f64).collect();
     let ys: Vec<f64> = (0..=ny).map(|j| j as f64).collect();
     lattice(&xs, &ys, |_, _| 0.0)
@@ -30,7 +33,10 @@ pub fn grid(nx: usize, ny: usize) -> PolyMesh {
 /// # Panics
 /// If `span` or `edge` is not positive and finite.
 pub fn corner_supported_shell(span: f64, edge: f64) -> PolyMesh {
-    assert!(span > 0.0 && edge > 0.0 && span.is_finite() && edge.is_finite(), "span and edge must be positive");
+    assert!(
+        span > 0.0 && edge > 0.0 && span.is_finite() && edge.is_finite(),
+        "span and edge must be positive"
+    );
     let rise = span / 4.0;
     let g = |s: f64| rise / 2.0 * (1.0 - (2.0 * s / span).powi(2));
     let stations = equal_arc_stations(span, edge, g);
@@ -76,10 +82,23 @@ pub fn triangulate_quads(mesh: &PolyMesh) -> PolyMesh {
 /// A quad lattice over the parameter lines `xs` x `ys` lifted by `z(x, y)`.
 fn lattice(xs: &[f64], ys: &[f64], z: impl Fn(f64, f64) -> f64) -> PolyMesh {
     let (nx, ny) = (xs.len() - 1, ys.len() - 1);
-    let positions = ys.iter().flat_map(|&y| xs.iter().map(move |&x| (x, y))).map(|(x, y)| Point3::new(x, y, z(x, y))).collect();
+    let positions = ys
+        .iter()
+        .flat_map(|&y| xs.iter().map(move |&x| (x, y)))
+        .map(|(x, y)| Point3::new(x, y, z(x, y)))
+        .collect();
     let vertex = |i: usize, j: usize| i + (nx + 1) * j;
     let faces = (0..ny)
-        .flat_map(|j| (0..nx).map(move |i| vec![vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)]))
+        .flat_map(|j| {
+            (0..nx).map(move |i| {
+                vec![
+                    vertex(i, j),
+                    vertex(i + 1, j),
+                    vertex(i + 1, j + 1),
+                    vertex(i, j + 1),
+                ]
+            })
+        })
         .collect();
     PolyMesh::new(positions, faces).expect("a lattice is a valid mesh")
 }

@@ -33,7 +33,11 @@ pub const MAX_COORDINATE: f64 = 1e12;
 /// # Errors
 /// [`MeshError::TooLarge`] naming the first count over its limit.
 pub fn check_size(vertices: usize, faces: usize, indices: usize) -> Result<(), MeshError> {
-    for (what, count, limit) in [("vertices", vertices, MAX_VERTICES), ("faces", faces, MAX_FACES), ("face indices", indices, MAX_INDICES)] {
+    for (what, count, limit) in [
+        ("vertices", vertices, MAX_VERTICES),
+        ("faces", faces, MAX_FACES),
+        ("face indices", indices, MAX_INDICES),
+    ] {
         if count > limit {
             return Err(MeshError::TooLarge { what, count, limit });
         }
@@ -45,13 +49,20 @@ pub fn check_size(vertices: usize, faces: usize, indices: usize) -> Result<(), M
 /// that one huge face cannot stall validation.
 fn first_repeated(face: &[usize]) -> Option<usize> {
     if face.len() <= 16 {
-        return face.iter().enumerate().find(|&(k, v)| face[k + 1..].contains(v)).map(|(_, &v)| v);
+        return face
+            .iter()
+            .enumerate()
+            .find(|&(k, v)| face[k + 1..].contains(v))
+            .map(|(_, &v)| v);
     }
     let mut last = std::collections::HashMap::with_capacity(face.len());
     for (k, &v) in face.iter().enumerate() {
         last.insert(v, k);
     }
-    face.iter().enumerate().find(|&(k, v)| last[v] > k).map(|(_, &v)| v)
+    face.iter()
+        .enumerate()
+        .find(|&(k, v)| last[v] > k)
+        .map(|(_, &v)| v)
 }
 
 /// A validated polygon surface mesh: positions (f64) and faces as lists of vertex indices.
@@ -79,32 +90,54 @@ impl PolyMesh {
     /// coordinate too large, face with fewer than three vertices, index out of range,
     /// repeated index in a face, duplicate face, non-manifold edge, inconsistent orientation.
     pub fn new(positions: Vec<Point3<f64>>, faces: Vec<Vec<usize>>) -> Result<Self, MeshError> {
-        check_size(positions.len(), faces.len(), faces.iter().map(Vec::len).sum())?;
+        check_size(
+            positions.len(),
+            faces.len(),
+            faces.iter().map(Vec::len).sum(),
+        )?;
         if faces.is_empty() || positions.is_empty() {
             return Err(MeshError::Empty {
                 vertices: positions.len(),
                 faces: faces.len(),
             });
         }
-        if let Some(vertex) = positions.iter().position(|p| !p.coords.iter().all(|c| c.is_finite())) {
+        if let Some(vertex) = positions
+            .iter()
+            .position(|p| !p.coords.iter().all(|c| c.is_finite()))
+        {
             return Err(MeshError::NonFiniteCoordinate { vertex });
         }
-        if let Some(vertex) = positions.iter().position(|p| p.coords.amax() > MAX_COORDINATE) {
+        if let Some(vertex) = positions
+            .iter()
+            .position(|p| p.coords.amax() > MAX_COORDINATE)
+        {
             let value = positions[vertex].coords.amax();
-            return Err(MeshError::CoordinateTooLarge { vertex, value, limit: MAX_COORDINATE });
+            return Err(MeshError::CoordinateTooLarge {
+                vertex,
+                value,
+                limit: MAX_COORDINATE,
+            });
         }
         for (face, indices) in faces.iter().enumerate() {
             if indices.len() < 3 {
-                return Err(MeshError::TooFewVertices { face, count: indices.len() });
+                return Err(MeshError::TooFewVertices {
+                    face,
+                    count: indices.len(),
+                });
             }
             if let Some(&index) = indices.iter().find(|&&i| i >= positions.len()) {
-                return Err(MeshError::IndexOutOfRange { face, index, vertex_count: positions.len() });
+                return Err(MeshError::IndexOutOfRange {
+                    face,
+                    index,
+                    vertex_count: positions.len(),
+                });
             }
             if let Some(vertex) = first_repeated(indices) {
                 return Err(MeshError::RepeatedIndex { face, vertex });
             }
         }
-        let mut seen: std::collections::HashMap<Vec<usize>, usize> = std::collections::HashMap::with_capacity(faces.len());
+        let mut seen: std::collections::HashMap<Vec<usize>, usize> =
+            std::collections::HashMap::with_capacity(faces.len());
         for (face, indices) in faces.iter().enumerate() {
             let mut key = indices.clone();
             key.sort_unstable();
@@ -145,7 +178,9 @@ impl PolyMesh {
 
     /// Vertex centroid of face `f` (the paper's face centroid, section 3.5).
     pub fn face_centroid(&self, f: usize) -> Point3<f64> {
-        let sum = self.face_points(f).fold(Vector3::zeros(), |acc, p| acc + p.coords);
+        let sum = self
+            .face_points(f)
+            .fold(Vector3::zeros(), |acc, p| acc + p.coords);
         Point3::from(sum / self.faces[f].len() as f64)
     }
 
@@ -174,6 +209,8 @@ impl PolyMesh {
 
     /// Total face area.
     pub fn area(&self) -> f64 {
-        (0..self.faces.len()).map(|f| self.face_area_vector(f).norm()).sum()
+        (0..self.faces.len())
+            .map(|f| self.face_area_vector(f).norm())
+            .sum()
     }
 }

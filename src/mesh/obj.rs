@@ -38,35 +38,60 @@ pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
             Some("v") => {
                 let mut xyz = [0.0; 3];
                 for c in &mut xyz {
-                    let word = words.next().ok_or_else(|| syntax("a vertex needs x, y and z".into()))?;
-                    *c = word.parse().map_err(|_| syntax(format!("'{word}' is not a number")))?;
+                    let word = words
+                        .next()
+                        .ok_or_else(|| syntax("a vertex needs x, y and z".into()))?;
+                    *c = word
+                        .parse()
+                        .map_err(|_| syntax(format!("'{word}' is not a number")))?;
                 }
                 positions.push(Point3::from(xyz));
                 if positions.len() > MAX_VERTICES {
-                    return Err(MeshError::TooLarge { what: "vertices", count: positions.len(), limit: MAX_VERTICES });
+                    return Err(MeshError::TooLarge {
+                        what: "vertices",
+                        count: positions.len(),
+                        limit: MAX_VERTICES,
+                    });
                 }
             }
             Some("f") => {
                 let mut face = Vec::new();
                 for word in words {
                     let first = word.split('/').next().unwrap_or("");
-                    let index: i64 = first.parse().map_err(|_| syntax(format!("'{word}' is not a vertex reference")))?;
+                    let index: i64 = first
+                        .parse()
+                        .map_err(|_| syntax(format!("'{word}' is not a vertex reference")))?;
                     let resolved = match index {
                         i if i > 0 => i - 1,
                         i if i < 0 => positions.len() as i64 + i,
-                        _ => return Err(syntax("vertex index 0 is not valid in OBJ (indices start at 1)".into())),
+                        _ => {
+                            return Err(syntax(
+                                "vertex index 0 is not valid in OBJ (indices start at 1)".into(),
+                            ));
+                        }
                     };
-                    let resolved = usize::try_from(resolved)
-                        .map_err(|_| syntax(format!("relative index {index} reaches before the first vertex")))?;
+                    let resolved = usize::try_from(resolved).map_err(|_| {
+                        syntax(format!(
+                            "relative index {index} reaches before the first vertex"
+                        ))
+                    })?;
                     face.push(resolved);
                     index_count += 1;
                     if index_count > MAX_INDICES {
-                        return Err(MeshError::TooLarge { what: "face indices", count: index_count, limit: MAX_INDICES });
+                        return Err(MeshError::TooLarge {
+                            what: "face indices",
+                            count: index_count,
+                            limit: MAX_INDICES,
+                        });
                     }
                 }
                 faces.push(face);
                 if faces.len() > MAX_FACES {
-                    return Err(MeshError::TooLarge { what: "faces", count: faces.len(), limit: MAX_FACES });
+                    return Err(MeshError::TooLarge {
+                        what: "faces",
+                        count: faces.len(),
+                        limit: MAX_FACES,
+                    });
                 }
             }
             _ => {}
@@ -81,10 +106,17 @@ pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
 /// [`MeshError::Io`] if the file cannot be read or is larger than [`MAX_FILE_BYTES`],
 /// otherwise as [`parse`].
 pub fn read(path: &Path) -> Result<PolyMesh, MeshError> {
-    let size = std::fs::metadata(path).map_err(|e| io_error(path, &e))?.len();
+    let size = std::fs::metadata(path)
+        .map_err(|e| io_error(path, &e))?
+        .len();
     if size > MAX_FILE_BYTES {
-        let message = format!("the file has {size} bytes; an OBJ file may have at most {MAX_FILE_BYTES} (split the shell into parts)");
-        return Err(MeshError::Io { path: path.display().to_string(), message });
+        let message = format!(
+            "the file has {size} bytes; an OBJ file may have at most {MAX_FILE_BYTES} (split the shell into parts)"
+        );
+        return Err(MeshError::Io {
+            path: path.display().to_string(),
+            message,
+        });
     }
     let text = std::fs::read_to_string(path).map_err(|e| io_error(path, &e))?;
     parse(&text)
@@ -115,5 +147,8 @@ pub fn write(mesh: &PolyMesh, path: &Path) -> Result<(), MeshError> {
 }
 
 fn io_error(path: &Path, e: &std::io::Error) -> MeshError {
-    MeshError::Io { path: path.display().to_string(), message: e.to_string() }
+    MeshError::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    }
 }

@@ -59,7 +59,10 @@ impl Topology {
                 let b = face[(i + 1) % face.len()];
                 let key = [a.min(b), a.max(b)];
                 let e = *index.entry(key).or_insert_with(|| {
-                    edges.push(Edge { vertices: key, faces: Vec::with_capacity(2) });
+                    edges.push(Edge {
+                        vertices: key,
+                        faces: Vec::with_capacity(2),
+                    });
                     edge_corners.push([usize::MAX; 2]);
                     vertex_edges[key[0]].push(edges.len() - 1);
                     vertex_edges[key[1]].push(edges.len() - 1);
@@ -68,14 +71,24 @@ impl Topology {
                 edges[e].faces.push(f);
                 if edges[e].faces.len() > 2 {
                     let faces = edges[e].faces.clone();
-                    return Err(MeshError::NonManifoldEdge { a: key[0], b: key[1], face_count: faces.len(), faces });
+                    return Err(MeshError::NonManifoldEdge {
+                        a: key[0],
+                        b: key[1],
+                        face_count: faces.len(),
+                        faces,
+                    });
                 }
                 edge_corners[e][edges[e].faces.len() - 1] = i;
                 own.push(e);
             }
             face_edges.push(own);
         }
-        Ok(Self { edges, face_edges, vertex_edges, edge_corners })
+        Ok(Self {
+            edges,
+            face_edges,
+            vertex_edges,
+            edge_corners,
+        })
     }
 
     /// Checks that every edge shared by two faces is run in opposite directions by them.
@@ -86,7 +99,9 @@ impl Topology {
         for (f, edges) in self.face_edges.iter().enumerate() {
             let face = &mesh.faces()[f];
             for (i, &e) in edges.iter().enumerate() {
-                let Some(g) = self.edges[e].other_face(f) else { continue };
+                let Some(g) = self.edges[e].other_face(f) else {
+                    continue;
+                };
                 if g < f {
                     continue;
                 }
@@ -94,7 +109,11 @@ impl Topology {
                 let k = self.corner(g, e).expect("the other face has the edge");
                 let other = &mesh.faces()[g];
                 if other[k] == a {
-                    return Err(MeshError::InconsistentOrientation { a, b, faces: [f, g] });
+                    return Err(MeshError::InconsistentOrientation {
+                        a,
+                        b,
+                        faces: [f, g],
+                    });
                 }
             }
         }
@@ -125,7 +144,10 @@ impl Topology {
 
     /// True when `v` touches a boundary edge or no edge at all.
     pub fn is_boundary_vertex(&self, v: usize) -> bool {
-        self.vertex_edges[v].is_empty() || self.vertex_edges[v].iter().any(|&e| self.edges[e].is_boundary())
+        self.vertex_edges[v].is_empty()
+            || self.vertex_edges[v]
+                .iter()
+                .any(|&e| self.edges[e].is_boundary())
     }
 
     /// The edge of face `f` that meets edge `e` at vertex `v` (the neighbour of `e` around `f`
@@ -146,8 +168,15 @@ impl Topology {
         if around.len() != 4 || self.is_boundary_vertex(v) {
             return None;
         }
-        let neighbours: Vec<usize> = self.edges[e].faces.iter().filter_map(|&f| self.face_edge_at(f, e, v)).collect();
-        let mut rest = around.iter().copied().filter(|&x| x != e && !neighbours.contains(&x));
+        let neighbours: Vec<usize> = self.edges[e]
+            .faces
+            .iter()
+            .filter_map(|&f| self.face_edge_at(f, e, v))
+            .collect();
+        let mut rest = around
+            .iter()
+            .copied()
+            .filter(|&x| x != e && !neighbours.contains(&x));
         match (rest.next(), rest.next()) {
             (Some(o), None) if neighbours.len() == 2 => Some(o),
             _ => None,

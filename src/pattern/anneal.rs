@@ -47,9 +47,18 @@ pub(super) struct Schedule {
 impl Schedule {
     /// Up to [`MOVES_PER_FACE`] moves per face and step, fewer when that would not fit in
     /// `budget` at [`NOMINAL_MOVES_PER_SECOND`]: depends only on the mesh size and the budget.
-    pub(super) fn for_budget(faces: usize, budget: std::time::Duration, temperature: f64, seed: u64) -> Self {
+    pub(super) fn for_budget(
+        faces: usize,
+        budget: std::time::Duration,
+        temperature: f64,
+        seed: u64,
+    ) -> Self {
         let affordable = (budget.as_secs_f64() * NOMINAL_MOVES_PER_SECOND / STEPS as f64) as usize;
-        Self { temperature, moves_per_step: (MOVES_PER_FACE * faces).min(affordable).max(faces), seed }
+        Self {
+            temperature,
+            moves_per_step: (MOVES_PER_FACE * faces).min(affordable).max(faces),
+            seed,
+        }
     }
 }
 
@@ -132,23 +141,41 @@ pub(super) fn anneal(
     deadline: Instant,
     keep_going: &mut dyn FnMut() -> bool,
 ) -> bool {
-    let faces: Vec<usize> = (0..graph.face_count()).filter(|&f| !graph.face_tiles(f).is_empty()).collect();
+    let faces: Vec<usize> = (0..graph.face_count())
+        .filter(|&f| !graph.face_tiles(f).is_empty())
+        .collect();
     if faces.is_empty() {
         return true;
     }
     let (partners, per_partner) = bond_partners(graph, bond);
     let mut tile_on = vec![None; graph.face_count()];
     for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
-        graph.tiles()[t].faces.iter().for_each(|&f| tile_on[f] = Some(t));
+        graph.tiles()[t]
+            .faces
+            .iter()
+            .for_each(|&f| tile_on[f] = Some(t));
     }
     let value = score(graph, chosen, bond).objective;
     let mut half_tile_slot = vec![usize::MAX; graph.face_count()];
-    let half_tiles: Vec<usize> = faces.iter().copied().filter(|&f| tile_on[f].is_none()).collect();
+    let half_tiles: Vec<usize> = faces
+        .iter()
+        .copied()
+        .filter(|&f| tile_on[f].is_none())
+        .collect();
     for (slot, &f) in half_tiles.iter().enumerate() {
         half_tile_slot[f] = slot;
     }
-    let mut state =
-        State { graph, partners, per_partner, chosen: chosen.to_vec(), tile_on, locked: locked.to_vec(), value, half_tiles, half_tile_slot };
+    let mut state = State {
+        graph,
+        partners,
+        per_partner,
+        chosen: chosen.to_vec(),
+        tile_on,
+        locked: locked.to_vec(),
+        value,
+        half_tiles,
+        half_tile_slot,
+    };
     let mut best = state.value;
     let stars = graph.regular_vertex_stars();
     // xorshift needs a non-zero state.
@@ -168,12 +195,22 @@ pub(super) fn anneal(
             // Three moves in eight start at a half tile, where most of the change happens;
             // one in eight turns two tiles.
             let delta = match rng.below(8) {
-                0 if !stars.is_empty() => try_turn(&mut state, stars[rng.below(stars.len())], temperature, &mut rng),
+                0 if !stars.is_empty() => try_turn(
+                    &mut state,
+                    stars[rng.below(stars.len())],
+                    temperature,
+                    &mut rng,
+                ),
                 1..4 if !state.half_tiles.is_empty() => {
                     let f = state.half_tiles[rng.below(state.half_tiles.len())];
                     try_face_move(&mut state, f, temperature, &mut rng)
                 }
-                _ => try_face_move(&mut state, faces[rng.below(faces.len())], temperature, &mut rng),
+                _ => try_face_move(
+                    &mut state,
+                    faces[rng.below(faces.len())],
+                    temperature,
+                    &mut rng,
+                ),
             };
             state.value += delta;
             if state.value > best + 1e-9 {
@@ -239,7 +276,12 @@ fn try_face_move(state: &mut State<'_>, f: usize, temperature: f64, rng: &mut Rn
 
 /// Turns two parallel tiles around a regular vertex (`[a, b, c, d]` in cyclic order, `a`
 /// with `c` or `b` with `d` chosen) by 90 degrees; returns the objective change made.
-fn try_turn(state: &mut State<'_>, [a, b, c, d]: [usize; 4], temperature: f64, rng: &mut Rng) -> f64 {
+fn try_turn(
+    state: &mut State<'_>,
+    [a, b, c, d]: [usize; 4],
+    temperature: f64,
+    rng: &mut Rng,
+) -> f64 {
     let (from, to) = if state.chosen[a] && state.chosen[c] {
         ([a, c], [b, d])
     } else if state.chosen[b] && state.chosen[d] {
@@ -271,7 +313,11 @@ impl State<'_> {
     /// tiles and every bond pair they are in, the pair between them counted once.
     fn value_around(&self, pair: &[usize; 2]) -> f64 {
         let [p, q] = *pair;
-        let inner = if self.partners[p].contains(&q) { self.per_partner } else { 0.0 };
+        let inner = if self.partners[p].contains(&q) {
+            self.per_partner
+        } else {
+            0.0
+        };
         self.share(p) + self.share(q) - inner
     }
 }

@@ -18,13 +18,19 @@ pub(super) fn maximum_matching(graph: &DualGraph, free: &[bool], fixed: &[bool])
     }
     for (t, tile) in tiles.iter().enumerate() {
         if free[t] && !tile.faces.iter().any(|&f| blocked[f]) {
-            dual.add_edge(NodeIndex::new(tile.faces[0]), NodeIndex::new(tile.faces[1]), t);
+            dual.add_edge(
+                NodeIndex::new(tile.faces[0]),
+                NodeIndex::new(tile.faces[1]),
+                t,
+            );
         }
     }
     let matching = petgraph::algo::maximum_matching(&dual);
     let mut chosen = vec![false; tiles.len()];
     for (a, b) in matching.edges() {
-        let t = graph.tile_between(a.index(), b.index()).expect("matched faces share a candidate tile");
+        let t = graph
+            .tile_between(a.index(), b.index())
+            .expect("matched faces share a candidate tile");
         chosen[t] = true;
     }
     chosen
@@ -39,7 +45,9 @@ pub(super) fn from_tile_count(graph: &DualGraph, bond: Bond, max_tiles: usize) -
     let tiles = max_tiles as f64;
     match bond {
         Bond::Stack | Bond::Staggered { .. } => tiles,
-        Bond::RunningBond { weight } => tiles + weight * (2.0 * tiles).min(graph.shifted_pairs().len() as f64),
+        Bond::RunningBond { weight } => {
+            tiles + weight * (2.0 * tiles).min(graph.shifted_pairs().len() as f64)
+        }
     }
 }
 
@@ -69,10 +77,18 @@ pub(super) fn round_down(bound: f64, bond: Bond, step: f64, most: f64) -> f64 {
     let largest_a = (most / step + 1e-9).floor();
     let mut best = f64::NEG_INFINITY;
     for b in 0..=MOST_PAIR_COUNTS {
-        let term = if reward { weight * b as f64 } else { -weight * b as f64 };
+        let term = if reward {
+            weight * b as f64
+        } else {
+            -weight * b as f64
+        };
         // No larger b can do better: a penalty only lowers what the tiles reach, and a
         // reward beyond the bound leaves no room for them.
-        let exhausted = if reward { term > bound + tolerance } else { largest_a * step + term < best };
+        let exhausted = if reward {
+            term > bound + tolerance
+        } else {
+            largest_a * step + term < best
+        };
         if exhausted || (b > 0 && weight == 0.0) {
             return best;
         }
@@ -110,6 +126,9 @@ mod tests {
         assert_eq!(round_down(10.4, running(0.5), 1.0, 12.0), 10.0);
         assert!((round_down(10.45, running(0.3), 1.0, 12.0) - 10.4).abs() < 1e-9);
         assert_eq!(round_down(0.4, running(0.5), 1.0, 12.0), 0.0);
-        assert_eq!(round_down(f64::INFINITY, staggered(0.5), 1.0, 12.0), f64::INFINITY);
+        assert_eq!(
+            round_down(f64::INFINITY, staggered(0.5), 1.0, 12.0),
+            f64::INFINITY
+        );
     }
 }

@@ -16,20 +16,35 @@ use super::{Bond, DualGraph, score};
 
 /// The better of the two running bonds (rows along either edge family of the seed face),
 /// completed greedily, never touching faces of `fixed` tiles.
-pub(super) fn running_bond(graph: &DualGraph, topology: &Topology, bond: Bond, fixed: &[bool]) -> Vec<bool> {
+pub(super) fn running_bond(
+    graph: &DualGraph,
+    topology: &Topology,
+    bond: Bond,
+    fixed: &[bool],
+) -> Vec<bool> {
     (0..2)
         .map(|seed_slot| {
             let mut chosen = strip_pairs(graph, topology, fixed, seed_slot);
             complete_greedily(graph, bond, fixed, &mut chosen);
             chosen
         })
-        .max_by(|a, b| score(graph, a, bond).objective.total_cmp(&score(graph, b, bond).objective).then(std::cmp::Ordering::Greater))
+        .max_by(|a, b| {
+            score(graph, a, bond)
+                .objective
+                .total_cmp(&score(graph, b, bond).objective)
+                .then(std::cmp::Ordering::Greater)
+        })
         .expect("two candidates")
 }
 
 /// Pairs each colour-0 face with its forward neighbour, after propagating colour and
 /// forward edge slot from the lowest-index face of each connected part.
-fn strip_pairs(graph: &DualGraph, topology: &Topology, fixed: &[bool], seed_slot: usize) -> Vec<bool> {
+fn strip_pairs(
+    graph: &DualGraph,
+    topology: &Topology,
+    fixed: &[bool],
+    seed_slot: usize,
+) -> Vec<bool> {
     let faces = graph.face_count();
     let mut used = faces_of(graph, fixed);
     let mut state: Vec<Option<(u8, usize)>> = vec![None; faces];
@@ -43,11 +58,17 @@ fn strip_pairs(graph: &DualGraph, topology: &Topology, fixed: &[bool], seed_slot
         while let Some(f) = queue.pop_front() {
             let (colour, forward) = state[f].expect("queued faces have a state");
             for (k, &e) in topology.face_edges(f).iter().enumerate() {
-                let Some(g) = topology.edges()[e].other_face(f) else { continue };
+                let Some(g) = topology.edges()[e].other_face(f) else {
+                    continue;
+                };
                 if state[g].is_some() || graph.tile_between(f, g).is_none() {
                     continue;
                 }
-                let k_in_g = topology.face_edges(g).iter().position(|&x| x == e).expect("shared edge");
+                let k_in_g = topology
+                    .face_edges(g)
+                    .iter()
+                    .position(|&x| x == e)
+                    .expect("shared edge");
                 // Forward slot transported across the shared edge; see the module notes.
                 let turn = (k + 4 - forward) % 4;
                 state[g] = Some((1 - colour, (k_in_g + 6 - turn) % 4));
@@ -57,10 +78,16 @@ fn strip_pairs(graph: &DualGraph, topology: &Topology, fixed: &[bool], seed_slot
     }
     let mut chosen = vec![false; graph.tiles().len()];
     for f in 0..faces {
-        let Some((0, forward)) = state[f] else { continue };
+        let Some((0, forward)) = state[f] else {
+            continue;
+        };
         let e = topology.face_edges(f)[forward];
-        let Some(g) = topology.edges()[e].other_face(f) else { continue };
-        let (Some(t), Some((1, _))) = (graph.tile_between(f, g), state[g]) else { continue };
+        let Some(g) = topology.edges()[e].other_face(f) else {
+            continue;
+        };
+        let (Some(t), Some((1, _))) = (graph.tile_between(f, g), state[g]) else {
+            continue;
+        };
         if !used[f] && !used[g] {
             used[f] = true;
             used[g] = true;
@@ -75,14 +102,22 @@ fn strip_pairs(graph: &DualGraph, topology: &Topology, fixed: &[bool], seed_slot
 /// distance to the boundary, each ring is walked face to face and paired along the walk, and
 /// of the two phases of each walk the one scoring better against the rings already laid is
 /// kept, which staggers neighbouring courses. Closed meshes start from their first face.
-pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bond, fixed: &[bool]) -> Vec<bool> {
+pub(super) fn boundary_courses(
+    graph: &DualGraph,
+    topology: &Topology,
+    bond: Bond,
+    fixed: &[bool],
+) -> Vec<bool> {
     let faces = graph.face_count();
     let mut ring = vec![usize::MAX; faces];
     let mut queue = VecDeque::new();
-    for f in 0..faces {
-        let on_boundary = topology.face_edges(f).iter().any(|&e| topology.edges()[e].is_boundary());
+    for (f, ring_of_f) in ring.iter_mut().enumerate() {
+        let on_boundary = topology
+            .face_edges(f)
+            .iter()
+            .any(|&e| topology.edges()[e].is_boundary());
         if on_boundary && !graph.face_tiles(f).is_empty() {
-            ring[f] = 0;
+            *ring_of_f = 0;
             queue.push_back(f);
         }
     }
@@ -113,12 +148,20 @@ pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bon
         }
         let mut walk = vec![start];
         walked[start] = true;
-        while let Some(next) = graph.neighbours(*walk.last().expect("non-empty")).filter(|&g| ring[g] == ring[start] && !walked[g] && !used[g]).min() {
+        while let Some(next) = graph
+            .neighbours(*walk.last().expect("non-empty"))
+            .filter(|&g| ring[g] == ring[start] && !walked[g] && !used[g])
+            .min()
+        {
             walked[next] = true;
             walk.push(next);
         }
         let phase = |offset: usize| -> Vec<usize> {
-            walk.windows(2).skip(offset).step_by(2).filter_map(|w| graph.tile_between(w[0], w[1])).collect()
+            walk.windows(2)
+                .skip(offset)
+                .step_by(2)
+                .filter_map(|w| graph.tile_between(w[0], w[1]))
+                .collect()
         };
         let (even, odd) = (phase(0), phase(1));
         // What laying `tiles` adds: one per tile and the bond term of every pair they make
@@ -127,7 +170,10 @@ pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bon
             let mut value = tiles.len() as f64;
             for (k, &t) in tiles.iter().enumerate() {
                 let with_laid = partners[t].iter().filter(|&&u| chosen[u]).count();
-                let among = partners[t].iter().filter(|&&u| tiles[..k].contains(&u)).count();
+                let among = partners[t]
+                    .iter()
+                    .filter(|&&u| tiles[..k].contains(&u))
+                    .count();
                 value += per_partner * (with_laid + among) as f64;
             }
             value
@@ -143,7 +189,12 @@ pub(super) fn boundary_courses(graph: &DualGraph, topology: &Topology, bond: Bon
 }
 
 /// Adds free tiles, in index order, whenever they raise the objective.
-pub(super) fn complete_greedily(graph: &DualGraph, bond: Bond, fixed: &[bool], chosen: &mut [bool]) {
+pub(super) fn complete_greedily(
+    graph: &DualGraph,
+    bond: Bond,
+    fixed: &[bool],
+    chosen: &mut [bool],
+) {
     let mut used = faces_of(graph, fixed);
     for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
         graph.tiles()[t].faces.iter().for_each(|&f| used[f] = true);
@@ -154,7 +205,10 @@ pub(super) fn complete_greedily(graph: &DualGraph, bond: Bond, fixed: &[bool], c
         if used[a] || used[b] {
             continue;
         }
-        let on = partners[t].iter().filter(|&&u| chosen[u] || fixed[u]).count() as f64;
+        let on = partners[t]
+            .iter()
+            .filter(|&&u| chosen[u] || fixed[u])
+            .count() as f64;
         if 1.0 + per_partner * on > 0.0 {
             used[a] = true;
             used[b] = true;

@@ -43,7 +43,11 @@ pub enum Courses {
 ///
 /// # Errors
 /// [`PatternError::InvalidUp`] when `up` is not a finite non-zero direction.
-pub(crate) fn middle_edges(mesh: &PolyMesh, topology: &Topology, up: [f64; 3]) -> Result<Vec<bool>, PatternError> {
+pub(crate) fn middle_edges(
+    mesh: &PolyMesh,
+    topology: &Topology,
+    up: [f64; 3],
+) -> Result<Vec<bool>, PatternError> {
     let up = Vector3::from(up);
     if !(up.iter().all(|c| c.is_finite()) && up.norm() > 0.0) {
         return Err(PatternError::InvalidUp { up: up.into() });
@@ -53,7 +57,13 @@ pub(crate) fn middle_edges(mesh: &PolyMesh, topology: &Topology, up: [f64; 3]) -
     // Per quad: which of its corners' parity starts a head edge (edges 0 and 2, or 1 and 3).
     let mut parity: Vec<Option<usize>> = vec![None; faces];
     let mut disagree = vec![false; topology.edges().len()];
-    let corner = |f: usize, e: usize| topology.face_edges(f).iter().position(|&x| x == e).expect("the face has the edge");
+    let corner = |f: usize, e: usize| {
+        topology
+            .face_edges(f)
+            .iter()
+            .position(|&x| x == e)
+            .expect("the face has the edge")
+    };
     for start in 0..faces {
         if parity[start].is_some() || !mesh.is_quad(start) {
             continue;
@@ -64,7 +74,9 @@ pub(crate) fn middle_edges(mesh: &PolyMesh, topology: &Topology, up: [f64; 3]) -
         while let Some(f) = queue.pop_front() {
             let pf = parity[f].expect("labelled before queued");
             for (i, &e) in topology.face_edges(f).iter().enumerate() {
-                let Some(g) = topology.edges()[e].other_face(f) else { continue };
+                let Some(g) = topology.edges()[e].other_face(f) else {
+                    continue;
+                };
                 if !mesh.is_quad(g) {
                     continue;
                 }
@@ -126,7 +138,11 @@ mod tests {
     #[test]
     fn on_a_slope_courses_run_level() {
         let flat = generate::grid(4, 3);
-        let tilted: Vec<nalgebra::Point3<f64>> = flat.positions().iter().map(|p| nalgebra::Point3::new(p.x, p.y, 0.5 * p.y)).collect();
+        let tilted: Vec<nalgebra::Point3<f64>> = flat
+            .positions()
+            .iter()
+            .map(|p| nalgebra::Point3::new(p.x, p.y, 0.5 * p.y))
+            .collect();
         let mesh = PolyMesh::new(tilted, flat.faces().to_vec()).unwrap();
         let topology = Topology::new(&mesh).unwrap();
         let allowed = middle_edges(&mesh, &topology, [0.0, 0.0, 1.0]).unwrap();
@@ -161,7 +177,11 @@ mod tests {
         let mesh = PolyMesh::new(points, faces).unwrap();
         let topology = Topology::new(&mesh).unwrap();
         let allowed = middle_edges(&mesh, &topology, [0.0, 1.0, 0.0]).unwrap();
-        let interior = topology.edges().iter().filter(|e| e.faces.len() == 2).count();
+        let interior = topology
+            .edges()
+            .iter()
+            .filter(|e| e.faces.len() == 2)
+            .count();
         assert_eq!(interior, 3);
         assert!(allowed.iter().filter(|&&a| a).count() < interior);
     }
@@ -170,7 +190,13 @@ mod tests {
     fn a_bad_up_is_refused() {
         let mesh = generate::grid(2, 2);
         let topology = Topology::new(&mesh).unwrap();
-        assert!(matches!(middle_edges(&mesh, &topology, [0.0, 0.0, 0.0]), Err(PatternError::InvalidUp { .. })));
-        assert!(matches!(middle_edges(&mesh, &topology, [f64::NAN, 0.0, 1.0]), Err(PatternError::InvalidUp { .. })));
+        assert!(matches!(
+            middle_edges(&mesh, &topology, [0.0, 0.0, 0.0]),
+            Err(PatternError::InvalidUp { .. })
+        ));
+        assert!(matches!(
+            middle_edges(&mesh, &topology, [f64::NAN, 0.0, 1.0]),
+            Err(PatternError::InvalidUp { .. })
+        ));
     }
 }

@@ -14,8 +14,8 @@
 use std::collections::VecDeque;
 use std::time::Instant;
 
-use super::mip::{self, Patch, Restriction};
 use super::bound;
+use super::mip::{self, Patch, Restriction};
 use super::{Bond, DualGraph, Formulation, PatternError, linear};
 use crate::control::Control;
 
@@ -55,14 +55,19 @@ struct Carried {
 /// patches. Deterministic.
 fn partition(graph: &DualGraph, size: usize, variant: usize, sources: &[usize]) -> Partition {
     let faces = graph.face_count();
-    let usable: Vec<usize> = (0..faces).filter(|&f| !graph.face_tiles(f).is_empty()).collect();
+    let usable: Vec<usize> = (0..faces)
+        .filter(|&f| !graph.face_tiles(f).is_empty())
+        .collect();
     let wanted = usable.len().div_ceil(size.max(1)).max(1);
     let mut patch_of = vec![usize::MAX; faces];
     let mut distance = vec![usize::MAX; faces];
     let mut seeds = Vec::new();
     // A patch of a quad mesh within r steps of its seed has about 2 r^2 faces.
     let radius = ((size as f64 / 2.0).sqrt() as usize).max(1);
-    for &source in sources.iter().filter(|&&f| f < faces && !graph.face_tiles(f).is_empty()) {
+    for &source in sources
+        .iter()
+        .filter(|&&f| f < faces && !graph.face_tiles(f).is_empty())
+    {
         if distance[source] >= radius {
             grow(graph, source, seeds.len(), &mut distance, &mut patch_of);
             seeds.push(source);
@@ -78,7 +83,13 @@ fn partition(graph: &DualGraph, size: usize, variant: usize, sources: &[usize]) 
     }
     while seeds.len() < wanted || usable.iter().any(|&f| patch_of[f] == usize::MAX) {
         // The farthest face; unreached faces (another connected piece) first.
-        let Some(seed) = usable.iter().copied().max_by_key(|&f| (distance[f], std::cmp::Reverse(f))) else { break };
+        let Some(seed) = usable
+            .iter()
+            .copied()
+            .max_by_key(|&f| (distance[f], std::cmp::Reverse(f)))
+        else {
+            break;
+        };
         if distance[seed] == 0 {
             break;
         }
@@ -98,12 +109,23 @@ fn partition(graph: &DualGraph, size: usize, variant: usize, sources: &[usize]) 
             grow(graph, seed, p, &mut distance, &mut patch_of);
         }
     }
-    Partition { patch_of, count: seeds.len(), centred: pinned, carried: None }
+    Partition {
+        patch_of,
+        count: seeds.len(),
+        centred: pinned,
+        carried: None,
+    }
 }
 
 /// A round's partition: [`partition`] of `size`, made of the patches of the last round's
 /// (`finer`, with what it proved) when there is one, so that its bounds carry over.
-pub(super) fn next_partition(graph: &DualGraph, size: usize, variant: usize, sources: &[usize], finer: Option<(Partition, Proven)>) -> Partition {
+pub(super) fn next_partition(
+    graph: &DualGraph,
+    size: usize,
+    variant: usize,
+    sources: &[usize],
+    finer: Option<(Partition, Proven)>,
+) -> Partition {
     let fresh = partition(graph, size, variant, sources);
     match finer {
         Some((last, proven)) => coarsen(&fresh, &last, &proven),
@@ -112,12 +134,17 @@ pub(super) fn next_partition(graph: &DualGraph, size: usize, variant: usize, sou
 }
 
 /// `coarse` rounded to unions of the patches of `finer`, carrying over what was `proven` on
-/// `finer` (see [`bound`]): every patch of `finer` goes whole to the patch of `coarse` that
+/// `finer` (see [`bound()`]): every patch of `finer` goes whole to the patch of `coarse` that
 /// holds most of its faces (the lowest index among equals); patches left empty are dropped,
 /// the others keep their order, so the centred ones stay first.
 fn coarsen(coarse: &Partition, finer: &Partition, proven: &Proven) -> Partition {
-    let mut overlaps: Vec<(usize, usize)> =
-        finer.patch_of.iter().zip(&coarse.patch_of).filter(|(q, p)| **q != usize::MAX && **p != usize::MAX).map(|(&q, &p)| (q, p)).collect();
+    let mut overlaps: Vec<(usize, usize)> = finer
+        .patch_of
+        .iter()
+        .zip(&coarse.patch_of)
+        .filter(|(q, p)| **q != usize::MAX && **p != usize::MAX)
+        .map(|(&q, &p)| (q, p))
+        .collect();
     overlaps.sort_unstable();
     // The coarse patch with most faces of each finer patch.
     let mut chosen: Vec<(usize, usize)> = vec![(0, usize::MAX); finer.count];
@@ -128,20 +155,54 @@ fn coarsen(coarse: &Partition, finer: &Partition, proven: &Proven) -> Partition 
         }
     }
     let mut used = vec![false; coarse.count];
-    chosen.iter().filter(|(_, p)| *p != usize::MAX).for_each(|&(_, p)| used[p] = true);
+    chosen
+        .iter()
+        .filter(|(_, p)| *p != usize::MAX)
+        .for_each(|&(_, p)| used[p] = true);
     let mut renumbered = vec![usize::MAX; coarse.count];
     let mut count = 0;
     for p in (0..coarse.count).filter(|&p| used[p]) {
         renumbered[p] = count;
         count += 1;
     }
-    let parent: Vec<usize> = chosen.iter().map(|&(_, p)| if p == usize::MAX { usize::MAX } else { renumbered[p] }).collect();
-    let patch_of = finer.patch_of.iter().map(|&q| if q == usize::MAX { usize::MAX } else { parent[q] }).collect();
+    let parent: Vec<usize> = chosen
+        .iter()
+        .map(|&(_, p)| {
+            if p == usize::MAX {
+                usize::MAX
+            } else {
+                renumbered[p]
+            }
+        })
+        .collect();
+    let patch_of = finer
+        .patch_of
+        .iter()
+        .map(|&q| {
+            if q == usize::MAX {
+                usize::MAX
+            } else {
+                parent[q]
+            }
+        })
+        .collect();
     let centred = (0..coarse.centred).filter(|&p| used[p]).count();
     let mut patch_bounds = vec![0.0; count];
-    proven.patch_bounds.iter().enumerate().for_each(|(q, b)| patch_bounds[parent[q]] += b);
+    proven
+        .patch_bounds
+        .iter()
+        .enumerate()
+        .for_each(|(q, b)| patch_bounds[parent[q]] += b);
     let owner = proven.owner.iter().map(|&q| parent[q]).collect();
-    Partition { patch_of, count, centred, carried: Some(Carried { patch_bounds, owner }) }
+    Partition {
+        patch_of,
+        count,
+        centred,
+        carried: Some(Carried {
+            patch_bounds,
+            owner,
+        }),
+    }
 }
 
 /// Times seeds are moved to the middle of their patches.
@@ -149,7 +210,13 @@ const LLOYD_ROUNDS: usize = 3;
 
 /// Breadth-first from `seed`, claiming for `patch` every face closer to it than to the seed
 /// that claimed it before.
-fn grow(graph: &DualGraph, seed: usize, patch: usize, distance: &mut [usize], patch_of: &mut [usize]) {
+fn grow(
+    graph: &DualGraph,
+    seed: usize,
+    patch: usize,
+    distance: &mut [usize],
+    patch_of: &mut [usize],
+) {
     let mut queue = VecDeque::from([seed]);
     distance[seed] = 0;
     patch_of[seed] = patch;
@@ -168,7 +235,9 @@ fn grow(graph: &DualGraph, seed: usize, patch: usize, distance: &mut [usize], pa
 /// to the mesh boundary), the lowest index among equals.
 fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usize> {
     let faces = graph.face_count();
-    let edge = |f: usize| graph.face_tiles(f).len() < 4 || graph.neighbours(f).any(|g| patch_of[g] != patch_of[f]);
+    let edge = |f: usize| {
+        graph.face_tiles(f).len() < 4 || graph.neighbours(f).any(|g| patch_of[g] != patch_of[f])
+    };
     let mut depth = vec![usize::MAX; faces];
     let mut queue = VecDeque::new();
     for f in (0..faces).filter(|&f| patch_of[f] != usize::MAX && edge(f)) {
@@ -213,7 +282,10 @@ fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usi
 /// With `linear`, each patch's linear relaxation is solved instead, by Clp's barrier (see
 /// `linear`): a weaker bound, found far sooner, so that patches can be larger (and no
 /// sources are reported).
-#[expect(clippy::too_many_arguments, reason = "the stage's inputs, its limits and its control")]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the stage's inputs, its limits and its control"
+)]
 pub(super) fn bound(
     graph: &DualGraph,
     bond: Bond,
@@ -228,7 +300,12 @@ pub(super) fn bound(
     let (relation, per_pair) = graph.bond_pairs(bond);
     let running = matches!(bond, Bond::RunningBond { .. });
     let mut members = vec![Vec::new(); partition.count];
-    for (f, &p) in partition.patch_of.iter().enumerate().filter(|(_, p)| **p != usize::MAX) {
+    for (f, &p) in partition
+        .patch_of
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| **p != usize::MAX)
+    {
         members[p].push(f);
     }
     let (owner, mut patch_bound) = match &partition.carried {
@@ -236,13 +313,31 @@ pub(super) fn bound(
         None => {
             // Each pair belongs to the first patch both its tiles reach, else to the patch of
             // its first tile's first face (a reward pair must be counted somewhere).
-            let reaches = |t: usize, p: usize| tiles[t].faces.iter().any(|&f| partition.patch_of[f] == p);
+            let reaches =
+                |t: usize, p: usize| tiles[t].faces.iter().any(|&f| partition.patch_of[f] == p);
             let owner: Vec<usize> = relation
                 .iter()
-                .map(|&[a, b]| tiles[a].faces.iter().map(|&f| partition.patch_of[f]).filter(|&p| reaches(b, p)).min().unwrap_or(partition.patch_of[tiles[a].faces[0]]))
+                .map(|&[a, b]| {
+                    tiles[a]
+                        .faces
+                        .iter()
+                        .map(|&f| partition.patch_of[f])
+                        .filter(|&p| reaches(b, p))
+                        .min()
+                        .unwrap_or(partition.patch_of[tiles[a].faces[0]])
+                })
                 .collect();
             // Half a tile per face, the trivial bound of a stack or staggered patch.
-            let start = members.iter().map(|m| if running { f64::INFINITY } else { 0.5 * m.len() as f64 }).collect();
+            let start = members
+                .iter()
+                .map(|m| {
+                    if running {
+                        f64::INFINITY
+                    } else {
+                        0.5 * m.len() as f64
+                    }
+                })
+                .collect();
             (owner, start)
         }
     };
@@ -267,7 +362,12 @@ pub(super) fn bound(
         order.retain(|&p| shortfall[p] > 1e-9);
     }
     // Patches around known forced defects first, as they hold most of what can be proven.
-    order.sort_by(|&p, &q| (q < partition.centred).cmp(&(p < partition.centred)).then(shortfall[q].total_cmp(&shortfall[p])).then(p.cmp(&q)));
+    order.sort_by(|&p, &q| {
+        (q < partition.centred)
+            .cmp(&(p < partition.centred))
+            .then(shortfall[q].total_cmp(&shortfall[p]))
+            .then(p.cmp(&q))
+    });
 
     let free = vec![true; tiles.len()];
     let fixed = vec![false; tiles.len()];
@@ -280,21 +380,42 @@ pub(super) fn bound(
         }
         // A fair share of the time left, so one hard patch cannot starve the others; a patch
         // cut short still gives its solver's bound.
-        let share = (deadline - now).mul_f64(PATCH_SHARE / (order.len() - k) as f64).min(deadline - now);
-        let expected = if linear { linear::expected_seconds(members[p].len()) } else { mip::expected_linear_seconds(members[p].len()) };
+        let share = (deadline - now)
+            .mul_f64(PATCH_SHARE / (order.len() - k) as f64)
+            .min(deadline - now);
+        let expected = if linear {
+            linear::expected_seconds(members[p].len())
+        } else {
+            mip::expected_linear_seconds(members[p].len())
+        };
         if expected > share.as_secs_f64() {
             continue;
         }
         members[p].iter().for_each(|&f| faces[f] = true);
         let owned: Vec<bool> = owner.iter().map(|&o| o == p).collect();
-        let patch = Patch { faces: &faces, owned: &owned };
+        let patch = Patch {
+            faces: &faces,
+            owned: &owned,
+        };
         // The solver's bound, and for an integer program the relaxed pattern it found.
         let (solver_bound, chosen) = if linear {
             let found = linear::bound(graph, bond, Some(patch), share, control, progress)?;
             (found.map_or(f64::INFINITY, |found| found.value), None)
         } else {
-            let restriction = Restriction { free: &free, fixed: &fixed, patch: Some(patch) };
-            let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, share, control, progress)?;
+            let restriction = Restriction {
+                free: &free,
+                fixed: &fixed,
+                patch: Some(patch),
+            };
+            let outcome = mip::solve(
+                graph,
+                bond,
+                Formulation::Strengthened,
+                &restriction,
+                share,
+                control,
+                progress,
+            )?;
             (outcome.bound, outcome.chosen)
         };
         let solved = bound::round_down(solver_bound, bond, 0.5, 0.5 * members[p].len() as f64);
@@ -309,12 +430,21 @@ pub(super) fn bound(
         }
         members[p].iter().for_each(|&f| faces[f] = false);
     }
-    sources.sort_by(|a, b| b.shortfall.total_cmp(&a.shortfall).then(a.face.cmp(&b.face)));
+    sources.sort_by(|a, b| {
+        b.shortfall
+            .total_cmp(&a.shortfall)
+            .then(a.face.cmp(&b.face))
+    });
     let total: f64 = patch_bound.iter().sum();
-    Ok(Proven { value: total.is_finite().then_some(total), sources, patch_bounds: patch_bound, owner })
+    Ok(Proven {
+        value: total.is_finite().then_some(total),
+        sources,
+        patch_bounds: patch_bound,
+        owner,
+    })
 }
 
-/// What [`bound`] proved.
+/// What [`bound()`] proved.
 pub(super) struct Proven {
     /// The upper bound; `None` for a running bond whose patches were not all solved.
     pub value: Option<f64>,
@@ -337,15 +467,33 @@ pub(super) struct Source {
 
 /// Faces of `patch` that the relaxed pattern `chosen` leaves uncovered or gives a penalty
 /// pair (of the `owned` pairs of `relation`).
-fn defect_faces(graph: &DualGraph, relation: &[[usize; 2]], owned: &[bool], patch: &[bool], chosen: &[bool]) -> Vec<usize> {
+fn defect_faces(
+    graph: &DualGraph,
+    relation: &[[usize; 2]],
+    owned: &[bool],
+    patch: &[bool],
+    chosen: &[bool],
+) -> Vec<usize> {
     let tiles = graph.tiles();
     let mut covered = vec![false; graph.face_count()];
     for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
         tiles[t].faces.iter().for_each(|&f| covered[f] = true);
     }
-    let mut defects: Vec<usize> = (0..graph.face_count()).filter(|&f| patch[f] && !covered[f]).collect();
-    for (_, &[a, b]) in relation.iter().enumerate().filter(|&(i, &[a, b])| owned[i] && chosen[a] && chosen[b]) {
-        defects.extend(tiles[a].faces.iter().chain(&tiles[b].faces).filter(|&&f| patch[f]));
+    let mut defects: Vec<usize> = (0..graph.face_count())
+        .filter(|&f| patch[f] && !covered[f])
+        .collect();
+    for (_, &[a, b]) in relation
+        .iter()
+        .enumerate()
+        .filter(|&(i, &[a, b])| owned[i] && chosen[a] && chosen[b])
+    {
+        defects.extend(
+            tiles[a]
+                .faces
+                .iter()
+                .chain(&tiles[b].faces)
+                .filter(|&&f| patch[f]),
+        );
     }
     defects.sort_unstable();
     defects.dedup();
@@ -361,7 +509,10 @@ fn middle(graph: &DualGraph, faces: &[usize]) -> Option<usize> {
     for &from in faces {
         distance.iter_mut().for_each(|d| *d = usize::MAX);
         grow(graph, from, 0, &mut distance, &mut claimed);
-        let total: usize = faces.iter().map(|&f| distance[f].min(graph.face_count())).sum();
+        let total: usize = faces
+            .iter()
+            .map(|&f| distance[f].min(graph.face_count()))
+            .sum();
         if best.is_none_or(|(_, b)| total < b) {
             best = Some((from, total));
         }
@@ -379,7 +530,9 @@ pub(super) mod tests {
     pub(in crate::pattern) fn ragged(n: usize) -> PolyMesh {
         let grid = generate::grid(n, n);
         let edge = |f: usize| f % n == 0 || f % n == n - 1 || f / n == 0 || f / n == n - 1;
-        let faces = (0..grid.face_count()).filter(|&f| !(edge(f) && f.wrapping_mul(2654435761) % 3 == 0)).map(|f| grid.faces()[f].clone());
+        let faces = (0..grid.face_count())
+            .filter(|&f| !(edge(f) && f.wrapping_mul(2654435761) % 3 == 0))
+            .map(|f| grid.faces()[f].clone());
         PolyMesh::new(grid.positions().to_vec(), faces.collect()).unwrap()
     }
 
@@ -388,33 +541,100 @@ pub(super) mod tests {
         for mesh in [ragged(7), ragged(8), generate::grid(6, 7)] {
             let topology = Topology::new(&mesh).unwrap();
             let graph = DualGraph::new(&mesh, &topology, &[]);
-            for bond in [Bond::Stack, Bond::Staggered { weight: 0.5 }, Bond::Staggered { weight: 2.0 }, Bond::RunningBond { weight: 0.5 }] {
-                let options = PatternOptions { bond, method: Method::Mip, time_limit: std::time::Duration::from_secs(20), ..PatternOptions::default() };
+            for bond in [
+                Bond::Stack,
+                Bond::Staggered { weight: 0.5 },
+                Bond::Staggered { weight: 2.0 },
+                Bond::RunningBond { weight: 0.5 },
+            ] {
+                let options = PatternOptions {
+                    bond,
+                    method: Method::Mip,
+                    time_limit: std::time::Duration::from_secs(20),
+                    ..PatternOptions::default()
+                };
                 let optimum = solve(&mesh, &options).unwrap();
                 assert_eq!(optimum.status, SolveStatus::Optimal);
                 // No incumbent: every patch is solved.
                 let nothing = vec![false; graph.tiles().len()];
-                for (size, linear) in [6, 12, 25].into_iter().flat_map(|size| [(size, false), (size, true)]) {
+                for (size, linear) in [6, 12, 25]
+                    .into_iter()
+                    .flat_map(|size| [(size, false), (size, true)])
+                {
                     let partition = partition(&graph, size, 0, &[]);
                     assert!(partition.count > 1);
                     let deadline = Instant::now() + std::time::Duration::from_secs(20);
-                    let bound = super::bound(&graph, bond, linear, &partition, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap().value.unwrap();
-                    let what = if linear { "linear relaxations" } else { "patches" };
-                    assert!(bound >= optimum.objective - 1e-6, "{bond:?}, {what} of {size}: bound {bound} < optimum {}", optimum.objective);
-                    assert!(bound <= 0.5 * mesh.face_count() as f64 + 1e-6 || matches!(bond, Bond::RunningBond { .. }));
+                    let bound = super::bound(
+                        &graph,
+                        bond,
+                        linear,
+                        &partition,
+                        &nothing,
+                        deadline,
+                        &mut Control::none(),
+                        &|| 0.0,
+                    )
+                    .unwrap()
+                    .value
+                    .unwrap();
+                    let what = if linear {
+                        "linear relaxations"
+                    } else {
+                        "patches"
+                    };
+                    assert!(
+                        bound >= optimum.objective - 1e-6,
+                        "{bond:?}, {what} of {size}: bound {bound} < optimum {}",
+                        optimum.objective
+                    );
+                    assert!(
+                        bound <= 0.5 * mesh.face_count() as f64 + 1e-6
+                            || matches!(bond, Bond::RunningBond { .. })
+                    );
                 }
                 // Coarser patches built from finer ones, centred on the finer round's sources:
                 // never weaker than the finer bound, never below the optimum.
                 let finer_partition = partition(&graph, 6, 0, &[]);
                 let deadline = Instant::now() + std::time::Duration::from_secs(20);
-                let finer = super::bound(&graph, bond, false, &finer_partition, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap();
+                let finer = super::bound(
+                    &graph,
+                    bond,
+                    false,
+                    &finer_partition,
+                    &nothing,
+                    deadline,
+                    &mut Control::none(),
+                    &|| 0.0,
+                )
+                .unwrap();
                 let sources: Vec<usize> = finer.sources.iter().map(|s| s.face).collect();
-                let coarse = coarsen(&partition(&graph, 20, 0, &sources), &finer_partition, &finer);
+                let coarse = coarsen(
+                    &partition(&graph, 20, 0, &sources),
+                    &finer_partition,
+                    &finer,
+                );
                 assert!(coarse.count < finer_partition.count);
-                let refined = super::bound(&graph, bond, false, &coarse, &nothing, deadline, &mut Control::none(), &|| 0.0).unwrap();
+                let refined = super::bound(
+                    &graph,
+                    bond,
+                    false,
+                    &coarse,
+                    &nothing,
+                    deadline,
+                    &mut Control::none(),
+                    &|| 0.0,
+                )
+                .unwrap();
                 let (finer, refined) = (finer.value.unwrap(), refined.value.unwrap());
-                assert!(refined <= finer + 1e-9, "{bond:?}: coarser bound {refined} above the finer {finer}");
-                assert!(refined >= optimum.objective - 1e-6, "{bond:?}: coarser bound {refined} < optimum {}", optimum.objective);
+                assert!(
+                    refined <= finer + 1e-9,
+                    "{bond:?}: coarser bound {refined} above the finer {finer}"
+                );
+                assert!(
+                    refined >= optimum.objective - 1e-6,
+                    "{bond:?}: coarser bound {refined} < optimum {}",
+                    optimum.objective
+                );
             }
         }
     }
@@ -436,15 +656,22 @@ pub(super) mod tests {
         let centred = super::partition(&graph, 100, 0, &sources);
         assert_eq!(centred.centred, 2);
         assert_eq!((centred.patch_of[0], centred.patch_of[310]), (0, 1));
-        let nothing = Proven { value: Some(0.0), sources: Vec::new(), patch_bounds: vec![0.0; centred.count], owner: Vec::new() };
+        let nothing = Proven {
+            value: Some(0.0),
+            sources: Vec::new(),
+            patch_bounds: vec![0.0; centred.count],
+            owner: Vec::new(),
+        };
         let coarse = coarsen(&super::partition(&graph, 200, 0, &[]), &centred, &nothing);
         assert!(coarse.count < centred.count);
         let mut parent = vec![usize::MAX; centred.count];
         for f in 0..mesh.face_count() {
             let q = centred.patch_of[f];
-            assert!(parent[q] == usize::MAX || parent[q] == coarse.patch_of[f], "patch {q} split");
+            assert!(
+                parent[q] == usize::MAX || parent[q] == coarse.patch_of[f],
+                "patch {q} split"
+            );
             parent[q] = coarse.patch_of[f];
         }
     }
 }
-

@@ -34,7 +34,12 @@ impl DualGraph {
     }
 
     /// [`DualGraph::new`] with candidate tiles only across the mesh edges `middle` allows.
-    pub fn restricted(mesh: &PolyMesh, topology: &Topology, excluded: &[bool], middle: Option<&[bool]>) -> Self {
+    pub fn restricted(
+        mesh: &PolyMesh,
+        topology: &Topology,
+        excluded: &[bool],
+        middle: Option<&[bool]>,
+    ) -> Self {
         let usable = |f: usize| mesh.is_quad(f) && !excluded.get(f).copied().unwrap_or(false);
         let mut tiles = Vec::new();
         let mut edge_tile = vec![None; topology.edges().len()];
@@ -42,7 +47,10 @@ impl DualGraph {
             if let [a, b] = edge.faces[..] {
                 if usable(a) && usable(b) && middle.is_none_or(|m| m[e]) {
                     edge_tile[e] = Some(tiles.len());
-                    tiles.push(CandidateTile { faces: [a.min(b), a.max(b)], middle_edge: e });
+                    tiles.push(CandidateTile {
+                        faces: [a.min(b), a.max(b)],
+                        middle_edge: e,
+                    });
                 }
             }
         }
@@ -53,9 +61,17 @@ impl DualGraph {
             }
         }
 
-        let (continuous_joints, regular_vertex_stars) = continuous_joints(mesh, topology, &edge_tile);
+        let (continuous_joints, regular_vertex_stars) =
+            continuous_joints(mesh, topology, &edge_tile);
         let shifted_pairs = shifted_pairs(topology, &edge_tile, &tiles);
-        Self { face_count: mesh.face_count(), tiles, face_tiles, continuous_joints, shifted_pairs, regular_vertex_stars }
+        Self {
+            face_count: mesh.face_count(),
+            tiles,
+            face_tiles,
+            continuous_joints,
+            shifted_pairs,
+            regular_vertex_stars,
+        }
     }
 
     /// Number of faces of the mesh (paired or not).
@@ -116,20 +132,40 @@ impl DualGraph {
     /// The candidate tile made of faces `a` and `b`, if they are adjacent usable quads.
     pub fn tile_between(&self, a: usize, b: usize) -> Option<usize> {
         let key = [a.min(b), a.max(b)];
-        self.face_tiles.get(a)?.iter().copied().find(|&t| self.tiles[t].faces == key)
+        self.face_tiles
+            .get(a)?
+            .iter()
+            .copied()
+            .find(|&t| self.tiles[t].faces == key)
     }
 }
 
 /// Continuous-joint pairs and full vertex stars, vertex by vertex in index order.
-fn continuous_joints(mesh: &PolyMesh, topology: &Topology, edge_tile: &[Option<usize>]) -> (Vec<[usize; 2]>, Vec<[usize; 4]>) {
+fn continuous_joints(
+    mesh: &PolyMesh,
+    topology: &Topology,
+    edge_tile: &[Option<usize>],
+) -> (Vec<[usize; 2]>, Vec<[usize; 4]>) {
     let mut pairs = Vec::new();
     let mut stars = Vec::new();
     for v in 0..mesh.positions().len() {
         let around = topology.vertex_edges(v);
-        let Some(first) = around.first().copied() else { continue };
-        let Some(opposite) = topology.opposite_edge(v, first) else { continue };
-        let Some(second) = around.iter().copied().find(|&e| e != first && e != opposite) else { continue };
-        let Some(fourth) = topology.opposite_edge(v, second) else { continue };
+        let Some(first) = around.first().copied() else {
+            continue;
+        };
+        let Some(opposite) = topology.opposite_edge(v, first) else {
+            continue;
+        };
+        let Some(second) = around
+            .iter()
+            .copied()
+            .find(|&e| e != first && e != opposite)
+        else {
+            continue;
+        };
+        let Some(fourth) = topology.opposite_edge(v, second) else {
+            continue;
+        };
         let cycle = [first, second, opposite, fourth].map(|e| edge_tile[e]);
         for (a, b) in [(cycle[0], cycle[2]), (cycle[1], cycle[3])] {
             if let (Some(a), Some(b)) = (a, b) {
@@ -146,13 +182,21 @@ fn continuous_joints(mesh: &PolyMesh, topology: &Topology, edge_tile: &[Option<u
 /// Shifted pairs, found from each interior edge `s = (p, q)` between faces `f` and `g`: the
 /// tile through `f`'s edge at `p` and the tile through `g`'s edge at `q` are shifted by one
 /// face along `s`, and so are the two tiles the other way round.
-fn shifted_pairs(topology: &Topology, edge_tile: &[Option<usize>], tiles: &[CandidateTile]) -> Vec<[usize; 2]> {
+fn shifted_pairs(
+    topology: &Topology,
+    edge_tile: &[Option<usize>],
+    tiles: &[CandidateTile],
+) -> Vec<[usize; 2]> {
     let mut pairs = Vec::new();
     for (s, edge) in topology.edges().iter().enumerate() {
         let [f, g] = edge.faces[..] else { continue };
         let [p, q] = edge.vertices;
-        let tile_at = |face: usize, v: usize| topology.face_edge_at(face, s, v).and_then(|e| edge_tile[e]);
-        for (a, b) in [(tile_at(f, p), tile_at(g, q)), (tile_at(f, q), tile_at(g, p))] {
+        let tile_at =
+            |face: usize, v: usize| topology.face_edge_at(face, s, v).and_then(|e| edge_tile[e]);
+        for (a, b) in [
+            (tile_at(f, p), tile_at(g, q)),
+            (tile_at(f, q), tile_at(g, p)),
+        ] {
             let (Some(a), Some(b)) = (a, b) else { continue };
             let [a_faces, b_faces] = [tiles[a].faces, tiles[b].faces];
             if a_faces.iter().any(|x| b_faces.contains(x)) {

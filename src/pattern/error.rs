@@ -11,7 +11,9 @@ pub enum PatternError {
     },
     /// A bond weight is larger than [`super::MAX_WEIGHT`]: it would only break the solver's
     /// numerics.
-    #[error("bond weight {weight:?} is larger than {max}, the most that makes sense (above 1 one joint already outweighs a tile)")]
+    #[error(
+        "bond weight {weight:?} is larger than {max}, the most that makes sense (above 1 one joint already outweighs a tile)"
+    )]
     WeightTooLarge {
         /// The weight given.
         weight: f64,
@@ -67,7 +69,9 @@ pub enum PatternError {
         up: [f64; 3],
     },
     /// A forced pair lies across two courses when tiles are laid in courses.
-    #[error("forced pair [{a}, {b}]: the faces lie in two courses (their shared edge runs along the courses), so in courses they cannot form one tile; force pairs along a course or lay tiles either way")]
+    #[error(
+        "forced pair [{a}, {b}]: the faces lie in two courses (their shared edge runs along the courses), so in courses they cannot form one tile; force pairs along a course or lay tiles either way"
+    )]
     ForcedAcrossCourses {
         /// First face.
         a: usize,

@@ -66,8 +66,17 @@ impl Relaxation {
         }
         let mut rows: Vec<(Vec<(usize, f64)>, f64)> = Vec::new();
         // Eq. (1): each face in at most one tile.
-        for f in (0..graph.face_count()).filter(|&f| counted(f) && !graph.face_tiles(f).is_empty()) {
-            rows.push((graph.face_tiles(f).iter().filter_map(|&t| tile_column[t]).map(|j| (j, 1.0)).collect(), 1.0));
+        for f in (0..graph.face_count()).filter(|&f| counted(f) && !graph.face_tiles(f).is_empty())
+        {
+            rows.push((
+                graph
+                    .face_tiles(f)
+                    .iter()
+                    .filter_map(|&t| tile_column[t])
+                    .map(|j| (j, 1.0))
+                    .collect(),
+                1.0,
+            ));
         }
         // Eq. (2) with the star rows (see `Formulation::Strengthened`) at a regular vertex
         // whose four tiles lie in the patch and whose two joints are both counted: the
@@ -77,13 +86,27 @@ impl Relaxation {
         // rows keep the sum of the four x at most 2). So one column s, costing w, and one
         // row stand for two columns and three rows, with the same optimum; for integer x, s
         // is the number of joints at the vertex. The barrier's time falls with the size.
-        let counted_pair = |i: usize| owned(i) && relation[i].iter().all(|&t| tile_column[t].is_some());
+        let counted_pair =
+            |i: usize| owned(i) && relation[i].iter().all(|&t| tile_column[t].is_some());
         let mut starred = vec![false; relation.len()];
         if let Bond::Staggered { .. } = bond {
-            let index_of: HashMap<[usize; 2], usize> = relation.iter().enumerate().map(|(i, &pair)| (pair, i)).collect();
-            let joint = |a: usize, b: usize| index_of.get(&[a.min(b), a.max(b)]).copied().filter(|&i| counted_pair(i));
+            let index_of: HashMap<[usize; 2], usize> = relation
+                .iter()
+                .enumerate()
+                .map(|(i, &pair)| (pair, i))
+                .collect();
+            let joint = |a: usize, b: usize| {
+                index_of
+                    .get(&[a.min(b), a.max(b)])
+                    .copied()
+                    .filter(|&i| counted_pair(i))
+            };
             let inside = |t: usize| tiles[t].faces.iter().all(|&f| counted(f));
-            for &star in graph.regular_vertex_stars().iter().filter(|star| star.iter().all(|&t| inside(t))) {
+            for &star in graph
+                .regular_vertex_stars()
+                .iter()
+                .filter(|star| star.iter().all(|&t| inside(t)))
+            {
                 let [a, b, c, d] = star;
                 // Every joint belongs to one vertex; were one shared, counting it at two
                 // vertices would overstate its cost, so such a star is left out.
@@ -95,13 +118,22 @@ impl Relaxation {
                     starred[bd] = true;
                     let joints = objective.len();
                     objective.push(per_pair);
-                    let mut row: Vec<(usize, f64)> = star.iter().filter_map(|&t| tile_column[t]).map(|x| (x, 1.0)).collect();
+                    let mut row: Vec<(usize, f64)> = star
+                        .iter()
+                        .filter_map(|&t| tile_column[t])
+                        .map(|x| (x, 1.0))
+                        .collect();
                     row.push((joints, -1.0));
                     rows.push((row, 1.0));
                 }
             }
         }
-        for &[a, b] in relation.iter().enumerate().filter(|&(i, _)| owned(i) && !starred[i]).map(|(_, pair)| pair) {
+        for &[a, b] in relation
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| owned(i) && !starred[i])
+            .map(|(_, pair)| pair)
+        {
             match (tile_column[a], tile_column[b]) {
                 (Some(xa), Some(xb)) => {
                     let pair = objective.len();
@@ -109,7 +141,9 @@ impl Relaxation {
                     match bond {
                         Bond::Stack => {}
                         // Eq. (2): y >= x_a + x_b - 1.
-                        Bond::Staggered { .. } => rows.push((vec![(xa, 1.0), (xb, 1.0), (pair, -1.0)], 1.0)),
+                        Bond::Staggered { .. } => {
+                            rows.push((vec![(xa, 1.0), (xb, 1.0), (pair, -1.0)], 1.0))
+                        }
                         // Eq. (3): z <= x_a and z <= x_b.
                         Bond::RunningBond { .. } => {
                             rows.push((vec![(pair, 1.0), (xa, -1.0)], 0.0));
@@ -123,7 +157,9 @@ impl Relaxation {
                 _ => {}
             }
         }
-        Self { program: column_major(&rows, objective) }
+        Self {
+            program: column_major(&rows, objective),
+        }
     }
 
     /// `L(prices)`: an upper bound on the relaxation's optimum for any prices, negative ones
@@ -131,11 +167,18 @@ impl Relaxation {
     pub fn bound(&self, prices: &[f64]) -> f64 {
         let program = &self.program;
         let price = |r: i32| prices[r as usize].max(0.0);
-        let rows: f64 = program.row_upper.iter().zip(prices).map(|(b, p)| b * p.max(0.0)).sum();
+        let rows: f64 = program
+            .row_upper
+            .iter()
+            .zip(prices)
+            .map(|(b, p)| b * p.max(0.0))
+            .sum();
         let columns: f64 = (0..program.objective.len())
             .map(|j| {
                 let entries = program.starts[j] as usize..program.starts[j + 1] as usize;
-                let priced: f64 = entries.map(|k| program.values[k] * price(program.rows[k])).sum();
+                let priced: f64 = entries
+                    .map(|k| program.values[k] * price(program.rows[k]))
+                    .sum();
                 program.column_upper[j] * (program.objective[j] - priced).max(0.0)
             })
             .sum();
@@ -165,7 +208,9 @@ fn column_major(rows: &[(Vec<(usize, f64)>, f64)], objective: Vec<f64>) -> Linea
             program.rows.push(r);
             program.values.push(a);
         }
-        program.starts.push(i32::try_from(program.rows.len()).unwrap_or(i32::MAX));
+        program
+            .starts
+            .push(i32::try_from(program.rows.len()).unwrap_or(i32::MAX));
     }
     program
 }
@@ -193,7 +238,12 @@ pub(super) fn bound(
 ) -> Result<Option<LinearBound>, PatternError> {
     let relaxation = Relaxation::new(graph, bond, patch);
     let seconds = time_limit.as_secs_f64() * CLP_SHARE_OF_LIMIT;
-    let work = move || clp::barrier(&relaxation.program, seconds).map(|duals| LinearBound { value: relaxation.bound(&duals.row_duals), converged: duals.converged });
+    let work = move || {
+        clp::barrier(&relaxation.program, seconds).map(|duals| LinearBound {
+            value: relaxation.bound(&duals.row_duals),
+            converged: duals.converged,
+        })
+    };
     Ok(worker::run(work, time_limit, control, progress)?.flatten())
 }
 
@@ -208,20 +258,48 @@ mod tests {
     fn any_prices_bound_the_optimum_and_so_do_the_barriers() {
         for mesh in [ragged(7), ragged(8), generate::grid(6, 7)] {
             let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
-            for bond in [Bond::Staggered { weight: 0.5 }, Bond::Staggered { weight: 2.0 }, Bond::RunningBond { weight: 0.5 }] {
-                let options = PatternOptions { bond, method: Method::Mip, time_limit: Duration::from_secs(20), ..PatternOptions::default() };
+            for bond in [
+                Bond::Staggered { weight: 0.5 },
+                Bond::Staggered { weight: 2.0 },
+                Bond::RunningBond { weight: 0.5 },
+            ] {
+                let options = PatternOptions {
+                    bond,
+                    method: Method::Mip,
+                    time_limit: Duration::from_secs(20),
+                    ..PatternOptions::default()
+                };
                 let optimum = solve(&mesh, &options).unwrap();
                 assert_eq!(optimum.status, SolveStatus::Optimal);
                 let relaxation = Relaxation::new(&graph, bond, None);
                 let rows = relaxation.program.row_upper.len();
                 // Prices of every kind, negative ones included (they count as zero).
-                let arbitrary = [vec![0.0; rows], vec![0.5; rows], (0..rows).map(|r| ((r * 7919) % 13) as f64 / 6.0 - 0.5).collect()];
+                let arbitrary = [
+                    vec![0.0; rows],
+                    vec![0.5; rows],
+                    (0..rows)
+                        .map(|r| ((r * 7919) % 13) as f64 / 6.0 - 0.5)
+                        .collect(),
+                ];
                 for prices in arbitrary {
                     let value = relaxation.bound(&prices);
-                    assert!(value >= optimum.objective - 1e-9, "{bond:?}: L = {value} < optimum {}", optimum.objective);
+                    assert!(
+                        value >= optimum.objective - 1e-9,
+                        "{bond:?}: L = {value} < optimum {}",
+                        optimum.objective
+                    );
                 }
                 // The barrier's prices, converged or cut short.
-                let converged = bound(&graph, bond, None, Duration::from_secs(20), &mut Control::none(), || 0.0).unwrap().unwrap();
+                let converged = bound(
+                    &graph,
+                    bond,
+                    None,
+                    Duration::from_secs(20),
+                    &mut Control::none(),
+                    || 0.0,
+                )
+                .unwrap()
+                .unwrap();
                 assert!(converged.converged);
                 assert!(converged.value >= optimum.objective - 1e-9);
                 let cut_short = clp::barrier(&relaxation.program, 1e-4).unwrap();
@@ -236,19 +314,58 @@ mod tests {
         // matching; the relaxation with the star rows proves it (its optimum rounds to 49).
         let mesh = generate::grid(10, 10);
         let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
-        let found = bound(&graph, Bond::Staggered { weight: 2.0 }, None, Duration::from_secs(20), &mut Control::none(), || 0.0).unwrap().unwrap();
-        assert!(found.converged && (49.0 - 1e-9..49.5).contains(&found.value), "{}", found.value);
+        let found = bound(
+            &graph,
+            Bond::Staggered { weight: 2.0 },
+            None,
+            Duration::from_secs(20),
+            &mut Control::none(),
+            || 0.0,
+        )
+        .unwrap()
+        .unwrap();
+        assert!(
+            found.converged && (49.0 - 1e-9..49.5).contains(&found.value),
+            "{}",
+            found.value
+        );
     }
 
     #[test]
     fn malformed_programs_are_refused() {
-        let program = |starts: Vec<i32>, rows: Vec<i32>| LinearProgram { starts, rows, values: vec![1.0], objective: vec![1.0], column_upper: vec![2.0], row_upper: vec![1.0] };
+        let program = |starts: Vec<i32>, rows: Vec<i32>| LinearProgram {
+            starts,
+            rows,
+            values: vec![1.0],
+            objective: vec![1.0],
+            column_upper: vec![2.0],
+            row_upper: vec![1.0],
+        };
         // max x, x <= 1, 0 <= x <= 2: the row is binding, its dual is 1.
-        assert!(clp::barrier(&program(vec![0, 1], vec![0]), 1.0).is_some_and(|d| d.converged && (d.row_duals[0] - 1.0).abs() < 1e-6));
-        assert!(clp::barrier(&program(vec![0, 1], vec![1]), 1.0).is_none(), "row out of range");
-        assert!(clp::barrier(&program(vec![0, 2], vec![0]), 1.0).is_none(), "column past the entries");
-        assert!(clp::barrier(&program(vec![0], vec![0]), 1.0).is_none(), "starts too short");
-        let empty = LinearProgram { starts: vec![0], rows: vec![], values: vec![], objective: vec![], column_upper: vec![], row_upper: vec![] };
+        assert!(
+            clp::barrier(&program(vec![0, 1], vec![0]), 1.0)
+                .is_some_and(|d| d.converged && (d.row_duals[0] - 1.0).abs() < 1e-6)
+        );
+        assert!(
+            clp::barrier(&program(vec![0, 1], vec![1]), 1.0).is_none(),
+            "row out of range"
+        );
+        assert!(
+            clp::barrier(&program(vec![0, 2], vec![0]), 1.0).is_none(),
+            "column past the entries"
+        );
+        assert!(
+            clp::barrier(&program(vec![0], vec![0]), 1.0).is_none(),
+            "starts too short"
+        );
+        let empty = LinearProgram {
+            starts: vec![0],
+            rows: vec![],
+            values: vec![],
+            objective: vec![],
+            column_upper: vec![],
+            row_upper: vec![],
+        };
         assert!(clp::barrier(&empty, 1.0).is_some_and(|d| d.converged && d.row_duals.is_empty()));
     }
 }

@@ -6,7 +6,8 @@ use std::time::Duration;
 
 use good_lp::solvers::coin_cbc::coin_cbc;
 use good_lp::{
-    Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel, Variable, constraint, variable,
+    Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel, Variable,
+    constraint, variable,
 };
 
 use super::{Bond, DualGraph, Formulation, PatternError, score, worker};
@@ -86,17 +87,26 @@ pub(super) fn solve(
     let counted = |f: usize| patch.is_none_or(|p| p.faces[f]);
     let owned = |i: usize| patch.is_none_or(|p| p.owned[i]);
     let usable: Vec<bool> = (0..tiles.len())
-        .map(|t| restriction.free[t] && !tiles[t].faces.iter().any(|&f| blocked[f]) && tiles[t].faces.iter().any(|&f| counted(f)))
+        .map(|t| {
+            restriction.free[t]
+                && !tiles[t].faces.iter().any(|&f| blocked[f])
+                && tiles[t].faces.iter().any(|&f| counted(f))
+        })
         .collect();
     let constant = score(graph, restriction.fixed, bond).objective;
 
     let mut vars = ProblemVariables::new();
-    let x: Vec<Option<Variable>> = usable.iter().map(|&u| u.then(|| vars.add(variable().binary()))).collect();
+    let x: Vec<Option<Variable>> = usable
+        .iter()
+        .map(|&u| u.then(|| vars.add(variable().binary())))
+        .collect();
     // A tile scores one, or in a patch half per face of the patch it covers.
     let mut objective: Expression = x
         .iter()
         .enumerate()
-        .filter_map(|(t, v)| v.map(|v| 0.5 * tiles[t].faces.iter().filter(|&&f| counted(f)).count() as f64 * v))
+        .filter_map(|(t, v)| {
+            v.map(|v| 0.5 * tiles[t].faces.iter().filter(|&&f| counted(f)).count() as f64 * v)
+        })
         .sum();
     let mut rows = Vec::new();
 
@@ -118,7 +128,13 @@ pub(super) fn solve(
         Bond::Staggered { weight } => {
             // Eq. (2): y >= x1 + x2 - 1 and a penalty w per continuous joint.
             let mut y_of = HashMap::new();
-            for pair in graph.continuous_joints().iter().enumerate().filter(|&(i, _)| owned(i)).map(|(_, &pair)| pair) {
+            for pair in graph
+                .continuous_joints()
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| owned(i))
+                .map(|(_, &pair)| pair)
+            {
                 if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
                     let y = vars.add(variable().binary());
                     objective -= weight * y;
@@ -132,8 +148,14 @@ pub(super) fn solve(
                 let y = |a: usize, b: usize| y_of.get(&[a.min(b), a.max(b)]).copied();
                 // Valid where the four faces around the vertex are constrained.
                 let inside = |t: usize| tiles[t].faces.iter().all(|&f| counted(f));
-                for &[a, b, c, d] in graph.regular_vertex_stars().iter().filter(|star| star.iter().all(|&t| inside(t))) {
-                    if let (Some(xa), Some(xb), Some(xc), Some(xd), Some(yac), Some(ybd)) = (x[a], x[b], x[c], x[d], y(a, c), y(b, d)) {
+                for &[a, b, c, d] in graph
+                    .regular_vertex_stars()
+                    .iter()
+                    .filter(|star| star.iter().all(|&t| inside(t)))
+                {
+                    if let (Some(xa), Some(xb), Some(xc), Some(xd), Some(yac), Some(ybd)) =
+                        (x[a], x[b], x[c], x[d], y(a, c), y(b, d))
+                    {
                         rows.push(constraint!(xa + xb + xc + xd - yac - ybd <= 1));
                     }
                 }
@@ -141,7 +163,13 @@ pub(super) fn solve(
         }
         Bond::RunningBond { weight } => {
             // Eq. (3): z <= x1, z <= x2 and a reward w_R per shifted pair.
-            for pair in graph.shifted_pairs().iter().enumerate().filter(|&(i, _)| owned(i)).map(|(_, &pair)| pair) {
+            for pair in graph
+                .shifted_pairs()
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| owned(i))
+                .map(|(_, &pair)| pair)
+            {
                 if let (Some(a), Some(b)) = (x[pair[0]], x[pair[1]]) {
                     let z = vars.add(variable().binary());
                     objective += weight * z;
@@ -156,16 +184,30 @@ pub(super) fn solve(
             }
         }
     }
-    let columns: Vec<(usize, Variable)> = x.iter().enumerate().filter_map(|(t, v)| v.map(|v| (t, v))).collect();
+    let columns: Vec<(usize, Variable)> = x
+        .iter()
+        .enumerate()
+        .filter_map(|(t, v)| v.map(|v| (t, v)))
+        .collect();
     if columns.is_empty() {
-        return Ok(Outcome { chosen: Some(vec![false; tiles.len()]), bound: constant, timed_out: false });
+        return Ok(Outcome {
+            chosen: Some(vec![false; tiles.len()]),
+            bound: constant,
+            timed_out: false,
+        });
     }
 
     let mut problem = vars.maximise(objective).using(coin_cbc);
     problem.set_parameter("log", "0");
     problem.set_parameter("slog", "0");
     problem.set_parameter("timeMode", "elapsed");
-    problem.set_parameter("sec", &format!("{:.3}", (time_limit.as_secs_f64() * CBC_SHARE_OF_LIMIT).max(0.001)));
+    problem.set_parameter(
+        "sec",
+        &format!(
+            "{:.3}",
+            (time_limit.as_secs_f64() * CBC_SHARE_OF_LIMIT).max(0.001)
+        ),
+    );
     for row in rows {
         problem.add_constraint(row);
     }
@@ -177,27 +219,46 @@ pub(super) fn solve(
     // only happens when a caller asks for the whole model on a large mesh.
     let worker = move || {
         problem.solve().map(|solution| {
-            let values: Vec<(usize, f64)> = columns.iter().map(|&(t, v)| (t, solution.value(v))).collect();
+            let values: Vec<(usize, f64)> = columns
+                .iter()
+                .map(|&(t, v)| (t, solution.value(v)))
+                .collect();
             let timed_out = matches!(solution.status(), SolutionStatus::TimeLimit);
             (values, solution.model().best_possible_value(), timed_out)
         })
     };
     let Some(result) = worker::run(worker, time_limit, control, progress)? else {
-        return Ok(Outcome { chosen: None, bound: f64::INFINITY, timed_out: true });
+        return Ok(Outcome {
+            chosen: None,
+            bound: f64::INFINITY,
+            timed_out: true,
+        });
     };
     // CBC stopped by its time limit before it had a solution may call the problem
     // infeasible; every program here is feasible (no tiles at all).
     if matches!(result, Err(ResolutionError::Infeasible)) {
-        return Ok(Outcome { chosen: None, bound: f64::INFINITY, timed_out: true });
+        return Ok(Outcome {
+            chosen: None,
+            bound: f64::INFINITY,
+            timed_out: true,
+        });
     }
     let (values, bound, timed_out) = result.map_err(|e| match e {
         ResolutionError::Other(message) => PatternError::Solver(message.to_string()),
         other => PatternError::Solver(other.to_string()),
     })?;
-    let bound = if bound.is_finite() { bound + constant } else { f64::INFINITY };
+    let bound = if bound.is_finite() {
+        bound + constant
+    } else {
+        f64::INFINITY
+    };
     let mut chosen = vec![false; tiles.len()];
     for (t, value) in values {
         chosen[t] = value > 0.5;
     }
-    Ok(Outcome { chosen: Some(chosen), bound, timed_out })
+    Ok(Outcome {
+        chosen: Some(chosen),
+        bound,
+        timed_out,
+    })
 }

@@ -158,7 +158,9 @@ const MELT_GAP: f64 = 0.01;
 impl Default for PatternOptions {
     fn default() -> Self {
         Self {
-            bond: Bond::Staggered { weight: DEFAULT_WEIGHT },
+            bond: Bond::Staggered {
+                weight: DEFAULT_WEIGHT,
+            },
             time_limit: Duration::from_secs(60),
             forced_pairs: Vec::new(),
             excluded_faces: Vec::new(),
@@ -180,7 +182,9 @@ impl PatternOptions {
             return Err(PatternError::InvalidTimeLimit { seconds });
         }
         // `abs` turns -0.0 into 0.0; only values beyond `Duration` fail to convert.
-        Ok(Duration::try_from_secs_f64(seconds.abs()).unwrap_or(Duration::MAX).min(Duration::from_secs(MAX_TIME_LIMIT_SECONDS)))
+        Ok(Duration::try_from_secs_f64(seconds.abs())
+            .unwrap_or(Duration::MAX)
+            .min(Duration::from_secs(MAX_TIME_LIMIT_SECONDS)))
     }
 }
 
@@ -262,12 +266,19 @@ pub fn solve(mesh: &PolyMesh, options: &PatternOptions) -> Result<Pattern, Patte
 ///
 /// # Errors
 /// As [`solve`], and [`PatternError::Cancelled`] when `control` asked to stop.
-pub fn solve_with(mesh: &PolyMesh, options: &PatternOptions, control: &mut Control<'_>) -> Result<Pattern, PatternError> {
+pub fn solve_with(
+    mesh: &PolyMesh,
+    options: &PatternOptions,
+    control: &mut Control<'_>,
+) -> Result<Pattern, PatternError> {
     let started = Instant::now();
     validate_weights(options.bond)?;
     let mut excluded = vec![false; mesh.face_count()];
     for &f in &options.excluded_faces {
-        *excluded.get_mut(f).ok_or(PatternError::FaceOutOfRange { face: f, face_count: mesh.face_count() })? = true;
+        *excluded.get_mut(f).ok_or(PatternError::FaceOutOfRange {
+            face: f,
+            face_count: mesh.face_count(),
+        })? = true;
     }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let middle = match options.courses {
@@ -278,14 +289,18 @@ pub fn solve_with(mesh: &PolyMesh, options: &PatternOptions, control: &mut Contr
     let forced = forced_tiles(mesh, &topology, &graph, &excluded, &options.forced_pairs)?;
 
     // A longer limit (e.g. `Duration::MAX` from a Rust caller) would overflow the deadline.
-    let time_limit = options.time_limit.min(Duration::from_secs(MAX_TIME_LIMIT_SECONDS));
+    let time_limit = options
+        .time_limit
+        .min(Duration::from_secs(MAX_TIME_LIMIT_SECONDS));
     let deadline = started + time_limit;
     let limit = time_limit.as_secs_f64().max(1e-9);
     let progress = move || started.elapsed().as_secs_f64() / limit;
     if !control.keep_going(0.0) {
         return Err(PatternError::Cancelled);
     }
-    let found = search_pattern(&graph, &topology, options, &forced, deadline, control, &progress)?;
+    let found = search_pattern(
+        &graph, &topology, options, &forced, deadline, control, &progress,
+    )?;
     control.keep_going(1.0);
     let chosen = &found.chosen;
     let s = score(&graph, chosen, options.bond);
@@ -307,8 +322,12 @@ pub fn solve_with(mesh: &PolyMesh, options: &PatternOptions, control: &mut Contr
         pairs.push(faces);
     }
     pairs.sort_unstable();
-    let unpaired = (0..mesh.face_count()).filter(|&f| mesh.is_quad(f) && !excluded[f] && !paired[f]).collect();
-    let non_quad = (0..mesh.face_count()).filter(|&f| !mesh.is_quad(f)).collect();
+    let unpaired = (0..mesh.face_count())
+        .filter(|&f| mesh.is_quad(f) && !excluded[f] && !paired[f])
+        .collect();
+    let non_quad = (0..mesh.face_count())
+        .filter(|&f| !mesh.is_quad(f))
+        .collect();
     let excluded = (0..mesh.face_count()).filter(|&f| excluded[f]).collect();
     Ok(Pattern {
         faces: mesh.face_count(),
@@ -365,12 +384,16 @@ fn search_pattern(
     let mut fixed = vec![false; graph.tiles().len()];
     forced.iter().for_each(|&t| fixed[t] = true);
     let free: Vec<bool> = fixed.iter().map(|f| !f).collect();
-    let union = |a: &[bool], b: &[bool]| -> Vec<bool> { a.iter().zip(b).map(|(x, y)| *x || *y).collect() };
+    let union =
+        |a: &[bool], b: &[bool]| -> Vec<bool> { a.iter().zip(b).map(|(x, y)| *x || *y).collect() };
     let value = |chosen: &[bool]| score(graph, chosen, bond).objective;
 
     let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
     let most_tiles = matching.iter().filter(|&&c| c).count();
-    let mut bound = Bound { value: bound::from_tile_count(graph, bond, most_tiles), source: BoundSource::Matching };
+    let mut bound = Bound {
+        value: bound::from_tile_count(graph, bond, most_tiles),
+        source: BoundSource::Matching,
+    };
     // Every bound is rounded down to the next objective value a pattern can take.
     let rounded = |value: f64| bound::round_down(value, bond, 1.0, most_tiles as f64);
     let proven = |best: &[bool], bound: Bound| bound.value - value(best) <= 1e-9;
@@ -378,8 +401,23 @@ fn search_pattern(
 
     // The whole program on CBC for `limit`: keeps CBC's pattern if it beats `best`, and
     // returns CBC's bound and whether it stopped on time.
-    let whole_model = |best: &mut Vec<bool>, limit: Duration, control: &mut Control<'_>| -> Result<(f64, bool), PatternError> {
-        let outcome = mip::solve(graph, bond, options.formulation, &mip::Restriction { free: &free, fixed: &fixed, patch: None }, limit, control, progress)?;
+    let whole_model = |best: &mut Vec<bool>,
+                       limit: Duration,
+                       control: &mut Control<'_>|
+     -> Result<(f64, bool), PatternError> {
+        let outcome = mip::solve(
+            graph,
+            bond,
+            options.formulation,
+            &mip::Restriction {
+                free: &free,
+                fixed: &fixed,
+                patch: None,
+            },
+            limit,
+            control,
+            progress,
+        )?;
         if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
             if search::is_matching(graph, &found) && value(&found) > value(best) {
                 *best = found;
@@ -392,9 +430,17 @@ fn search_pattern(
         // The paper's route: the whole program, from a greedy start kept as a fallback.
         let mut best = fixed.clone();
         construct::complete_greedily(graph, bond, &fixed, &mut best);
-        let (cbc_bound, timed_out) = whole_model(&mut best, deadline.saturating_duration_since(Instant::now()), control)?;
+        let (cbc_bound, timed_out) = whole_model(
+            &mut best,
+            deadline.saturating_duration_since(Instant::now()),
+            control,
+        )?;
         bound.tighten(rounded(cbc_bound), BoundSource::WholeProgram);
-        return Ok(Found { chosen: best, bound, timed_out });
+        return Ok(Found {
+            chosen: best,
+            bound,
+            timed_out,
+        });
     }
 
     // Three cheap starts, each strong where the others are weak: courses parallel to the
@@ -404,18 +450,38 @@ fn search_pattern(
         vec![matching]
     } else {
         let courses = construct::boundary_courses(graph, topology, bond, &fixed);
-        let laid = union(&construct::running_bond(graph, topology, bond, &fixed), &fixed);
+        let laid = union(
+            &construct::running_bond(graph, topology, bond, &fixed),
+            &fixed,
+        );
         vec![courses, laid, matching]
     };
     starts.sort_by(|a, b| value(b).total_cmp(&value(a)));
     let mut best = starts.swap_remove(0);
     let faces = graph.face_count();
     let left = || deadline.saturating_duration_since(Instant::now());
-    let anneal = |best: &mut Vec<bool>, share: f64, temperature: f64, seed: u64, control: &mut Control<'_>| -> Result<(), PatternError> {
+    let anneal = |best: &mut Vec<bool>,
+                  share: f64,
+                  temperature: f64,
+                  seed: u64,
+                  control: &mut Control<'_>|
+     -> Result<(), PatternError> {
         let budget = left().mul_f64(share);
         let schedule = anneal::Schedule::for_budget(faces, budget, temperature, seed);
-        let on = anneal::anneal(graph, bond, &fixed, best, &schedule, Instant::now() + budget, &mut || control.keep_going(progress()));
-        if on { Ok(()) } else { Err(PatternError::Cancelled) }
+        let on = anneal::anneal(
+            graph,
+            bond,
+            &fixed,
+            best,
+            &schedule,
+            Instant::now() + budget,
+            &mut || control.keep_going(progress()),
+        );
+        if on {
+            Ok(())
+        } else {
+            Err(PatternError::Cancelled)
+        }
     };
 
     // Annealing moves the defects of the best start until most of them cancel.
@@ -423,14 +489,25 @@ fn search_pattern(
         // A start already close to the bound (a regular mesh) is polished cool rather than
         // melted: a full melt needs more moves than a large mesh gets to beat it again.
         let gap = (bound.value - value(&best)) / bound.value.abs().max(1.0);
-        let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP).clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
+        let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP)
+            .clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
         anneal(&mut best, FIRST_ANNEAL_SHARE, temperature, 1, control)?;
     }
     // The linear relaxation of the whole program next, if the barrier is expected to finish
     // in the time left: it sees across the seams between forced defects that patches cut.
     let mut relaxation_solved = false;
-    if bond != Bond::Stack && !proven(&best, bound) && linear::expected_seconds(faces) <= left().as_secs_f64() * LINEAR_SHARE {
-        if let Some(found) = linear::bound(graph, bond, None, left().mul_f64(LINEAR_SHARE), control, progress)? {
+    if bond != Bond::Stack
+        && !proven(&best, bound)
+        && linear::expected_seconds(faces) <= left().as_secs_f64() * LINEAR_SHARE
+    {
+        if let Some(found) = linear::bound(
+            graph,
+            bond,
+            None,
+            left().mul_f64(LINEAR_SHARE),
+            control,
+            progress,
+        )? {
             bound.tighten(rounded(found.value), BoundSource::LinearRelaxation);
             relaxation_solved = found.converged;
         }
@@ -438,7 +515,13 @@ fn search_pattern(
     // With the whole relaxation solved, the rounds below rarely tighten the bound soon, and
     // what is left is mostly the pattern's: anneal again, cooler, with most of the time.
     if relaxation_solved && !proven(&best, bound) {
-        anneal(&mut best, SOLVED_ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 0, control)?;
+        anneal(
+            &mut best,
+            SOLVED_ANNEAL_SHARE,
+            anneal::FIRST_TEMPERATURE / 2.0,
+            0,
+            control,
+        )?;
     }
     // Otherwise linear relaxations of patches: with the star rows they come within about
     // half a tile per patch of the integer patches' bound in a small part of the time, so
@@ -450,7 +533,16 @@ fn search_pattern(
         while !proven(&best, bound) && Instant::now() < deadline {
             let partition = decompose::next_partition(graph, size, 0, &[], finer.take());
             let started = Instant::now();
-            let proven_here = decompose::bound(graph, bond, true, &partition, &best, started + left() / 2, control, progress)?;
+            let proven_here = decompose::bound(
+                graph,
+                bond,
+                true,
+                &partition,
+                &best,
+                started + left() / 2,
+                control,
+                progress,
+            )?;
             if let Some(patches) = proven_here.value {
                 bound.tighten(rounded(patches), BoundSource::Patches);
             }
@@ -474,7 +566,10 @@ fn search_pattern(
     // The last round's partition and what it proved.
     let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
     while !proven(&best, bound) && Instant::now() < deadline {
-        if size >= faces && faces <= WHOLE_MODEL_FACES && mip::expected_linear_seconds(faces) <= left().as_secs_f64() {
+        if size >= faces
+            && faces <= WHOLE_MODEL_FACES
+            && mip::expected_linear_seconds(faces) <= left().as_secs_f64()
+        {
             let (cbc_bound, cbc_timed_out) = whole_model(&mut best, left(), control)?;
             bound.tighten(rounded(cbc_bound), BoundSource::WholeProgram);
             timed_out = cbc_timed_out;
@@ -482,21 +577,55 @@ fn search_pattern(
         }
         // Larger patches are unions of the last round's, which keeps what that round proved;
         // varied partitions of the largest size start afresh.
-        let partition = decompose::next_partition(graph, size, variant, &sources, finer.take().filter(|_| variant == 0));
+        let partition = decompose::next_partition(
+            graph,
+            size,
+            variant,
+            &sources,
+            finer.take().filter(|_| variant == 0),
+        );
         let step_deadline = Instant::now() + left() / 2;
-        let proven_here = decompose::bound(graph, bond, false, &partition, &best, step_deadline, control, progress)?;
+        let proven_here = decompose::bound(
+            graph,
+            bond,
+            false,
+            &partition,
+            &best,
+            step_deadline,
+            control,
+            progress,
+        )?;
         if let Some(patches) = proven_here.value {
             bound.tighten(rounded(patches), BoundSource::Patches);
         }
         // This round's sources (from larger patches, so more telling) first, then earlier ones.
-        sources = proven_here.sources.iter().map(|s| s.face).chain(sources).collect();
+        sources = proven_here
+            .sources
+            .iter()
+            .map(|s| s.face)
+            .chain(sources)
+            .collect();
         finer = Some((partition, proven_here));
         if proven(&best, bound) {
             break;
         }
-        search::improve(graph, bond, &fixed, &mut best, Instant::now() + left() / WINDOW_SHARE, control, progress)?;
+        search::improve(
+            graph,
+            bond,
+            &fixed,
+            &mut best,
+            Instant::now() + left() / WINDOW_SHARE,
+            control,
+            progress,
+        )?;
         round += 1;
-        anneal(&mut best, ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 1 + round, control)?;
+        anneal(
+            &mut best,
+            ANNEAL_SHARE,
+            anneal::FIRST_TEMPERATURE / 2.0,
+            1 + round,
+            control,
+        )?;
         // Patches grow to the largest size; from there on their partitions vary instead.
         if size < LAST_PATCH_SIZE || (size < faces && faces <= WHOLE_MODEL_FACES) {
             size *= 2;
@@ -504,42 +633,75 @@ fn search_pattern(
             variant += 1;
         }
     }
-    Ok(Found { chosen: best, bound, timed_out })
+    Ok(Found {
+        chosen: best,
+        bound,
+        timed_out,
+    })
 }
 
 fn validate_weights(bond: Bond) -> Result<(), PatternError> {
     match bond {
-        Bond::Staggered { weight } | Bond::RunningBond { weight } if !(weight.is_finite() && weight >= 0.0) => {
+        Bond::Staggered { weight } | Bond::RunningBond { weight }
+            if !(weight.is_finite() && weight >= 0.0) =>
+        {
             Err(PatternError::InvalidWeight { weight })
         }
-        Bond::Staggered { weight } | Bond::RunningBond { weight } if weight > MAX_WEIGHT => Err(PatternError::WeightTooLarge { weight, max: MAX_WEIGHT }),
+        Bond::Staggered { weight } | Bond::RunningBond { weight } if weight > MAX_WEIGHT => {
+            Err(PatternError::WeightTooLarge {
+                weight,
+                max: MAX_WEIGHT,
+            })
+        }
         _ => Ok(()),
     }
 }
 
 /// Candidate-tile indices of the forced pairs, checked against the mesh.
-fn forced_tiles(mesh: &PolyMesh, topology: &Topology, graph: &DualGraph, excluded: &[bool], pairs: &[[usize; 2]]) -> Result<Vec<usize>, PatternError> {
+fn forced_tiles(
+    mesh: &PolyMesh,
+    topology: &Topology,
+    graph: &DualGraph,
+    excluded: &[bool],
+    pairs: &[[usize; 2]],
+) -> Result<Vec<usize>, PatternError> {
     let mut used = vec![false; mesh.face_count()];
     let mut tiles = Vec::with_capacity(pairs.len());
     for &[a, b] in pairs {
         for f in [a, b] {
             if f >= mesh.face_count() {
-                return Err(PatternError::FaceOutOfRange { face: f, face_count: mesh.face_count() });
+                return Err(PatternError::FaceOutOfRange {
+                    face: f,
+                    face_count: mesh.face_count(),
+                });
             }
             if excluded[f] {
                 return Err(PatternError::ForcedExcluded { face: f });
             }
             if !mesh.is_quad(f) {
-                return Err(PatternError::ForcedNonQuad { face: f, corners: mesh.faces()[f].len() });
+                return Err(PatternError::ForcedNonQuad {
+                    face: f,
+                    corners: mesh.faces()[f].len(),
+                });
             }
             if std::mem::replace(&mut used[f], true) {
                 return Err(PatternError::ForcedTwice { face: f });
             }
         }
-        let adjacent = || topology.face_edges(a).iter().any(|&e| topology.edges()[e].other_face(a) == Some(b));
-        let tile = graph.tile_between(a, b).ok_or_else(|| if adjacent() { PatternError::ForcedAcrossCourses { a, b } } else { PatternError::ForcedNotAdjacent { a, b } })?;
+        let adjacent = || {
+            topology
+                .face_edges(a)
+                .iter()
+                .any(|&e| topology.edges()[e].other_face(a) == Some(b))
+        };
+        let tile = graph.tile_between(a, b).ok_or_else(|| {
+            if adjacent() {
+                PatternError::ForcedAcrossCourses { a, b }
+            } else {
+                PatternError::ForcedNotAdjacent { a, b }
+            }
+        })?;
         tiles.push(tile);
     }
     Ok(tiles)
 }
-

@@ -17,7 +17,12 @@ pub struct Score {
 
 /// Scores the tiles marked in `chosen` (indexed like [`DualGraph::tiles`]).
 pub fn score(graph: &DualGraph, chosen: &[bool], bond: Bond) -> Score {
-    let both = |pairs: &[[usize; 2]]| pairs.iter().filter(|[a, b]| chosen[*a] && chosen[*b]).count();
+    let both = |pairs: &[[usize; 2]]| {
+        pairs
+            .iter()
+            .filter(|[a, b]| chosen[*a] && chosen[*b])
+            .count()
+    };
     let tiles = chosen.iter().filter(|&&c| c).count();
     let continuous_joints = both(graph.continuous_joints());
     let shifted_pairs = both(graph.shifted_pairs());
@@ -26,5 +31,10 @@ pub fn score(graph: &DualGraph, chosen: &[bool], bond: Bond) -> Score {
         Bond::Staggered { weight } => tiles as f64 - weight * continuous_joints as f64,
         Bond::RunningBond { weight } => tiles as f64 + weight * shifted_pairs as f64,
     };
-    Score { tiles, continuous_joints, shifted_pairs, objective }
+    Score {
+        tiles,
+        continuous_joints,
+        shifted_pairs,
+        objective,
+    }
 }

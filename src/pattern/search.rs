@@ -48,13 +48,37 @@ pub(super) fn improve(
             window.iter().for_each(|&f| covered[f] = true);
             let mut inside = vec![false; graph.face_count()];
             window.iter().for_each(|&f| inside[f] = true);
-            let free: Vec<bool> = graph.tiles().iter().enumerate().map(|(t, tile)| !fixed[t] && tile.faces.iter().all(|&f| inside[f])).collect();
+            let free: Vec<bool> = graph
+                .tiles()
+                .iter()
+                .enumerate()
+                .map(|(t, tile)| !fixed[t] && tile.faces.iter().all(|&f| inside[f]))
+                .collect();
             let held: Vec<bool> = chosen.iter().zip(&free).map(|(&on, &f)| on && !f).collect();
-            let restriction = Restriction { free: &free, fixed: &held, patch: None };
+            let restriction = Restriction {
+                free: &free,
+                fixed: &held,
+                patch: None,
+            };
             let limit = (deadline - now).min(WINDOW_TIME);
-            let outcome = mip::solve(graph, bond, Formulation::Strengthened, &restriction, limit, control, progress)?;
-            let Some(window_choice) = outcome.chosen else { continue };
-            let candidate: Vec<bool> = held.iter().zip(&window_choice).zip(&free).map(|((&h, &w), &f)| h || (w && f)).collect();
+            let outcome = mip::solve(
+                graph,
+                bond,
+                Formulation::Strengthened,
+                &restriction,
+                limit,
+                control,
+                progress,
+            )?;
+            let Some(window_choice) = outcome.chosen else {
+                continue;
+            };
+            let candidate: Vec<bool> = held
+                .iter()
+                .zip(&window_choice)
+                .zip(&free)
+                .map(|((&h, &w), &f)| h || (w && f))
+                .collect();
             let value = score(graph, &candidate, bond).objective;
             if value > current + 1e-9 && is_matching(graph, &candidate) {
                 chosen.copy_from_slice(&candidate);
@@ -74,12 +98,20 @@ fn defects(graph: &DualGraph, bond: Bond, chosen: &[bool]) -> Vec<usize> {
     let mut flagged = vec![false; graph.face_count()];
     let mut covered = vec![false; graph.face_count()];
     for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
-        graph.tiles()[t].faces.iter().for_each(|&f| covered[f] = true);
+        graph.tiles()[t]
+            .faces
+            .iter()
+            .for_each(|&f| covered[f] = true);
     }
     for f in 0..graph.face_count() {
         flagged[f] = !covered[f] && !graph.face_tiles(f).is_empty();
     }
-    let mut flag_tile = |t: usize| graph.tiles()[t].faces.iter().for_each(|&f| flagged[f] = true);
+    let mut flag_tile = |t: usize| {
+        graph.tiles()[t]
+            .faces
+            .iter()
+            .for_each(|&f| flagged[f] = true)
+    };
     match bond {
         Bond::Stack => {}
         Bond::Staggered { .. } => {
@@ -134,5 +166,9 @@ pub(super) fn is_matching(graph: &DualGraph, chosen: &[bool]) -> bool {
         .iter()
         .zip(chosen)
         .filter(|(_, c)| **c)
-        .all(|(tile, _)| tile.faces.iter().all(|&f| !std::mem::replace(&mut used[f], true)))
+        .all(|(tile, _)| {
+            tile.faces
+                .iter()
+                .all(|&f| !std::mem::replace(&mut used[f], true))
+        })
 }

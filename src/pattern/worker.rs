@@ -56,7 +56,11 @@ pub(super) fn run<T: Send + 'static>(
                 }
             }
             Err(RecvTimeoutError::Timeout) => return Ok(None),
-            Err(RecvTimeoutError::Disconnected) => return Err(PatternError::Solver("the solver thread stopped unexpectedly".into())),
+            Err(RecvTimeoutError::Disconnected) => {
+                return Err(PatternError::Solver(
+                    "the solver thread stopped unexpectedly".into(),
+                ));
+            }
         }
     }
 }

@@ -38,7 +38,16 @@ pub(crate) struct Budget<'c, 'a> {
 impl<'c, 'a> Budget<'c, 'a> {
     /// A budget of `limit` from `start`, reporting to `control`.
     pub fn new(control: &'c mut Control<'a>, start: Instant, limit: Duration) -> Self {
-        Self { control, start, deadline: start.checked_add(limit), from: 0.0, to: 0.0, last_report: None, reported: 0.0, stop: None }
+        Self {
+            control,
+            start,
+            deadline: start.checked_add(limit),
+            from: 0.0,
+            to: 0.0,
+            last_report: None,
+            reported: 0.0,
+            stop: None,
+        }
     }
 
     /// Enters the stage spanning fractions `from..to` of the run; reports its start.
@@ -59,9 +68,13 @@ impl<'c, 'a> Budget<'c, 'a> {
             self.stop = Some(Stop::TimeLimit);
             return false;
         }
-        if self.last_report.is_none_or(|last| now.duration_since(last) >= REPORT_EVERY) {
+        if self
+            .last_report
+            .is_none_or(|last| now.duration_since(last) >= REPORT_EVERY)
+        {
             self.last_report = Some(now);
-            let fraction = (self.from + (self.to - self.from) * within.clamp(0.0, 1.0)).max(self.reported);
+            let fraction =
+                (self.from + (self.to - self.from) * within.clamp(0.0, 1.0)).max(self.reported);
             self.reported = fraction;
             if !self.control.keep_going(fraction) {
                 self.stop = Some(Stop::Cancelled);
@@ -81,7 +94,9 @@ impl<'c, 'a> Budget<'c, 'a> {
         match self.stop {
             None => Ok(()),
             Some(Stop::Cancelled) => Err(RemeshError::Cancelled),
-            Some(Stop::TimeLimit) => Err(RemeshError::TimeLimit { seconds: self.start.elapsed().as_secs_f64() }),
+            Some(Stop::TimeLimit) => Err(RemeshError::TimeLimit {
+                seconds: self.start.elapsed().as_secs_f64(),
+            }),
         }
     }
 

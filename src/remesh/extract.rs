@@ -72,8 +72,10 @@ pub(crate) fn extract(s: &Surface, lattice: &Lattice) -> Raw {
         }
     }
     let positions: Vec<Vector3<f64>> = (0..count).map(|c| sum[c] / weight[c]).collect();
-    let normals: Vec<Vector3<f64>> =
-        nsum.iter().map(|m| m.try_normalize(1e-300).unwrap_or_else(Vector3::z)).collect();
+    let normals: Vec<Vector3<f64>> = nsum
+        .iter()
+        .map(|m| m.try_normalize(1e-300).unwrap_or_else(Vector3::z))
+        .collect();
 
     let mut links: Vec<[usize; 2]> = Vec::new();
     for (e, &[a, b]) in s.edges.iter().enumerate() {

@@ -68,7 +68,11 @@ fn angle_in(e: &Vector3<f64>, n: &Vector3<f64>, d: &Vector3<f64>) -> f64 {
 }
 
 /// The representative of the cross `o_b` (4 rotations about `n_b`) closest to `o_a`.
-pub(crate) fn match_rosy(o_a: &Vector3<f64>, o_b: &Vector3<f64>, n_b: &Vector3<f64>) -> Vector3<f64> {
+pub(crate) fn match_rosy(
+    o_a: &Vector3<f64>,
+    o_b: &Vector3<f64>,
+    n_b: &Vector3<f64>,
+) -> Vector3<f64> {
     let t = n_b.cross(o_b);
     let candidates = [*o_b, t, -o_b, -t];
     let mut best = candidates[0];
@@ -85,7 +89,12 @@ pub(crate) fn match_rosy(o_a: &Vector3<f64>, o_b: &Vector3<f64>, n_b: &Vector3<f
 
 /// Principal curvature direction (angle in the vertex frame) and anisotropy `|k1 - k2|`,
 /// from a least-squares quadric `h = A x^2 + B xy + C y^2 + D x + E y` over the 2-ring.
-fn curvature(s: &Surface, frames: &[Vector3<f64>], v: usize, mark: &mut [usize]) -> Option<(f64, f64, f64)> {
+fn curvature(
+    s: &Surface,
+    frames: &[Vector3<f64>],
+    v: usize,
+    mark: &mut [usize],
+) -> Option<(f64, f64, f64)> {
     let n = s.normals[v];
     let e = frames[v];
     let b = n.cross(&e);
@@ -129,7 +138,11 @@ fn curvature(s: &Surface, frames: &[Vector3<f64>], v: usize, mark: &mut [usize])
 /// Solves the orientation field on `s`; returns one unit tangent per vertex (any of the four
 /// directions of its cross).
 /// Stops early (with a usable but less smooth field) once `budget` says so.
-pub(crate) fn solve(s: &Surface, options: &RemeshOptions, budget: &mut Budget) -> Vec<Vector3<f64>> {
+pub(crate) fn solve(
+    s: &Surface,
+    options: &RemeshOptions,
+    budget: &mut Budget,
+) -> Vec<Vector3<f64>> {
     let n = s.len();
     let frames = reference_frames(s);
     // Transport r_ab per edge: z_a ~ r_ab z_b.
@@ -143,7 +156,10 @@ pub(crate) fn solve(s: &Surface, options: &RemeshOptions, budget: &mut Budget) -
         })
         .collect();
 
-    let (lo, hi) = s.pos.iter().fold((s.pos[0], s.pos[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let (lo, hi) = s
+        .pos
+        .iter()
+        .fold((s.pos[0], s.pos[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
     let diagonal = (hi - lo).norm().max(1e-12);
     let mut weight = vec![0.0; n];
     let mut target = vec![C(0.0, 0.0); n];
@@ -183,7 +199,9 @@ pub(crate) fn solve(s: &Surface, options: &RemeshOptions, budget: &mut Budget) -
         let nv = s.normals[v];
         let x = any_tangent(&Vector3::z());
         let p = x - nv * nv.dot(&x);
-        target[v] = target[v].add(C::from_angle(4.0 * angle_in(&frames[v], &nv, &p)).scale(1e-6 / (weight[v] + 1e-6)));
+        target[v] = target[v].add(
+            C::from_angle(4.0 * angle_in(&frames[v], &nv, &p)).scale(1e-6 / (weight[v] + 1e-6)),
+        );
         weight[v] += 1e-6;
     }
 
@@ -196,7 +214,11 @@ pub(crate) fn solve(s: &Surface, options: &RemeshOptions, budget: &mut Budget) -
             let a_in = C::from_angle(4.0 * angle_in(&frames[v], &nv, &din));
             let a_out = C::from_angle(4.0 * angle_in(&frames[v], &nv, &dout));
             let sum = a_in.add(a_out);
-            let zc = if sum.norm() > 0.3 { sum.scale(1.0 / sum.norm()) } else { a_in };
+            let zc = if sum.norm() > 0.3 {
+                sum.scale(1.0 / sum.norm())
+            } else {
+                a_in
+            };
             z[v] = zc.mul(rotation);
             fixed[v] = true;
         }
@@ -231,8 +253,21 @@ pub(crate) fn solve(s: &Surface, options: &RemeshOptions, budget: &mut Budget) -
             x[2 * v + 1] = target[v].1;
         }
     }
-    let linear = Operator { s, transport: &transport, weight: &weight, fixed: &fixed, shift: 0.0 };
-    conjugate_gradient(|x: &[f64], out: &mut [f64]| linear.apply(x, out), &rhs, &mut x, 4000, 1e-9, &mut |k| budget.poll(0.5 * k as f64 / 4000.0));
+    let linear = Operator {
+        s,
+        transport: &transport,
+        weight: &weight,
+        fixed: &fixed,
+        shift: 0.0,
+    };
+    conjugate_gradient(
+        |x: &[f64], out: &mut [f64]| linear.apply(x, out),
+        &rhs,
+        &mut x,
+        4000,
+        1e-9,
+        &mut |k| budget.poll(0.5 * k as f64 / 4000.0),
+    );
     // Ginzburg-Landau style renormalisation (Viertel and Osting 2019): the linear solve lets
     // |z| vanish, which gathers all the boundary-forced turning into one high-order zero (a
     // polar pattern, fatal for square quads). Implicit steps towards unit crosses split it
@@ -251,11 +286,22 @@ pub(crate) fn solve(s: &Surface, options: &RemeshOptions, budget: &mut Budget) -
                 step[2 * v + 1] += shift * x[2 * v + 1] / norm;
             }
         }
-        conjugate_gradient(|x: &[f64], out: &mut [f64]| relaxed.apply(x, out), &step, &mut x, 200, 1e-6, &mut |_| budget.poll(0.5 + 0.5 * round as f64 / GL_STEPS as f64));
+        conjugate_gradient(
+            |x: &[f64], out: &mut [f64]| relaxed.apply(x, out),
+            &step,
+            &mut x,
+            200,
+            1e-6,
+            &mut |_| budget.poll(0.5 + 0.5 * round as f64 / GL_STEPS as f64),
+        );
     }
     (0..n)
         .map(|v| {
-            let zv = if fixed[v] { z[v] } else { C(x[2 * v], x[2 * v + 1]) };
+            let zv = if fixed[v] {
+                z[v]
+            } else {
+                C(x[2 * v], x[2 * v + 1])
+            };
             let theta = zv.1.atan2(zv.0) / 4.0;
             let nv = s.normals[v];
             let e = frames[v];
@@ -292,8 +338,16 @@ impl Operator<'_> {
         }
         for (e, &[a, b]) in self.s.edges.iter().enumerate() {
             let r = self.transport[e];
-            let za = if self.fixed[a] { C(0.0, 0.0) } else { C(x[2 * a], x[2 * a + 1]) };
-            let zb = if self.fixed[b] { C(0.0, 0.0) } else { C(x[2 * b], x[2 * b + 1]) };
+            let za = if self.fixed[a] {
+                C(0.0, 0.0)
+            } else {
+                C(x[2 * a], x[2 * a + 1])
+            };
+            let zb = if self.fixed[b] {
+                C(0.0, 0.0)
+            } else {
+                C(x[2 * b], x[2 * b + 1])
+            };
             let ra = za.add(r.mul(zb).scale(-1.0));
             let rb = zb.add(r.conj().mul(za).scale(-1.0));
             out[2 * a] += ra.0;
@@ -312,7 +366,12 @@ impl Operator<'_> {
 
 /// Re-pins the crosses of aligned boundary vertices of a refined surface onto its boundary tangents
 /// (refinement interpolates them, which is close but not exact).
-pub(crate) fn snap_boundary(s: &Surface, aligned: &[bool], frames: &mut [Vector3<f64>], rotation_deg: f64) {
+pub(crate) fn snap_boundary(
+    s: &Surface,
+    aligned: &[bool],
+    frames: &mut [Vector3<f64>],
+    rotation_deg: f64,
+) {
     for v in (0..s.len()).filter(|&v| aligned[v]) {
         if let Some((din, dout)) = s.bdirs[v] {
             let n = s.normals[v];

@@ -22,16 +22,30 @@ const MAX_ROWS: usize = 3;
 
 /// Extends the boundary rows of `faces` over the gaps to the input boundary (see the module
 /// documentation). `loops` are the boundary loops of `faces` (faces on the left).
-pub(crate) fn extend_boundary(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, loops: &[Vec<usize>], locator: &Locator, t: f64) {
+pub(crate) fn extend_boundary(
+    pos: &mut Vec<Vector3<f64>>,
+    faces: &mut Vec<Vec<usize>>,
+    loops: &[Vec<usize>],
+    locator: &Locator,
+    t: f64,
+) {
     for lp in loops {
         let n = lp.len();
         if n < 3 {
             continue;
         }
-        let places: Vec<_> = lp.iter().map(|&v| locator.closest_boundary_at(&pos[v])).collect();
-        let near: Vec<bool> =
-            lp.iter().zip(&places).map(|(&v, b)| b.is_some_and(|b| (b.point - pos[v]).norm() <= SNAP * t)).collect();
-        let Some(start) = (0..n).find(|&i| near[i] && !near[(i + 1) % n]) else { continue };
+        let places: Vec<_> = lp
+            .iter()
+            .map(|&v| locator.closest_boundary_at(&pos[v]))
+            .collect();
+        let near: Vec<bool> = lp
+            .iter()
+            .zip(&places)
+            .map(|(&v, b)| b.is_some_and(|b| (b.point - pos[v]).norm() <= SNAP * t))
+            .collect();
+        let Some(start) = (0..n).find(|&i| near[i] && !near[(i + 1) % n]) else {
+            continue;
+        };
         // Walk the loop once from `start`, collecting runs of far vertices.
         let mut i = start;
         let mut walked = 0;
@@ -46,7 +60,9 @@ pub(crate) fn extend_boundary(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<u
                     steps += 1;
                 }
                 run.push(lp[j]);
-                let (Some(first), Some(last)) = (places[i], places[j]) else { break };
+                let (Some(first), Some(last)) = (places[i], places[j]) else {
+                    break;
+                };
                 extend_run(pos, faces, &run, first.lp, first.arc, last.arc, locator, t);
                 walked += steps;
                 i = j;
@@ -61,7 +77,16 @@ pub(crate) fn extend_boundary(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<u
 /// One extension: `run` = near vertex, far vertices, near vertex (along the quad boundary,
 /// faces on the left); the input boundary loop `lp` runs the same way from arc `from` to `to`.
 #[allow(clippy::too_many_arguments)]
-fn extend_run(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, run: &[usize], lp: usize, from: f64, to: f64, locator: &Locator, t: f64) {
+fn extend_run(
+    pos: &mut Vec<Vector3<f64>>,
+    faces: &mut Vec<Vec<usize>>,
+    run: &[usize],
+    lp: usize,
+    from: f64,
+    to: f64,
+    locator: &Locator,
+    t: f64,
+) {
     let m = run.len() - 2;
     if m == 0 {
         return;
@@ -95,8 +120,12 @@ fn extend_run(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, run: &[u
     }
     offsets.push(span);
     let arc_at = |k: usize| from + offsets[k];
-    let spokes: Vec<Vector3<f64>> = (1..=m).map(|k| locator.boundary_point(lp, arc_at(k))).collect();
-    let longest = (1..=m).map(|k| (pos[run[k]] - spokes[k - 1]).norm()).fold(0.0, f64::max);
+    let spokes: Vec<Vector3<f64>> = (1..=m)
+        .map(|k| locator.boundary_point(lp, arc_at(k)))
+        .collect();
+    let longest = (1..=m)
+        .map(|k| (pos[run[k]] - spokes[k - 1]).norm())
+        .fold(0.0, f64::max);
     let rows = ((longest / t).round() as usize).clamp(1, MAX_ROWS);
     fn add(pos: &mut Vec<Vector3<f64>>, p: Vector3<f64>) -> usize {
         pos.push(p);
@@ -120,14 +149,22 @@ fn extend_run(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, run: &[u
     // Middle quads between consecutive spokes.
     for k in 1..m {
         for r in 0..rows {
-            faces.push(vec![spoke[k + 1][r], spoke[k][r], spoke[k][r + 1], spoke[k + 1][r + 1]]);
+            faces.push(vec![
+                spoke[k + 1][r],
+                spoke[k][r],
+                spoke[k][r + 1],
+                spoke[k + 1][r + 1],
+            ]);
         }
     }
     // First end: fan from spoke 1 onto the boundary between the first near vertex and it.
     let first_arc = offsets[1];
     let mut y = vec![run[0]];
     for r in 1..=rows {
-        y.push(add(pos, locator.boundary_point(lp, from + first_arc * r as f64 / (rows + 1) as f64)));
+        y.push(add(
+            pos,
+            locator.boundary_point(lp, from + first_arc * r as f64 / (rows + 1) as f64),
+        ));
     }
     for r in 0..rows {
         faces.push(vec![spoke[1][r], y[r], y[r + 1], spoke[1][r + 1]]);
@@ -136,7 +173,10 @@ fn extend_run(pos: &mut Vec<Vector3<f64>>, faces: &mut Vec<Vec<usize>>, run: &[u
     let last_arc = span - offsets[m];
     let mut z = vec![run[m + 1]];
     for r in 1..=rows {
-        z.push(add(pos, locator.boundary_point(lp, to - last_arc * r as f64 / (rows + 1) as f64)));
+        z.push(add(
+            pos,
+            locator.boundary_point(lp, to - last_arc * r as f64 / (rows + 1) as f64),
+        ));
     }
     for r in 0..rows {
         faces.push(vec![z[r], spoke[m][r], spoke[m][r + 1], z[r + 1]]);
@@ -156,24 +196,41 @@ fn face_samples(pos: &[Vector3<f64>], f: &[usize]) -> Vec<Sample> {
     let mut out = Vec::with_capacity(k + 1);
     if k == 4 {
         let c = (pos[f[0]] + pos[f[1]] + pos[f[2]] + pos[f[3]]) * 0.25;
-        out.push((c, [(f[0], 0.25), (f[1], 0.25), (f[2], 0.25), (f[3], 0.25)], 4));
+        out.push((
+            c,
+            [(f[0], 0.25), (f[1], 0.25), (f[2], 0.25), (f[3], 0.25)],
+            4,
+        ));
     }
     for i in 0..k {
         let (a, b) = (f[i], f[(i + 1) % k]);
-        out.push(((pos[a] + pos[b]) * 0.5, [(a, 0.5), (b, 0.5), (a, 0.0), (a, 0.0)], 2));
+        out.push((
+            (pos[a] + pos[b]) * 0.5,
+            [(a, 0.5), (b, 0.5), (a, 0.0), (a, 0.0)],
+            2,
+        ));
     }
     out
 }
 
 /// Largest distance to the surface of a face's centroid and edge midpoints.
 pub(crate) fn deviation(pos: &[Vector3<f64>], f: &[usize], locator: &Locator) -> f64 {
-    face_samples(pos, f).iter().map(|(p, _, _)| locator.distance(p)).fold(0.0, f64::max)
+    face_samples(pos, f)
+        .iter()
+        .map(|(p, _, _)| locator.distance(p))
+        .fold(0.0, f64::max)
 }
 
 /// Pulls faces whose centroid or edge midpoints leave the surface back onto it by moving
 /// their vertices (each towards the surface points its samples should reach), keeping
 /// boundary vertices on the boundary and corners in place. Works only where needed.
-pub(crate) fn conform(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], anchors: &Anchors, locator: &Locator, t: f64) {
+pub(crate) fn conform(
+    pos: &mut [Vector3<f64>],
+    faces: &[Vec<usize>],
+    anchors: &Anchors,
+    locator: &Locator,
+    t: f64,
+) {
     let n = pos.len();
     let mut incident: Vec<Vec<usize>> = vec![Vec::new(); n];
     for (fi, f) in faces.iter().enumerate() {
@@ -182,7 +239,9 @@ pub(crate) fn conform(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], anchors: &
         }
     }
     let threshold = CONFORM_FROM * t;
-    let mut active: Vec<usize> = (0..faces.len()).filter(|&fi| deviation(pos, &faces[fi], locator) > threshold).collect();
+    let mut active: Vec<usize> = (0..faces.len())
+        .filter(|&fi| deviation(pos, &faces[fi], locator) > threshold)
+        .collect();
     let mut disp = vec![Vector3::zeros(); n];
     let mut weight = vec![0.0; n];
     let mut stamp = vec![usize::MAX; faces.len()];
@@ -223,7 +282,10 @@ pub(crate) fn conform(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], anchors: &
             }
         }
         next.sort_unstable();
-        active = next.into_iter().filter(|&fi| deviation(pos, &faces[fi], locator) > threshold).collect();
+        active = next
+            .into_iter()
+            .filter(|&fi| deviation(pos, &faces[fi], locator) > threshold)
+            .collect();
     }
 }
 
@@ -238,13 +300,22 @@ const CHORD_ROUNDS: usize = 3;
 /// its two ends slide towards each other along the boundary until it keeps to `limit`
 /// (neighbouring chords grow a little, where the boundary is straighter). A move is kept only
 /// if it lowers the worst deviation of the faces around the two ends. Corners stay.
-pub(crate) fn shorten_boundary_chords(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], anchors: &Anchors, locator: &Locator, limit: f64) {
+pub(crate) fn shorten_boundary_chords(
+    pos: &mut [Vector3<f64>],
+    faces: &[Vec<usize>],
+    anchors: &Anchors,
+    locator: &Locator,
+    limit: f64,
+) {
     let mut incident: Vec<Vec<usize>> = vec![Vec::new(); pos.len()];
     for (fi, f) in faces.iter().enumerate() {
         f.iter().for_each(|&v| incident[v].push(fi));
     }
     let worst_around = |pos: &[Vector3<f64>], ends: [usize; 2]| -> f64 {
-        ends.iter().flat_map(|&v| incident[v].iter()).map(|&fi| deviation(pos, &faces[fi], locator)).fold(0.0, f64::max)
+        ends.iter()
+            .flat_map(|&v| incident[v].iter())
+            .map(|&fi| deviation(pos, &faces[fi], locator))
+            .fold(0.0, f64::max)
     };
     for _ in 0..CHORD_ROUNDS {
         let mut moved = false;
@@ -254,14 +325,23 @@ pub(crate) fn shorten_boundary_chords(pos: &mut [Vector3<f64>], faces: &[Vec<usi
                 if off <= limit || (anchors.pinned[a] && anchors.pinned[b]) {
                     continue;
                 }
-                let (Some(pa), Some(pb)) = (locator.closest_boundary_at(&pos[a]), locator.closest_boundary_at(&pos[b])) else { continue };
+                let (Some(pa), Some(pb)) = (
+                    locator.closest_boundary_at(&pos[a]),
+                    locator.closest_boundary_at(&pos[b]),
+                ) else {
+                    continue;
+                };
                 if pa.lp != pb.lp {
                     continue;
                 }
                 let length = locator.loop_length(pa.lp);
                 // Along the loop from `a` to `b` the short way (`sign` -1 when that runs backwards).
                 let forward = (pb.arc - pa.arc).rem_euclid(length);
-                let (span, sign) = if forward <= length / 2.0 { (forward, 1.0) } else { (length - forward, -1.0) };
+                let (span, sign) = if forward <= length / 2.0 {
+                    (forward, 1.0)
+                } else {
+                    (length - forward, -1.0)
+                };
                 // Sagitta ~ span^2: the span that keeps to the limit, with a small margin.
                 let shrink = span * (1.0 - 0.97 * (limit / off).sqrt());
                 let (step_a, step_b) = match (anchors.pinned[a], anchors.pinned[b]) {

@@ -68,7 +68,12 @@ impl<'a> Jumps<'a> {
                 })
             })
             .collect();
-        Self { s, turns, tri_edges, edge_tris }
+        Self {
+            s,
+            turns,
+            tri_edges,
+            edge_tris,
+        }
     }
 
     /// Maps vectors in `b`'s frame to `a`'s frame (a, b adjacent or equal).
@@ -77,12 +82,20 @@ impl<'a> Jumps<'a> {
             return Rot(0);
         }
         let e = edge_id(self.s, a, b);
-        if a < b { self.turns[e] } else { self.turns[e].inv() }
+        if a < b {
+            self.turns[e]
+        } else {
+            self.turns[e].inv()
+        }
     }
 
     /// [`Self::frame_map`] for the ends of a known edge `e`.
     fn frame_map_on(&self, a: usize, b: usize, e: usize) -> Rot {
-        if a < b { self.turns[e] } else { self.turns[e].inv() }
+        if a < b {
+            self.turns[e]
+        } else {
+            self.turns[e].inv()
+        }
     }
 
     /// Lattice step from `x` to `y` (the ends of edge `e`), in `x`'s frame.
@@ -99,7 +112,11 @@ impl<'a> Jumps<'a> {
     fn is_cone(&self, t: usize) -> bool {
         let [a, b, c] = self.s.tris[t];
         let [eab, ebc, eca] = self.tri_edges[t];
-        (self.frame_map_on(a, b, eab).0 + self.frame_map_on(b, c, ebc).0 + self.frame_map_on(c, a, eca).0) % 4 != 0
+        (self.frame_map_on(a, b, eab).0
+            + self.frame_map_on(b, c, ebc).0
+            + self.frame_map_on(c, a, eca).0)
+            % 4
+            != 0
     }
 
     /// Sum of lattice steps around triangle `t`, in the frame of its first vertex.
@@ -107,8 +124,12 @@ impl<'a> Jumps<'a> {
         let [a, b, c] = self.s.tris[t];
         let [eab, ebc, eca] = self.tri_edges[t];
         let s1 = self.step_on(m, a, b, eab);
-        let s2 = self.frame_map_on(a, b, eab).apply(self.step_on(m, b, c, ebc));
-        let s3 = self.frame_map_on(a, c, eca).apply(self.step_on(m, c, a, eca));
+        let s2 = self
+            .frame_map_on(a, b, eab)
+            .apply(self.step_on(m, b, c, ebc));
+        let s3 = self
+            .frame_map_on(a, c, eca)
+            .apply(self.step_on(m, c, a, eca));
         [s1[0] + s2[0] + s3[0], s1[1] + s2[1] + s3[1]]
     }
 
@@ -127,7 +148,14 @@ impl<'a> Jumps<'a> {
     /// lattice line pinned along the boundary (then only tangential steps may leave there).
     /// Returns how many defects were removed.
     /// `keep_going` is asked now and then; `false` stops with the defects left so far.
-    pub fn cancel(&self, m: &mut [[i64; 2]], depth: usize, exit_depth: usize, pinned_normal: &[bool], keep_going: &mut dyn FnMut() -> bool) -> usize {
+    pub fn cancel(
+        &self,
+        m: &mut [[i64; 2]],
+        depth: usize,
+        exit_depth: usize,
+        pinned_normal: &[bool],
+        keep_going: &mut dyn FnMut() -> bool,
+    ) -> usize {
         let nt = self.s.tris.len();
         let cone: Vec<bool> = (0..nt).map(|t| self.is_cone(t)).collect();
         let mut removed = 0;
@@ -152,13 +180,19 @@ impl<'a> Jumps<'a> {
                     break;
                 }
                 for &e in &self.tri_edges[t] {
-                    let other = if self.edge_tris[e][0] == t { self.edge_tris[e][1] } else { self.edge_tris[e][0] };
+                    let other = if self.edge_tris[e][0] == t {
+                        self.edge_tris[e][1]
+                    } else {
+                        self.edge_tris[e][0]
+                    };
                     if other == NONE {
                         // Boundary exit, only near the boundary: far from it a lone
                         // dislocation is usually one the geometry needs (the inside of a
                         // bend has fewer rows than the outside), and removing it would
                         // stretch every quad in between.
-                        if level[t] <= exit_depth && self.try_path(m, start, t, &parent, Some(e), pinned_normal) {
+                        if level[t] <= exit_depth
+                            && self.try_path(m, start, t, &parent, Some(e), pinned_normal)
+                        {
                             removed += 1;
                             done = true;
                             break;
@@ -171,7 +205,9 @@ impl<'a> Jumps<'a> {
                     stamp[other] = start;
                     level[other] = level[t] + 1;
                     parent[other] = (t, e);
-                    if self.curl(m, other) != [0, 0] && self.try_path(m, start, other, &parent, None, pinned_normal) {
+                    if self.curl(m, other) != [0, 0]
+                        && self.try_path(m, start, other, &parent, None, pinned_normal)
+                    {
                         removed += 2;
                         done = true;
                         break;

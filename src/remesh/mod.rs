@@ -31,7 +31,7 @@
 //! 5. [`shapeup`] (optional): local-global iterations towards squares of side `t`
 //!    (Bouaziz et al., "Shape-Up", SGP 2012, as used in the paper via libigl), projected back
 //!    onto the input after every step;
-//! 6. [`metrics`]: the acceptance numbers, usable on any quad mesh.
+//! 6. [`metrics`](mod@metrics): the acceptance numbers, usable on any quad mesh.
 //!
 //! [`remesh_with`] reports progress and honours cancellation and a time limit ([`budget`]).
 //!

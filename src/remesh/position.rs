@@ -22,7 +22,6 @@ use super::flow::Jumps;
 use super::linalg::conjugate_gradient;
 use super::surface::Surface;
 
-
 /// The solved lattice: origins and per-edge integer offsets.
 #[derive(Debug, Clone)]
 pub(crate) struct Lattice {
@@ -58,15 +57,27 @@ const TRIANGLE_STEP: f64 = 0.577;
 
 /// Cross frames `(o, n x o)` per vertex.
 fn bases(s: &Surface, frames: &[Vector3<f64>]) -> Vec<Matrix3x2<f64>> {
-    (0..s.len()).map(|v| Matrix3x2::from_columns(&[frames[v], s.normals[v].cross(&frames[v])])).collect()
+    (0..s.len())
+        .map(|v| Matrix3x2::from_columns(&[frames[v], s.normals[v].cross(&frames[v])]))
+        .collect()
 }
 
 /// Solves the lattice of spacing `t` for the cross field `frames` on `s`.
 /// Stops early (with an unfinished lattice the caller must discard) once `budget` says so.
-pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool], budget: &mut Budget) -> Lattice {
+pub(crate) fn solve(
+    s: &Surface,
+    frames: &[Vector3<f64>],
+    t: f64,
+    pin: &[bool],
+    budget: &mut Budget,
+) -> Lattice {
     let n = s.len();
     let basis = bases(s, frames);
-    let transfer: Vec<Matrix2<f64>> = s.edges.iter().map(|&[a, b]| basis[a].transpose() * basis[b]).collect();
+    let transfer: Vec<Matrix2<f64>> = s
+        .edges
+        .iter()
+        .map(|&[a, b]| basis[a].transpose() * basis[b])
+        .collect();
     // Edge vectors in the first end point's tangent frame, at full length (projection alone
     // would shorten edges on curved surfaces and shrink the lattice).
     let delta: Vec<Vector2<f64>> = s
@@ -105,18 +116,35 @@ pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool], 
     let mut m = jumps(&u);
     let mut active = vec![false; 2 * n];
     let flow = Jumps::new(s, &transfer);
-    let mean_edge = s.edges.iter().map(|&[a, b]| s.edge_vec(a, b).norm()).sum::<f64>() / s.edges.len().max(1) as f64;
+    let mean_edge = s
+        .edges
+        .iter()
+        .map(|&[a, b]| s.edge_vec(a, b).norm())
+        .sum::<f64>()
+        / s.edges.len().max(1) as f64;
     // The reach in steps between triangles.
-    let depth = (CANCEL_REACH * t / (TRIANGLE_STEP * mean_edge).max(f64::MIN_POSITIVE)).ceil().min(1e6) as usize;
+    let depth = (CANCEL_REACH * t / (TRIANGLE_STEP * mean_edge).max(f64::MIN_POSITIVE))
+        .ceil()
+        .min(1e6) as usize;
     let mut pinned_normal = vec![false; n];
     let weight = edge_weights(s);
-    let system = System { s, transfer: &transfer, delta: &delta, weight: &weight, t };
+    let system = System {
+        s,
+        transfer: &transfer,
+        delta: &delta,
+        weight: &weight,
+        t,
+    };
     // Jumps as read before the last cancellation, to fall back on when cancelling strains
     // the lattice too much (a shell whose rows must really end somewhere, like a dome with
     // rows along its rim).
     let mut uncancelled: Option<Vec<[i64; 2]>> = None;
     let mut cancelling = true;
-    let cancel = |m: &mut Vec<[i64; 2]>, cancelling: bool, pinned_normal: &[bool], budget: &mut Budget| -> Option<Vec<[i64; 2]>> {
+    let cancel = |m: &mut Vec<[i64; 2]>,
+                  cancelling: bool,
+                  pinned_normal: &[bool],
+                  budget: &mut Budget|
+     -> Option<Vec<[i64; 2]>> {
         if !cancelling {
             return None;
         }
@@ -170,7 +198,11 @@ pub(crate) fn solve(s: &Surface, frames: &[Vector3<f64>], t: f64, pin: &[bool], 
         uncancelled = cancel(&mut m, cancelling, &pinned_normal, budget);
     }
     let origin = (0..n).map(|v| s.pos[v] + basis[v] * read(&u, v)).collect();
-    Lattice { origin, offset: m, pinned }
+    Lattice {
+        origin,
+        offset: m,
+        pinned,
+    }
 }
 
 /// Relative edge misfit counted as strain.
@@ -201,7 +233,9 @@ impl System<'_> {
             .filter(|&(e, &[a, b])| {
                 let ua = Vector2::new(u[2 * a], u[2 * a + 1]);
                 let ub = Vector2::new(u[2 * b], u[2 * b + 1]);
-                let r = self.delta[e] + self.transfer[e] * ub - ua - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t;
+                let r = self.delta[e] + self.transfer[e] * ub
+                    - ua
+                    - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t;
                 r.norm() > STRAIN * self.delta[e].norm()
             })
             .count();
@@ -210,7 +244,14 @@ impl System<'_> {
 
     /// Minimises the energy over the offsets `u` for fixed jumps `m`, with the components
     /// flagged in `active` held at zero.
-    fn solve(&self, active: &[bool], m: &[[i64; 2]], u: &mut [f64], iterations: usize, keep_going: &mut dyn FnMut(usize) -> bool) {
+    fn solve(
+        &self,
+        active: &[bool],
+        m: &[[i64; 2]],
+        u: &mut [f64],
+        iterations: usize,
+        keep_going: &mut dyn FnMut(usize) -> bool,
+    ) {
         // Held components of every vector the solver applies the operator to are exactly
         // zero (they start at zero, and the operator keeps them there), so the edge loop
         // needs no masking. Edges are packed (u32 ends, transfer matrix, weight) for speed.
@@ -221,7 +262,13 @@ impl System<'_> {
             .iter()
             .zip(self.transfer)
             .zip(self.weight)
-            .map(|((&[a, b], t), &w)| ([a as u32, b as u32], [t[(0, 0)], t[(0, 1)], t[(1, 0)], t[(1, 1)]], w))
+            .map(|((&[a, b], t), &w)| {
+                (
+                    [a as u32, b as u32],
+                    [t[(0, 0)], t[(0, 1)], t[(1, 0)], t[(1, 1)]],
+                    w,
+                )
+            })
             .collect();
         let apply = |x: &[f64], out: &mut [f64]| {
             out.iter_mut().zip(x).for_each(|(o, x)| *o = 1e-6 * x);
@@ -244,7 +291,8 @@ impl System<'_> {
         };
         let mut rhs: Vec<f64> = u.iter().map(|x| 1e-6 * x).collect();
         for (e, &[a, b]) in self.s.edges.iter().enumerate() {
-            let c = (self.delta[e] - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t) * self.weight[e];
+            let c = (self.delta[e] - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t)
+                * self.weight[e];
             let cb = self.transfer[e].transpose() * c;
             rhs[2 * a] += c.x;
             rhs[2 * a + 1] += c.y;
@@ -282,7 +330,10 @@ fn edge_weights(s: &Surface) -> Vec<f64> {
         }
     }
     let equilateral = 1.0 / 3f64.sqrt();
-    weight.iter().map(|w| (w / equilateral).clamp(0.1, 4.0)).collect()
+    weight
+        .iter()
+        .map(|w| (w / equilateral).clamp(0.1, 4.0))
+        .collect()
 }
 
 /// Initial lattice by integration along a breadth-first tree from vertex 0: each vertex takes

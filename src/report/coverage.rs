@@ -16,13 +16,22 @@ use crate::tiles::Tile;
 
 /// Share of `surface`'s area covered by `tiles` with their joints, in `[0, 1]`.
 pub fn covered_share(surface: &PolyMesh, tiles: &[Tile], joint: f64) -> f64 {
-    let Some(reach) = tiles.iter().map(|t| t.size[0].hypot(t.size[1]) / 2.0 + joint).reduce(f64::max) else { return 0.0 };
+    let Some(reach) = tiles
+        .iter()
+        .map(|t| t.size[0].hypot(t.size[1]) / 2.0 + joint)
+        .reduce(f64::max)
+    else {
+        return 0.0;
+    };
     let grid = HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
     let (mut covered, mut total) = (0.0, 0.0);
     for f in 0..surface.face_count() {
         let area = surface.face_area_vector(f).norm();
         let p = surface.face_centroid(f);
-        let hit = grid.near(&p, reach).into_iter().any(|t| under(&tiles[t], &p, joint / 2.0));
+        let hit = grid
+            .near(&p, reach)
+            .into_iter()
+            .any(|t| under(&tiles[t], &p, joint / 2.0));
         total += area;
         covered += if hit { area } else { 0.0 };
     }
@@ -37,7 +46,9 @@ fn under(tile: &Tile, p: &Point3<f64>, margin: f64) -> bool {
         return false;
     }
     let q = [local.x, local.y];
-    tile.cut.as_ref().is_none_or(|cut| winding(&cut.loops, q) != 0 || cut.loops.iter().any(|l| near_loop(l, q, margin)))
+    tile.cut.as_ref().is_none_or(|cut| {
+        winding(&cut.loops, q) != 0 || cut.loops.iter().any(|l| near_loop(l, q, margin))
+    })
 }
 
 /// Whether `q` lies within `margin` of the loop's edges.

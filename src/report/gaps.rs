@@ -81,9 +81,14 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
         }
     }
     let outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_corners).collect();
-    let reach = tiles.iter().map(|t| t.size[0].hypot(t.size[1])).fold(0.0, f64::max);
+    let reach = tiles
+        .iter()
+        .map(|t| t.size[0].hypot(t.size[1]))
+        .fold(0.0, f64::max);
     let near = 3.0 * joint.max(tiles.iter().map(|t| t.size[1]).fold(0.0, f64::max) / 100.0);
-    let separation = |a: usize, b: usize| outline::separation_of(&tiles[a], &outlines[a], &tiles[b], &outlines[b]);
+    let separation = |a: usize, b: usize| {
+        outline::separation_of(&tiles[a], &outlines[a], &tiles[b], &outlines[b])
+    };
     let gap = |a: usize, b: usize| separation(a, b).gap;
     let mut found: Vec<Joint> = Vec::with_capacity(meeting.len());
     if reach > 0.0 {
@@ -94,13 +99,19 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
                     let s = separation(a, b);
                     let stretch = tiles[a].size[1].min(tiles[b].size[1]) / 4.0;
                     if s.gap < 0.0 || (s.gap < near && s.along >= stretch) {
-                        found.push(Joint { tiles: [a, b], gap: s.gap });
+                        found.push(Joint {
+                            tiles: [a, b],
+                            gap: s.gap,
+                        });
                     }
                 }
             }
         }
     }
-    found.extend(meeting.iter().map(|&[a, b]| Joint { tiles: [a, b], gap: gap(a, b) }));
+    found.extend(meeting.iter().map(|&[a, b]| Joint {
+        tiles: [a, b],
+        gap: gap(a, b),
+    }));
     found.sort_by_key(|j| j.tiles);
     found
 }
@@ -112,8 +123,13 @@ impl JointSummary {
         let mut deviations: Vec<f64> = gaps.iter().map(|g| (g - joint).abs()).collect();
         gaps.sort_by(f64::total_cmp);
         deviations.sort_by(f64::total_cmp);
-        let share = |limit: f64| deviations.partition_point(|&d| d <= limit) as f64 / deviations.len().max(1) as f64;
-        let (min_gap, max_gap) = (gaps.first().copied().unwrap_or(0.0), gaps.last().copied().unwrap_or(0.0));
+        let share = |limit: f64| {
+            deviations.partition_point(|&d| d <= limit) as f64 / deviations.len().max(1) as f64
+        };
+        let (min_gap, max_gap) = (
+            gaps.first().copied().unwrap_or(0.0),
+            gaps.last().copied().unwrap_or(0.0),
+        );
         Self {
             contacts: joints.len(),
             joint,
@@ -134,5 +150,8 @@ impl JointSummary {
 
 /// The `p`-th percentile of sorted values (nearest rank), 0 for none.
 fn percentile(sorted: &[f64], p: usize) -> f64 {
-    sorted.get((sorted.len() * p).div_ceil(100).saturating_sub(1)).copied().unwrap_or(0.0)
+    sorted
+        .get((sorted.len() * p).div_ceil(100).saturating_sub(1))
+        .copied()
+        .unwrap_or(0.0)
 }

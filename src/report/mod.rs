@@ -12,7 +12,9 @@ use serde::Serialize;
 
 use crate::mesh::PolyMesh;
 use crate::pattern::{Pattern, SolveStatus};
-use crate::tiles::{DropReason, DroppedTile, FitSummary, Finished, Sequence, Tile, TileKind, TileSpec};
+use crate::tiles::{
+    DropReason, DroppedTile, Finished, FitSummary, Sequence, Tile, TileKind, TileSpec,
+};
 
 /// Wall-clock seconds per stage.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
@@ -97,13 +99,27 @@ pub struct CuttingSummary {
 impl Report {
     /// Summarises a tiling built from `pattern` on `mesh`, in metres (see [`Report::measured`]).
     pub fn new(mesh: &PolyMesh, pattern: &Pattern, tiles: &[Tile], spec: &TileSpec) -> Self {
-        Self::measured(mesh, pattern, tiles, &gaps::joints(mesh, tiles, spec.joint), spec, 0.001)
+        Self::measured(
+            mesh,
+            pattern,
+            tiles,
+            &gaps::joints(mesh, tiles, spec.joint),
+            spec,
+            0.001,
+        )
     }
 
     /// Summarises a tiling built from `pattern` on `mesh`, whose `joints` were measured with
     /// [`gaps::joints`], in a model with `mm` model units per millimetre (for the joint
     /// figures stated in millimetres).
-    pub fn measured(mesh: &PolyMesh, pattern: &Pattern, tiles: &[Tile], joints: &[Joint], spec: &TileSpec, mm: f64) -> Self {
+    pub fn measured(
+        mesh: &PolyMesh,
+        pattern: &Pattern,
+        tiles: &[Tile],
+        joints: &[Joint],
+        spec: &TileSpec,
+        mm: f64,
+    ) -> Self {
         let count = |kind| tiles.iter().filter(|t| t.kind == kind).count();
         let blanks = |faces: usize| tiles.iter().filter(|t| t.faces.len() == faces).count();
         Self {
@@ -120,11 +136,18 @@ impl Report {
             gap: pattern.gap,
             status: pattern.status,
             tile: *spec,
-            joints: JointSummary { fit_cuts: count(TileKind::FitCut), ..JointSummary::of(joints, spec.joint, mm) },
+            joints: JointSummary {
+                fit_cuts: count(TileKind::FitCut),
+                ..JointSummary::of(joints, spec.joint, mm)
+            },
             fit: None,
             cutting: None,
             sequence: None,
-            seconds: StageSeconds { pattern: pattern.seconds, tiles: 0.0, fit: 0.0 },
+            seconds: StageSeconds {
+                pattern: pattern.seconds,
+                tiles: 0.0,
+                fit: 0.0,
+            },
         }
     }
 
@@ -142,9 +165,22 @@ impl Report {
         self.cutting = Some(CuttingSummary {
             boundary_tiles: self.boundary_tiles,
             filler_tiles: finished.fillers,
-            outside_tiles: finished.dropped.iter().filter(|d| d.reason == DropReason::Outside).count(),
-            slivers: finished.dropped.iter().filter(|d| d.reason == DropReason::Sliver).cloned().collect(),
-            boundary_shapes: finished.cut_list.iter().filter(|g| g.kind == TileKind::Boundary).count(),
+            outside_tiles: finished
+                .dropped
+                .iter()
+                .filter(|d| d.reason == DropReason::Outside)
+                .count(),
+            slivers: finished
+                .dropped
+                .iter()
+                .filter(|d| d.reason == DropReason::Sliver)
+                .cloned()
+                .collect(),
+            boundary_shapes: finished
+                .cut_list
+                .iter()
+                .filter(|g| g.kind == TileKind::Boundary)
+                .count(),
             surface_area: surface.area(),
             tile_area,
             coverage: coverage::covered_share(surface, tiles, joint),

@@ -11,8 +11,8 @@ use std::fmt::Write as _;
 
 use nalgebra::{Point3, Vector3};
 
-use crate::mesh::{PolyMesh, Topology};
 use super::gaps::Joint;
+use crate::mesh::{PolyMesh, Topology};
 use crate::pattern::DualGraph;
 use crate::tiles::{Tile, TileKind, outline};
 
@@ -35,10 +35,22 @@ pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
     let tile_of = tile_of_face(mesh, tiles);
     // Faces without a tile (excluded, not quads) stay grey underneath.
     let mut body = String::new();
-    for (f, face) in mesh.faces().iter().enumerate().filter(|(f, _)| tile_of[*f].is_none()) {
+    for (f, face) in mesh
+        .faces()
+        .iter()
+        .enumerate()
+        .filter(|(f, _)| tile_of[*f].is_none())
+    {
         let _ = f;
-        let points: Vec<String> = face.iter().map(|&v| view.xy(&mesh.positions()[v])).collect();
-        let _ = writeln!(body, r#"<polygon points="{}" fill="{NO_TILE_FILL}" stroke="{NO_TILE_FILL}" stroke-width="0.5"/>"#, points.join(" "));
+        let points: Vec<String> = face
+            .iter()
+            .map(|&v| view.xy(&mesh.positions()[v]))
+            .collect();
+        let _ = writeln!(
+            body,
+            r#"<polygon points="{}" fill="{NO_TILE_FILL}" stroke="{NO_TILE_FILL}" stroke-width="0.5"/>"#,
+            points.join(" ")
+        );
     }
     // Every tile as laid: its kept outline (all loops of a cut tile) filled by its kind.
     for tile in tiles {
@@ -49,12 +61,22 @@ pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
         let path: String = loops
             .iter()
             .map(|l| {
-                let points: Vec<String> = l.iter().map(|p| view.xy(&tile.to_world(Vector3::new(p[0], p[1], 0.0)))).collect();
+                let points: Vec<String> = l
+                    .iter()
+                    .map(|p| view.xy(&tile.to_world(Vector3::new(p[0], p[1], 0.0))))
+                    .collect();
                 format!("M{}Z", points.join("L"))
             })
             .collect();
-        let dash = if tile.cut.is_some() { format!(r#" stroke-dasharray="3,2" stroke="{CUT_COLOUR}""#) } else { format!(r#" stroke="{JOINT_COLOUR}""#) };
-        let _ = writeln!(body, r#"<path d="{path}" fill="{fill}" fill-rule="evenodd"{dash} stroke-width="0.5"/>"#);
+        let dash = if tile.cut.is_some() {
+            format!(r#" stroke-dasharray="3,2" stroke="{CUT_COLOUR}""#)
+        } else {
+            format!(r#" stroke="{JOINT_COLOUR}""#)
+        };
+        let _ = writeln!(
+            body,
+            r#"<path d="{path}" fill="{fill}" fill-rule="evenodd"{dash} stroke-width="0.5"/>"#
+        );
     }
     for [a, b] in continuous_joints(mesh, &topology, tiles) {
         for t in [a, b] {
@@ -66,7 +88,10 @@ pub fn pattern_svg(mesh: &PolyMesh, tiles: &[Tile]) -> String {
     for v in 0..mesh.positions().len() {
         if !topology.is_boundary_vertex(v) && topology.vertex_edges(v).len() != 4 {
             let (x, y) = view.project(&mesh.positions()[v]);
-            let _ = writeln!(body, r#"<circle cx="{x:.2}" cy="{y:.2}" r="4" fill="{SINGULAR_COLOUR}"/>"#);
+            let _ = writeln!(
+                body,
+                r#"<circle cx="{x:.2}" cy="{y:.2}" r="4" fill="{SINGULAR_COLOUR}"/>"#
+            );
         }
     }
     let legend = [
@@ -97,19 +122,37 @@ pub fn gaps_svg(mesh: &PolyMesh, tiles: &[Tile], joints: &[Joint], joint: f64, m
     }
     let mut deviations: Vec<f64> = joints.iter().map(|j| (j.gap - joint).abs()).collect();
     deviations.sort_by(f64::total_cmp);
-    let p95 = deviations.get((deviations.len() * 95).div_ceil(100).saturating_sub(1)).copied().unwrap_or(0.0);
+    let p95 = deviations
+        .get((deviations.len() * 95).div_ceil(100).saturating_sub(1))
+        .copied()
+        .unwrap_or(0.0);
     let scale = p95.max(joint * 0.1).max(1e-12);
     let mut body = String::new();
     for (tile, worst) in tiles.iter().zip(&worst) {
         let fill = worst.map_or_else(|| gap_colour(0.0), |g| gap_colour((g - joint) / scale));
-        let points: Vec<String> =
-            outline::world_outline(tile).iter().map(|p| view.xy(p)).collect();
-        let _ = writeln!(body, r#"<polygon points="{}" fill="{fill}" stroke="{JOINT_COLOUR}" stroke-width="0.3"/>"#, points.join(" "));
+        let points: Vec<String> = outline::world_outline(tile)
+            .iter()
+            .map(|p| view.xy(p))
+            .collect();
+        let _ = writeln!(
+            body,
+            r#"<polygon points="{}" fill="{fill}" stroke="{JOINT_COLOUR}" stroke-width="0.3"/>"#,
+            points.join(" ")
+        );
     }
     let legend = [
-        Legend::Swatch(gap_colour(-1.0), format!("joint {:.1} mm or less", (joint - scale) / mm)),
-        Legend::Swatch(gap_colour(0.0), format!("nominal joint {:.1} mm", joint / mm)),
-        Legend::Swatch(gap_colour(1.0), format!("joint {:.1} mm or more", (joint + scale) / mm)),
+        Legend::Swatch(
+            gap_colour(-1.0),
+            format!("joint {:.1} mm or less", (joint - scale) / mm),
+        ),
+        Legend::Swatch(
+            gap_colour(0.0),
+            format!("nominal joint {:.1} mm", joint / mm),
+        ),
+        Legend::Swatch(
+            gap_colour(1.0),
+            format!("joint {:.1} mm or more", (joint + scale) / mm),
+        ),
     ];
     document(&view, &body, &legend)
 }
@@ -117,9 +160,15 @@ pub fn gaps_svg(mesh: &PolyMesh, tiles: &[Tile], joints: &[Joint], joint: f64, m
 /// Blue (tighter than the joint) through grey (nominal) to red (wider), for `s` in `[-1, 1]`.
 fn gap_colour(s: f64) -> String {
     let s = s.clamp(-1.0, 1.0);
-    let (grey, blue, red) = ([160.0, 160.0, 160.0], [33.0, 102.0, 172.0], [202.0, 0.0, 32.0]);
+    let (grey, blue, red) = (
+        [160.0, 160.0, 160.0],
+        [33.0, 102.0, 172.0],
+        [202.0, 0.0, 32.0],
+    );
     let target = if s < 0.0 { blue } else { red };
-    let c: Vec<u8> = (0..3).map(|k| (grey[k] + (target[k] - grey[k]) * s.abs()).round() as u8).collect();
+    let c: Vec<u8> = (0..3)
+        .map(|k| (grey[k] + (target[k] - grey[k]) * s.abs()).round() as u8)
+        .collect();
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
 }
 
@@ -159,11 +208,29 @@ fn document(view: &View, body: &str, legend: &[Legend]) -> String {
             Legend::Swatch(c, t) | Legend::Line(c, t) | Legend::Dot(c, t) => (c, t),
         };
         let _ = match entry {
-            Legend::Swatch(..) => write!(items, r#"<rect x="{x:.0}" y="{:.0}" width="14" height="14" fill="{colour}"/>"#, legend_y - 12.0),
-            Legend::Line(..) => write!(items, r#"<line x1="{x:.0}" y1="{y:.0}" x2="{:.0}" y2="{y:.0}" stroke="{colour}" stroke-width="3"/>"#, x + 14.0, y = legend_y - 5.0),
-            Legend::Dot(..) => write!(items, r#"<circle cx="{:.0}" cy="{:.0}" r="4" fill="{colour}"/>"#, x + 7.0, legend_y - 5.0),
+            Legend::Swatch(..) => write!(
+                items,
+                r#"<rect x="{x:.0}" y="{:.0}" width="14" height="14" fill="{colour}"/>"#,
+                legend_y - 12.0
+            ),
+            Legend::Line(..) => write!(
+                items,
+                r#"<line x1="{x:.0}" y1="{y:.0}" x2="{:.0}" y2="{y:.0}" stroke="{colour}" stroke-width="3"/>"#,
+                x + 14.0,
+                y = legend_y - 5.0
+            ),
+            Legend::Dot(..) => write!(
+                items,
+                r#"<circle cx="{:.0}" cy="{:.0}" r="4" fill="{colour}"/>"#,
+                x + 7.0,
+                legend_y - 5.0
+            ),
         };
-        let _ = write!(items, r#"<text x="{:.0}" y="{legend_y:.0}">{text}</text>"#, x + 20.0);
+        let _ = write!(
+            items,
+            r#"<text x="{:.0}" y="{legend_y:.0}">{text}</text>"#,
+            x + 20.0
+        );
         x += 30.0 + 7.5 * text.len() as f64;
     }
     let height = view.height + 2.0 * MARGIN + 30.0;
@@ -184,17 +251,25 @@ fn continuous_joints(mesh: &PolyMesh, topology: &Topology, tiles: &[Tile]) -> Ve
             }
         }
     }
-    graph.continuous_joints().iter().filter_map(|&[a, b]| Some([placed[a]?, placed[b]?])).collect()
+    graph
+        .continuous_joints()
+        .iter()
+        .filter_map(|&[a, b]| Some([placed[a]?, placed[b]?]))
+        .collect()
 }
 
 /// The two end edges of a full tile: in each of its quads, the edge opposite the middle edge.
 fn end_edges(mesh: &PolyMesh, topology: &Topology, tile: &Tile) -> Vec<[usize; 2]> {
-    let [a, b] = tile.faces[..] else { return Vec::new() };
+    let [a, b] = tile.faces[..] else {
+        return Vec::new();
+    };
     [(a, b), (b, a)]
         .into_iter()
         .filter_map(|(f, other)| {
             let edges = topology.face_edges(f);
-            let middle = edges.iter().position(|&e| topology.edges()[e].other_face(f) == Some(other))?;
+            let middle = edges
+                .iter()
+                .position(|&e| topology.edges()[e].other_face(f) == Some(other))?;
             (mesh.faces()[f].len() == 4).then(|| topology.edges()[edges[(middle + 2) % 4]].vertices)
         })
         .collect()
@@ -211,18 +286,41 @@ struct View {
 
 impl View {
     fn fit(mesh: &PolyMesh) -> Self {
-        let normal = (0..mesh.face_count()).fold(Vector3::zeros(), |acc, f| acc + mesh.face_area_vector(f));
+        let normal =
+            (0..mesh.face_count()).fold(Vector3::zeros(), |acc, f| acc + mesh.face_area_vector(f));
         let n = normal.try_normalize(1e-12).unwrap_or_else(Vector3::z);
-        let reference = if n.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+        let reference = if n.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
         let u = (reference - n * reference.dot(&n)).normalize();
         let v = n.cross(&u);
-        let coords: Vec<(f64, f64)> = mesh.positions().iter().map(|p| (p.coords.dot(&u), p.coords.dot(&v))).collect();
-        let fold = |pick: fn(&(f64, f64)) -> f64, f: fn(f64, f64) -> f64, start: f64| coords.iter().map(pick).fold(start, f);
-        let min = (fold(|c| c.0, f64::min, f64::INFINITY), fold(|c| c.1, f64::min, f64::INFINITY));
-        let max = (fold(|c| c.0, f64::max, f64::NEG_INFINITY), fold(|c| c.1, f64::max, f64::NEG_INFINITY));
+        let coords: Vec<(f64, f64)> = mesh
+            .positions()
+            .iter()
+            .map(|p| (p.coords.dot(&u), p.coords.dot(&v)))
+            .collect();
+        let fold = |pick: fn(&(f64, f64)) -> f64, f: fn(f64, f64) -> f64, start: f64| {
+            coords.iter().map(pick).fold(start, f)
+        };
+        let min = (
+            fold(|c| c.0, f64::min, f64::INFINITY),
+            fold(|c| c.1, f64::min, f64::INFINITY),
+        );
+        let max = (
+            fold(|c| c.0, f64::max, f64::NEG_INFINITY),
+            fold(|c| c.1, f64::max, f64::NEG_INFINITY),
+        );
         let extent = (max.0 - min.0).max(1e-12);
         let scale = (WIDTH - 2.0 * MARGIN) / extent;
-        Self { u, v, min, scale, height: (max.1 - min.1) * scale }
+        Self {
+            u,
+            v,
+            min,
+            scale,
+            height: (max.1 - min.1) * scale,
+        }
     }
 
     /// Page coordinates (y down) of a point.
@@ -240,6 +338,8 @@ impl View {
     fn line(&self, mesh: &PolyMesh, [a, b]: [usize; 2], colour: &str, width: f64) -> String {
         let (x1, y1) = self.project(&mesh.positions()[a]);
         let (x2, y2) = self.project(&mesh.positions()[b]);
-        format!("<line x1=\"{x1:.2}\" y1=\"{y1:.2}\" x2=\"{x2:.2}\" y2=\"{y2:.2}\" stroke=\"{colour}\" stroke-width=\"{width}\" stroke-linecap=\"round\"/>\n")
+        format!(
+            "<line x1=\"{x1:.2}\" y1=\"{y1:.2}\" x2=\"{x2:.2}\" y2=\"{y2:.2}\" stroke=\"{colour}\" stroke-width=\"{width}\" stroke-linecap=\"round\"/>\n"
+        )
     }
 }

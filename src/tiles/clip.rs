@@ -13,9 +13,9 @@ use std::collections::HashMap;
 use nalgebra::{Point3, Vector3};
 
 use super::Tile;
-use crate::geom::{HashGrid, closest};
 pub use crate::geom::polygon::{Point2, signed_area};
 use crate::geom::polygon::{clip_to_convex, cross, dist, point_segment, sub};
+use crate::geom::{HashGrid, closest};
 use crate::mesh::{PolyMesh, Topology};
 
 /// The part of a tile kept after cutting.
@@ -36,14 +36,25 @@ impl Cut {
 
     /// Length of all loops.
     pub fn perimeter(&self) -> f64 {
-        self.loops.iter().map(|l| (0..l.len()).map(|i| dist(l[i], l[(i + 1) % l.len()])).sum::<f64>()).sum()
+        self.loops
+            .iter()
+            .map(|l| {
+                (0..l.len())
+                    .map(|i| dist(l[i], l[(i + 1) % l.len()]))
+                    .sum::<f64>()
+            })
+            .sum()
     }
 
     /// A width of the kept region, `2 area / perimeter`: the width of a long strip, half the
     /// side of a square. Below a minimum the piece is a sliver nobody can cut or lay.
     pub fn kept_width(&self) -> f64 {
         let perimeter = self.perimeter();
-        if perimeter > 0.0 { 2.0 * self.area() / perimeter } else { 0.0 }
+        if perimeter > 0.0 {
+            2.0 * self.area() / perimeter
+        } else {
+            0.0
+        }
     }
 }
 
@@ -89,33 +100,65 @@ impl SurfaceBoundary {
         let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
         let mut segments = Vec::new();
         for (f, face) in surface.faces().iter().enumerate() {
-            let normal = surface.face_area_vector(f).try_normalize(0.0).unwrap_or_else(Vector3::z);
+            let normal = surface
+                .face_area_vector(f)
+                .try_normalize(0.0)
+                .unwrap_or_else(Vector3::z);
             for (i, &e) in topology.face_edges(f).iter().enumerate() {
                 if topology.edges()[e].is_boundary() {
                     let (from, to) = (face[i], face[(i + 1) % face.len()]);
                     let [a, b] = [from, to].map(|k| surface.positions()[k]);
-                    segments.push(Segment { a, b, normal, from, to });
+                    segments.push(Segment {
+                        a,
+                        b,
+                        normal,
+                        from,
+                        to,
+                    });
                 }
             }
         }
         let grid = HashGrid::of_points(cell, segments.iter().map(|s| [s.a, s.b]));
         let faces: Vec<(Vec<Point3<f64>>, Vector3<f64>)> = (0..surface.face_count())
-            .map(|f| (surface.face_points(f).collect(), surface.face_area_vector(f).try_normalize(0.0).unwrap_or_else(Vector3::z)))
+            .map(|f| {
+                (
+                    surface.face_points(f).collect(),
+                    surface
+                        .face_area_vector(f)
+                        .try_normalize(0.0)
+                        .unwrap_or_else(Vector3::z),
+                )
+            })
             .collect();
-        let face_grid = HashGrid::of_points(cell, faces.iter().map(|(corners, _)| corners.as_slice()));
-        Self { segments, grid, faces, face_grid }
+        let face_grid =
+            HashGrid::of_points(cell, faces.iter().map(|(corners, _)| corners.as_slice()));
+        Self {
+            segments,
+            grid,
+            faces,
+            face_grid,
+        }
     }
 
     /// Boundary edges within `radius` of `p`, in index order.
     fn near(&self, p: &Point3<f64>, radius: f64) -> Vec<usize> {
         let mut found = self.grid.near(p, radius);
-        found.retain(|&s| (closest::on_segment(&p.coords, &self.segments[s].a.coords, &self.segments[s].b.coords) - p.coords).norm() <= radius);
+        found.retain(|&s| {
+            (closest::on_segment(
+                &p.coords,
+                &self.segments[s].a.coords,
+                &self.segments[s].b.coords,
+            ) - p.coords)
+                .norm()
+                <= radius
+        });
         found
     }
 
     /// Whether some face of the surface passes within `radius` of `p`.
     fn touches(&self, p: &Point3<f64>, radius: f64) -> bool {
-        self.closest(p, radius).is_some_and(|q| (q - p).norm() <= radius)
+        self.closest(p, radius)
+            .is_some_and(|q| (q - p).norm() <= radius)
     }
 
     /// The point of the surface closest to `p`, if one lies within `radius`.
@@ -126,12 +169,23 @@ impl SurfaceBoundary {
             let n = corners.len();
             // Over the face (inside every edge's side plane): its foot on the face's plane;
             // beside it: the nearest point of its nearest edge.
-            let over = (0..n).all(|i| (corners[(i + 1) % n] - corners[i]).cross(&(p - corners[i])).dot(normal) >= 0.0);
+            let over = (0..n).all(|i| {
+                (corners[(i + 1) % n] - corners[i])
+                    .cross(&(p - corners[i]))
+                    .dot(normal)
+                    >= 0.0
+            });
             let q = if over {
                 p - normal * (p - corners[0]).dot(normal)
             } else {
                 (0..n)
-                    .map(|i| Point3::from(closest::on_segment(&p.coords, &corners[i].coords, &corners[(i + 1) % n].coords)))
+                    .map(|i| {
+                        Point3::from(closest::on_segment(
+                            &p.coords,
+                            &corners[i].coords,
+                            &corners[(i + 1) % n].coords,
+                        ))
+                    })
                     .min_by(|a, b| (a - p).norm_squared().total_cmp(&(b - p).norm_squared()))
                     .expect("a face has corners")
             };
@@ -152,9 +206,17 @@ impl SurfaceBoundary {
         // close enough not to pick up another part of the shell above or below it.
         let reach = hx.hypot(hy) + hy;
         let mut near = self.near(&tile.frame.origin, reach);
-        near.retain(|&s| [self.segments[s].a, self.segments[s].b].iter().any(|p| tile.frame.to_local(p).z.abs() <= hx));
+        near.retain(|&s| {
+            [self.segments[s].a, self.segments[s].b]
+                .iter()
+                .any(|p| tile.frame.to_local(p).z.abs() <= hx)
+        });
         if near.is_empty() {
-            return if self.touches(&tile.frame.origin, hy) { Clipped::Whole } else { Clipped::Outside };
+            return if self.touches(&tile.frame.origin, hy) {
+                Clipped::Whole
+            } else {
+                Clipped::Outside
+            };
         }
         let chains = self.chains(&near, tile);
         let mut loops: Vec<Vec<Point2>> = Vec::new();
@@ -192,7 +254,10 @@ impl SurfaceBoundary {
             // The boundary only grazes the tile, and the surface is on the tile's side of it.
             Clipped::Whole
         } else {
-            Clipped::Cut(Cut { loops, kept_fraction: (area / full).min(1.0) })
+            Clipped::Cut(Cut {
+                loops,
+                kept_fraction: (area / full).min(1.0),
+            })
         }
     }
 
@@ -213,11 +278,19 @@ impl SurfaceBoundary {
         }
         // The surface's orientation against the tile's: the boundary keeps the surface on
         // its left seen along the surface's own normals.
-        let facing: f64 = near.iter().map(|&s| self.segments[s].normal.dot(&tile.frame.z) * (self.segments[s].b - self.segments[s].a).norm()).sum();
+        let facing: f64 = near
+            .iter()
+            .map(|&s| {
+                self.segments[s].normal.dot(&tile.frame.z)
+                    * (self.segments[s].b - self.segments[s].a).norm()
+            })
+            .sum();
         let mut seen = vec![false; near.len()];
         let mut chains = Vec::new();
         // Open chains first (from where no near edge arrives), then the closed ones.
-        let starts = (0..near.len()).filter(|&i| !entered.contains_key(&self.segments[near[i]].from)).chain(0..near.len());
+        let starts = (0..near.len())
+            .filter(|&i| !entered.contains_key(&self.segments[near[i]].from))
+            .chain(0..near.len());
         for first in starts {
             if seen[first] {
                 continue;
@@ -228,7 +301,10 @@ impl SurfaceBoundary {
                 seen[at] = true;
                 let seg = &self.segments[near[at]];
                 points.push(local(&seg.b));
-                match leaving.get(&seg.to).and_then(|out| out.iter().copied().find(|&n| !seen[n])) {
+                match leaving
+                    .get(&seg.to)
+                    .and_then(|out| out.iter().copied().find(|&n| !seen[n]))
+                {
                     Some(n) => at = n,
                     None => break seg.to == self.segments[near[first]].from,
                 }
@@ -257,7 +333,10 @@ impl Cut {
             .filter(|poly| poly.len() >= 3 && signed_area(poly).abs() > 0.0)
             .collect();
         let area: f64 = kept.iter().map(|l| signed_area(l)).sum();
-        (area > 0.0).then(|| Cut { loops: kept, kept_fraction: (area / full).min(1.0) })
+        (area > 0.0).then(|| Cut {
+            loops: kept,
+            kept_fraction: (area / full).min(1.0),
+        })
     }
 }
 
@@ -286,16 +365,34 @@ fn inside(chains: &[Chain], q: Point2) -> bool {
                 // corner means left of both edges, at a reflex corner left of either.
                 Some(end) => {
                     let (prev, next) = if end == 0 {
-                        (if i > 0 || chain.closed { Some(chain.points[(i + n - 1) % n]) } else { None }, Some(b))
+                        (
+                            if i > 0 || chain.closed {
+                                Some(chain.points[(i + n - 1) % n])
+                            } else {
+                                None
+                            },
+                            Some(b),
+                        )
                     } else {
-                        (Some(a), if i + 1 < edges || chain.closed { Some(chain.points[(i + 2) % n]) } else { None })
+                        (
+                            Some(a),
+                            if i + 1 < edges || chain.closed {
+                                Some(chain.points[(i + 2) % n])
+                            } else {
+                                None
+                            },
+                        )
                     };
                     let v = if end == 0 { a } else { b };
                     match (prev, next) {
                         (Some(p), Some(nx)) => {
                             let (d1, d2) = (sub(v, p), sub(nx, v));
                             let (l1, l2) = (cross(d1, sub(q, v)) > 0.0, cross(d2, sub(q, v)) > 0.0);
-                            if cross(d1, d2) >= 0.0 { l1 && l2 } else { l1 || l2 }
+                            if cross(d1, d2) >= 0.0 {
+                                l1 && l2
+                            } else {
+                                l1 || l2
+                            }
                         }
                         _ => left,
                     }
@@ -356,10 +453,15 @@ impl Rect {
         let inward = |p: Point2| (self.hx - p[0].abs()).min(self.hy - p[1].abs());
         points
             .windows(2)
-            .flat_map(|w| (0..=SAMPLES).map(move |k| {
-                let t = k as f64 / SAMPLES as f64;
-                [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])]
-            }))
+            .flat_map(|w| {
+                (0..=SAMPLES).map(move |k| {
+                    let t = k as f64 / SAMPLES as f64;
+                    [
+                        w[0][0] + t * (w[1][0] - w[0][0]),
+                        w[0][1] + t * (w[1][1] - w[0][1]),
+                    ]
+                })
+            })
             .map(inward)
             .fold(0.0, f64::max)
     }
@@ -377,7 +479,12 @@ impl Rect {
                 open = false;
                 continue;
             };
-            let at = |t: f64| [w[0][0] + t * (w[1][0] - w[0][0]), w[0][1] + t * (w[1][1] - w[0][1])];
+            let at = |t: f64| {
+                [
+                    w[0][0] + t * (w[1][0] - w[0][0]),
+                    w[0][1] + t * (w[1][1] - w[0][1]),
+                ]
+            };
             if !(open && t0 == 0.0) {
                 pieces.push(vec![at(t0)]);
             }
@@ -391,7 +498,12 @@ impl Rect {
     fn clip_segment(&self, a: Point2, b: Point2) -> Option<(f64, f64)> {
         let d = sub(b, a);
         let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-        for (p, q) in [(-d[0], a[0] + self.hx), (d[0], self.hx - a[0]), (-d[1], a[1] + self.hy), (d[1], self.hy - a[1])] {
+        for (p, q) in [
+            (-d[0], a[0] + self.hx),
+            (d[0], self.hx - a[0]),
+            (-d[1], a[1] + self.hy),
+            (d[1], self.hy - a[1]),
+        ] {
             if p == 0.0 {
                 if q < 0.0 {
                     return None;
@@ -411,8 +523,15 @@ impl Rect {
     fn join(&self, pieces: Vec<Vec<Point2>>) -> Vec<Vec<Point2>> {
         let length = self.border_length();
         let entry: Vec<f64> = pieces.iter().map(|p| self.border_position(p[0])).collect();
-        let exit: Vec<f64> = pieces.iter().map(|p| self.border_position(p[p.len() - 1])).collect();
-        let corner_positions: Vec<(f64, Point2)> = self.corners().iter().map(|&c| (self.border_position(c), c)).collect();
+        let exit: Vec<f64> = pieces
+            .iter()
+            .map(|p| self.border_position(p[p.len() - 1]))
+            .collect();
+        let corner_positions: Vec<(f64, Point2)> = self
+            .corners()
+            .iter()
+            .map(|&c| (self.border_position(c), c))
+            .collect();
         let mut used = vec![false; pieces.len()];
         let mut loops = Vec::new();
         for start in 0..pieces.len() {
@@ -426,8 +545,13 @@ impl Rect {
                 outline.extend(&pieces[at]);
                 let from = exit[at];
                 let ahead = |s: f64| (s - from).rem_euclid(length);
-                let next = (0..pieces.len()).min_by(|&i, &j| ahead(entry[i]).total_cmp(&ahead(entry[j])).then(i.cmp(&j))).expect("not empty");
-                let mut corners: Vec<&(f64, Point2)> = corner_positions.iter().filter(|(s, _)| ahead(*s) > 0.0 && ahead(*s) < ahead(entry[next])).collect();
+                let next = (0..pieces.len())
+                    .min_by(|&i, &j| ahead(entry[i]).total_cmp(&ahead(entry[j])).then(i.cmp(&j)))
+                    .expect("not empty");
+                let mut corners: Vec<&(f64, Point2)> = corner_positions
+                    .iter()
+                    .filter(|(s, _)| ahead(*s) > 0.0 && ahead(*s) < ahead(entry[next]))
+                    .collect();
                 corners.sort_by(|a, b| ahead(a.0).total_cmp(&ahead(b.0)));
                 outline.extend(corners.iter().map(|(_, c)| *c));
                 if next == start || used[next] {
@@ -440,12 +564,3 @@ impl Rect {
         loops
     }
 }
-
-
-
-
-
-
-
-
-

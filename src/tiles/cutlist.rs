@@ -37,7 +37,9 @@ pub fn cut_list(tiles: &mut [Tile], tolerance: f64) -> Vec<CutGroup> {
     // Representative tile and members of each group, in order of first appearance.
     let mut groups: Vec<(usize, Vec<usize>)> = Vec::new();
     for t in 0..tiles.len() {
-        let same = groups.iter_mut().find(|(rep, _)| same_shape(&tiles[*rep], &tiles[t], tolerance));
+        let same = groups
+            .iter_mut()
+            .find(|(rep, _)| same_shape(&tiles[*rep], &tiles[t], tolerance));
         match same {
             Some((_, members)) => members.push(t),
             None => groups.push((t, vec![t])),
@@ -49,7 +51,12 @@ pub fn cut_list(tiles: &mut [Tile], tolerance: f64) -> Vec<CutGroup> {
         TileKind::Boundary => 2,
         TileKind::FitCut => 3,
     };
-    groups.sort_by(|(a, am), (b, bm)| rank(tiles[*a].kind).cmp(&rank(tiles[*b].kind)).then(bm.len().cmp(&am.len())).then(a.cmp(b)));
+    groups.sort_by(|(a, am), (b, bm)| {
+        rank(tiles[*a].kind)
+            .cmp(&rank(tiles[*b].kind))
+            .then(bm.len().cmp(&am.len()))
+            .then(a.cmp(b))
+    });
     let (mut boundary_shapes, mut fit_shapes) = (0, 0);
     groups
         .into_iter()
@@ -73,7 +80,11 @@ pub fn cut_list(tiles: &mut [Tile], tolerance: f64) -> Vec<CutGroup> {
                 count: members.len(),
                 blank: [tile.size[0], tile.size[1]],
                 area: tile.kept_area(),
-                outline: tile.cut.as_ref().map(|c| c.loops.clone()).unwrap_or_default(),
+                outline: tile
+                    .cut
+                    .as_ref()
+                    .map(|c| c.loops.clone())
+                    .unwrap_or_default(),
             };
             for m in members {
                 tiles[m].label = label.clone();
@@ -85,7 +96,10 @@ pub fn cut_list(tiles: &mut [Tile], tolerance: f64) -> Vec<CutGroup> {
 
 /// Whether two tiles are cut to the same shape from the same blank.
 fn same_shape(a: &Tile, b: &Tile, tolerance: f64) -> bool {
-    if a.kind != b.kind || (a.size[0] - b.size[0]).abs() > tolerance || (a.size[1] - b.size[1]).abs() > tolerance {
+    if a.kind != b.kind
+        || (a.size[0] - b.size[0]).abs() > tolerance
+        || (a.size[1] - b.size[1]).abs() > tolerance
+    {
         return false;
     }
     match (&a.cut, &b.cut) {
@@ -97,7 +111,9 @@ fn same_shape(a: &Tile, b: &Tile, tolerance: f64) -> bool {
 
 /// Whether `b` maps onto `a` under one of the blank's four symmetries.
 fn same_outline(a: &Cut, b: &Cut, tolerance: f64) -> bool {
-    if a.loops.len() != b.loops.len() || (a.area() - b.area()).abs() > tolerance * (a.perimeter() + b.perimeter()) {
+    if a.loops.len() != b.loops.len()
+        || (a.area() - b.area()).abs() > tolerance * (a.perimeter() + b.perimeter())
+    {
         return false;
     }
     let symmetries: [(f64, f64); 4] = [(1.0, 1.0), (-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0)];
@@ -145,7 +161,11 @@ fn corners(points: &[Point2], tolerance: f64) -> Vec<Point2> {
             let (p, q, r) = (kept[(i + n - 1) % n], kept[i], kept[(i + 1) % n]);
             let (dx, dy) = (r[0] - p[0], r[1] - p[1]);
             let len = dx.hypot(dy);
-            let off = if len > 0.0 { ((q[0] - p[0]) * dy - (q[1] - p[1]) * dx).abs() / len } else { (q[0] - p[0]).hypot(q[1] - p[1]) };
+            let off = if len > 0.0 {
+                ((q[0] - p[0]) * dy - (q[1] - p[1]) * dx).abs() / len
+            } else {
+                (q[0] - p[0]).hypot(q[1] - p[1])
+            };
             if off <= tolerance {
                 kept.remove(i);
                 changed = true;

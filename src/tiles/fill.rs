@@ -61,11 +61,18 @@ impl Cell {
         if (p - self.corners[0]).dot(&self.normal).abs() > size / 2.0 {
             return false;
         }
-        (0..n).all(|i| (self.corners[(i + 1) % n] - self.corners[i]).cross(&(p - self.corners[i])).dot(&self.normal) >= 0.0)
+        (0..n).all(|i| {
+            (self.corners[(i + 1) % n] - self.corners[i])
+                .cross(&(p - self.corners[i]))
+                .dot(&self.normal)
+                >= 0.0
+        })
     }
 
     fn centroid(&self) -> Point3<f64> {
-        Point3::from(self.corners.iter().map(|c| c.coords).sum::<Vector3<f64>>() / self.corners.len() as f64)
+        Point3::from(
+            self.corners.iter().map(|c| c.coords).sum::<Vector3<f64>>() / self.corners.len() as f64,
+        )
     }
 }
 
@@ -90,7 +97,9 @@ impl Cells {
     fn covered(&self, p: &Point3<f64>) -> bool {
         let k = self.key(p);
         (-1..=1)
-            .flat_map(|x| (-1..=1).flat_map(move |y| (-1..=1).map(move |z| [k[0] + x, k[1] + y, k[2] + z])))
+            .flat_map(|x| {
+                (-1..=1).flat_map(move |y| (-1..=1).map(move |z| [k[0] + x, k[1] + y, k[2] + z]))
+            })
             .filter_map(|key| self.grid.get(&key))
             .flatten()
             .any(|&c| self.cells[c].covers(p))
@@ -114,29 +123,50 @@ pub(crate) enum Seeds {
 /// (length, width, thickness), kept where they reach onto the surface behind `boundary`.
 /// `tiles` are the tiles on the quads (for the fillers' parents); `seeds` says whether the
 /// lattice continues from the quads or from the tiles.
-pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary, blank: [f64; 3], seeds: Seeds) -> Vec<Filler> {
+pub(crate) fn fill(
+    quads: &PolyMesh,
+    tiles: &[Tile],
+    boundary: &SurfaceBoundary,
+    blank: [f64; 3],
+    seeds: Seeds,
+) -> Vec<Filler> {
     let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
     let mut tile_of = vec![usize::MAX; quads.face_count()];
     for (t, tile) in tiles.iter().enumerate() {
         tile.faces.iter().for_each(|&f| tile_of[f] = t);
     }
-    let mut cells = Cells { cells: Vec::new(), grid: HashMap::new(), size: 2.0 * blank[1].max(blank[0]) };
+    let mut cells = Cells {
+        cells: Vec::new(),
+        grid: HashMap::new(),
+        size: 2.0 * blank[1].max(blank[0]),
+    };
     let mut open = Vec::new();
-    for f in 0..quads.face_count() {
+    for (f, &tile) in tile_of.iter().enumerate() {
         let corners: Vec<Point3<f64>> = quads.face_points(f).collect();
-        let normal = quads.face_area_vector(f).try_normalize(0.0).unwrap_or_else(Vector3::z);
+        let normal = quads
+            .face_area_vector(f)
+            .try_normalize(0.0)
+            .unwrap_or_else(Vector3::z);
         // Quads without a tile block the fill either way; with tiles as seeds, the tiles'
         // footprints stand for their quads.
-        if corners.len() == 4 && (seeds == Seeds::Quads || tile_of[f] == usize::MAX) {
-            cells.add(Cell { corners: corners.clone(), normal });
+        if corners.len() == 4 && (seeds == Seeds::Quads || tile == usize::MAX) {
+            cells.add(Cell {
+                corners: corners.clone(),
+                normal,
+            });
         }
-        if tile_of[f] == usize::MAX || seeds != Seeds::Quads {
+        if tile == usize::MAX || seeds != Seeds::Quads {
             continue;
         }
         for (i, &e) in topology.face_edges(f).iter().enumerate() {
             if topology.edges()[e].is_boundary() {
                 let n = corners.len();
-                open.push(OpenEdge { a: corners[i], b: corners[(i + 1) % n], normal, parent: tile_of[f] });
+                open.push(OpenEdge {
+                    a: corners[i],
+                    b: corners[(i + 1) % n],
+                    normal,
+                    parent: tile,
+                });
             }
         }
     }
@@ -146,10 +176,18 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
             let n = corners.len();
             for (i, open_side) in open_sides.iter().enumerate() {
                 if *open_side {
-                    open.push(OpenEdge { a: corners[i], b: corners[(i + 1) % n], normal: tile.frame.z, parent: t });
+                    open.push(OpenEdge {
+                        a: corners[i],
+                        b: corners[(i + 1) % n],
+                        normal: tile.frame.z,
+                        parent: t,
+                    });
                 }
             }
-            cells.add(Cell { corners, normal: tile.frame.z });
+            cells.add(Cell {
+                corners,
+                normal: tile.frame.z,
+            });
         }
     }
 
@@ -158,7 +196,9 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
         let mut next = Vec::new();
         for edge in open {
             let along = edge.b - edge.a;
-            let Some(outward) = along.cross(&edge.normal).try_normalize(0.0) else { continue };
+            let Some(outward) = along.cross(&edge.normal).try_normalize(0.0) else {
+                continue;
+            };
             let depth = along.norm();
             // The surface must go on beyond the edge: the middle of the new cell, in the
             // face's plane, lies close to it.
@@ -169,7 +209,10 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
             // Continue in the face's plane, then down onto the surface where it curves away
             // (beyond its edge the plane goes on, to be cut off).
             let onto = |q: Point3<f64>| boundary.closest(&q, depth).unwrap_or(q);
-            let (a2, b2) = (onto(edge.a + outward * depth), onto(edge.b + outward * depth));
+            let (a2, b2) = (
+                onto(edge.a + outward * depth),
+                onto(edge.b + outward * depth),
+            );
             // Cells squeezed against the surface's edge by the projection add nothing.
             let area_vector = (edge.a - b2).cross(&(a2 - edge.b)) / 2.0;
             if area_vector.dot(&edge.normal) < 0.3 * depth * depth {
@@ -178,7 +221,10 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
             let normal = area_vector.normalize();
             // Counter-clockwise seen along the normal, the open edge traversed backwards.
             let square = [edge.b, edge.a, a2, b2];
-            let cell = Cell { corners: square.to_vec(), normal };
+            let cell = Cell {
+                corners: square.to_vec(),
+                normal,
+            };
             let centre = cell.centroid();
             // Cells may not overlap beyond a sliver: the centre must be free, and at most two
             // of the probes a fifth of the way in from the corners and edge middles may lie
@@ -196,14 +242,23 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
             }
             let index = tiles.len() + fillers.len();
             for (a, b) in [(edge.a, a2), (a2, b2), (b2, edge.b)] {
-                next.push(OpenEdge { a, b, normal, parent: index });
+                next.push(OpenEdge {
+                    a,
+                    b,
+                    normal,
+                    parent: index,
+                });
             }
             let local = square.map(|c| {
                 let v = tile.frame.to_local(&c);
                 [v.x, v.y]
             });
             cells.add(cell);
-            fillers.push(Filler { tile, cell: local, parent: edge.parent });
+            fillers.push(Filler {
+                tile,
+                cell: local,
+                parent: edge.parent,
+            });
         }
         if next.is_empty() {
             break;
@@ -217,20 +272,46 @@ pub(crate) fn fill(quads: &PolyMesh, tiles: &[Tile], boundary: &SurfaceBoundary,
 /// from its `z` (a full tile's long sides split in the middle, so each side of the footprint
 /// is about one quad long), and for each side from corner `i` to `i + 1` whether it lies on
 /// the quad mesh's boundary: whether the quads of the tile have no neighbour across it.
-fn footprint(quads: &PolyMesh, topology: &Topology, tile: &Tile, joint: f64) -> (Vec<Point3<f64>>, Vec<bool>) {
+fn footprint(
+    quads: &PolyMesh,
+    topology: &Topology,
+    tile: &Tile,
+    joint: f64,
+) -> (Vec<Point3<f64>>, Vec<bool>) {
     use super::fit::contacts::{Side, side_of};
-    let (x, y) = (tile.size[0] / 2.0 + joint / 2.0, tile.size[1] / 2.0 + joint / 2.0);
+    let (x, y) = (
+        tile.size[0] / 2.0 + joint / 2.0,
+        tile.size[1] / 2.0 + joint / 2.0,
+    );
     let full = tile.faces.len() == 2;
     // Corners, and the side and half (-1: x < 0, 1: x > 0, 0: whole) of each edge.
     let (local, edges): (Vec<[f64; 2]>, Vec<(Side, i8)>) = if full {
         (
             vec![[-x, -y], [0.0, -y], [x, -y], [x, y], [0.0, y], [-x, y]],
-            vec![(Side::NegY, -1), (Side::NegY, 1), (Side::PosX, 0), (Side::PosY, 1), (Side::PosY, -1), (Side::NegX, 0)],
+            vec![
+                (Side::NegY, -1),
+                (Side::NegY, 1),
+                (Side::PosX, 0),
+                (Side::PosY, 1),
+                (Side::PosY, -1),
+                (Side::NegX, 0),
+            ],
         )
     } else {
-        (vec![[-x, -y], [x, -y], [x, y], [-x, y]], vec![(Side::NegY, 0), (Side::PosX, 0), (Side::PosY, 0), (Side::NegX, 0)])
+        (
+            vec![[-x, -y], [x, -y], [x, y], [-x, y]],
+            vec![
+                (Side::NegY, 0),
+                (Side::PosX, 0),
+                (Side::PosY, 0),
+                (Side::NegX, 0),
+            ],
+        )
     };
-    let corners = local.iter().map(|p| tile.to_world(Vector3::new(p[0], p[1], 0.0))).collect();
+    let corners = local
+        .iter()
+        .map(|p| tile.to_world(Vector3::new(p[0], p[1], 0.0)))
+        .collect();
     let mut open = vec![false; edges.len()];
     for (k, &f) in tile.faces.iter().enumerate() {
         // A full tile's first face is its `x < 0` half.
@@ -239,8 +320,13 @@ fn footprint(quads: &PolyMesh, topology: &Topology, tile: &Tile, joint: f64) -> 
             if !topology.edges()[e].is_boundary() {
                 continue;
             }
-            let Some(side) = side_of(quads, topology, tile, f, i) else { continue };
-            if let Some(slot) = edges.iter().position(|&(s, h)| s == side && (h == 0 || h == half)) {
+            let Some(side) = side_of(quads, topology, tile, f, i) else {
+                continue;
+            };
+            if let Some(slot) = edges
+                .iter()
+                .position(|&(s, h)| s == side && (h == 0 || h == half))
+            {
                 open[slot] = true;
             }
         }

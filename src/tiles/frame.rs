@@ -22,7 +22,10 @@ impl Serialize for Frame {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let v = |a: &Vector3<f64>| [a.x, a.y, a.z];
         let o = [self.origin.x, self.origin.y, self.origin.z];
-        serde::Serialize::serialize(&serde_json::json!({ "origin": o, "x": v(&self.x), "y": v(&self.y), "z": v(&self.z) }), serializer)
+        serde::Serialize::serialize(
+            &serde_json::json!({ "origin": o, "x": v(&self.x), "y": v(&self.y), "z": v(&self.z) }),
+            serializer,
+        )
     }
 }
 
@@ -32,7 +35,12 @@ impl Frame {
         let (ca, cb) = (mesh.face_centroid(a), mesh.face_centroid(b));
         let mut points: Vec<Point3<f64>> = mesh.face_points(a).collect();
         let shared: Vec<usize> = mesh.faces()[a].clone();
-        points.extend(mesh.faces()[b].iter().filter(|v| !shared.contains(v)).map(|&v| mesh.positions()[v]));
+        points.extend(
+            mesh.faces()[b]
+                .iter()
+                .filter(|v| !shared.contains(v))
+                .map(|&v| mesh.positions()[v]),
+        );
         let up = mesh.face_area_vector(a) + mesh.face_area_vector(b);
         Self::from_axes(nalgebra::center(&ca, &cb), cb - ca, &points, up)
     }
@@ -53,17 +61,28 @@ impl Frame {
 
     /// Frame with `z` the least-squares normal of `points` turned towards `up`, and `x` the
     /// direction `along` projected into that plane.
-    fn from_axes(origin: Point3<f64>, along: Vector3<f64>, points: &[Point3<f64>], up: Vector3<f64>) -> Self {
+    fn from_axes(
+        origin: Point3<f64>,
+        along: Vector3<f64>,
+        points: &[Point3<f64>],
+        up: Vector3<f64>,
+    ) -> Self {
         let mut z = best_fit_normal(points);
         if z.dot(&up) < 0.0 {
             z = -z;
         }
         // A degenerate face (zero area, coincident corners) gives no direction: any axis in
         // the plane will do.
-        let x = (along - z * along.dot(&z)).try_normalize(1e-300).unwrap_or_else(|| {
-            let other = if z.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
-            (other - z * other.dot(&z)).normalize()
-        });
+        let x = (along - z * along.dot(&z))
+            .try_normalize(1e-300)
+            .unwrap_or_else(|| {
+                let other = if z.x.abs() < 0.9 {
+                    Vector3::x()
+                } else {
+                    Vector3::y()
+                };
+                (other - z * other.dot(&z)).normalize()
+            });
         let y = z.cross(&x);
         Self { origin, x, y, z }
     }
@@ -78,7 +97,10 @@ impl Frame {
 /// Unit normal of the least-squares plane through `points`: the eigenvector of their
 /// covariance with the smallest eigenvalue.
 fn best_fit_normal(points: &[Point3<f64>]) -> Vector3<f64> {
-    let mean = points.iter().fold(Vector3::zeros(), |acc, p| acc + p.coords) / points.len() as f64;
+    let mean = points
+        .iter()
+        .fold(Vector3::zeros(), |acc, p| acc + p.coords)
+        / points.len() as f64;
     let covariance = points.iter().fold(Matrix3::zeros(), |acc, p| {
         let d = p.coords - mean;
         acc + d * d.transpose()

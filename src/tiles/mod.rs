@@ -67,7 +67,11 @@ impl TileSpec {
     /// as a course ([`TileSpec::course_pitch`]) where that is larger, and the fit stage
     /// closes the head joints along each course (see [`fit`]).
     pub fn quad_edge(&self, in_courses: bool) -> f64 {
-        if in_courses { self.target_edge().max(self.course_pitch()) } else { self.target_edge() }
+        if in_courses {
+            self.target_edge().max(self.course_pitch())
+        } else {
+            self.target_edge()
+        }
     }
 
     /// Checks that every dimension is a finite positive number (the joint may be zero).
@@ -75,14 +79,21 @@ impl TileSpec {
     /// # Errors
     /// [`TileError::InvalidSpec`] naming the first bad dimension.
     pub fn validate(&self) -> Result<(), TileError> {
-        let dims = [("length", self.length), ("width", self.width), ("thickness", self.thickness)];
+        let dims = [
+            ("length", self.length),
+            ("width", self.width),
+            ("thickness", self.thickness),
+        ];
         for (name, value) in dims {
             if !(value.is_finite() && value > 0.0) {
                 return Err(TileError::InvalidSpec { name, value });
             }
         }
         if !(self.joint.is_finite() && self.joint >= 0.0) {
-            return Err(TileError::InvalidSpec { name: "joint", value: self.joint });
+            return Err(TileError::InvalidSpec {
+                name: "joint",
+                value: self.joint,
+            });
         }
         Ok(())
     }
@@ -157,7 +168,10 @@ impl FinishOptions {
         Self {
             tolerance: spec.width / 100.0,
             min_kept_width: spec.width / 5.0,
-            sequence: SequenceOptions { up: Vector3::z(), support_band: spec.width },
+            sequence: SequenceOptions {
+                up: Vector3::z(),
+                support_band: spec.width,
+            },
             fit: Some(FitOptions::for_spec(spec)),
             units_per_mm: 0.001,
         }
@@ -168,21 +182,31 @@ impl FinishOptions {
     /// # Errors
     /// [`TileError::InvalidSpec`] naming the first bad value.
     pub fn validate(&self) -> Result<(), TileError> {
-        let values = [("tolerance", self.tolerance), ("min_kept_width", self.min_kept_width), ("support_band", self.sequence.support_band)];
+        let values = [
+            ("tolerance", self.tolerance),
+            ("min_kept_width", self.min_kept_width),
+            ("support_band", self.sequence.support_band),
+        ];
         for (name, value) in values {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(TileError::InvalidSpec { name, value });
             }
         }
         if !(self.units_per_mm.is_finite() && self.units_per_mm > 0.0) {
-            return Err(TileError::InvalidSpec { name: "units_per_mm", value: self.units_per_mm });
+            return Err(TileError::InvalidSpec {
+                name: "units_per_mm",
+                value: self.units_per_mm,
+            });
         }
         if let Some(fit) = &self.fit {
             fit.validate()?;
         }
         let up = self.sequence.up;
         if !(up.iter().all(|c| c.is_finite()) && up.norm() > 0.0) {
-            return Err(TileError::InvalidSpec { name: "up", value: up.norm() });
+            return Err(TileError::InvalidSpec {
+                name: "up",
+                value: up.norm(),
+            });
         }
         Ok(())
     }
@@ -228,11 +252,21 @@ pub struct Finished {
 /// input surface; the quad mesh itself when `None`), adds filler pieces continuing the
 /// courses; cuts every tile to that boundary, drops tiles off the surface and slivers; groups
 /// the cut shapes into a cut list and labels each tile; numbers the tiles in laying order.
-pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, spec: &TileSpec, options: &FinishOptions) -> (Vec<Tile>, Finished) {
+pub fn finish(
+    quads: &PolyMesh,
+    surface: Option<&PolyMesh>,
+    tiles: Vec<Tile>,
+    spec: &TileSpec,
+    options: &FinishOptions,
+) -> (Vec<Tile>, Finished) {
     let reference = surface.unwrap_or(quads);
     let boundary = SurfaceBoundary::new(reference, spec.length.max(spec.width));
     let half_blank = [spec.length / 2.0, spec.width, spec.thickness];
-    let seeds = if options.fit.is_some() { fill::Seeds::Tiles { joint: spec.joint } } else { fill::Seeds::Quads };
+    let seeds = if options.fit.is_some() {
+        fill::Seeds::Tiles { joint: spec.joint }
+    } else {
+        fill::Seeds::Quads
+    };
     let fillers = fill::fill(quads, &tiles, &boundary, half_blank, seeds);
     let fillers_from = tiles.len();
     let mut parents = vec![None; tiles.len()];
@@ -245,7 +279,12 @@ pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, sp
     let mut kept_index = vec![None; parents.len()];
     let mut dropped = Vec::new();
     for (i, mut tile) in candidates.enumerate() {
-        let drop = |tile: &Tile, reason, kept_area, kept_width| DroppedTile { faces: tile.faces.clone(), reason, kept_area, kept_width };
+        let drop = |tile: &Tile, reason, kept_area, kept_width| DroppedTile {
+            faces: tile.faces.clone(),
+            reason,
+            kept_area,
+            kept_width,
+        };
         let mut clipped = boundary.clip(&tile, options.tolerance);
         if let Some(window) = &windows[i] {
             // A filler piece stays on its own cell.
@@ -277,7 +316,12 @@ pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, sp
                     // A sliver of a filler is the strip between the quad mesh and the edge:
                     // too thin for a piece, it is mortar (and shows in the coverage).
                     if i < fillers_from {
-                        dropped.push(drop(&tile, DropReason::Sliver, cut.area(), cut.kept_width()));
+                        dropped.push(drop(
+                            &tile,
+                            DropReason::Sliver,
+                            cut.area(),
+                            cut.kept_width(),
+                        ));
                     }
                     continue;
                 }
@@ -292,14 +336,27 @@ pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, sp
     // and cut outlines take part); a piece left too narrow is a sliver like any other.
     if let Some(fit) = &options.fit {
         let cut = fit::resolve_overlaps(&mut kept, spec.joint, fit.overlap_tolerance);
-        let slivers: Vec<usize> = cut.into_iter().filter(|&t| kept[t].cut.as_ref().is_some_and(|c| c.kept_width() < options.min_kept_width)).collect();
+        let slivers: Vec<usize> = cut
+            .into_iter()
+            .filter(|&t| {
+                kept[t]
+                    .cut
+                    .as_ref()
+                    .is_some_and(|c| c.kept_width() < options.min_kept_width)
+            })
+            .collect();
         if !slivers.is_empty() {
             let mut keep = vec![true; kept.len()];
             for &t in &slivers {
                 keep[t] = false;
                 let c = kept[t].cut.as_ref().expect("cut");
                 if !kept[t].faces.is_empty() {
-                    dropped.push(DroppedTile { faces: kept[t].faces.clone(), reason: DropReason::Sliver, kept_area: c.area(), kept_width: c.kept_width() });
+                    dropped.push(DroppedTile {
+                        faces: kept[t].faces.clone(),
+                        reason: DropReason::Sliver,
+                        kept_area: c.area(),
+                        kept_width: c.kept_width(),
+                    });
                 }
             }
             // Renumber: parents and kept indices refer to positions in `kept`.
@@ -318,20 +375,33 @@ pub fn finish(quads: &PolyMesh, surface: Option<&PolyMesh>, tiles: Vec<Tile>, sp
             kept.retain(|_| *keeps.next().expect("one flag per tile"));
         }
     }
-    let mut links: Vec<[usize; 2]> =
-        parents.iter().enumerate().filter_map(|(i, p)| Some([kept_index[i]?, kept_index[(*p)?]?])).collect();
+    let mut links: Vec<[usize; 2]> = parents
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| Some([kept_index[i]?, kept_index[(*p)?]?]))
+        .collect();
     links.extend(filler_neighbours(&kept));
     let fillers = kept_index[fillers_from..].iter().flatten().count();
     let cut_list = cutlist::cut_list(&mut kept, options.tolerance);
     let sequence = sequence::laying_order(quads, &mut kept, &links, &options.sequence);
-    (kept, Finished { dropped, fillers, cut_list, sequence })
+    (
+        kept,
+        Finished {
+            dropped,
+            fillers,
+            cut_list,
+            sequence,
+        },
+    )
 }
 
 /// Why tiles could not be built.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum TileError {
     /// A tile dimension or finishing option is out of range.
-    #[error("tile option {name} {value} must be a finite number > 0 (joint, tolerances and time limits >= 0; up a non-zero direction)")]
+    #[error(
+        "tile option {name} {value} must be a finite number > 0 (joint, tolerances and time limits >= 0; up a non-zero direction)"
+    )]
     InvalidSpec {
         /// Which dimension.
         name: &'static str,
@@ -339,7 +409,9 @@ pub enum TileError {
         value: f64,
     },
     /// The tile is longer than the whole mesh.
-    #[error("tile length {length} is larger than the whole mesh (bounding-box diagonal {diagonal}); are the tile and the mesh in the same units?")]
+    #[error(
+        "tile length {length} is larger than the whole mesh (bounding-box diagonal {diagonal}); are the tile and the mesh in the same units?"
+    )]
     TileLargerThanMesh {
         /// Tile length.
         length: f64,
@@ -389,17 +461,26 @@ pub fn build(mesh: &PolyMesh, pattern: &Pattern, spec: &TileSpec) -> Result<Vec<
     let (min, max) = mesh.bounding_box();
     let diagonal = (max - min).norm();
     if spec.length > diagonal {
-        return Err(TileError::TileLargerThanMesh { length: spec.length, diagonal });
+        return Err(TileError::TileLargerThanMesh {
+            length: spec.length,
+            diagonal,
+        });
     }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let mut used = vec![false; mesh.face_count()];
     let mut claim = |f: usize| -> Result<(), TileError> {
-        let slot = used.get_mut(f).ok_or(TileError::FaceOutOfRange { face: f, face_count: mesh.face_count() })?;
+        let slot = used.get_mut(f).ok_or(TileError::FaceOutOfRange {
+            face: f,
+            face_count: mesh.face_count(),
+        })?;
         if std::mem::replace(slot, true) {
             return Err(TileError::FaceUsedTwice { face: f });
         }
         if !mesh.is_quad(f) {
-            return Err(TileError::NotQuad { face: f, corners: mesh.faces()[f].len() });
+            return Err(TileError::NotQuad {
+                face: f,
+                corners: mesh.faces()[f].len(),
+            });
         }
         Ok(())
     };
@@ -408,17 +489,30 @@ pub fn build(mesh: &PolyMesh, pattern: &Pattern, spec: &TileSpec) -> Result<Vec<
     for &[a, b] in &pattern.pairs {
         claim(a)?;
         claim(b)?;
-        let adjacent = topology.face_edges(a).iter().any(|&e| topology.edges()[e].other_face(a) == Some(b));
+        let adjacent = topology
+            .face_edges(a)
+            .iter()
+            .any(|&e| topology.edges()[e].other_face(a) == Some(b));
         if !adjacent {
             return Err(TileError::NotAdjacent { a, b });
         }
         let frame = Frame::for_pair(mesh, a, b);
-        tiles.push(Tile::new(TileKind::Full, vec![a, b], frame, [spec.length, spec.width, spec.thickness]));
+        tiles.push(Tile::new(
+            TileKind::Full,
+            vec![a, b],
+            frame,
+            [spec.length, spec.width, spec.thickness],
+        ));
     }
     for &f in &pattern.unpaired {
         claim(f)?;
         let frame = Frame::for_face(mesh, f);
-        tiles.push(Tile::new(TileKind::Half, vec![f], frame, [spec.length / 2.0, spec.width, spec.thickness]));
+        tiles.push(Tile::new(
+            TileKind::Half,
+            vec![f],
+            frame,
+            [spec.length / 2.0, spec.width, spec.thickness],
+        ));
     }
     Ok(tiles)
 }
@@ -427,7 +521,11 @@ pub fn build(mesh: &PolyMesh, pattern: &Pattern, spec: &TileSpec) -> Result<Vec<
 /// whose centres are no further apart than their blanks' half lengths and widths plus a
 /// margin: the pieces a filler rests against.
 fn filler_neighbours(tiles: &[Tile]) -> Vec<[usize; 2]> {
-    let reach = tiles.iter().map(|t| t.size[0].max(t.size[1])).fold(0.0, f64::max) * 1.25;
+    let reach = tiles
+        .iter()
+        .map(|t| t.size[0].max(t.size[1]))
+        .fold(0.0, f64::max)
+        * 1.25;
     if reach <= 0.0 {
         return Vec::new();
     }
@@ -436,7 +534,8 @@ fn filler_neighbours(tiles: &[Tile]) -> Vec<[usize; 2]> {
     for (i, t) in tiles.iter().enumerate().filter(|(_, t)| t.faces.is_empty()) {
         for j in grid.near(&t.frame.origin, reach) {
             let u = &tiles[j];
-            let close = (u.frame.origin - t.frame.origin).norm() <= (t.size[0] + u.size[0]) / 2.0 * 1.25;
+            let close =
+                (u.frame.origin - t.frame.origin).norm() <= (t.size[0] + u.size[0]) / 2.0 * 1.25;
             if j != i && close && (!u.faces.is_empty() || j > i) {
                 links.push([i, j]);
             }
@@ -449,7 +548,8 @@ impl Tile {
     fn new(kind: TileKind, faces: Vec<usize>, frame: Frame, size: [f64; 3]) -> Self {
         let [l, w, t] = size;
         let corner = |sx: f64, sy: f64, z: f64| -> [f64; 3] {
-            let p: Point3<f64> = frame.origin + frame.x * (sx * l / 2.0) + frame.y * (sy * w / 2.0) + frame.z * z;
+            let p: Point3<f64> =
+                frame.origin + frame.x * (sx * l / 2.0) + frame.y * (sy * w / 2.0) + frame.z * z;
             [p.x, p.y, p.z]
         };
         let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
@@ -458,12 +558,24 @@ impl Tile {
             corners[k] = corner(*sx, *sy, 0.0);
             corners[k + 4] = corner(*sx, *sy, t);
         }
-        Self { kind, faces, frame, size, corners, cut: None, label: String::new(), step: 0, fit_cut: false }
+        Self {
+            kind,
+            faces,
+            frame,
+            size,
+            corners,
+            cut: None,
+            label: String::new(),
+            step: 0,
+            fit_cut: false,
+        }
     }
 
     /// Area of the tile's face that is kept: all of it unless it was cut.
     pub fn kept_area(&self) -> f64 {
-        self.cut.as_ref().map_or(self.size[0] * self.size[1], Cut::area)
+        self.cut
+            .as_ref()
+            .map_or(self.size[0] * self.size[1], Cut::area)
     }
 
     /// Position of a point given in the tile's frame.

@@ -28,7 +28,10 @@ pub fn local_outline(tile: &Tile) -> Vec<Point2> {
 
 /// The kept face of `tile` in world coordinates, counter-clockwise seen from its `z`.
 pub fn world_outline(tile: &Tile) -> Vec<Point3<f64>> {
-    local_outline(tile).iter().map(|p| tile.frame.origin + tile.frame.x * p[0] + tile.frame.y * p[1]).collect()
+    local_outline(tile)
+        .iter()
+        .map(|p| tile.frame.origin + tile.frame.x * p[0] + tile.frame.y * p[1])
+        .collect()
 }
 
 /// The corners of `tile` as a solid: its kept face ([`world_outline`]) at the bottom and
@@ -36,7 +39,11 @@ pub fn world_outline(tile: &Tile) -> Vec<Point3<f64>> {
 pub fn world_corners(tile: &Tile) -> Vec<Point3<f64>> {
     let bottom = world_outline(tile);
     let up = tile.frame.z * tile.size[2];
-    bottom.iter().copied().chain(bottom.iter().map(|p| p + up)).collect()
+    bottom
+        .iter()
+        .copied()
+        .chain(bottom.iter().map(|p| p + up))
+        .collect()
 }
 
 /// How two tiles meet.
@@ -59,7 +66,12 @@ pub fn separation(a: &Tile, b: &Tile) -> Separation {
 }
 
 /// [`separation`] with the tiles' [`world_corners`] given (to reuse them over many pairs).
-pub fn separation_of(a: &Tile, outline_a: &[Point3<f64>], b: &Tile, outline_b: &[Point3<f64>]) -> Separation {
+pub fn separation_of(
+    a: &Tile,
+    outline_a: &[Point3<f64>],
+    b: &Tile,
+    outline_b: &[Point3<f64>],
+) -> Separation {
     let mut n = a.frame.z + b.frame.z;
     if n.norm() < 1e-9 {
         n = a.frame.z;
@@ -74,14 +86,29 @@ pub fn separation_of(a: &Tile, outline_a: &[Point3<f64>], b: &Tile, outline_b: &
     let e2 = n.cross(&e1);
     // The hull of the bottom and top corners: a counter-clockwise convex outline.
     let project = |corners: &[Point3<f64>]| -> Vec<Point2> {
-        polygon::convex_hull(&corners.iter().map(|p| [(p - origin).dot(&e1), (p - origin).dot(&e2)]).collect::<Vec<_>>())
+        polygon::convex_hull(
+            &corners
+                .iter()
+                .map(|p| [(p - origin).dot(&e1), (p - origin).dot(&e2)])
+                .collect::<Vec<_>>(),
+        )
     };
     let (pa, pb) = (project(outline_a), project(outline_b));
     let (gap, axis) = polygon::separation(&pa, &pb);
     let across = [-axis[1], axis[0]];
-    let span = |p: &[Point2]| p.iter().map(|&v| polygon::dot(across, v)).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)));
+    let span = |p: &[Point2]| {
+        p.iter()
+            .map(|&v| polygon::dot(across, v))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            })
+    };
     let ((a0, a1), (b0, b1)) = (span(&pa), span(&pb));
-    Separation { gap, axis: e1 * axis[0] + e2 * axis[1], along: a1.min(b1) - a0.max(b0) }
+    Separation {
+        gap,
+        axis: e1 * axis[0] + e2 * axis[1],
+        along: a1.min(b1) - a0.max(b0),
+    }
 }
 
 #[cfg(test)]
@@ -93,7 +120,12 @@ mod tests {
         let z = Vector3::new(tilt.sin(), 0.0, tilt.cos());
         let along = Vector3::new(angle.cos(), angle.sin(), 0.0);
         let xa = (along - z * along.dot(&z)).normalize();
-        let frame = Frame { origin: Point3::new(x, y, 0.0), x: xa, y: z.cross(&xa), z };
+        let frame = Frame {
+            origin: Point3::new(x, y, 0.0),
+            x: xa,
+            y: z.cross(&xa),
+            z,
+        };
         Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
     }
 
@@ -102,7 +134,11 @@ mod tests {
         let a = tile_at(0.0, 0.0, 0.0, 0.0);
         // End to end, 10 mm apart.
         let s = separation(&a, &tile_at(0.29, 0.0, 0.0, 0.0));
-        assert!((s.gap - 0.01).abs() < 1e-12 && (s.axis.x - 1.0).abs() < 1e-12 && (s.along - 0.14).abs() < 1e-12);
+        assert!(
+            (s.gap - 0.01).abs() < 1e-12
+                && (s.axis.x - 1.0).abs() < 1e-12
+                && (s.along - 0.14).abs() < 1e-12
+        );
         // Corner to corner, diagonally: a gap, but no stretch of joint between them.
         assert!(separation(&a, &tile_at(0.29, 0.15, 0.0, 0.0)).along <= 0.0);
         // Side by side, offset by half a tile, 7 mm apart.
@@ -122,7 +158,12 @@ mod tests {
         let at = |s: f64| {
             let z = Vector3::new((s * half).sin(), 0.0, (s * half).cos());
             let x = Vector3::new((s * half).cos(), 0.0, -(s * half).sin());
-            let frame = Frame { origin: Point3::from(z * r), x, y: z.cross(&x), z };
+            let frame = Frame {
+                origin: Point3::from(z * r),
+                x,
+                y: z.cross(&x),
+                z,
+            };
             Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
         };
         let gap = separation(&at(-1.0), &at(1.0)).gap;
@@ -134,9 +175,22 @@ mod tests {
         // close the joint by the thickness times the tilt.
         let flip = |t: Tile| {
             let f = t.frame;
-            Tile::new(TileKind::Full, vec![], crate::tiles::Frame { origin: f.origin, x: f.x, y: -f.y, z: -f.z }, t.size)
+            Tile::new(
+                TileKind::Full,
+                vec![],
+                crate::tiles::Frame {
+                    origin: f.origin,
+                    x: f.x,
+                    y: -f.y,
+                    z: -f.z,
+                },
+                t.size,
+            )
         };
         let inside = separation(&flip(at(-1.0)), &flip(at(1.0))).gap;
-        assert!((inside - (0.29 - 0.28 * half.cos() - 2.0 * 0.015 * half.sin())).abs() < 1e-12, "{inside}");
+        assert!(
+            (inside - (0.29 - 0.28 * half.cos() - 2.0 * 0.015 * half.sin())).abs() < 1e-12,
+            "{inside}"
+        );
     }
 }

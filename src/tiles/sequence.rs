@@ -36,7 +36,12 @@ pub struct Sequence {
 
 /// Numbers every tile's `step` (0 first) and summarises the order. Tiles touch when their
 /// faces share a mesh edge, or when `links` pairs them (filler pieces and their parents).
-pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], links: &[[usize; 2]], options: &SequenceOptions) -> Sequence {
+pub fn laying_order(
+    mesh: &PolyMesh,
+    tiles: &mut [Tile],
+    links: &[[usize; 2]],
+    options: &SequenceOptions,
+) -> Sequence {
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let up = options.up.try_normalize(0.0).unwrap_or_else(Vector3::z);
     let height = |p: &nalgebra::Point3<f64>| p.coords.dot(&up);
@@ -58,7 +63,11 @@ pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], links: &[[usize; 2]], o
             }
             [f] => {
                 if let Some(a) = tile_of[f] {
-                    let low = edge.vertices.iter().map(|&v| height(&mesh.positions()[v])).fold(f64::INFINITY, f64::min);
+                    let low = edge
+                        .vertices
+                        .iter()
+                        .map(|&v| height(&mesh.positions()[v]))
+                        .fold(f64::INFINITY, f64::min);
                     boundary_low[a] = boundary_low[a].min(low);
                 }
             }
@@ -78,9 +87,16 @@ pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], links: &[[usize; 2]], o
         .collect();
     // Rank of each tile by height, lowest first (ties by index): the frontier's key.
     let mut by_height: Vec<usize> = (0..tiles.len()).collect();
-    by_height.sort_by(|&a, &b| height(&tiles[a].frame.origin).total_cmp(&height(&tiles[b].frame.origin)).then(a.cmp(&b)));
+    by_height.sort_by(|&a, &b| {
+        height(&tiles[a].frame.origin)
+            .total_cmp(&height(&tiles[b].frame.origin))
+            .then(a.cmp(&b))
+    });
     let mut level = vec![0; tiles.len()];
-    by_height.iter().enumerate().for_each(|(rank, &t)| level[t] = rank);
+    by_height
+        .iter()
+        .enumerate()
+        .for_each(|(rank, &t)| level[t] = rank);
 
     let mut laid = vec![false; tiles.len()];
     let mut queued = vec![false; tiles.len()];
@@ -93,12 +109,19 @@ pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], links: &[[usize; 2]], o
     while step < tiles.len() {
         let Some(Reverse((_, t))) = frontier.pop() else {
             // A part that touches neither support nor laid tiles: start it at its lowest tile.
-            let t = by_height.iter().copied().find(|&t| !laid[t]).expect("tiles remain");
+            let t = by_height
+                .iter()
+                .copied()
+                .find(|&t| !laid[t])
+                .expect("tiles remain");
             queued[t] = true;
             frontier.push(Reverse((level[t], t)));
             continue;
         };
-        let rests = on_support[t] || neighbours[t].iter().any(|&n| laid[n] && level[n] < level[t]);
+        let rests = on_support[t]
+            || neighbours[t]
+                .iter()
+                .any(|&n| laid[n] && level[n] < level[t]);
         unsupported += usize::from(!rests);
         laid[t] = true;
         tiles[t].step = step;
@@ -110,5 +133,8 @@ pub fn laying_order(mesh: &PolyMesh, tiles: &mut [Tile], links: &[[usize; 2]], o
             }
         }
     }
-    Sequence { support_tiles: on_support.iter().filter(|&&s| s).count(), unsupported }
+    Sequence {
+        support_tiles: on_support.iter().filter(|&&s| s).count(),
+        unsupported,
+    }
 }

@@ -20,13 +20,34 @@ pub struct Solid {
 /// The solid of `tile`: its box, or the prisms of the pieces of its kept outline.
 pub fn solid(tile: &Tile) -> Solid {
     let Some(cut) = &tile.cut else {
-        const BOX_FACES: [[usize; 4]; 6] = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
-        return Solid { positions: tile.corners.iter().map(|c| Point3::from(*c)).collect(), faces: BOX_FACES.iter().map(|f| f.to_vec()).collect() };
+        const BOX_FACES: [[usize; 4]; 6] = [
+            [0, 3, 2, 1],
+            [4, 5, 6, 7],
+            [0, 1, 5, 4],
+            [1, 2, 6, 5],
+            [2, 3, 7, 6],
+            [3, 0, 4, 7],
+        ];
+        return Solid {
+            positions: tile.corners.iter().map(|c| Point3::from(*c)).collect(),
+            faces: BOX_FACES.iter().map(|f| f.to_vec()).collect(),
+        };
     };
-    let mut out = Solid { positions: Vec::new(), faces: Vec::new() };
-    let (outer, holes): (Vec<&Vec<Point2>>, Vec<&Vec<Point2>>) = cut.loops.iter().filter(|l| l.len() >= 3).partition(|l| polygon::signed_area(l) > 0.0);
+    let mut out = Solid {
+        positions: Vec::new(),
+        faces: Vec::new(),
+    };
+    let (outer, holes): (Vec<&Vec<Point2>>, Vec<&Vec<Point2>>) = cut
+        .loops
+        .iter()
+        .filter(|l| l.len() >= 3)
+        .partition(|l| polygon::signed_area(l) > 0.0);
     for piece in &outer {
-        let inside: Vec<&Vec<Point2>> = holes.iter().copied().filter(|h| polygon::winding(&[piece.to_vec()], h[0]) != 0).collect();
+        let inside: Vec<&Vec<Point2>> = holes
+            .iter()
+            .copied()
+            .filter(|h| polygon::winding(&[piece.to_vec()], h[0]) != 0)
+            .collect();
         prism(tile, piece, &inside, &mut out);
     }
     out
@@ -46,13 +67,17 @@ fn prism(tile: &Tile, outer: &[Point2], holes: &[&Vec<Point2>], out: &mut Solid)
     let n = ring.len();
     let thickness = tile.size[2];
     for z in [0.0, thickness] {
-        out.positions.extend(ring.iter().map(|p| tile.to_world(Vector3::new(p[0], p[1], z))));
+        out.positions.extend(
+            ring.iter()
+                .map(|p| tile.to_world(Vector3::new(p[0], p[1], z))),
+        );
     }
     for t in triangles.chunks_exact(3) {
         // Earcut returns triangles in the rings' own turning sense (counter-clockwise here):
         // the bottom is seen from below, so it turns the other way.
         out.faces.push(vec![base + t[0], base + t[2], base + t[1]]);
-        out.faces.push(vec![base + n + t[0], base + n + t[1], base + n + t[2]]);
+        out.faces
+            .push(vec![base + n + t[0], base + n + t[1], base + n + t[2]]);
     }
     // Walls: every edge of every ring (holes run clockwise, so their walls face inwards).
     let mut bounds: Vec<(usize, usize)> = Vec::new();
@@ -64,7 +89,8 @@ fn prism(tile: &Tile, outer: &[Point2], holes: &[&Vec<Point2>], out: &mut Solid)
     for (a, b) in bounds {
         for i in a..b {
             let j = if i + 1 == b { a } else { i + 1 };
-            out.faces.push(vec![base + i, base + j, base + n + j, base + n + i]);
+            out.faces
+                .push(vec![base + i, base + j, base + n + j, base + n + i]);
         }
     }
 }
@@ -75,7 +101,12 @@ mod tests {
     use crate::tiles::{Cut, Frame, TileKind};
 
     fn flat_tile(cut: Option<Cut>) -> Tile {
-        let frame = Frame { origin: Point3::origin(), x: Vector3::x(), y: Vector3::y(), z: Vector3::z() };
+        let frame = Frame {
+            origin: Point3::origin(),
+            x: Vector3::x(),
+            y: Vector3::y(),
+            z: Vector3::z(),
+        };
         let mut tile = Tile::new(TileKind::Full, vec![0, 1], frame, [2.0, 1.0, 0.1]);
         tile.cut = cut;
         tile
@@ -85,7 +116,17 @@ mod tests {
     fn volume(s: &Solid) -> f64 {
         s.faces
             .iter()
-            .map(|f| (1..f.len() - 1).map(|k| s.positions[f[0]].coords.dot(&s.positions[f[k]].coords.cross(&s.positions[f[k + 1]].coords)) / 6.0).sum::<f64>())
+            .map(|f| {
+                (1..f.len() - 1)
+                    .map(|k| {
+                        s.positions[f[0]].coords.dot(
+                            &s.positions[f[k]]
+                                .coords
+                                .cross(&s.positions[f[k + 1]].coords),
+                        ) / 6.0
+                    })
+                    .sum::<f64>()
+            })
             .sum()
     }
 
@@ -93,8 +134,18 @@ mod tests {
     fn a_box_and_a_cut_tile_are_closed_and_outward() {
         assert!((volume(&solid(&flat_tile(None))) - 0.2).abs() < 1e-12);
         // An L-shaped piece: the rectangle without its top-right quarter.
-        let l = vec![[-1.0, -0.5], [1.0, -0.5], [1.0, 0.0], [0.0, 0.0], [0.0, 0.5], [-1.0, 0.5]];
-        let s = solid(&flat_tile(Some(Cut { loops: vec![l], kept_fraction: 0.75 })));
+        let l = vec![
+            [-1.0, -0.5],
+            [1.0, -0.5],
+            [1.0, 0.0],
+            [0.0, 0.0],
+            [0.0, 0.5],
+            [-1.0, 0.5],
+        ];
+        let s = solid(&flat_tile(Some(Cut {
+            loops: vec![l],
+            kept_fraction: 0.75,
+        })));
         assert!((volume(&s) - 0.15).abs() < 1e-12);
     }
 
@@ -102,11 +153,17 @@ mod tests {
     fn holes_and_several_pieces_are_kept() {
         let outer = vec![[-1.0, -0.5], [1.0, -0.5], [1.0, 0.5], [-1.0, 0.5]];
         let hole = vec![[-0.2, -0.2], [-0.2, 0.2], [0.2, 0.2], [0.2, -0.2]];
-        let s = solid(&flat_tile(Some(Cut { loops: vec![outer, hole], kept_fraction: 0.92 })));
+        let s = solid(&flat_tile(Some(Cut {
+            loops: vec![outer, hole],
+            kept_fraction: 0.92,
+        })));
         assert!((volume(&s) - 0.1 * (2.0 - 0.16)).abs() < 1e-12);
         let left = vec![[-1.0, -0.5], [-0.5, -0.5], [-0.5, 0.5], [-1.0, 0.5]];
         let right = vec![[0.5, -0.5], [1.0, -0.5], [1.0, 0.5], [0.5, 0.5]];
-        let s = solid(&flat_tile(Some(Cut { loops: vec![left, right], kept_fraction: 0.5 })));
+        let s = solid(&flat_tile(Some(Cut {
+            loops: vec![left, right],
+            kept_fraction: 0.5,
+        })));
         assert!((volume(&s) - 0.1).abs() < 1e-12);
     }
 }

@@ -45,7 +45,13 @@ pub fn polygon(n: usize) -> PolyMesh {
 
 /// Every matching of the candidate tiles `tiles` (as face pairs) over `face_count` faces.
 pub fn all_matchings(face_count: usize, tiles: &[[usize; 2]]) -> Vec<Vec<bool>> {
-    fn go(k: usize, tiles: &[[usize; 2]], used: &mut [bool], chosen: &mut Vec<bool>, out: &mut Vec<Vec<bool>>) {
+    fn go(
+        k: usize,
+        tiles: &[[usize; 2]],
+        used: &mut [bool],
+        chosen: &mut Vec<bool>,
+        out: &mut Vec<Vec<bool>>,
+    ) {
         if k == tiles.len() {
             out.push(chosen.clone());
             return;
@@ -65,7 +71,13 @@ pub fn all_matchings(face_count: usize, tiles: &[[usize; 2]]) -> Vec<Vec<bool>> 
         }
     }
     let mut out = Vec::new();
-    go(0, tiles, &mut vec![false; face_count], &mut Vec::new(), &mut out);
+    go(
+        0,
+        tiles,
+        &mut vec![false; face_count],
+        &mut Vec::new(),
+        &mut out,
+    );
     out
 }
 
@@ -73,8 +85,13 @@ pub fn all_matchings(face_count: usize, tiles: &[[usize; 2]]) -> Vec<Vec<bool>> 
 pub fn is_valid_matching(mesh: &PolyMesh, pairs: &[[usize; 2]]) -> bool {
     let mut used = vec![false; mesh.face_count()];
     pairs.iter().all(|&[a, b]| {
-        let shared = mesh.faces()[a].iter().filter(|v| mesh.faces()[b].contains(v)).count();
-        shared == 2 && !std::mem::replace(&mut used[a], true) && !std::mem::replace(&mut used[b], true)
+        let shared = mesh.faces()[a]
+            .iter()
+            .filter(|v| mesh.faces()[b].contains(v))
+            .count();
+        shared == 2
+            && !std::mem::replace(&mut used[a], true)
+            && !std::mem::replace(&mut used[b], true)
     })
 }
 
@@ -88,8 +105,24 @@ pub fn subdivided(mesh: &PolyMesh, times: usize) -> PolyMesh {
 /// vertices of valence 3, 5 and 6 and a boundary with corners.
 pub fn mixed_polygons() -> PolyMesh {
     let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
-    let positions = vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0), p(0.5, -0.8), p(1.8, 0.5), p(0.5, 1.8), p(-0.5, 1.6), p(-0.7, 0.5)];
-    let faces = vec![vec![0, 1, 2, 3], vec![0, 4, 1], vec![1, 5, 2], vec![2, 6, 3], vec![3, 7, 8, 0]];
+    let positions = vec![
+        p(0.0, 0.0),
+        p(1.0, 0.0),
+        p(1.0, 1.0),
+        p(0.0, 1.0),
+        p(0.5, -0.8),
+        p(1.8, 0.5),
+        p(0.5, 1.8),
+        p(-0.5, 1.6),
+        p(-0.7, 0.5),
+    ];
+    let faces = vec![
+        vec![0, 1, 2, 3],
+        vec![0, 4, 1],
+        vec![1, 5, 2],
+        vec![2, 6, 3],
+        vec![3, 7, 8, 0],
+    ];
     PolyMesh::new(positions, faces).unwrap()
 }
 
@@ -99,7 +132,10 @@ pub fn ragged_grid(n: usize) -> PolyMesh {
     let grid = tilepattern::mesh::generate::grid(n, n);
     let on_boundary = |f: usize| f % n == 0 || f % n == n - 1 || f / n == 0 || f / n == n - 1;
     let keep = |f: usize| !(on_boundary(f) && (f.wrapping_mul(2654435761) >> 7) % 3 == 0);
-    let faces: Vec<Vec<usize>> = (0..grid.face_count()).filter(|&f| keep(f)).map(|f| grid.faces()[f].clone()).collect();
+    let faces: Vec<Vec<usize>> = (0..grid.face_count())
+        .filter(|&f| keep(f))
+        .map(|f| grid.faces()[f].clone())
+        .collect();
     PolyMesh::new(grid.positions().to_vec(), faces).unwrap()
 }
 
@@ -108,7 +144,11 @@ pub fn ragged_grid(n: usize) -> PolyMesh {
 /// face that lie at least `depth` inside it are looked up in every nearby tile's frame; a
 /// point that also lies at least `depth` inside another tile's kept face (and within half a
 /// tile width of its plane) is an overlap deeper than `depth` in both.
-pub fn overlapping_tiles(tiles: &[tilepattern::tiles::Tile], depth: f64, step: f64) -> Vec<(usize, usize, Point3<f64>)> {
+pub fn overlapping_tiles(
+    tiles: &[tilepattern::tiles::Tile],
+    depth: f64,
+    step: f64,
+) -> Vec<(usize, usize, Point3<f64>)> {
     use nalgebra::Vector3;
     let loops = |t: &tilepattern::tiles::Tile| -> Vec<Vec<[f64; 2]>> {
         let (hx, hy) = (t.size[0] / 2.0, t.size[1] / 2.0);
@@ -125,7 +165,11 @@ pub fn overlapping_tiles(tiles: &[tilepattern::tiles::Tile], depth: f64, step: f
                 let (a, b) = (l[i], l[(i + 1) % l.len()]);
                 let d = [b[0] - a[0], b[1] - a[1]];
                 let len2 = d[0] * d[0] + d[1] * d[1];
-                let t = if len2 > 0.0 { (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                let t = if len2 > 0.0 {
+                    (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
                 nearest = nearest.min((q[0] - a[0] - t * d[0]).hypot(q[1] - a[1] - t * d[1]));
                 let side = d[0] * (q[1] - a[1]) - d[1] * (q[0] - a[0]);
                 if a[1] <= q[1] && b[1] > q[1] && side > 0.0 {
@@ -142,13 +186,23 @@ pub fn overlapping_tiles(tiles: &[tilepattern::tiles::Tile], depth: f64, step: f
     for (a, ta) in tiles.iter().enumerate() {
         let reach_a = ta.size[0].hypot(ta.size[1]) / 2.0;
         let near: Vec<usize> = (0..tiles.len())
-            .filter(|&b| b != a && (tiles[b].frame.origin - ta.frame.origin).norm() < reach_a + tiles[b].size[0].hypot(tiles[b].size[1]) / 2.0)
+            .filter(|&b| {
+                b != a
+                    && (tiles[b].frame.origin - ta.frame.origin).norm()
+                        < reach_a + tiles[b].size[0].hypot(tiles[b].size[1]) / 2.0
+            })
             .collect();
         let (hx, hy) = (ta.size[0] / 2.0, ta.size[1] / 2.0);
-        let (nx, ny) = ((2.0 * hx / step).ceil() as usize, (2.0 * hy / step).ceil() as usize);
+        let (nx, ny) = (
+            (2.0 * hx / step).ceil() as usize,
+            (2.0 * hy / step).ceil() as usize,
+        );
         'points: for i in 0..=nx {
             for j in 0..=ny {
-                let q = [-hx + 2.0 * hx * i as f64 / nx as f64, -hy + 2.0 * hy * j as f64 / ny as f64];
+                let q = [
+                    -hx + 2.0 * hx * i as f64 / nx as f64,
+                    -hy + 2.0 * hy * j as f64 / ny as f64,
+                ];
                 if inside(&all[a], q) < depth {
                     continue;
                 }
@@ -156,7 +210,9 @@ pub fn overlapping_tiles(tiles: &[tilepattern::tiles::Tile], depth: f64, step: f
                 for &b in &near {
                     let tb = &tiles[b];
                     let local = tb.frame.to_local(&p);
-                    if local.z.abs() <= tb.size[1] / 2.0 && inside(&all[b], [local.x, local.y]) >= depth {
+                    if local.z.abs() <= tb.size[1] / 2.0
+                        && inside(&all[b], [local.x, local.y]) >= depth
+                    {
                         found.push((a.min(b), a.max(b), p));
                         break 'points;
                     }

@@ -75,12 +75,25 @@ pub(crate) struct Contact {
 }
 
 /// The side of `tile` on which the edge from corner `corner` of its face `face` lies.
-pub(crate) fn side_of(mesh: &PolyMesh, topology: &Topology, tile: &Tile, face: usize, corner: usize) -> Option<Side> {
+pub(crate) fn side_of(
+    mesh: &PolyMesh,
+    topology: &Topology,
+    tile: &Tile,
+    face: usize,
+    corner: usize,
+) -> Option<Side> {
     match tile.faces[..] {
         [f] if f == face => Some([Side::NegY, Side::PosX, Side::PosY, Side::NegX][corner % 4]),
         [a, b] => {
-            let (own, other, inside) = if face == a { (a, b, Side::PosX) } else { (b, a, Side::NegX) };
-            let shared = topology.face_edges(own).iter().position(|&e| topology.edges()[e].other_face(own) == Some(other))?;
+            let (own, other, inside) = if face == a {
+                (a, b, Side::PosX)
+            } else {
+                (b, a, Side::NegX)
+            };
+            let shared = topology
+                .face_edges(own)
+                .iter()
+                .position(|&e| topology.edges()[e].other_face(own) == Some(other))?;
             let n = mesh.faces()[own].len();
             Some(inside.turn((corner + n - shared) % n))
         }
@@ -105,15 +118,39 @@ pub(crate) fn contacts(mesh: &PolyMesh, topology: &Topology, tiles: &[Tile]) -> 
         if a == usize::MAX || b == usize::MAX || a == b {
             continue;
         }
-        let corner = |face: usize| topology.face_edges(face).iter().position(|&x| x == e).expect("the face has the edge");
-        let (Some(sa), Some(sb)) = (side_of(mesh, topology, &tiles[a], f, corner(f)), side_of(mesh, topology, &tiles[b], g, corner(g))) else {
+        let corner = |face: usize| {
+            topology
+                .face_edges(face)
+                .iter()
+                .position(|&x| x == e)
+                .expect("the face has the edge")
+        };
+        let (Some(sa), Some(sb)) = (
+            side_of(mesh, topology, &tiles[a], f, corner(f)),
+            side_of(mesh, topology, &tiles[b], g, corner(g)),
+        ) else {
             continue;
         };
-        let key = if a < b { ([a, b], [sa, sb]) } else { ([b, a], [sb, sa]) };
+        let key = if a < b {
+            ([a, b], [sa, sb])
+        } else {
+            ([b, a], [sb, sa])
+        };
         found.entry(key).or_insert((e, 0)).1 += 1;
     }
-    let mut list: Vec<(usize, Contact)> =
-        found.into_iter().map(|((tiles, sides), (first, edges))| (first, Contact { tiles, sides, edges })).collect();
+    let mut list: Vec<(usize, Contact)> = found
+        .into_iter()
+        .map(|((tiles, sides), (first, edges))| {
+            (
+                first,
+                Contact {
+                    tiles,
+                    sides,
+                    edges,
+                },
+            )
+        })
+        .collect();
     list.sort_by_key(|&(first, c)| (first, c.tiles));
     list.into_iter().map(|(_, c)| c).collect()
 }
@@ -148,9 +185,19 @@ mod tests {
         // A 4 x 2 grid of unit quads: faces 0..3 in the first row, 4..7 in the second.
         let mesh = generate::grid(4, 2);
         let topology = Topology::new(&mesh).unwrap();
-        let spec = TileSpec { length: 1.9, width: 0.95, thickness: 0.1, joint: 0.1 };
+        let spec = TileSpec {
+            length: 1.9,
+            width: 0.95,
+            thickness: 0.1,
+            joint: 0.1,
+        };
         // Row 0: tiles (0,1) (2,3); row 1 staggered: half 4, tile (5,6), half 7.
-        let tiles = build(&mesh, &pattern(8, vec![[0, 1], [2, 3], [5, 6]], vec![4, 7]), &spec).unwrap();
+        let tiles = build(
+            &mesh,
+            &pattern(8, vec![[0, 1], [2, 3], [5, 6]], vec![4, 7]),
+            &spec,
+        )
+        .unwrap();
         let found = contacts(&mesh, &topology, &tiles);
         for c in &found {
             // Every side found topologically is the side the neighbour lies beyond.

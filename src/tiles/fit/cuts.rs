@@ -16,7 +16,10 @@ use crate::tiles::{Cut, Tile, TileKind};
 /// indices of the tiles cut, in order.
 pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<usize> {
     let mut outlines: Vec<Vec<Point3<f64>>> = tiles.iter().map(outline::world_corners).collect();
-    let reach = tiles.iter().map(|t| t.size[0].hypot(t.size[1])).fold(0.0, f64::max);
+    let reach = tiles
+        .iter()
+        .map(|t| t.size[0].hypot(t.size[1]))
+        .fold(0.0, f64::max);
     if reach <= 0.0 {
         return Vec::new();
     }
@@ -36,7 +39,11 @@ pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<u
             let flipped = Separation { axis: -s.axis, ..s };
             let keep_a = beyond(&tiles[a], &outlines[b], &flipped, joint);
             let area = |c: &Option<Cut>| c.as_ref().map_or(0.0, Cut::area);
-            let rank = |t: &Tile| match (t.faces.is_empty(), t.cut.is_some(), t.kind == TileKind::Half) {
+            let rank = |t: &Tile| match (
+                t.faces.is_empty(),
+                t.cut.is_some(),
+                t.kind == TileKind::Half,
+            ) {
                 (true, _, _) => 0,
                 (false, true, _) => 1,
                 (false, false, true) => 2,
@@ -51,7 +58,10 @@ pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<u
             if tile.kind != TileKind::Boundary {
                 tile.kind = TileKind::FitCut;
             }
-            tile.cut = Some(kept.unwrap_or(Cut { loops: Vec::new(), kept_fraction: 0.0 }));
+            tile.cut = Some(kept.unwrap_or(Cut {
+                loops: Vec::new(),
+                kept_fraction: 0.0,
+            }));
             outlines[victim] = outline::world_corners(tile);
             if !cut.contains(&victim) {
                 cut.push(victim);
@@ -67,7 +77,12 @@ fn beyond(tile: &Tile, other: &[Point3<f64>], s: &Separation, joint: f64) -> Opt
     let n = s.axis;
     // Beyond the other solid plus a joint, with the tile's top edge as well as its bottom.
     let lean = tile.size[2] * (-n.dot(&tile.frame.z)).max(0.0);
-    let reach = other.iter().map(|p| n.dot(&p.coords)).fold(f64::NEG_INFINITY, f64::max) + joint + lean;
+    let reach = other
+        .iter()
+        .map(|p| n.dot(&p.coords))
+        .fold(f64::NEG_INFINITY, f64::max)
+        + joint
+        + lean;
     // In the tile's frame the kept side is k . (x, y) >= c.
     let k = [n.dot(&tile.frame.x), n.dot(&tile.frame.y)];
     let c = reach - n.dot(&tile.frame.origin.coords);
@@ -88,7 +103,10 @@ fn beyond(tile: &Tile, other: &[Point3<f64>], s: &Separation, joint: f64) -> Opt
         .filter(|l| l.len() >= 3 && polygon::signed_area(l).abs() > full * 1e-12)
         .collect();
     let area: f64 = kept.iter().map(|l| polygon::signed_area(l)).sum();
-    (area > 0.0).then(|| Cut { loops: kept, kept_fraction: (area / full).min(1.0) })
+    (area > 0.0).then(|| Cut {
+        loops: kept,
+        kept_fraction: (area / full).min(1.0),
+    })
 }
 
 #[cfg(test)]
@@ -100,16 +118,32 @@ mod tests {
 
     fn tile(x: f64, y: f64, angle: f64, faces: Vec<usize>) -> Tile {
         let xa = Vector3::new(angle.cos(), angle.sin(), 0.0);
-        let frame = Frame { origin: Point3::new(x, y, 0.0), x: xa, y: Vector3::z().cross(&xa), z: Vector3::z() };
-        let kind = if faces.len() == 1 { TileKind::Half } else { TileKind::Full };
-        let size = if faces.len() == 1 { [0.14, 0.14, 0.015] } else { [0.28, 0.14, 0.015] };
+        let frame = Frame {
+            origin: Point3::new(x, y, 0.0),
+            x: xa,
+            y: Vector3::z().cross(&xa),
+            z: Vector3::z(),
+        };
+        let kind = if faces.len() == 1 {
+            TileKind::Half
+        } else {
+            TileKind::Full
+        };
+        let size = if faces.len() == 1 {
+            [0.14, 0.14, 0.015]
+        } else {
+            [0.28, 0.14, 0.015]
+        };
         Tile::new(kind, faces, frame, size)
     }
 
     #[test]
     fn an_overlap_is_cut_back_to_a_joint_on_the_cheaper_tile() {
         // A full tile and a half tile overlapping by 30 mm end to end: the half tile is cut.
-        let mut tiles = vec![tile(0.0, 0.0, 0.0, vec![0, 1]), tile(0.18, 0.0, 0.0, vec![2])];
+        let mut tiles = vec![
+            tile(0.0, 0.0, 0.0, vec![0, 1]),
+            tile(0.18, 0.0, 0.0, vec![2]),
+        ];
         let cut = resolve_overlaps(&mut tiles, 0.01, 0.0005);
         assert_eq!(cut, vec![1]);
         assert!(tiles[1].fit_cut && tiles[1].kind == TileKind::FitCut && tiles[0].cut.is_none());
@@ -121,7 +155,11 @@ mod tests {
 
     #[test]
     fn shallow_overlaps_and_joints_are_left_alone() {
-        let mut tiles = vec![tile(0.0, 0.0, 0.0, vec![0, 1]), tile(0.2898, 0.0, 0.01, vec![2, 3]), tile(0.0, 0.1502, 0.0, vec![4, 5])];
+        let mut tiles = vec![
+            tile(0.0, 0.0, 0.0, vec![0, 1]),
+            tile(0.2898, 0.0, 0.01, vec![2, 3]),
+            tile(0.0, 0.1502, 0.0, vec![4, 5]),
+        ];
         assert!(resolve_overlaps(&mut tiles, 0.01, 0.0005).is_empty());
         assert!(tiles.iter().all(|t| t.cut.is_none()));
     }
@@ -129,16 +167,28 @@ mod tests {
     #[test]
     fn after_resolving_no_pair_overlaps() {
         // A jumble of tiles pushed into each other.
-        let mut tiles: Vec<Tile> = (0..30).map(|i| {
-            let k = i as f64;
-            tile((k % 6.0) * 0.25, (k / 6.0).floor() * 0.13, 0.2 * (k * 1.3).sin(), vec![2 * i, 2 * i + 1])
-        }).collect();
+        let mut tiles: Vec<Tile> = (0..30)
+            .map(|i| {
+                let k = i as f64;
+                tile(
+                    (k % 6.0) * 0.25,
+                    (k / 6.0).floor() * 0.13,
+                    0.2 * (k * 1.3).sin(),
+                    vec![2 * i, 2 * i + 1],
+                )
+            })
+            .collect();
         let cut = resolve_overlaps(&mut tiles, 0.01, 0.0005);
         assert!(!cut.is_empty());
         for a in 0..tiles.len() {
             for b in a + 1..tiles.len() {
                 let gap = outline::separation(&tiles[a], &tiles[b]).gap;
-                assert!(gap >= -0.0005 - 1e-12 || tiles[a].kept_area() == 0.0 || tiles[b].kept_area() == 0.0, "{a} {b} {gap}");
+                assert!(
+                    gap >= -0.0005 - 1e-12
+                        || tiles[a].kept_area() == 0.0
+                        || tiles[b].kept_area() == 0.0,
+                    "{a} {b} {gap}"
+                );
             }
         }
     }

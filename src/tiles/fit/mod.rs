@@ -39,7 +39,12 @@ use self::solve::{BondBand, Problem, Weights};
 /// course overhangs rather than squeezing every joint inside: measured on the shared vault,
 /// weight 4 keeps 0.4 % more tiles on the surface with p95 joint deviations of 7 mm instead
 /// of 2.6 mm); the anchor a thousandth, so that it only settles what the joints leave free.
-const WEIGHTS: Weights = Weights { overlap_slope: 4.0, bond: 1.0, anchor: 1e-3, edge: 0.25 };
+const WEIGHTS: Weights = Weights {
+    overlap_slope: 4.0,
+    bond: 1.0,
+    anchor: 1e-3,
+    edge: 0.25,
+};
 
 /// How the fit stage places tiles.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,9 +69,15 @@ impl FitOptions {
     /// length, overlaps up to a twentieth of the joint left (0.5 mm on a 10 mm joint; a
     /// thousandth of the width without a joint), 10 s, 100 steps.
     pub fn for_spec(spec: &TileSpec) -> Self {
-        let overlap_tolerance = if spec.joint > 0.0 { spec.joint / 20.0 } else { spec.width / 1000.0 };
+        let overlap_tolerance = if spec.joint > 0.0 {
+            spec.joint / 20.0
+        } else {
+            spec.width / 1000.0
+        };
         Self {
-            bond: Bond::Staggered { weight: crate::pattern::DEFAULT_WEIGHT },
+            bond: Bond::Staggered {
+                weight: crate::pattern::DEFAULT_WEIGHT,
+            },
             bond_tolerance: spec.length / 10.0,
             overlap_tolerance,
             time_limit: 10.0,
@@ -79,7 +90,11 @@ impl FitOptions {
     /// # Errors
     /// [`TileError::InvalidSpec`] naming the first bad value.
     pub fn validate(&self) -> Result<(), TileError> {
-        let values = [("fit_bond_tolerance", self.bond_tolerance), ("fit_overlap_tolerance", self.overlap_tolerance), ("fit_time_limit_seconds", self.time_limit)];
+        let values = [
+            ("fit_bond_tolerance", self.bond_tolerance),
+            ("fit_overlap_tolerance", self.overlap_tolerance),
+            ("fit_time_limit_seconds", self.time_limit),
+        ];
         for (name, value) in values {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(TileError::InvalidSpec { name, value });
@@ -143,15 +158,24 @@ pub fn fit(
     options.validate()?;
     for tile in &tiles {
         if let Some(&face) = tile.faces.iter().find(|&&f| f >= quads.face_count()) {
-            return Err(TileError::FaceOutOfRange { face, face_count: quads.face_count() });
+            return Err(TileError::FaceOutOfRange {
+                face,
+                face_count: quads.face_count(),
+            });
         }
     }
     let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
     let found = contacts::contacts(quads, &topology, &tiles);
     let index = SurfaceIndex::from_polymesh(surface.unwrap_or(quads));
-    let (anchors, beyond_start): (Vec<_>, Vec<_>) = tiles.iter().map(|t| solve::place(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z)).unzip();
+    let (anchors, beyond_start): (Vec<_>, Vec<_>) = tiles
+        .iter()
+        .map(|t| solve::place(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z))
+        .unzip();
     let sizes: Vec<[f64; 3]> = tiles.iter().map(|t| t.size).collect();
-    let bands: Vec<Option<BondBand>> = found.iter().map(|c| bond_band(c, &tiles, &anchors, spec, options)).collect();
+    let bands: Vec<Option<BondBand>> = found
+        .iter()
+        .map(|c| bond_band(c, &tiles, &anchors, spec, options))
+        .collect();
     let problem = Problem {
         sizes: &sizes,
         contacts: &found,
@@ -177,8 +201,16 @@ pub fn fit(
         (false, _, true) => FitStatus::Converged,
         (false, _, false) => FitStatus::IterationLimit,
     };
-    let moves: Vec<f64> = tiles.iter().zip(&frames).map(|(t, f)| (f.origin - t.frame.origin).norm()).collect();
-    let placed: Vec<Tile> = tiles.into_iter().zip(frames).map(|(t, frame)| Tile::new(t.kind, t.faces, frame, t.size)).collect();
+    let moves: Vec<f64> = tiles
+        .iter()
+        .zip(&frames)
+        .map(|(t, f)| (f.origin - t.frame.origin).norm())
+        .collect();
+    let placed: Vec<Tile> = tiles
+        .into_iter()
+        .zip(frames)
+        .map(|(t, frame)| Tile::new(t.kind, t.faces, frame, t.size))
+        .collect();
     let summary = FitSummary {
         status,
         iterations: outcome.iterations,
@@ -198,7 +230,13 @@ pub fn fit(
 /// offset the quads give it (none, or half a tile), a quarter tile either way in a
 /// staggered bond (head joints of neighbouring courses stay a quarter tile apart),
 /// `bond_tolerance` for the running bond's half offset and for aligned joints.
-fn bond_band(contact: &contacts::Contact, tiles: &[Tile], frames: &[crate::tiles::Frame], spec: &TileSpec, options: &FitOptions) -> Option<BondBand> {
+fn bond_band(
+    contact: &contacts::Contact,
+    tiles: &[Tile],
+    frames: &[crate::tiles::Frame],
+    spec: &TileSpec,
+    options: &FitOptions,
+) -> Option<BondBand> {
     let [a, b] = contact.tiles;
     let full = |t: usize| tiles[t].faces.len() == 2;
     if !(contact.sides[0].is_long() && contact.sides[1].is_long() && full(a) && full(b)) {
@@ -209,9 +247,10 @@ fn bond_band(contact: &contacts::Contact, tiles: &[Tile], frames: &[crate::tiles
     let half = (spec.length + spec.joint) / 2.0;
     let nominal = (offset / half).round().clamp(-1.0, 1.0) * half;
     let tolerance = match (options.bond, nominal == 0.0) {
-        (_, true) | (Bond::RunningBond { .. }, false) | (Bond::Stack, false) => options.bond_tolerance,
+        (_, true) | (Bond::RunningBond { .. }, false) | (Bond::Stack, false) => {
+            options.bond_tolerance
+        }
         (Bond::Staggered { .. }, false) => half - spec.length / 4.0,
     };
     Some(BondBand { nominal, tolerance })
 }
-

@@ -85,7 +85,13 @@ fn point_motion(frame: &Frame, p: &Vector3<f64>) -> [Vector3<f64>; 3] {
 
 /// Signed distance `m . (p - c)` from point `p` of one tile to the side plane `(m, c)` of
 /// another, with its gradients on the point's tile and on the plane's tile.
-fn plane_distance(point_tile: &Frame, p: &Vector3<f64>, plane_tile: &Frame, m: &Vector3<f64>, c: &Vector3<f64>) -> (f64, Grad, Grad) {
+fn plane_distance(
+    point_tile: &Frame,
+    p: &Vector3<f64>,
+    plane_tile: &Frame,
+    m: &Vector3<f64>,
+    c: &Vector3<f64>,
+) -> (f64, Grad, Grad) {
     let d = m.dot(&(p - c));
     let [px, py, pr] = point_motion(point_tile, p);
     let [cx, cy, cr] = point_motion(plane_tile, c);
@@ -97,7 +103,11 @@ fn plane_distance(point_tile: &Frame, p: &Vector3<f64>, plane_tile: &Frame, m: &
 
 /// A side of a tile placed by `frame`: outward normal, centre, direction along it, half
 /// length.
-fn side_line(frame: &Frame, size: &[f64; 3], side: Side) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, f64) {
+fn side_line(
+    frame: &Frame,
+    size: &[f64; 3],
+    side: Side,
+) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>, f64) {
     let m = side.normal(frame);
     let (reach, half) = side.extents(size);
     (m, frame.origin.coords + m * reach, frame.z.cross(&m), half)
@@ -107,7 +117,12 @@ impl Problem<'_> {
     /// Calls `row(tile_a, grad_a, tile_b, grad_b, value)` for every residual at `frames`
     /// (`tile_b` is `usize::MAX` for a residual of one tile), contact residuals first, in
     /// contact order, with the contact's index.
-    fn residuals(&self, frames: &[Frame], beyond: &[Vector3<f64>], mut row: impl FnMut(Option<usize>, usize, Grad, usize, Grad, f64)) {
+    fn residuals(
+        &self,
+        frames: &[Frame],
+        beyond: &[Vector3<f64>],
+        mut row: impl FnMut(Option<usize>, usize, Grad, usize, Grad, f64),
+    ) {
         let j = self.joint;
         let k = self.weights.overlap_slope;
         for (ci, c) in self.contacts.iter().enumerate() {
@@ -118,9 +133,10 @@ impl Problem<'_> {
             // Each corner of either facing side against the other tile's side plane (the
             // separating-axis measure of the report): all four always count, so that no tile
             // can shed a joint it cannot fit by sliding away from its neighbour.
-            for (point_tile, fp, t_own, c_own, l_own, plane_tile, fq, m_other, c_other) in
-                [(a, fa, ta, ca, la, b, fb, mb, cb), (b, fb, tb, cb, lb, a, fa, ma, ca)]
-            {
+            for (point_tile, fp, t_own, c_own, l_own, plane_tile, fq, m_other, c_other) in [
+                (a, fa, ta, ca, la, b, fb, mb, cb),
+                (b, fb, tb, cb, lb, a, fa, ma, ca),
+            ] {
                 // At each end the bottom or the top corner, whichever is closer: on a convex
                 // surface the bottoms close the joint, on a concave one the tops.
                 for sign in [-1.0, 1.0] {
@@ -128,10 +144,21 @@ impl Problem<'_> {
                     let top = bottom + fp.z * self.sizes[point_tile][2];
                     let (db, gpb, gqb) = plane_distance(fp, &bottom, fq, &m_other, &c_other);
                     let (dt, gpt, gqt) = plane_distance(fp, &top, fq, &m_other, &c_other);
-                    let (d, g_point, g_plane) = if dt < db { (dt, gpt, gqt) } else { (db, gpb, gqb) };
+                    let (d, g_point, g_plane) = if dt < db {
+                        (dt, gpt, gqt)
+                    } else {
+                        (db, gpb, gqb)
+                    };
                     let slope = if d < 0.0 { k } else { 1.0 };
                     let excess = d - j + (k - 1.0) * d.min(0.0);
-                    row(Some(ci), point_tile, g_point * slope, plane_tile, g_plane * slope, excess);
+                    row(
+                        Some(ci),
+                        point_tile,
+                        g_point * slope,
+                        plane_tile,
+                        g_plane * slope,
+                        excess,
+                    );
                 }
             }
             if let Some(band) = self.bands[ci] {
@@ -141,7 +168,11 @@ impl Problem<'_> {
                 if excess != 0.0 {
                     let w = self.weights.bond;
                     let on_b = Vector3::new(ta.dot(&fb.x), ta.dot(&fb.y), 0.0) * w;
-                    let on_a = Vector3::new(-ta.dot(&fa.x), -ta.dot(&fa.y), fa.z.cross(&ta).dot(&(fb.origin - fa.origin))) * w;
+                    let on_a = Vector3::new(
+                        -ta.dot(&fa.x),
+                        -ta.dot(&fa.y),
+                        fa.z.cross(&ta).dot(&(fb.origin - fa.origin)),
+                    ) * w;
                     row(Some(ci), a, on_a, b, on_b, w * excess);
                 }
             }
@@ -151,22 +182,58 @@ impl Problem<'_> {
         // of its width beyond the edge (or where it started, if further), so that what is
         // left on the surface after cutting is still more than a sliver.
         for (t, (frame, out)) in frames.iter().zip(beyond).enumerate() {
-            let start = self.beyond_start.get(t).map_or(0.0, |b| b.norm()).max(self.sizes[t][1] / 4.0);
+            let start = self
+                .beyond_start
+                .get(t)
+                .map_or(0.0, |b| b.norm())
+                .max(self.sizes[t][1] / 4.0);
             let excess = out.norm() - start;
             if excess > 0.0 {
                 let away = out / out.norm();
                 let w = self.weights.edge;
-                row(None, t, Vector3::new(away.dot(&frame.x), away.dot(&frame.y), 0.0) * w, usize::MAX, Grad::zeros(), w * excess);
+                row(
+                    None,
+                    t,
+                    Vector3::new(away.dot(&frame.x), away.dot(&frame.y), 0.0) * w,
+                    usize::MAX,
+                    Grad::zeros(),
+                    w * excess,
+                );
             }
         }
         let w = self.weights.anchor;
         for (t, (frame, anchor)) in frames.iter().zip(self.anchors).enumerate() {
             let moved = frame.origin - anchor.origin;
             let lever = self.sizes[t][0] / 2.0;
-            let turn = anchor.x.cross(&frame.x).dot(&frame.z).atan2(anchor.x.dot(&frame.x));
-            row(None, t, Vector3::new(w, 0.0, 0.0), usize::MAX, Grad::zeros(), w * moved.dot(&frame.x));
-            row(None, t, Vector3::new(0.0, w, 0.0), usize::MAX, Grad::zeros(), w * moved.dot(&frame.y));
-            row(None, t, Vector3::new(0.0, 0.0, w * lever), usize::MAX, Grad::zeros(), w * lever * turn);
+            let turn = anchor
+                .x
+                .cross(&frame.x)
+                .dot(&frame.z)
+                .atan2(anchor.x.dot(&frame.x));
+            row(
+                None,
+                t,
+                Vector3::new(w, 0.0, 0.0),
+                usize::MAX,
+                Grad::zeros(),
+                w * moved.dot(&frame.x),
+            );
+            row(
+                None,
+                t,
+                Vector3::new(0.0, w, 0.0),
+                usize::MAX,
+                Grad::zeros(),
+                w * moved.dot(&frame.y),
+            );
+            row(
+                None,
+                t,
+                Vector3::new(0.0, 0.0, w * lever),
+                usize::MAX,
+                Grad::zeros(),
+                w * lever * turn,
+            );
         }
     }
 
@@ -180,7 +247,12 @@ impl Problem<'_> {
 
     fn normal_equations(&self, frames: &[Frame], beyond: &[Vector3<f64>]) -> Normal {
         let n = frames.len();
-        let mut eq = Normal { diag: vec![Matrix3::zeros(); n], off: vec![Matrix3::zeros(); self.contacts.len()], g: vec![Vector3::zeros(); n], value: 0.0 };
+        let mut eq = Normal {
+            diag: vec![Matrix3::zeros(); n],
+            off: vec![Matrix3::zeros(); self.contacts.len()],
+            g: vec![Vector3::zeros(); n],
+            value: 0.0,
+        };
         self.residuals(frames, beyond, |contact, a, ga, b, gb, r| {
             eq.value += r * r;
             eq.diag[a] += ga * ga.transpose();
@@ -202,7 +274,13 @@ impl Problem<'_> {
 }
 
 /// `y = (H + damping) x` for the block matrix of `eq`.
-fn multiply(eq: &Normal, damped: &[Matrix3<f64>], contacts: &[Contact], x: &[Vector3<f64>], y: &mut [Vector3<f64>]) {
+fn multiply(
+    eq: &Normal,
+    damped: &[Matrix3<f64>],
+    contacts: &[Contact],
+    x: &[Vector3<f64>],
+    y: &mut [Vector3<f64>],
+) {
     for (t, out) in y.iter_mut().enumerate() {
         *out = damped[t] * x[t];
     }
@@ -236,11 +314,22 @@ impl Problem<'_> {
     /// Levenberg-Marquardt from `frames` (changed in place) for at most `max_iterations`
     /// steps, asking `keep_going(fraction of iterations done)` between conjugate-gradient
     /// rounds; returns as soon as it answers `false`, with the best placement so far.
-    pub fn solve(&self, frames: &mut [Frame], max_iterations: usize, keep_going: &mut dyn FnMut(f64) -> bool) -> Progress {
+    pub fn solve(
+        &self,
+        frames: &mut [Frame],
+        max_iterations: usize,
+        keep_going: &mut dyn FnMut(f64) -> bool,
+    ) -> Progress {
         let n = frames.len();
         let mut beyond = beyond_edge(self.surface, frames);
         let start = self.value(frames, &beyond);
-        let mut progress = Progress { iterations: 0, converged: false, stopped: false, start, end: start };
+        let mut progress = Progress {
+            iterations: 0,
+            converged: false,
+            stopped: false,
+            start,
+            end: start,
+        };
         let mut mu = 1e-4;
         let mut current = start;
         let mut calm = 0;
@@ -248,8 +337,17 @@ impl Problem<'_> {
             progress.iterations += 1;
             let eq = self.normal_equations(frames, &beyond);
             current = eq.value;
-            let damped: Vec<Matrix3<f64>> = eq.diag.iter().map(|d| d + Matrix3::from_diagonal(&d.diagonal()) * mu + Matrix3::identity() * 1e-12).collect();
-            let inverse: Vec<Matrix3<f64>> = damped.iter().map(|d| d.try_inverse().unwrap_or_else(Matrix3::identity)).collect();
+            let damped: Vec<Matrix3<f64>> = eq
+                .diag
+                .iter()
+                .map(|d| {
+                    d + Matrix3::from_diagonal(&d.diagonal()) * mu + Matrix3::identity() * 1e-12
+                })
+                .collect();
+            let inverse: Vec<Matrix3<f64>> = damped
+                .iter()
+                .map(|d| d.try_inverse().unwrap_or_else(Matrix3::identity))
+                .collect();
             // Conjugate gradients on (H + damping) step = -g.
             let mut step = vec![Vector3::zeros(); n];
             let mut r: Vec<Vector3<f64>> = eq.g.iter().map(|g| -g).collect();
@@ -262,7 +360,9 @@ impl Problem<'_> {
                 if rz.abs() <= target {
                     break;
                 }
-                if round % 32 == 31 && !keep_going(progress.iterations as f64 / max_iterations as f64) {
+                if round % 32 == 31
+                    && !keep_going(progress.iterations as f64 / max_iterations as f64)
+                {
                     progress.stopped = true;
                     break;
                 }
@@ -294,7 +394,11 @@ impl Problem<'_> {
             }
             let value = self.value(frames, &beyond);
             if value < current {
-                calm = if current - value < CALM * current.max(1e-300) { calm + 1 } else { 0 };
+                calm = if current - value < CALM * current.max(1e-300) {
+                    calm + 1
+                } else {
+                    0
+                };
                 current = value;
                 mu = (mu / 3.0).max(1e-9);
                 if calm >= 2 {
@@ -331,7 +435,10 @@ impl Problem<'_> {
 
 /// How far beyond the surface's edge each of `frames` lies (see [`place`]).
 fn beyond_edge(surface: &SurfaceIndex, frames: &[Frame]) -> Vec<Vector3<f64>> {
-    frames.iter().map(|f| place(surface, &f.origin.coords, &f.x, &f.z).1).collect()
+    frames
+        .iter()
+        .map(|f| place(surface, &f.origin.coords, &f.x, &f.z).1)
+        .collect()
 }
 
 /// A frame with its origin at the surface point closest to `origin`, `z` the surface normal
@@ -340,7 +447,12 @@ fn beyond_edge(surface: &SurfaceIndex, frames: &[Frame]) -> Vec<Vector3<f64>> {
 /// edge, zero over the surface. Beyond the edge the surface is continued by its tangent
 /// plane there, so that tiles of the outer courses can move out past it (they are cut to it
 /// later).
-pub(crate) fn place(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vector3<f64>, up: &Vector3<f64>) -> (Frame, Vector3<f64>) {
+pub(crate) fn place(
+    surface: &SurfaceIndex,
+    origin: &Vector3<f64>,
+    along: &Vector3<f64>,
+    up: &Vector3<f64>,
+) -> (Frame, Vector3<f64>) {
     let (point, mut z, beyond) = match surface.closest(origin) {
         // Beyond the edge the offset to the closest point runs along the surface, not across.
         Some(sp) if sp.on_boundary || beside(&(origin - sp.point), &sp.face_normal) => {
@@ -354,11 +466,25 @@ pub(crate) fn place(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vecto
     if z.dot(up) < 0.0 {
         z = -z;
     }
-    let x = (along - z * along.dot(&z)).try_normalize(1e-12).unwrap_or_else(|| {
-        let other = if z.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
-        (other - z * other.dot(&z)).normalize()
-    });
-    (Frame { origin: point.into(), x, y: z.cross(&x), z }, beyond)
+    let x = (along - z * along.dot(&z))
+        .try_normalize(1e-12)
+        .unwrap_or_else(|| {
+            let other = if z.x.abs() < 0.9 {
+                Vector3::x()
+            } else {
+                Vector3::y()
+            };
+            (other - z * other.dot(&z)).normalize()
+        });
+    (
+        Frame {
+            origin: point.into(),
+            x,
+            y: z.cross(&x),
+            z,
+        },
+        beyond,
+    )
 }
 
 /// `step` held within a trust region: a tile moves at most a quarter of its width and turns
@@ -366,7 +492,9 @@ pub(crate) fn place(surface: &SurfaceIndex, origin: &Vector3<f64>, along: &Vecto
 /// step is shortened along its own direction.
 fn clamped(step: &Vector3<f64>, size: &[f64; 3]) -> Vector3<f64> {
     let reach = size[1];
-    let scale = (reach / step.xy().norm().max(1e-300)).min(MAX_TURN / step.z.abs().max(1e-300)).min(1.0);
+    let scale = (reach / step.xy().norm().max(1e-300))
+        .min(MAX_TURN / step.z.abs().max(1e-300))
+        .min(1.0);
     step * scale
 }
 
@@ -403,8 +531,14 @@ mod tests {
     /// A staggered 6 x 4 grid of unit quads with tiles jittered off their places.
     fn setup() -> (Vec<[f64; 3]>, Vec<Contact>, Vec<Frame>, SurfaceIndex) {
         let mesh = generate::grid(6, 4);
-        let pattern = crate::pattern::solve(&mesh, &crate::pattern::PatternOptions::default()).unwrap();
-        let spec = TileSpec { length: 1.9, width: 0.95, thickness: 0.1, joint: 0.1 };
+        let pattern =
+            crate::pattern::solve(&mesh, &crate::pattern::PatternOptions::default()).unwrap();
+        let spec = TileSpec {
+            length: 1.9,
+            width: 0.95,
+            thickness: 0.1,
+            joint: 0.1,
+        };
         let tiles = build(&mesh, &pattern, &spec).unwrap();
         let topology = Topology::new(&mesh).unwrap();
         let found = contacts::contacts(&mesh, &topology, &tiles);
@@ -421,21 +555,45 @@ mod tests {
                 place(&surface, &f.origin.coords, &x, &f.z).0
             })
             .collect();
-        (tiles.iter().map(|t| t.size).collect(), found, frames, surface)
+        (
+            tiles.iter().map(|t| t.size).collect(),
+            found,
+            frames,
+            surface,
+        )
     }
 
     #[test]
     fn gradient_matches_finite_differences() {
         let (sizes, found, frames, surface) = setup();
-        let bands: Vec<Option<BondBand>> = found.iter().map(|c| (c.sides[0].is_long()).then_some(BondBand { nominal: 0.2, tolerance: 0.1 })).collect();
-        let anchors: Vec<Frame> = frames.iter().map(|f| Frame { origin: f.origin + Vector3::new(0.1, -0.05, 0.0), ..*f }).collect();
+        let bands: Vec<Option<BondBand>> = found
+            .iter()
+            .map(|c| {
+                (c.sides[0].is_long()).then_some(BondBand {
+                    nominal: 0.2,
+                    tolerance: 0.1,
+                })
+            })
+            .collect();
+        let anchors: Vec<Frame> = frames
+            .iter()
+            .map(|f| Frame {
+                origin: f.origin + Vector3::new(0.1, -0.05, 0.0),
+                ..*f
+            })
+            .collect();
         let problem = Problem {
             sizes: &sizes,
             contacts: &found,
             bands: &bands,
             anchors: &anchors,
             joint: 0.1,
-            weights: Weights { overlap_slope: 4.0, bond: 1.0, anchor: 0.1, edge: 4.0 },
+            weights: Weights {
+                overlap_slope: 4.0,
+                bond: 1.0,
+                anchor: 0.1,
+                edge: 4.0,
+            },
             beyond_start: &[],
             surface: &surface,
         };
@@ -450,8 +608,13 @@ mod tests {
                 plus[t] = problem.moved(&frames[t], &step).0;
                 let mut minus = frames.clone();
                 minus[t] = problem.moved(&frames[t], &(-step)).0;
-                let numeric = (problem.value(&plus, &beyond) - problem.value(&minus, &beyond)) / (4.0 * h);
-                assert!((numeric - eq.g[t][k]).abs() < 1e-5 * (1.0 + numeric.abs()), "tile {t} axis {k}: {numeric} vs {}", eq.g[t][k]);
+                let numeric =
+                    (problem.value(&plus, &beyond) - problem.value(&minus, &beyond)) / (4.0 * h);
+                assert!(
+                    (numeric - eq.g[t][k]).abs() < 1e-5 * (1.0 + numeric.abs()),
+                    "tile {t} axis {k}: {numeric} vs {}",
+                    eq.g[t][k]
+                );
             }
         }
     }
