@@ -166,6 +166,28 @@ fn no_two_tiles_overlap_on_doubly_curved_shells() {
             overlaps.is_empty(),
             "{name}: overlapping tiles {overlaps:?}"
         );
+        // Filler pieces are cut to the room the fitted tiles leave: none of their joints is
+        // narrower than the joint, and most are the joint.
+        let filler = |t: usize| tiling.tiles[t].faces.is_empty();
+        let filler_gaps: Vec<f64> = tiling
+            .joints
+            .iter()
+            .filter(|j| filler(j.tiles[0]) || filler(j.tiles[1]))
+            .map(|j| j.gap)
+            .collect();
+        let exact = filler_gaps
+            .iter()
+            .filter(|&&g| (g - SPEC.joint).abs() <= 0.002)
+            .count();
+        assert!(
+            exact * 10 >= filler_gaps.len() * 8 && !filler_gaps.is_empty(),
+            "{name}: {exact} of {} filler joints within 2 mm",
+            filler_gaps.len()
+        );
+        assert!(
+            filler_gaps.iter().all(|&g| g >= SPEC.joint - 1e-6),
+            "{name}: filler joints {filler_gaps:?}"
+        );
         // Cutting to fit stays rare, and cut tiles are listed like boundary cuts.
         let cut = tiling
             .tiles

@@ -97,8 +97,7 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
             for b in grid.near(&tiles[a].frame.origin, reach) {
                 if b > a && !meeting.contains(&[a, b]) {
                     let s = separation(a, b);
-                    let stretch = tiles[a].size[1].min(tiles[b].size[1]) / 4.0;
-                    if s.gap < 0.0 || (s.gap < near && s.along >= stretch) {
+                    if s.gap < 0.0 || (s.gap < near && s.shares_joint(&tiles[a], &tiles[b])) {
                         found.push(Joint {
                             tiles: [a, b],
                             gap: s.gap,

@@ -12,6 +12,10 @@
 //! quad mesh's edge, where its leftover went), so the fill then starts from the tiles
 //! themselves: each tile's footprint (its face grown by half a joint, long sides split in
 //! two) is a cell, and the footprint's sides on the quad mesh's boundary are the open edges.
+//! The pieces are then not kept to their cells but cut to the room the fitted tiles (and the
+//! pieces placed before them) leave, a joint from each ([`super::fit::cut_to_room`]): cells
+//! continue footprints that the fit moved apart or together, so only the room left gives
+//! their joints the joint's width.
 
 use std::collections::HashMap;
 
@@ -30,8 +34,8 @@ pub(crate) struct Filler {
     /// The half-tile blank placed on the cell (uncut; the caller cuts it to the surface and
     /// to the cell).
     pub tile: Tile,
-    /// The cell's corners in the tile's frame, counter-clockwise: the piece may not leave it,
-    /// so that pieces on neighbouring cells do not overlap.
+    /// The cell's corners in the tile's frame, counter-clockwise: without the fit the piece
+    /// may not leave it, so that pieces on neighbouring cells do not overlap.
     pub cell: [Point2; 4],
     /// Index into the original tiles of the tile it grew from, or `tiles.len() + k` for the
     /// `k`-th filler.

@@ -278,6 +278,13 @@ pub fn finish(
     let mut kept = Vec::with_capacity(parents.len());
     let mut kept_index = vec![None; parents.len()];
     let mut dropped = Vec::new();
+    // After the fit, filler pieces are cut to the room the tiles (and the pieces before them)
+    // leave, not to their cells: the cells continue the tiles' footprints, which no longer
+    // meet where the fit moved the tiles apart or together.
+    let room = options.fit.is_some();
+    let reach = spec.length.hypot(spec.width) + spec.joint;
+    let mut placed = crate::geom::HashGrid::new(reach);
+    let mut outlines: Vec<Vec<Point3<f64>>> = Vec::new();
     for (i, mut tile) in candidates.enumerate() {
         let drop = |tile: &Tile, reason, kept_area, kept_width| DroppedTile {
             faces: tile.faces.clone(),
@@ -286,7 +293,7 @@ pub fn finish(
             kept_width,
         };
         let mut clipped = boundary.clip(&tile, options.tolerance);
-        if let Some(window) = &windows[i] {
+        if let (Some(window), false) = (&windows[i], room) {
             // A filler piece stays on its own cell.
             let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
             let rect = vec![vec![[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]]];
@@ -329,7 +336,23 @@ pub fn finish(
                 tile.cut = Some(cut);
             }
         }
+        if room && i >= fillers_from {
+            let near = placed.near(&tile.frame.origin, reach);
+            if !fit::cut_to_room(&mut tile, &kept, &outlines, &near, spec.joint) {
+                continue;
+            }
+            if let Some(cut) = &tile.cut {
+                if cut.kept_width() < options.min_kept_width {
+                    continue;
+                }
+                tile.kind = TileKind::Boundary;
+            }
+        }
         kept_index[i] = Some(kept.len());
+        if room {
+            placed.insert(kept.len(), &tile.frame.origin, &tile.frame.origin);
+            outlines.push(outline::world_corners(&tile));
+        }
         kept.push(tile);
     }
     // What the fit could not make fit is cut (after the boundary cut, so that filler pieces

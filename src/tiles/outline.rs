@@ -60,6 +60,15 @@ pub struct Separation {
     pub along: f64,
 }
 
+impl Separation {
+    /// Whether the two tiles `a` and `b` it was measured between share a joint: they run
+    /// along each other for at least a quarter of the narrower one's width (tiles that only
+    /// meet at a corner do not).
+    pub fn shares_joint(&self, a: &Tile, b: &Tile) -> bool {
+        self.along >= a.size[1].min(b.size[1]) / 4.0
+    }
+}
+
 /// Separation of the solids of `a` and `b` projected onto their mean plane.
 pub fn separation(a: &Tile, b: &Tile) -> Separation {
     separation_of(a, &world_corners(a), b, &world_corners(b))

@@ -71,6 +71,38 @@ pub fn resolve_overlaps(tiles: &mut [Tile], joint: f64, tolerance: f64) -> Vec<u
     cut
 }
 
+/// Cuts `piece` (a filler piece, placed after the tiles `placed` with their
+/// [`outline::world_corners`] in `outlines`) back to the room they leave: from every tile of
+/// `near` (indices into `placed`) that shares a joint with it (see
+/// [`Separation::shares_joint`]) or overlaps it, and that comes closer than `joint`, it keeps
+/// exactly a `joint` away, with one straight cut each, as a mason cuts a closing piece to the
+/// gap it fills. Returns `false` when nothing of it is left.
+pub(crate) fn cut_to_room(
+    piece: &mut Tile,
+    placed: &[Tile],
+    outlines: &[Vec<Point3<f64>>],
+    near: &[usize],
+    joint: f64,
+) -> bool {
+    let mut own = outline::world_corners(piece);
+    // A joint this much short of the nominal one is left as it is (a rounding error).
+    let slack = joint * 1e-6;
+    for &other in near {
+        let s = outline::separation_of(&placed[other], &outlines[other], piece, &own);
+        if s.gap >= joint - slack || (s.gap >= 0.0 && !s.shares_joint(&placed[other], piece)) {
+            continue;
+        }
+        match beyond(piece, &outlines[other], &s, joint) {
+            Some(cut) => {
+                piece.cut = Some(cut);
+                own = outline::world_corners(piece);
+            }
+            None => return false,
+        }
+    }
+    true
+}
+
 /// What remains of `tile` beyond `other` (the corners of a solid) along `s.axis` (pointing
 /// from `other` towards `tile`) plus `joint`: `None` when nothing does.
 fn beyond(tile: &Tile, other: &[Point3<f64>], s: &Separation, joint: f64) -> Option<Cut> {
@@ -151,6 +183,35 @@ mod tests {
         assert!((gap - 0.01).abs() < 1e-9, "{gap}");
         // 140 mm wide half tile keeps 140 - 30 - 10 = 100 mm.
         assert!((tiles[1].kept_area() - 0.10 * 0.14).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_filler_piece_is_cut_to_the_room_its_neighbours_leave() {
+        // A full tile at the origin and a half tile placed over its end's corner.
+        let placed = vec![
+            tile(0.0, 0.0, 0.0, vec![0, 1]),
+            tile(0.215, 0.13, 0.0, vec![2]),
+        ];
+        let outlines: Vec<_> = placed.iter().map(outline::world_corners).collect();
+        let near = [0, 1];
+        let gap = |piece: &Tile, t: usize| outline::separation(&placed[t], piece).gap;
+        // A 140 mm piece 5 mm beyond the full tile's end and 10 mm under the half tile: cut
+        // back to a joint from both.
+        let mut piece = tile(0.215, 0.0, 0.0, vec![9]);
+        assert!(cut_to_room(&mut piece, &placed, &outlines, &near, 0.01));
+        assert!((gap(&piece, 0) - 0.01).abs() < 1e-9, "{}", gap(&piece, 0));
+        assert!((gap(&piece, 1) - 0.01).abs() < 1e-9, "{}", gap(&piece, 1));
+        assert!((piece.kept_area() - 0.135 * 0.12).abs() < 1e-9);
+        // A piece 15 mm from the full tile, and one meeting it only at a corner 3 mm off:
+        // left whole.
+        for (x, y) in [(0.225, -0.05), (0.213, -0.143)] {
+            let mut piece = tile(x, y, 0.0, vec![9]);
+            assert!(cut_to_room(&mut piece, &placed, &outlines, &near, 0.01));
+            assert!(piece.cut.is_none(), "{x} {y}");
+        }
+        // A piece on top of a tile: nothing is left.
+        let mut piece = tile(0.0, 0.0, 0.0, vec![9]);
+        assert!(!cut_to_room(&mut piece, &placed, &outlines, &near, 0.01));
     }
 
     #[test]

@@ -19,6 +19,7 @@ pub(crate) mod contacts;
 mod cuts;
 mod solve;
 
+pub(crate) use cuts::cut_to_room;
 pub use cuts::resolve_overlaps;
 
 use std::time::Instant;
