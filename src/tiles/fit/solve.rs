@@ -511,7 +511,7 @@ fn beside(offset: &Vector3<f64>, normal: &Vector3<f64>) -> bool {
 
 /// A step that lowers the objective by less than this share of it is calm; two calm steps
 /// in a row end the fit (converged).
-const CALM: f64 = 1e-4;
+const CALM: f64 = 1e-3;
 
 /// Conjugate gradients stop once the preconditioned residual has fallen to this share of
 /// its start (the squared norm to 1e-4): each step only needs to point the right way, the
@@ -519,7 +519,7 @@ const CALM: f64 = 1e-4;
 const CG_REDUCTION: f64 = 1e-4;
 
 /// Most conjugate-gradient rounds per step.
-const CG_ROUNDS: usize = 4000;
+const CG_ROUNDS: usize = 250;
 
 #[cfg(test)]
 mod tests {
