@@ -1,4 +1,4 @@
-//! The C ABI: the only place with `unsafe` and `extern "C"`.
+//! The C ABI: our `extern "C"` exports (the outgoing solver bindings live in `solver`).
 //!
 //! Conventions, the same for every export:
 //! - every function returns a [`TpStatus`] (except `tp_version`, `tp_abi_version`,
@@ -17,7 +17,6 @@
 #![allow(unsafe_code)]
 #![allow(non_camel_case_types)]
 
-pub(crate) mod clp;
 mod mesh;
 mod pattern;
 mod remesh;

@@ -20,7 +20,7 @@ use std::time::Duration;
 use super::mip::Patch;
 use super::{Bond, DualGraph, PatternError, worker};
 use crate::control::Control;
-use crate::ffi::clp::{self, LinearProgram};
+use crate::solver::clp::{self, LinearProgram};
 
 /// Share of its time limit Clp is given, so that it stops and hands over its duals before
 /// the caller's deadline (it counts processor time and checks it between iterations).
