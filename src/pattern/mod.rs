@@ -1,7 +1,7 @@
 //! Stage 2 (paper sections 3.2-3.4): match adjacent quads into tiles.
 //!
 //! [`solve`] builds the [`DualGraph`] of a quad mesh and solves one of the paper's binary
-//! integer programs with CBC (through `good_lp`):
+//! integer programs with CBC (`solver::cbc`), written once in `program`:
 //!
 //! * [`Bond::Stack`]: maximum matching, eq. (1);
 //! * [`Bond::Staggered`]: eq. (2), each continuous joint costs `weight`;
@@ -25,6 +25,7 @@ mod dual;
 mod error;
 mod linear;
 mod mip;
+mod program;
 mod score;
 mod search;
 mod worker;
@@ -409,12 +410,13 @@ fn search_pattern(
             graph,
             bond,
             options.formulation,
-            &mip::Restriction {
+            &program::Restriction {
                 free: &free,
                 fixed: &fixed,
                 patch: None,
             },
             limit,
+            0.0,
             control,
             progress,
         )?;
