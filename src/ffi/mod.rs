@@ -38,7 +38,8 @@ use status::{Failure, TpStatus::*};
 /// that options structs can grow again without breaking callers built against older headers.
 /// 3: `TpTileOptions` grew (the fit stage) and `TpPatternOptions` too (courses); callers
 /// that initialise with `tp_*_options_init` keep working unchanged.
-pub const TP_ABI_VERSION: u32 = 3;
+/// 4: `TpPatternOptions` grew (`gap`); callers built against ABI 3 keep working unchanged.
+pub const TP_ABI_VERSION: u32 = 4;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;

@@ -103,6 +103,11 @@ pub struct PatternOptions {
     pub method: Method,
     /// Which way tiles may lie: any way (the paper's model) or only along courses.
     pub courses: Courses,
+    /// Relative gap at which the search stops, like a MIP solver's: once `(bound -
+    /// objective) / bound` (the pattern's [`Pattern::gap`]) is at most this. From 0 (the
+    /// default: prove optimality or reach the time limit) to 1. A pattern stopped by the gap
+    /// has [`SolveStatus::Feasible`] (or [`SolveStatus::Optimal`] when proven).
+    pub gap: f64,
 }
 
 /// How the pattern stage searches.
@@ -168,6 +173,7 @@ impl Default for PatternOptions {
             formulation: Formulation::default(),
             method: Method::default(),
             courses: Courses::Free,
+            gap: 0.0,
         }
     }
 }
@@ -274,6 +280,9 @@ pub fn solve_with(
 ) -> Result<Pattern, PatternError> {
     let started = Instant::now();
     validate_weights(options.bond)?;
+    if !(0.0..=1.0).contains(&options.gap) {
+        return Err(PatternError::InvalidGap { gap: options.gap });
+    }
     let mut excluded = vec![false; mesh.face_count()];
     for &f in &options.excluded_faces {
         *excluded.get_mut(f).ok_or(PatternError::FaceOutOfRange {
@@ -306,7 +315,7 @@ pub fn solve_with(
     let chosen = &found.chosen;
     let s = score(&graph, chosen, options.bond);
     let bound = found.bound.value.max(s.objective);
-    let gap = (bound - s.objective) / bound.abs().max(1.0);
+    let gap = relative_gap(s.objective, bound);
     let status = if gap <= 1e-9 {
         SolveStatus::Optimal
     } else if found.timed_out || Instant::now() >= deadline {
@@ -345,6 +354,12 @@ pub fn solve_with(
         bound_source: found.bound.source,
         seconds: started.elapsed().as_secs_f64(),
     })
+}
+
+/// `(bound - objective) / max(|bound|, 1)`: the pattern's [`Pattern::gap`], and what
+/// [`PatternOptions::gap`] is compared with.
+fn relative_gap(objective: f64, bound: f64) -> f64 {
+    (bound - objective) / bound.abs().max(1.0)
 }
 
 /// A proven upper bound and where it came from.
@@ -397,7 +412,11 @@ fn search_pattern(
     };
     // Every bound is rounded down to the next objective value a pattern can take.
     let rounded = |value: f64| bound::round_down(value, bond, 1.0, most_tiles as f64);
-    let proven = |best: &[bool], bound: Bound| bound.value - value(best) <= 1e-9;
+    // Done when the pattern meets its bound, or comes within the gap the caller accepts.
+    let proven = |best: &[bool], bound: Bound| {
+        let objective = value(best);
+        bound.value - objective <= 1e-9 || relative_gap(objective, bound.value) <= options.gap
+    };
     let mut timed_out = false;
 
     // The whole program on CBC for `limit`: keeps CBC's pattern if it beats `best`, and
@@ -416,7 +435,7 @@ fn search_pattern(
                 patch: None,
             },
             limit,
-            0.0,
+            options.gap,
             control,
             progress,
         )?;
