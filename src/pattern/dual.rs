@@ -134,11 +134,12 @@ impl DualGraph {
     /// chosen tiles adds to it: continuous joints at `-w` (eq. 2), shifted pairs at `+w`
     /// (eq. 3), none for the stack bond (eq. 1).
     pub fn bond_pairs(&self, bond: Bond) -> (&[[usize; 2]], f64) {
-        match bond {
-            Bond::Stack => (&[], 0.0),
-            Bond::Staggered { weight } => (&self.continuous_joints, -weight),
-            Bond::RunningBond { weight } => (&self.shifted_pairs, weight),
-        }
+        let relation: &[[usize; 2]] = match bond {
+            Bond::Stack => &[],
+            Bond::Staggered { .. } => &self.continuous_joints,
+            Bond::RunningBond { .. } => &self.shifted_pairs,
+        };
+        (relation, bond.pair_weight())
     }
 
     /// The candidate tile made of faces `a` and `b`, if they are adjacent usable quads.

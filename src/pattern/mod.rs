@@ -59,6 +59,20 @@ pub enum Bond {
     },
 }
 
+impl Bond {
+    /// What a pair of the bond's relation ([`DualGraph::bond_pairs`]) adds to the objective
+    /// when both its tiles are chosen: `-w` per continuous joint (eq. 2), `+w` per shifted
+    /// pair (eq. 3), nothing for the stack bond (eq. 1). A tile adds one in every bond; the
+    /// score, the program, the bounds and the heuristics all read the bond's terms from here.
+    pub fn pair_weight(self) -> f64 {
+        match self {
+            Bond::Stack => 0.0,
+            Bond::Staggered { weight } => -weight,
+            Bond::RunningBond { weight } => weight,
+        }
+    }
+}
+
 /// The paper's default weight for the staggered and running-bond objectives.
 pub const DEFAULT_WEIGHT: f64 = 0.5;
 
