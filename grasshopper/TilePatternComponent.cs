@@ -34,8 +34,10 @@ namespace TilePattern.Gh
             pManager.AddIntegerParameter("Excluded", "X", "Optional: faces that take part in no tile (openings, areas laid by hand)", GH_ParamAccess.list);
             // Appended inputs keep the indices above (saved definitions wire by index).
             pManager.AddIntegerParameter("Courses", "C", "1 = level: every tile along level courses (horizontal in the world's z), which the fit closes far better (default); 0 = free: tiles either way across any quad (the paper's model). For level courses remesh with quads of max((length + joint) / 2, width + joint) (Quad Remesh's Courses input)", GH_ParamAccess.item, (int)Courses.Level);
+            pManager.AddNumberParameter("Gap", "Gp", "Optional: stop once (bound - objective) / bound is at most this relative gap, like a MIP solver's (0 = prove optimality or reach the time limit, default; 0.01 = within 1 %)", GH_ParamAccess.item, 0.0);
             pManager[4].Optional = true;
             pManager[5].Optional = true;
+            pManager[7].Optional = true;
             var bond = (Param_Integer)pManager[1];
             bond.AddNamedValue("Stack", (int)Bond.Stack);
             bond.AddNamedValue("Staggered", (int)Bond.Staggered);
@@ -61,7 +63,7 @@ namespace TilePattern.Gh
         {
             Mesh mesh = null;
             int bond = 1, courses = (int)Courses.Level;
-            double weight = 0.5, timeLimit = 10.0;
+            double weight = 0.5, timeLimit = 10.0, gap = 0.0;
             var forced = new List<int>();
             var excluded = new List<int>();
             if (!DA.GetData(0, ref mesh) || mesh == null)
@@ -72,6 +74,7 @@ namespace TilePattern.Gh
             DA.GetDataList(4, forced);
             DA.GetDataList(5, excluded);
             DA.GetData(6, ref courses);
+            DA.GetData(7, ref gap);
             if (forced.Count % 2 != 0)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Forced pairs needs an even number of face indices (a0, b0, a1, b1, ...).");
@@ -87,7 +90,7 @@ namespace TilePattern.Gh
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
                 return;
             }
-            var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit, Courses = (Courses)courses };
+            var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit, Gap = gap, Courses = (Courses)courses };
             for (int k = 0; k < forced.Count; k += 2)
                 options.ForcedPairs.Add(new FacePair(forced[k], forced[k + 1]));
             foreach (int face in excluded)
@@ -95,7 +98,7 @@ namespace TilePattern.Gh
             PolyMesh quads = null;
             if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh)))
                 return;
-            var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded).Add(courses);
+            var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded).Add(courses).Add(gap);
             // Not disposed here: the pattern travels downstream; its SafeHandles free the native
             // memory (announced to the GC) once Grasshopper lets go of it.
             Pattern pattern = Solve(DA, key, (token, progress) => TilePatternEngine.Match(quads, options, progress, token));

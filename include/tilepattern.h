@@ -19,8 +19,9 @@
  * that options structs can grow again without breaking callers built against older headers.
  * 3: `TpTileOptions` grew (the fit stage) and `TpPatternOptions` too (courses); callers
  * that initialise with `tp_*_options_init` keep working unchanged.
+ * 4: `TpPatternOptions` grew (`gap`); callers built against ABI 3 keep working unchanged.
  */
-#define TP_ABI_VERSION 3
+#define TP_ABI_VERSION 4
 
 /**
  * Stage numbers passed to a progress callback.
@@ -289,6 +290,13 @@ typedef struct TpPatternOptions {
    * Up direction for level courses, xyz; default (0, 0, 1). Since ABI 3.
    */
   double up[3];
+  /**
+   * Relative gap at which the search stops, like a MIP solver's: once (bound - objective)
+   * / bound is at most this; from 0 (default: prove optimality or reach the time limit)
+   * to 1. A solve stopped by the gap has status `TP_SOLVE_FEASIBLE` (`TP_SOLVE_OPTIMAL`
+   * when proven). Since ABI 4.
+   */
+  double gap;
 } TpPatternOptions;
 
 /**

@@ -240,6 +240,61 @@ fn errors_say_what_is_wrong_and_exit_non_zero() {
     let out = tilepattern(&["demo", "--out", s(&dir), "--weight=-1"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("bond weight -1"));
+
+    let out = tilepattern(&["demo", "--out", s(&dir), "--gap", "2"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("relative gap 2"));
+}
+
+#[test]
+fn match_stops_at_the_gap_it_is_given() {
+    // A 10 x 10 grid of unit quads: the paper's plain program on CBC would prove it only by
+    // branching; with --gap 0.05 it stops at the first pattern within 5 % of its bound.
+    let dir = scratch("gap");
+    let quads = dir.join("grid.obj");
+    let mut text = String::new();
+    for j in 0..=10 {
+        for i in 0..=10 {
+            text += &format!("v {i} {j} 0\n");
+        }
+    }
+    for j in 0..10 {
+        for i in 0..10 {
+            let v = |i: usize, j: usize| j * 11 + i + 1;
+            text += &format!(
+                "f {} {} {} {}\n",
+                v(i, j),
+                v(i + 1, j),
+                v(i + 1, j + 1),
+                v(i, j + 1)
+            );
+        }
+    }
+    std::fs::write(&quads, text).unwrap();
+    let pairs = dir.join("pairs.json");
+    let out = tilepattern(&[
+        "match",
+        s(&quads),
+        "--method",
+        "mip",
+        "--formulation",
+        "paper",
+        "--time-limit",
+        "60",
+        "--gap",
+        "0.05",
+        "--json",
+        s(&pairs),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let found = json(&pairs);
+    assert_eq!(found["status"], "feasible");
+    let gap = found["gap"].as_f64().unwrap();
+    assert!(gap > 0.0 && gap <= 0.05, "gap {gap}");
 }
 
 /// A triangulated saddle z = (x^2 - y^2) / 4 over [-1, 1]^2, as OBJ text.

@@ -96,6 +96,8 @@ namespace TilePattern.Tests
             Fails<InvalidArgumentException>(() => TilePatternEngine.Match(grid, new PatternOptions { Formulation = (Formulation)3 }), "formulation 3");
             Assert.Throws<InvalidArgumentException>(() => TilePatternEngine.Match(grid, new PatternOptions { Weight = double.NaN }));
             Fails<InvalidArgumentException>(() => TilePatternEngine.Match(grid, new PatternOptions { TimeLimitSeconds = -1 }), "time limit");
+            Fails<InvalidArgumentException>(() => TilePatternEngine.Match(grid, new PatternOptions { Gap = 1.5 }), "relative gap");
+            Fails<InvalidArgumentException>(() => TilePatternEngine.Match(grid, new PatternOptions { Gap = double.NaN }), "relative gap");
             var far = new PatternOptions();
             far.ForcedPairs.Add(new FacePair(0, 15));
             Fails<InvalidArgumentException>(() => TilePatternEngine.Match(grid, far), "[0, 15]");

@@ -131,6 +131,20 @@ namespace TilePattern.Tests
         }
 
         [Test]
+        public void AGapStopsTheSearchOnceCloseEnough()
+        {
+            // The paper's plain program on CBC would prove 10 x 10 (w = 0.5) only by branching;
+            // with a 5 % gap it stops at the first pattern that close to its bound.
+            Assert.AreEqual(0.0, new PatternOptions().Gap);
+            var options = new PatternOptions { Method = SolveMethod.Mip, Formulation = Formulation.Paper, TimeLimitSeconds = 60, Gap = 0.05 };
+            using (Pattern pattern = TilePatternEngine.Match(TestMeshes.Grid(10, 10), options))
+            {
+                Assert.AreEqual(SolveStatus.Feasible, pattern.Status);
+                Assert.That(pattern.Gap, Is.GreaterThan(0.0).And.LessThanOrEqualTo(0.05));
+            }
+        }
+
+        [Test]
         public void PaperFigure5OnATenByTenGrid()
         {
             // The C tests' case: 49 tiles, no continuous joint, proven optimal.

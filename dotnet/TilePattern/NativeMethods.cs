@@ -16,7 +16,8 @@ namespace TilePattern
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     internal delegate int TpProgressCallback(IntPtr user, uint stage, double fraction);
 
-    /// <summary>Mirror of TpPatternOptions (96 bytes on 64-bit targets; 64 before ABI 3);
+    /// <summary>Mirror of TpPatternOptions (104 bytes on 64-bit targets; 96 before ABI 4, 64
+    /// before ABI 3);
     /// <c>double up[3]</c> is spelled as three doubles.</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct TpPatternOptions
@@ -36,6 +37,8 @@ namespace TilePattern
         public double up_x;
         public double up_y;
         public double up_z;
+        // Since ABI 4.
+        public double gap;
     }
 
     /// <summary>Mirror of TpPatternSummary (96 bytes on 64-bit targets).</summary>
@@ -126,7 +129,7 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 3;
+        internal const int TP_ABI_VERSION = 4;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const uint TP_STAGE_TILES = 3;

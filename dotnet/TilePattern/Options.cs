@@ -209,6 +209,7 @@ namespace TilePattern
             Bond = (Bond)d.bond;
             Weight = d.weight;
             TimeLimitSeconds = d.time_limit_seconds;
+            Gap = d.gap;
             Method = (SolveMethod)d.method;
             Formulation = (Formulation)d.formulation;
             ForcedPairs = new List<FacePair>();
@@ -224,6 +225,11 @@ namespace TilePattern
 
         /// <summary>Wall-clock limit in seconds; 0 returns the greedy start at once.</summary>
         public double TimeLimitSeconds { get; set; }
+
+        /// <summary>Relative gap at which the search stops: once (bound - objective) / bound is
+        /// at most this (like a MIP solver's gap), from 0 (default: prove optimality or reach the
+        /// time limit) to 1.</summary>
+        public double Gap { get; set; }
 
         public SolveMethod Method { get; set; }
 
@@ -252,6 +258,7 @@ namespace TilePattern
             o.bond = (int)Bond;
             o.weight = Weight;
             o.time_limit_seconds = TimeLimitSeconds;
+            o.gap = Gap;
             o.method = (int)Method;
             o.formulation = (int)Formulation;
             o.courses = (int)Courses;

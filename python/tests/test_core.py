@@ -138,6 +138,13 @@ def test_stack_bond_forced_pairs_and_excluded_faces(quads):
     assert paper.optimal and len(paper.pairs) == 40
 
 
+def test_a_gap_stops_the_search_once_close_enough():
+    # The paper's plain program on CBC would prove 10 x 10 (w = 0.5) only by branching; with
+    # a 5 % gap it stops at the first pattern that close to its bound.
+    pattern = tp.match(*grid(10, 10), method="mip", formulation="paper", time_limit=60, gap=0.05)
+    assert pattern.status == "feasible" and 0 < pattern.gap <= 0.05
+
+
 def test_zero_time_limit_returns_the_greedy_start(quads):
     v, f = quads
     pattern = tp.match(v, f, time_limit=0)

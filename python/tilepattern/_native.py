@@ -47,7 +47,7 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 3
+ABI_VERSION = 4
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
@@ -330,6 +330,8 @@ class TpPatternOptions(Structure):
         # Since ABI 3.
         ("courses", c_int32),
         ("up", c_double * 3),
+        # Since ABI 4.
+        ("gap", c_double),
     ]
 
 

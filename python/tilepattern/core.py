@@ -458,6 +458,7 @@ def match(
     progress: Optional[Progress] = None,
     courses: str = "free",
     up: Sequence[float] = (0.0, 0.0, 1.0),
+    gap: float = 0.0,
 ) -> Pattern:
     """Match adjacent quads into tiles with the paper's integer programs (stage 2).
 
@@ -496,6 +497,11 @@ def match(
         level courses with :func:`quad_edge` ``(..., courses="level")``.
     up : array_like (3,), optional
         Up direction of level courses; default ``(0, 0, 1)``.
+    gap : float, optional
+        Relative gap at which the search stops, like a MIP solver's: once
+        ``(bound - objective) / bound`` is at most this (from 0 to 1). Default 0: prove
+        optimality or reach the time limit. A solve stopped by the gap has
+        ``status="feasible"`` (or ``"optimal"`` when proven).
 
     Returns
     -------
@@ -539,6 +545,7 @@ def match(
     options.up[:] = _three(up, "up")
     options.weight = float(weight)
     options.time_limit_seconds = float(time_limit)
+    options.gap = float(gap)
     forced = _index_array(forced_pairs, "forced_pairs", shape_last=2)
     if forced.size % 2:
         raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "forced_pairs must be pairs of face indices")

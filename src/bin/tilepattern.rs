@@ -172,6 +172,10 @@ struct PatternArgs {
     /// Solver time limit in seconds (wall clock). 0 returns the greedy start without solving.
     #[arg(long, default_value_t = 60.0)]
     time_limit: f64,
+    /// Stop once the relative gap (bound - objective) / bound is at most this, like a MIP
+    /// solver's gap: 0 proves optimality (or runs to the time limit), 0.01 stops within 1 %.
+    #[arg(long, default_value_t = 0.0)]
+    gap: f64,
     /// How the integer program is written; both reach the same optimum.
     #[arg(long, value_enum, default_value_t = FormulationArg::Strengthened)]
     formulation: FormulationArg,
@@ -611,6 +615,7 @@ impl PatternArgs {
             } else {
                 Courses::Free
             },
+            gap: self.gap,
         })
     }
 }

@@ -1,4 +1,4 @@
-//! The C ABI: the only place with `unsafe` and `extern "C"`.
+//! The C ABI: our `extern "C"` exports (the outgoing solver bindings live in `solver`).
 //!
 //! Conventions, the same for every export:
 //! - every function returns a [`TpStatus`] (except `tp_version`, `tp_abi_version`,
@@ -17,7 +17,6 @@
 #![allow(unsafe_code)]
 #![allow(non_camel_case_types)]
 
-pub(crate) mod clp;
 mod mesh;
 mod pattern;
 mod remesh;
@@ -39,7 +38,8 @@ use status::{Failure, TpStatus::*};
 /// that options structs can grow again without breaking callers built against older headers.
 /// 3: `TpTileOptions` grew (the fit stage) and `TpPatternOptions` too (courses); callers
 /// that initialise with `tp_*_options_init` keep working unchanged.
-pub const TP_ABI_VERSION: u32 = 3;
+/// 4: `TpPatternOptions` grew (`gap`); callers built against ABI 3 keep working unchanged.
+pub const TP_ABI_VERSION: u32 = 4;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;

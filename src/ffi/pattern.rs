@@ -74,6 +74,11 @@ pub struct TpPatternOptions {
     pub courses: i32,
     /// Up direction for level courses, xyz; default (0, 0, 1). Since ABI 3.
     pub up: [f64; 3],
+    /// Relative gap at which the search stops, like a MIP solver's: once (bound - objective)
+    /// / bound is at most this; from 0 (default: prove optimality or reach the time limit)
+    /// to 1. A solve stopped by the gap has status `TP_SOLVE_FEASIBLE` (`TP_SOLVE_OPTIMAL`
+    /// when proven). Since ABI 4.
+    pub gap: f64,
 }
 
 /// Tiles may lie either way across any quad (the paper's eqs. 1-3).
@@ -134,6 +139,7 @@ pub extern "C" fn tp_pattern_options_default() -> TpPatternOptions {
         excluded_face_count: 0,
         courses: TP_COURSES_FREE,
         up: [0.0, 0.0, 1.0],
+        gap: 0.0,
     }
 }
 
@@ -271,6 +277,7 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
                 )));
             }
         },
+        gap: raw.gap,
     })
 }
 

@@ -79,6 +79,7 @@ impl From<PatternError> for Failure {
             PatternError::InvalidWeight { .. }
             | PatternError::WeightTooLarge { .. }
             | PatternError::InvalidTimeLimit { .. }
+            | PatternError::InvalidGap { .. }
             | PatternError::FaceOutOfRange { .. }
             | PatternError::ForcedNotAdjacent { .. }
             | PatternError::ForcedTwice { .. }

@@ -43,12 +43,9 @@ pub(super) fn maximum_matching(graph: &DualGraph, free: &[bool], fixed: &[bool])
 /// most two shifted pairs per tile.
 pub(super) fn from_tile_count(graph: &DualGraph, bond: Bond, max_tiles: usize) -> f64 {
     let tiles = max_tiles as f64;
-    match bond {
-        Bond::Stack | Bond::Staggered { .. } => tiles,
-        Bond::RunningBond { weight } => {
-            tiles + weight * (2.0 * tiles).min(graph.shifted_pairs().len() as f64)
-        }
-    }
+    // Only a reward can raise the objective above the tile count.
+    let (relation, per_pair) = graph.bond_pairs(bond);
+    tiles + per_pair.max(0.0) * (2.0 * tiles).min(relation.len() as f64)
 }
 
 /// Most values of the pair count `b` that [`round_down`] tries before it gives up rounding
@@ -64,11 +61,8 @@ const MOST_PAIR_COUNTS: usize = 100_000;
 /// value of this form (CBC reports e.g. 96.6 where the optimum 96.5 is proven), so rounding
 /// it down to the form keeps it valid and tightens it by up to one step.
 pub(super) fn round_down(bound: f64, bond: Bond, step: f64, most: f64) -> f64 {
-    let (weight, reward) = match bond {
-        Bond::Stack => (0.0, false),
-        Bond::Staggered { weight } => (weight, false),
-        Bond::RunningBond { weight } => (weight, true),
-    };
+    let per_pair = bond.pair_weight();
+    let (weight, reward) = (per_pair.abs(), per_pair > 0.0);
     if !bound.is_finite() {
         return bound;
     }

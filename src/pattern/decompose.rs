@@ -1,5 +1,5 @@
 //! Decomposition bound: the faces are split into patches of a few hundred faces and the
-//! relaxed program of every patch ([`mip::Patch`]) is solved exactly. Every pattern of the
+//! relaxed program of every patch ([`Patch`]) is solved exactly. Every pattern of the
 //! whole mesh, cut along the patch borders, is a solution of each patch's relaxation of
 //! the same value share, so the patch optima add up to an upper bound on the whole
 //! optimum. Unlike the maximum matching, the bound sees the half tiles and continuous
@@ -15,7 +15,8 @@ use std::collections::VecDeque;
 use std::time::Instant;
 
 use super::bound;
-use super::mip::{self, Patch, Restriction};
+use super::mip;
+use super::program::{Patch, Restriction};
 use super::{Bond, DualGraph, Formulation, PatternError, linear};
 use crate::control::Control;
 
@@ -413,6 +414,7 @@ pub(super) fn bound(
                 Formulation::Strengthened,
                 &restriction,
                 share,
+                0.0,
                 control,
                 progress,
             )?;

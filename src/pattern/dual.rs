@@ -24,6 +24,7 @@ pub struct DualGraph {
     continuous_joints: Vec<[usize; 2]>,
     shifted_pairs: Vec<[usize; 2]>,
     regular_vertex_stars: Vec<[usize; 4]>,
+    star_joints: Vec<[usize; 2]>,
 }
 
 impl DualGraph {
@@ -61,8 +62,11 @@ impl DualGraph {
             }
         }
 
-        let (continuous_joints, regular_vertex_stars) =
-            continuous_joints(mesh, topology, &edge_tile);
+        let Joints {
+            pairs: continuous_joints,
+            stars: regular_vertex_stars,
+            star_joints,
+        } = continuous_joints(mesh, topology, &edge_tile);
         let shifted_pairs = shifted_pairs(topology, &edge_tile, &tiles);
         Self {
             face_count: mesh.face_count(),
@@ -71,6 +75,7 @@ impl DualGraph {
             continuous_joints,
             shifted_pairs,
             regular_vertex_stars,
+            star_joints,
         }
     }
 
@@ -110,6 +115,13 @@ impl DualGraph {
         &self.regular_vertex_stars
     }
 
+    /// For every star of [`DualGraph::regular_vertex_stars`], the indices in
+    /// [`DualGraph::continuous_joints`] of its two joints `(a, c)` and `(b, d)`: each joint
+    /// belongs to the one vertex where it was found.
+    pub fn regular_vertex_star_joints(&self) -> &[[usize; 2]] {
+        &self.star_joints
+    }
+
     /// Faces sharing a candidate tile with face `f`.
     pub fn neighbours(&self, f: usize) -> impl Iterator<Item = usize> + '_ {
         self.face_tiles[f].iter().map(move |&t| {
@@ -122,11 +134,12 @@ impl DualGraph {
     /// chosen tiles adds to it: continuous joints at `-w` (eq. 2), shifted pairs at `+w`
     /// (eq. 3), none for the stack bond (eq. 1).
     pub fn bond_pairs(&self, bond: Bond) -> (&[[usize; 2]], f64) {
-        match bond {
-            Bond::Stack => (&[], 0.0),
-            Bond::Staggered { weight } => (&self.continuous_joints, -weight),
-            Bond::RunningBond { weight } => (&self.shifted_pairs, weight),
-        }
+        let relation: &[[usize; 2]] = match bond {
+            Bond::Stack => &[],
+            Bond::Staggered { .. } => &self.continuous_joints,
+            Bond::RunningBond { .. } => &self.shifted_pairs,
+        };
+        (relation, bond.pair_weight())
     }
 
     /// The candidate tile made of faces `a` and `b`, if they are adjacent usable quads.
@@ -140,14 +153,22 @@ impl DualGraph {
     }
 }
 
-/// Continuous-joint pairs and full vertex stars, vertex by vertex in index order.
-fn continuous_joints(
-    mesh: &PolyMesh,
-    topology: &Topology,
-    edge_tile: &[Option<usize>],
-) -> (Vec<[usize; 2]>, Vec<[usize; 4]>) {
+/// What [`continuous_joints`] finds.
+struct Joints {
+    /// Continuous-joint pairs.
+    pairs: Vec<[usize; 2]>,
+    /// Full vertex stars.
+    stars: Vec<[usize; 4]>,
+    /// Indices in `pairs` of each star's two joints.
+    star_joints: Vec<[usize; 2]>,
+}
+
+/// Continuous-joint pairs and full vertex stars with the indices of their two joints,
+/// vertex by vertex in index order.
+fn continuous_joints(mesh: &PolyMesh, topology: &Topology, edge_tile: &[Option<usize>]) -> Joints {
     let mut pairs = Vec::new();
     let mut stars = Vec::new();
+    let mut star_joints = Vec::new();
     for v in 0..mesh.positions().len() {
         let around = topology.vertex_edges(v);
         let Some(first) = around.first().copied() else {
@@ -173,10 +194,16 @@ fn continuous_joints(
             }
         }
         if let [Some(a), Some(b), Some(c), Some(d)] = cycle {
+            // Both joints were just pushed, (a, c) first.
             stars.push([a, b, c, d]);
+            star_joints.push([pairs.len() - 2, pairs.len() - 1]);
         }
     }
-    (pairs, stars)
+    Joints {
+        pairs,
+        stars,
+        star_joints,
+    }
 }
 
 /// Shifted pairs, found from each interior edge `s = (p, q)` between faces `f` and `g`: the

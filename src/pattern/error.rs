@@ -62,6 +62,14 @@ pub enum PatternError {
         /// The limit given.
         seconds: f64,
     },
+    /// The relative gap to stop at is not a number from 0 to 1.
+    #[error(
+        "relative gap {gap:?} is not a number from 0 to 1 (0 proves optimality, 0.01 stops within 1 %)"
+    )]
+    InvalidGap {
+        /// The gap given.
+        gap: f64,
+    },
     /// The up direction of level courses is not a finite non-zero vector.
     #[error("courses up direction {up:?} is not a finite non-zero vector")]
     InvalidUp {

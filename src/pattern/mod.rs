@@ -1,7 +1,7 @@
 //! Stage 2 (paper sections 3.2-3.4): match adjacent quads into tiles.
 //!
 //! [`solve`] builds the [`DualGraph`] of a quad mesh and solves one of the paper's binary
-//! integer programs with CBC (through `good_lp`):
+//! integer programs with CBC (`solver::cbc`), written once in `program`:
 //!
 //! * [`Bond::Stack`]: maximum matching, eq. (1);
 //! * [`Bond::Staggered`]: eq. (2), each continuous joint costs `weight`;
@@ -22,9 +22,11 @@ mod construct;
 mod courses;
 mod decompose;
 mod dual;
+mod engine;
 mod error;
 mod linear;
 mod mip;
+mod program;
 mod score;
 mod search;
 mod worker;
@@ -56,6 +58,20 @@ pub enum Bond {
         /// The paper's w_R (default 0.5).
         weight: f64,
     },
+}
+
+impl Bond {
+    /// What a pair of the bond's relation ([`DualGraph::bond_pairs`]) adds to the objective
+    /// when both its tiles are chosen: `-w` per continuous joint (eq. 2), `+w` per shifted
+    /// pair (eq. 3), nothing for the stack bond (eq. 1). A tile adds one in every bond; the
+    /// score, the program, the bounds and the heuristics all read the bond's terms from here.
+    pub fn pair_weight(self) -> f64 {
+        match self {
+            Bond::Stack => 0.0,
+            Bond::Staggered { weight } => -weight,
+            Bond::RunningBond { weight } => weight,
+        }
+    }
 }
 
 /// The paper's default weight for the staggered and running-bond objectives.
@@ -102,6 +118,11 @@ pub struct PatternOptions {
     pub method: Method,
     /// Which way tiles may lie: any way (the paper's model) or only along courses.
     pub courses: Courses,
+    /// Relative gap at which the search stops, like a MIP solver's: once `(bound -
+    /// objective) / bound` (the pattern's [`Pattern::gap`]) is at most this. From 0 (the
+    /// default: prove optimality or reach the time limit) to 1. A pattern stopped by the gap
+    /// has [`SolveStatus::Feasible`] (or [`SolveStatus::Optimal`] when proven).
+    pub gap: f64,
 }
 
 /// How the pattern stage searches.
@@ -123,38 +144,6 @@ pub enum Method {
     Mip,
 }
 
-/// Faces per patch in the first decomposition bound of [`Method::Auto`]: patches this small
-/// take CBC some 50 ms each. Meshes this small get the whole program at once.
-const FIRST_PATCH_SIZE: usize = 200;
-/// Faces per patch in the first round of linear patch relaxations: a few milliseconds each.
-const FIRST_LINEAR_PATCH_SIZE: usize = 200;
-/// How much longer a round of linear patch relaxations takes than the round before, with
-/// patches twice as large and half as many (the barrier's time grows about as size^2 here,
-/// plus room for the patches it skips in the smaller rounds).
-const LINEAR_ROUND_GROWTH: f64 = 3.0;
-/// Largest patches: a few seconds each for CBC.
-const LAST_PATCH_SIZE: usize = 1600;
-/// Largest mesh [`Method::Auto`] gives to CBC whole. CBC cannot be stopped while Clp solves
-/// the root LP, which on larger staggered programs can take minutes (6589 faces: 110 s), and
-/// a solve past its time limit would keep the solver busy for later calls.
-const WHOLE_MODEL_FACES: usize = 2000;
-/// Share of the time left after the first annealing run that the linear relaxation of the
-/// whole program may take; it is solved only if expected to finish in that time.
-const LINEAR_SHARE: f64 = 0.9;
-/// Share of the time limit the first annealing run may take, and of the time left the
-/// later ones.
-const FIRST_ANNEAL_SHARE: f64 = 0.5;
-const ANNEAL_SHARE: f64 = 0.3;
-/// Share of the time left that annealing may take once the whole linear relaxation is
-/// solved (the run ends sooner on small meshes, whose moves are capped per face).
-const SOLVED_ANNEAL_SHARE: f64 = 0.9;
-/// Each round's exact windows get the time left divided by this: after annealing they
-/// rarely improve the pattern, and the bound needs the time more.
-const WINDOW_SHARE: u32 = 6;
-/// A start this far below the matching bound (or farther) is annealed from the full first
-/// temperature; closer starts from proportionally cooler ones.
-const MELT_GAP: f64 = 0.01;
-
 impl Default for PatternOptions {
     fn default() -> Self {
         Self {
@@ -167,6 +156,7 @@ impl Default for PatternOptions {
             formulation: Formulation::default(),
             method: Method::default(),
             courses: Courses::Free,
+            gap: 0.0,
         }
     }
 }
@@ -273,6 +263,9 @@ pub fn solve_with(
 ) -> Result<Pattern, PatternError> {
     let started = Instant::now();
     validate_weights(options.bond)?;
+    if !(0.0..=1.0).contains(&options.gap) {
+        return Err(PatternError::InvalidGap { gap: options.gap });
+    }
     let mut excluded = vec![false; mesh.face_count()];
     for &f in &options.excluded_faces {
         *excluded.get_mut(f).ok_or(PatternError::FaceOutOfRange {
@@ -298,14 +291,15 @@ pub fn solve_with(
     if !control.keep_going(0.0) {
         return Err(PatternError::Cancelled);
     }
-    let found = search_pattern(
+    let found = engine::Engine::new(
         &graph, &topology, options, &forced, deadline, control, &progress,
-    )?;
+    )
+    .run()?;
     control.keep_going(1.0);
     let chosen = &found.chosen;
     let s = score(&graph, chosen, options.bond);
     let bound = found.bound.value.max(s.objective);
-    let gap = (bound - s.objective) / bound.abs().max(1.0);
+    let gap = relative_gap(s.objective, bound);
     let status = if gap <= 1e-9 {
         SolveStatus::Optimal
     } else if found.timed_out || Instant::now() >= deadline {
@@ -346,6 +340,12 @@ pub fn solve_with(
     })
 }
 
+/// `(bound - objective) / max(|bound|, 1)`: the pattern's [`Pattern::gap`], and what
+/// [`PatternOptions::gap`] is compared with.
+fn relative_gap(objective: f64, bound: f64) -> f64 {
+    (bound - objective) / bound.abs().max(1.0)
+}
+
 /// A proven upper bound and where it came from.
 #[derive(Clone, Copy)]
 struct Bound {
@@ -368,276 +368,6 @@ struct Found {
     bound: Bound,
     /// A solver stopped on the time limit (CBC stops a little before the caller's deadline).
     timed_out: bool,
-}
-
-/// Runs the chosen [`Method`] until the pattern meets its bound or the deadline passes.
-fn search_pattern(
-    graph: &DualGraph,
-    topology: &Topology,
-    options: &PatternOptions,
-    forced: &[usize],
-    deadline: Instant,
-    control: &mut Control<'_>,
-    progress: &impl Fn() -> f64,
-) -> Result<Found, PatternError> {
-    let bond = options.bond;
-    let mut fixed = vec![false; graph.tiles().len()];
-    forced.iter().for_each(|&t| fixed[t] = true);
-    let free: Vec<bool> = fixed.iter().map(|f| !f).collect();
-    let union =
-        |a: &[bool], b: &[bool]| -> Vec<bool> { a.iter().zip(b).map(|(x, y)| *x || *y).collect() };
-    let value = |chosen: &[bool]| score(graph, chosen, bond).objective;
-
-    let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
-    let most_tiles = matching.iter().filter(|&&c| c).count();
-    let mut bound = Bound {
-        value: bound::from_tile_count(graph, bond, most_tiles),
-        source: BoundSource::Matching,
-    };
-    // Every bound is rounded down to the next objective value a pattern can take.
-    let rounded = |value: f64| bound::round_down(value, bond, 1.0, most_tiles as f64);
-    let proven = |best: &[bool], bound: Bound| bound.value - value(best) <= 1e-9;
-    let mut timed_out = false;
-
-    // The whole program on CBC for `limit`: keeps CBC's pattern if it beats `best`, and
-    // returns CBC's bound and whether it stopped on time.
-    let whole_model = |best: &mut Vec<bool>,
-                       limit: Duration,
-                       control: &mut Control<'_>|
-     -> Result<(f64, bool), PatternError> {
-        let outcome = mip::solve(
-            graph,
-            bond,
-            options.formulation,
-            &mip::Restriction {
-                free: &free,
-                fixed: &fixed,
-                patch: None,
-            },
-            limit,
-            control,
-            progress,
-        )?;
-        if let Some(found) = outcome.chosen.map(|c| union(&c, &fixed)) {
-            if search::is_matching(graph, &found) && value(&found) > value(best) {
-                *best = found;
-            }
-        }
-        Ok((outcome.bound, outcome.timed_out))
-    };
-
-    if options.method == Method::Mip {
-        // The paper's route: the whole program, from a greedy start kept as a fallback.
-        let mut best = fixed.clone();
-        construct::complete_greedily(graph, bond, &fixed, &mut best);
-        let (cbc_bound, timed_out) = whole_model(
-            &mut best,
-            deadline.saturating_duration_since(Instant::now()),
-            control,
-        )?;
-        bound.tighten(rounded(cbc_bound), BoundSource::WholeProgram);
-        return Ok(Found {
-            chosen: best,
-            bound,
-            timed_out,
-        });
-    }
-
-    // Three cheap starts, each strong where the others are weak: courses parallel to the
-    // boundary (the optimal stagger of regular patches), the running bond along quad strips
-    // (no joints in the interior), the maximum matching (fewest half tiles).
-    let mut starts = if bond == Bond::Stack {
-        vec![matching]
-    } else {
-        let courses = construct::boundary_courses(graph, topology, bond, &fixed);
-        let laid = union(
-            &construct::running_bond(graph, topology, bond, &fixed),
-            &fixed,
-        );
-        vec![courses, laid, matching]
-    };
-    starts.sort_by(|a, b| value(b).total_cmp(&value(a)));
-    let mut best = starts.swap_remove(0);
-    let faces = graph.face_count();
-    let left = || deadline.saturating_duration_since(Instant::now());
-    let anneal = |best: &mut Vec<bool>,
-                  share: f64,
-                  temperature: f64,
-                  seed: u64,
-                  control: &mut Control<'_>|
-     -> Result<(), PatternError> {
-        let budget = left().mul_f64(share);
-        let schedule = anneal::Schedule::for_budget(faces, budget, temperature, seed);
-        let on = anneal::anneal(
-            graph,
-            bond,
-            &fixed,
-            best,
-            &schedule,
-            Instant::now() + budget,
-            &mut || control.keep_going(progress()),
-        );
-        if on {
-            Ok(())
-        } else {
-            Err(PatternError::Cancelled)
-        }
-    };
-
-    // Annealing moves the defects of the best start until most of them cancel.
-    if !proven(&best, bound) {
-        // A start already close to the bound (a regular mesh) is polished cool rather than
-        // melted: a full melt needs more moves than a large mesh gets to beat it again.
-        let gap = (bound.value - value(&best)) / bound.value.abs().max(1.0);
-        let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP)
-            .clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
-        anneal(&mut best, FIRST_ANNEAL_SHARE, temperature, 1, control)?;
-    }
-    // The linear relaxation of the whole program next, if the barrier is expected to finish
-    // in the time left: it sees across the seams between forced defects that patches cut.
-    let mut relaxation_solved = false;
-    if bond != Bond::Stack
-        && !proven(&best, bound)
-        && linear::expected_seconds(faces) <= left().as_secs_f64() * LINEAR_SHARE
-    {
-        if let Some(found) = linear::bound(
-            graph,
-            bond,
-            None,
-            left().mul_f64(LINEAR_SHARE),
-            control,
-            progress,
-        )? {
-            bound.tighten(rounded(found.value), BoundSource::LinearRelaxation);
-            relaxation_solved = found.converged;
-        }
-    }
-    // With the whole relaxation solved, the rounds below rarely tighten the bound soon, and
-    // what is left is mostly the pattern's: anneal again, cooler, with most of the time.
-    if relaxation_solved && !proven(&best, bound) {
-        anneal(
-            &mut best,
-            SOLVED_ANNEAL_SHARE,
-            anneal::FIRST_TEMPERATURE / 2.0,
-            0,
-            control,
-        )?;
-    }
-    // Otherwise linear relaxations of patches: with the star rows they come within about
-    // half a tile per patch of the integer patches' bound in a small part of the time, so
-    // patches can be larger. Patches double, each round made of the last one's, while the
-    // last round's time, grown as a linear program's does with its size, fits the time left.
-    if bond != Bond::Stack && !relaxation_solved {
-        let mut size = FIRST_LINEAR_PATCH_SIZE;
-        let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
-        while !proven(&best, bound) && Instant::now() < deadline {
-            let partition = decompose::next_partition(graph, size, 0, &[], finer.take());
-            let started = Instant::now();
-            let proven_here = decompose::bound(
-                graph,
-                bond,
-                true,
-                &partition,
-                &best,
-                started + left() / 2,
-                control,
-                progress,
-            )?;
-            if let Some(patches) = proven_here.value {
-                bound.tighten(rounded(patches), BoundSource::Patches);
-            }
-            if partition.count <= 1 || started.elapsed().mul_f64(LINEAR_ROUND_GROWTH) > left() / 3 {
-                break;
-            }
-            finer = Some((partition, proven_here));
-            size *= 2;
-        }
-    }
-    // Then rounds of: a decomposition bound with patches twice as large as the round before,
-    // made of its patches (so nothing proven is lost when the deadline cuts a round short)
-    // and centred on the forced defects it found (the last round, one patch, is the whole
-    // program); exact windows around the defects; annealing again from the best pattern,
-    // cooler.
-    let mut size = FIRST_PATCH_SIZE;
-    let mut variant = 0;
-    let mut round = 0;
-    // Faces where patch relaxations found forced defects: the next patches are centred there.
-    let mut sources: Vec<usize> = Vec::new();
-    // The last round's partition and what it proved.
-    let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
-    while !proven(&best, bound) && Instant::now() < deadline {
-        if size >= faces
-            && faces <= WHOLE_MODEL_FACES
-            && mip::expected_linear_seconds(faces) <= left().as_secs_f64()
-        {
-            let (cbc_bound, cbc_timed_out) = whole_model(&mut best, left(), control)?;
-            bound.tighten(rounded(cbc_bound), BoundSource::WholeProgram);
-            timed_out = cbc_timed_out;
-            break;
-        }
-        // Larger patches are unions of the last round's, which keeps what that round proved;
-        // varied partitions of the largest size start afresh.
-        let partition = decompose::next_partition(
-            graph,
-            size,
-            variant,
-            &sources,
-            finer.take().filter(|_| variant == 0),
-        );
-        let step_deadline = Instant::now() + left() / 2;
-        let proven_here = decompose::bound(
-            graph,
-            bond,
-            false,
-            &partition,
-            &best,
-            step_deadline,
-            control,
-            progress,
-        )?;
-        if let Some(patches) = proven_here.value {
-            bound.tighten(rounded(patches), BoundSource::Patches);
-        }
-        // This round's sources (from larger patches, so more telling) first, then earlier ones.
-        sources = proven_here
-            .sources
-            .iter()
-            .map(|s| s.face)
-            .chain(sources)
-            .collect();
-        finer = Some((partition, proven_here));
-        if proven(&best, bound) {
-            break;
-        }
-        search::improve(
-            graph,
-            bond,
-            &fixed,
-            &mut best,
-            Instant::now() + left() / WINDOW_SHARE,
-            control,
-            progress,
-        )?;
-        round += 1;
-        anneal(
-            &mut best,
-            ANNEAL_SHARE,
-            anneal::FIRST_TEMPERATURE / 2.0,
-            1 + round,
-            control,
-        )?;
-        // Patches grow to the largest size; from there on their partitions vary instead.
-        if size < LAST_PATCH_SIZE || (size < faces && faces <= WHOLE_MODEL_FACES) {
-            size *= 2;
-        } else {
-            variant += 1;
-        }
-    }
-    Ok(Found {
-        chosen: best,
-        bound,
-        timed_out,
-    })
 }
 
 fn validate_weights(bond: Bond) -> Result<(), PatternError> {

@@ -26,11 +26,9 @@ pub fn score(graph: &DualGraph, chosen: &[bool], bond: Bond) -> Score {
     let tiles = chosen.iter().filter(|&&c| c).count();
     let continuous_joints = both(graph.continuous_joints());
     let shifted_pairs = both(graph.shifted_pairs());
-    let objective = match bond {
-        Bond::Stack => tiles as f64,
-        Bond::Staggered { weight } => tiles as f64 - weight * continuous_joints as f64,
-        Bond::RunningBond { weight } => tiles as f64 + weight * shifted_pairs as f64,
-    };
+    // Eq. (1)-(3): a tile scores one, each pair of the bond's relation what the bond gives it.
+    let (relation, per_pair) = graph.bond_pairs(bond);
+    let objective = tiles as f64 + per_pair * both(relation) as f64;
     Score {
         tiles,
         continuous_joints,

@@ -6,7 +6,8 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-use super::mip::{self, Restriction};
+use super::mip;
+use super::program::Restriction;
 use super::{Bond, DualGraph, Formulation, PatternError, score};
 use crate::control::Control;
 
@@ -67,6 +68,7 @@ pub(super) fn improve(
                 Formulation::Strengthened,
                 &restriction,
                 limit,
+                0.0,
                 control,
                 progress,
             )?;

@@ -279,6 +279,15 @@ int main(void) {
   po.struct_size = 1u << 20;
   row("struct_size absurd", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, "struct_size");
   row("NULL options", tp_pattern_solve(quads, NULL, NULL, NULL, &p), TP_NULL_POINTER, "options");
+  /* The relative gap (ABI 4). */
+  const double bad_gaps[] = {-0.01, 1.5, NAN, INFINITY};
+  for (size_t i = 0; i < sizeof bad_gaps / sizeof *bad_gaps; i++) {
+    tp_pattern_options_init(&po, sizeof po);
+    po.gap = bad_gaps[i];
+    char what[64];
+    snprintf(what, sizeof what, "gap %g", bad_gaps[i]);
+    row(what, tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, "relative gap");
+  }
   /* Courses (ABI 3). */
   const int32_t bad_courses[] = {7, -1, 2};
   for (size_t i = 0; i < sizeof bad_courses / sizeof *bad_courses; i++) {

@@ -732,6 +732,36 @@ static void test_courses(void) {
   tp_mesh_free(mesh);
 }
 
+static void test_gap(void) {
+  /* The paper's plain program on CBC would prove 10 x 10 (w = 0.5) only by branching; with a
+     5 % gap it stops at the first pattern that close to its bound (ABI 4). */
+  TpMesh *mesh = grid_mesh(10, 10);
+  TpPatternOptions options;
+  CHECK(tp_pattern_options_init(&options, sizeof options) == TP_OK && options.gap == 0.0);
+  options.method = TP_METHOD_MIP;
+  options.formulation = TP_FORMULATION_PAPER;
+  options.time_limit_seconds = 60.0;
+  options.gap = 0.05;
+  TpPattern *pattern = NULL;
+  TpPatternSummary summary;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &pattern) == TP_OK);
+  CHECK(tp_pattern_summary(pattern, &summary) == TP_OK);
+  CHECK(summary.status == TP_SOLVE_FEASIBLE && summary.gap > 0.0 && summary.gap <= 0.05);
+  tp_pattern_free(pattern);
+
+  /* A caller built against the ABI 3 header (struct ends before `gap`): never read. */
+  TpPatternOptions old;
+  memset(&old, 0xAB, sizeof old);
+  CHECK(tp_pattern_options_init(&old, offsetof(TpPatternOptions, gap)) == TP_OK);
+  CHECK(old.struct_size == offsetof(TpPatternOptions, gap));
+  old.time_limit_seconds = 5.0;
+  old.gap = -3.0; /* beyond the old struct: an invalid gap that must not be seen */
+  CHECK(tp_pattern_solve(mesh, &old, NULL, NULL, &pattern) == TP_OK);
+  CHECK(tp_pattern_summary(pattern, &summary) == TP_OK && summary.status == TP_SOLVE_OPTIMAL);
+  tp_pattern_free(pattern);
+  tp_mesh_free(mesh);
+}
+
 static void test_panic_boundary(void) {
 #if defined(TP_TEST_PANIC)
   CHECK(tp_test_panic() == TP_PANIC);
@@ -753,6 +783,7 @@ int main(void) {
   test_cancel_and_time_limit();
   test_fit();
   test_courses();
+  test_gap();
   test_panic_boundary();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;

@@ -5,6 +5,8 @@
 
 use std::ffi::{c_double, c_int};
 
+use super::Model;
+
 /// Clp's opaque model.
 #[repr(C)]
 struct ClpSimplex {
@@ -37,24 +39,6 @@ unsafe extern "C" {
     fn Clp_dualRowSolution(model: *mut ClpSimplex) -> *mut c_double;
 }
 
-/// `max objective.x` subject to `A x <= row_upper` and `0 <= x <= column_upper`, with `A`
-/// stored column by column: column `j` has the entries `values[k]` in rows `rows[k]` for
-/// `k` in `starts[j]..starts[j + 1]`.
-pub(crate) struct LinearProgram {
-    /// Start of every column's entries, and their end.
-    pub starts: Vec<i32>,
-    /// Row of every entry.
-    pub rows: Vec<i32>,
-    /// Value of every entry.
-    pub values: Vec<f64>,
-    /// Objective of every column.
-    pub objective: Vec<f64>,
-    /// Upper bound of every column.
-    pub column_upper: Vec<f64>,
-    /// Right-hand side of every row.
-    pub row_upper: Vec<f64>,
-}
-
 /// What the barrier left: its row duals, and whether it converged.
 pub(crate) struct BarrierDuals {
     /// Dual value of every row, as Clp gives them for maximisation.
@@ -63,31 +47,18 @@ pub(crate) struct BarrierDuals {
     pub converged: bool,
 }
 
-/// Runs Clp's barrier (without crossover: the duals are what is wanted) on `program` for at
-/// most about `seconds` of processor time. `None` when the program is malformed (sizes or
-/// indices inconsistent, a count beyond `int`).
-pub(crate) fn barrier(program: &LinearProgram, seconds: f64) -> Option<BarrierDuals> {
-    let columns = program.objective.len();
+/// Runs Clp's barrier (without crossover: the duals are what is wanted) on the linear
+/// relaxation of `program` (its integrality is ignored) for at most about `seconds` of
+/// processor time. `None` when the program is malformed (see [`Model::is_well_formed`]).
+pub(crate) fn barrier(program: &Model, seconds: f64) -> Option<BarrierDuals> {
+    if !program.is_well_formed() {
+        return None;
+    }
+    let columns = program.columns();
     let row_count = program.row_upper.len();
-    let well_formed = program.starts.len() == columns + 1
-        && program.column_upper.len() == columns
-        && program.rows.len() == program.values.len()
-        && program.starts.first() == Some(&0)
-        && program.starts.windows(2).all(|w| w[0] <= w[1])
-        && program
-            .starts
-            .last()
-            .is_some_and(|&end| usize::try_from(end).ok() == Some(program.rows.len()))
-        && program
-            .rows
-            .iter()
-            .all(|&r| usize::try_from(r).is_ok_and(|r| r < row_count));
     let (Ok(numcols), Ok(numrows)) = (c_int::try_from(columns), c_int::try_from(row_count)) else {
         return None;
     };
-    if !well_formed {
-        return None;
-    }
     if columns == 0 || row_count == 0 {
         // Nothing for Clp to do: no row needs a price.
         return Some(BarrierDuals {
@@ -135,5 +106,50 @@ pub(crate) fn barrier(program: &LinearProgram, seconds: f64) -> Option<BarrierDu
             row_duals,
             converged,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn malformed_programs_are_refused() {
+        let program = |starts: Vec<i32>, rows: Vec<i32>| Model {
+            starts,
+            rows,
+            values: vec![1.0],
+            objective: vec![1.0],
+            column_upper: vec![2.0],
+            integer: vec![false],
+            row_upper: vec![1.0],
+        };
+        // max x, x <= 1, 0 <= x <= 2: the row is binding, its dual is 1.
+        assert!(
+            barrier(&program(vec![0, 1], vec![0]), 1.0)
+                .is_some_and(|d| d.converged && (d.row_duals[0] - 1.0).abs() < 1e-6)
+        );
+        assert!(
+            barrier(&program(vec![0, 1], vec![1]), 1.0).is_none(),
+            "row out of range"
+        );
+        assert!(
+            barrier(&program(vec![0, 2], vec![0]), 1.0).is_none(),
+            "column past the entries"
+        );
+        assert!(
+            barrier(&program(vec![0], vec![0]), 1.0).is_none(),
+            "starts too short"
+        );
+        let empty = Model {
+            starts: vec![0],
+            rows: vec![],
+            values: vec![],
+            objective: vec![],
+            column_upper: vec![],
+            integer: vec![],
+            row_upper: vec![],
+        };
+        assert!(barrier(&empty, 1.0).is_some_and(|d| d.converged && d.row_duals.is_empty()));
     }
 }

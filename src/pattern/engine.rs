@@ -1,0 +1,405 @@
+//! The search behind [`solve`](super::solve()): the paper's route ([`Method::Mip`]: the whole
+//! program on CBC) and the default engine ([`Method::Auto`]), one method per phase. Every
+//! phase improves the pattern or tightens the bound, and the search ends as soon as the
+//! pattern meets its bound (or comes within the caller's gap) or the deadline passes.
+
+use std::time::{Duration, Instant};
+
+use super::{
+    Bond, BoundSource, DualGraph, Method, PatternError, PatternOptions, anneal, bound, construct,
+    decompose, linear, mip, program, relative_gap, score, search,
+};
+use super::{Bound, Found};
+use crate::control::Control;
+use crate::mesh::Topology;
+
+/// Faces per patch in the first decomposition bound of [`Method::Auto`]: patches this small
+/// take CBC some 50 ms each. Meshes this small get the whole program at once.
+const FIRST_PATCH_SIZE: usize = 200;
+/// Faces per patch in the first round of linear patch relaxations: a few milliseconds each.
+const FIRST_LINEAR_PATCH_SIZE: usize = 200;
+/// How much longer a round of linear patch relaxations takes than the round before, with
+/// patches twice as large and half as many (the barrier's time grows about as size^2 here,
+/// plus room for the patches it skips in the smaller rounds).
+const LINEAR_ROUND_GROWTH: f64 = 3.0;
+/// Largest patches: a few seconds each for CBC.
+const LAST_PATCH_SIZE: usize = 1600;
+/// Largest mesh [`Method::Auto`] gives to CBC whole. CBC cannot be stopped while Clp solves
+/// the root LP, which on larger staggered programs can take minutes (6589 faces: 110 s), and
+/// a solve past its time limit would keep the solver busy for later calls.
+const WHOLE_MODEL_FACES: usize = 2000;
+/// Share of the time left after the first annealing run that the linear relaxation of the
+/// whole program may take; it is solved only if expected to finish in that time.
+const LINEAR_SHARE: f64 = 0.9;
+/// Share of the time limit the first annealing run may take, and of the time left the
+/// later ones.
+const FIRST_ANNEAL_SHARE: f64 = 0.5;
+const ANNEAL_SHARE: f64 = 0.3;
+/// Share of the time left that annealing may take once the whole linear relaxation is
+/// solved (the run ends sooner on small meshes, whose moves are capped per face).
+const SOLVED_ANNEAL_SHARE: f64 = 0.9;
+/// Each round's exact windows get the time left divided by this: after annealing they
+/// rarely improve the pattern, and the bound needs the time more.
+const WINDOW_SHARE: u32 = 6;
+/// A start this far below the matching bound (or farther) is annealed from the full first
+/// temperature; closer starts from proportionally cooler ones.
+const MELT_GAP: f64 = 0.01;
+
+/// One search: the program's inputs, the best pattern so far and the best bound.
+pub(super) struct Engine<'a, 'c, P: Fn() -> f64> {
+    graph: &'a DualGraph,
+    topology: &'a Topology,
+    options: &'a PatternOptions,
+    bond: Bond,
+    /// The forced tiles, held in every pattern.
+    fixed: Vec<bool>,
+    /// The tiles a solver may choose: all but the forced ones.
+    free: Vec<bool>,
+    deadline: Instant,
+    control: &'a mut Control<'c>,
+    progress: &'a P,
+    /// A maximum matching with the forced tiles: no pattern has more tiles.
+    matching: Vec<bool>,
+    /// Tiles of `matching`.
+    most_tiles: usize,
+    /// The best pattern so far (forced tiles included).
+    best: Vec<bool>,
+    bound: Bound,
+    /// A solver stopped on the time limit (CBC stops a little before the caller's deadline).
+    timed_out: bool,
+}
+
+impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
+    /// A search for `options` on `graph` with the `forced` tiles, until `deadline`; the
+    /// first bound is the maximum matching's.
+    pub fn new(
+        graph: &'a DualGraph,
+        topology: &'a Topology,
+        options: &'a PatternOptions,
+        forced: &[usize],
+        deadline: Instant,
+        control: &'a mut Control<'c>,
+        progress: &'a P,
+    ) -> Self {
+        let bond = options.bond;
+        let mut fixed = vec![false; graph.tiles().len()];
+        forced.iter().for_each(|&t| fixed[t] = true);
+        let free: Vec<bool> = fixed.iter().map(|f| !f).collect();
+        let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
+        let most_tiles = matching.iter().filter(|&&c| c).count();
+        let bound = Bound {
+            value: bound::from_tile_count(graph, bond, most_tiles),
+            source: BoundSource::Matching,
+        };
+        Self {
+            graph,
+            topology,
+            options,
+            bond,
+            best: fixed.clone(),
+            fixed,
+            free,
+            deadline,
+            control,
+            progress,
+            matching,
+            most_tiles,
+            bound,
+            timed_out: false,
+        }
+    }
+
+    /// Runs the chosen [`Method`].
+    pub fn run(mut self) -> Result<Found, PatternError> {
+        match self.options.method {
+            Method::Mip => self.paper_route()?,
+            Method::Auto => self.default_route()?,
+        }
+        Ok(Found {
+            chosen: self.best,
+            bound: self.bound,
+            timed_out: self.timed_out,
+        })
+    }
+
+    /// The paper's route: the whole program on CBC, from a greedy start kept as a fallback.
+    fn paper_route(&mut self) -> Result<(), PatternError> {
+        construct::complete_greedily(self.graph, self.bond, &self.fixed, &mut self.best);
+        let (cbc_bound, timed_out) = self.whole_program(self.left())?;
+        self.tighten(cbc_bound, BoundSource::WholeProgram);
+        self.timed_out = timed_out;
+        Ok(())
+    }
+
+    /// The default engine: starts, annealing, the whole linear relaxation or linear patch
+    /// relaxations, then rounds of exact patches, windows and annealing.
+    fn default_route(&mut self) -> Result<(), PatternError> {
+        self.best_start();
+        self.first_anneal()?;
+        let relaxation_solved = self.linear_relaxation()?;
+        // With the whole relaxation solved, the rounds below rarely tighten the bound soon,
+        // and what is left is mostly the pattern's: anneal again, cooler, with most of the
+        // time.
+        if relaxation_solved && !self.done() {
+            self.anneal(SOLVED_ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 0)?;
+        }
+        if self.bond != Bond::Stack && !relaxation_solved {
+            self.linear_patch_rounds()?;
+        }
+        self.exact_rounds()
+    }
+
+    /// Objective of `chosen`.
+    fn value(&self, chosen: &[bool]) -> f64 {
+        score(self.graph, chosen, self.bond).objective
+    }
+
+    /// The pattern meets its bound, or comes within the gap the caller accepts.
+    fn done(&self) -> bool {
+        let objective = self.value(&self.best);
+        self.bound.value - objective <= 1e-9
+            || relative_gap(objective, self.bound.value) <= self.options.gap
+    }
+
+    /// Time to the deadline.
+    fn left(&self) -> Duration {
+        self.deadline.saturating_duration_since(Instant::now())
+    }
+
+    /// Keeps `value` as the bound if tighter, rounded down to the next objective value a
+    /// pattern can take.
+    fn tighten(&mut self, value: f64, source: BoundSource) {
+        let rounded = bound::round_down(value, self.bond, 1.0, self.most_tiles as f64);
+        self.bound.tighten(rounded, source);
+    }
+
+    /// The whole program on CBC for `limit`: keeps CBC's pattern if it beats the best, and
+    /// returns CBC's bound and whether it stopped on time.
+    fn whole_program(&mut self, limit: Duration) -> Result<(f64, bool), PatternError> {
+        let outcome = mip::solve(
+            self.graph,
+            self.bond,
+            self.options.formulation,
+            &program::Restriction {
+                free: &self.free,
+                fixed: &self.fixed,
+                patch: None,
+            },
+            limit,
+            self.options.gap,
+            self.control,
+            self.progress,
+        )?;
+        if let Some(found) = outcome.chosen.map(|c| union(&c, &self.fixed)) {
+            if search::is_matching(self.graph, &found)
+                && self.value(&found) > self.value(&self.best)
+            {
+                self.best = found;
+            }
+        }
+        Ok((outcome.bound, outcome.timed_out))
+    }
+
+    /// The best of three cheap starts, each strong where the others are weak: courses
+    /// parallel to the boundary (the optimal stagger of regular patches), the running bond
+    /// along quad strips (no joints in the interior), the maximum matching (fewest half
+    /// tiles).
+    fn best_start(&mut self) {
+        let (graph, bond, fixed) = (self.graph, self.bond, &self.fixed);
+        let mut starts = if bond == Bond::Stack {
+            vec![self.matching.clone()]
+        } else {
+            let courses = construct::boundary_courses(graph, self.topology, bond, fixed);
+            let laid = union(
+                &construct::running_bond(graph, self.topology, bond, fixed),
+                fixed,
+            );
+            vec![courses, laid, self.matching.clone()]
+        };
+        starts.sort_by(|a, b| self.value(b).total_cmp(&self.value(a)));
+        self.best = starts.swap_remove(0);
+    }
+
+    /// Anneals the best pattern for `share` of the time left from `temperature`.
+    fn anneal(&mut self, share: f64, temperature: f64, seed: u64) -> Result<(), PatternError> {
+        let budget = self.left().mul_f64(share);
+        let schedule =
+            anneal::Schedule::for_budget(self.graph.face_count(), budget, temperature, seed);
+        let progress = self.progress;
+        let control = &mut *self.control;
+        let on = anneal::anneal(
+            self.graph,
+            self.bond,
+            &self.fixed,
+            &mut self.best,
+            &schedule,
+            Instant::now() + budget,
+            &mut || control.keep_going(progress()),
+        );
+        if on {
+            Ok(())
+        } else {
+            Err(PatternError::Cancelled)
+        }
+    }
+
+    /// Annealing moves the defects of the best start until most of them cancel. A start
+    /// already close to the bound (a regular mesh) is polished cool rather than melted: a
+    /// full melt needs more moves than a large mesh gets to beat it again.
+    fn first_anneal(&mut self) -> Result<(), PatternError> {
+        if self.done() {
+            return Ok(());
+        }
+        let gap = relative_gap(self.value(&self.best), self.bound.value);
+        let temperature = (anneal::FIRST_TEMPERATURE * gap / MELT_GAP)
+            .clamp(anneal::LAST_TEMPERATURE, anneal::FIRST_TEMPERATURE);
+        self.anneal(FIRST_ANNEAL_SHARE, temperature, 1)
+    }
+
+    /// The linear relaxation of the whole program, if the barrier is expected to finish in
+    /// the time left: it sees across the seams between forced defects that patches cut.
+    /// Whether it converged.
+    fn linear_relaxation(&mut self) -> Result<bool, PatternError> {
+        if self.bond == Bond::Stack
+            || self.done()
+            || linear::expected_seconds(self.graph.face_count())
+                > self.left().as_secs_f64() * LINEAR_SHARE
+        {
+            return Ok(false);
+        }
+        let Some(found) = linear::bound(
+            self.graph,
+            self.bond,
+            None,
+            self.left().mul_f64(LINEAR_SHARE),
+            self.control,
+            self.progress,
+        )?
+        else {
+            return Ok(false);
+        };
+        self.tighten(found.value, BoundSource::LinearRelaxation);
+        Ok(found.converged)
+    }
+
+    /// Linear relaxations of patches: with the star rows they come within about half a
+    /// tile per patch of the integer patches' bound in a small part of the time, so patches
+    /// can be larger. Patches double, each round made of the last one's, while the last
+    /// round's time, grown as a linear program's does with its size, fits the time left.
+    fn linear_patch_rounds(&mut self) -> Result<(), PatternError> {
+        let mut size = FIRST_LINEAR_PATCH_SIZE;
+        let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
+        while !self.done() && Instant::now() < self.deadline {
+            let partition = decompose::next_partition(self.graph, size, 0, &[], finer.take());
+            let started = Instant::now();
+            let proven_here = decompose::bound(
+                self.graph,
+                self.bond,
+                true,
+                &partition,
+                &self.best,
+                started + self.left() / 2,
+                self.control,
+                self.progress,
+            )?;
+            if let Some(patches) = proven_here.value {
+                self.tighten(patches, BoundSource::Patches);
+            }
+            if partition.count <= 1
+                || started.elapsed().mul_f64(LINEAR_ROUND_GROWTH) > self.left() / 3
+            {
+                break;
+            }
+            finer = Some((partition, proven_here));
+            size *= 2;
+        }
+        Ok(())
+    }
+
+    /// Rounds of: a decomposition bound with patches twice as large as the round before,
+    /// made of its patches (so nothing proven is lost when the deadline cuts a round short)
+    /// and centred on the forced defects it found (the last round, one patch, is the whole
+    /// program); exact windows around the defects; annealing again from the best pattern,
+    /// cooler.
+    fn exact_rounds(&mut self) -> Result<(), PatternError> {
+        let faces = self.graph.face_count();
+        let mut size = FIRST_PATCH_SIZE;
+        let mut variant = 0;
+        let mut round = 0;
+        // Faces where patch relaxations found forced defects: the next patches are centred
+        // there.
+        let mut sources: Vec<usize> = Vec::new();
+        // The last round's partition and what it proved.
+        let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
+        while !self.done() && Instant::now() < self.deadline {
+            if size >= faces
+                && faces <= WHOLE_MODEL_FACES
+                && mip::expected_linear_seconds(faces) <= self.left().as_secs_f64()
+            {
+                let (cbc_bound, cbc_timed_out) = self.whole_program(self.left())?;
+                self.tighten(cbc_bound, BoundSource::WholeProgram);
+                self.timed_out = cbc_timed_out;
+                break;
+            }
+            // Larger patches are unions of the last round's, which keeps what that round
+            // proved; varied partitions of the largest size start afresh.
+            let partition = decompose::next_partition(
+                self.graph,
+                size,
+                variant,
+                &sources,
+                finer.take().filter(|_| variant == 0),
+            );
+            let step_deadline = Instant::now() + self.left() / 2;
+            let proven_here = decompose::bound(
+                self.graph,
+                self.bond,
+                false,
+                &partition,
+                &self.best,
+                step_deadline,
+                self.control,
+                self.progress,
+            )?;
+            if let Some(patches) = proven_here.value {
+                self.tighten(patches, BoundSource::Patches);
+            }
+            // This round's sources (from larger patches, so more telling) first, then earlier
+            // ones.
+            sources = proven_here
+                .sources
+                .iter()
+                .map(|s| s.face)
+                .chain(sources)
+                .collect();
+            finer = Some((partition, proven_here));
+            if self.done() {
+                break;
+            }
+            let windows_until = Instant::now() + self.left() / WINDOW_SHARE;
+            search::improve(
+                self.graph,
+                self.bond,
+                &self.fixed,
+                &mut self.best,
+                windows_until,
+                self.control,
+                self.progress,
+            )?;
+            round += 1;
+            self.anneal(ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 1 + round)?;
+            // Patches grow to the largest size; from there on their partitions vary instead.
+            if size < LAST_PATCH_SIZE || (size < faces && faces <= WHOLE_MODEL_FACES) {
+                size *= 2;
+            } else {
+                variant += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Tiles chosen in `a` or in `b`.
+fn union(a: &[bool], b: &[bool]) -> Vec<bool> {
+    a.iter().zip(b).map(|(x, y)| *x || *y).collect()
+}
