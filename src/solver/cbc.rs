@@ -1,10 +1,13 @@
-//! CBC's branch and bound on a [`Model`], through the `coin_cbc` crate's raw model (one
-//! `Cbc_loadProblem` of the column-major arrays: no expression building on the way).
-//! `coin_cbc` serialises CBC's calls behind a process-wide lock (CBC is not thread-safe).
+//! CBC's branch and bound on a [`Model`], through `good_lp` and its `coin_cbc` backend: one
+//! `good_lp` variable per column, one `<=` constraint per row, written straight from the
+//! model's sparse entries. `coin_cbc` serialises CBC's calls behind a process-wide lock (CBC
+//! is not thread-safe).
 
-use std::ffi::CString;
-
-use coin_cbc::raw::{Model as Cbc, SecondaryStatus, Sense, Status};
+use good_lp::solvers::coin_cbc::coin_cbc;
+use good_lp::{
+    Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel, Variable,
+    constraint, variable,
+};
 
 use super::Model;
 
@@ -42,60 +45,62 @@ pub(crate) fn solve(model: &Model, seconds: f64, gap: f64) -> Result<Solved, Str
     if !model.is_well_formed() {
         return Err("malformed model".into());
     }
-    let mut cbc = Cbc::new();
-    cbc.load_problem(
-        model.columns(),
-        model.row_upper.len(),
-        &model.starts,
-        &model.rows,
-        &model.values,
-        None,
-        Some(&model.column_upper),
-        Some(&model.objective),
-        None,
-        Some(&model.row_upper),
-    );
-    for (j, _) in model.integer.iter().enumerate().filter(|(_, i)| **i) {
-        cbc.set_integer(j);
+    let mut variables = ProblemVariables::new();
+    let columns: Vec<Variable> = (0..model.columns())
+        .map(|j| {
+            let column = variable().min(0.0).max(model.column_upper[j]);
+            variables.add(if model.integer[j] {
+                column.integer()
+            } else {
+                column
+            })
+        })
+        .collect();
+    let mut objective = Expression::with_capacity(model.columns());
+    for (&column, &c) in columns.iter().zip(&model.objective) {
+        if c != 0.0 {
+            objective.add_mul(c, column);
+        }
     }
-    cbc.set_obj_sense(Sense::Maximize);
-    let mut set = |name: &str, value: String| {
-        let (Ok(name), Ok(value)) = (CString::new(name), CString::new(value)) else {
-            return;
-        };
-        cbc.set_parameter(&name, &value);
-    };
-    set("log", "0".into());
-    set("slog", "0".into());
-    set("timeMode", "elapsed".into());
-    set("sec", format!("{:.3}", seconds.max(0.001)));
+    // The model is stored column by column; constraints are written row by row.
+    let mut rows: Vec<Expression> = vec![Expression::default(); model.row_upper.len()];
+    for (j, &column) in columns.iter().enumerate() {
+        for (r, a) in model.column(j) {
+            rows[r].add_mul(a, column);
+        }
+    }
+    let mut problem = variables.maximise(objective).using(coin_cbc);
+    problem.set_parameter("log", "0");
+    problem.set_parameter("slog", "0");
+    problem.set_parameter("timeMode", "elapsed");
+    problem.set_parameter("sec", &format!("{:.3}", seconds.max(0.001)));
     if gap > 0.0 {
-        set("ratioGap", format!("{gap}"));
+        problem.set_parameter("ratioGap", &format!("{gap}"));
     }
-    cbc.solve();
-    let finished = |cbc: &Cbc| match cbc.secondary_status() {
-        SecondaryStatus::StoppedOnTime => Ending::TimeLimit,
-        SecondaryStatus::StoppedOnGap => Ending::GapLimit,
-        _ => Ending::Finished,
-    };
-    let ending = match cbc.status() {
-        Status::Stopped if cbc.secondary_status() == SecondaryStatus::StoppedOnTime => {
-            Ending::TimeLimit
+    for (row, &upper) in rows.into_iter().zip(&model.row_upper) {
+        problem.add_constraint(constraint::leq(row, upper));
+    }
+    match problem.solve() {
+        Ok(solution) => {
+            let ending = match solution.status() {
+                SolutionStatus::TimeLimit => Ending::TimeLimit,
+                SolutionStatus::GapLimit => Ending::GapLimit,
+                SolutionStatus::Optimal => Ending::Finished,
+            };
+            Ok(Solved {
+                values: Some(columns.iter().map(|&v| solution.value(v)).collect()),
+                bound: solution.model().best_possible_value(),
+                ending,
+            })
         }
-        Status::Stopped => return Err("CBC stopped".into()),
-        Status::Abandoned => return Err("CBC abandoned the search".into()),
-        Status::UserEvent => return Err("CBC stopped on a user event".into()),
-        Status::Finished | Status::Unlaunched if cbc.is_continuous_unbounded() => {
-            return Err("the model is unbounded".into());
-        }
-        Status::Finished | Status::Unlaunched if cbc.is_proven_infeasible() => Ending::Infeasible,
-        Status::Finished | Status::Unlaunched => finished(&cbc),
-    };
-    Ok(Solved {
-        values: (ending != Ending::Infeasible).then(|| cbc.col_solution().to_vec()),
-        bound: cbc.best_possible_value(),
-        ending,
-    })
+        Err(ResolutionError::Infeasible) => Ok(Solved {
+            values: None,
+            bound: f64::INFINITY,
+            ending: Ending::Infeasible,
+        }),
+        Err(ResolutionError::Unbounded) => Err("the model is unbounded".into()),
+        Err(other) => Err(format!("CBC gave up: {other}")),
+    }
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 //! * [`Model`](crate::solver::Model): a solver-neutral sparse program, `max c.x` subject to
 //!   `A x <= b`, `0 <= x <= u`, some columns integer, with `A` stored column by column;
 //! * [`cbc`](crate::solver::cbc): CBC's branch and bound on a [`Model`](crate::solver::Model),
-//!   through the `coin_cbc` crate (its safe API; no `unsafe` here);
+//!   through `good_lp` and its `coin_cbc` backend (safe APIs; no `unsafe` here);
 //! * [`clp`](crate::solver::clp): Clp's interior-point method through Clp's C interface, for
 //!   a model's linear relaxation and its row prices. Its declarations are ours, so that
 //!   module alone allows `unsafe` (every block states why it is sound); the rest of the
