@@ -3,8 +3,8 @@
 //! size) and by the file's extension otherwise; then vertices at the same place are welded
 //! (see [`super::weld`]) and the mesh validated by [`PolyMesh::new`].
 //!
-//! Every front end that reads files goes through [`read`]: the command line, `tp_mesh_read`
-//! of the C ABI and the wrappers over it.
+//! Every front end that reads files goes through [`read`]: today that is the command line
+//! only (the C ABI, C#, Python and Grasshopper take meshes as arrays from their host).
 
 mod off;
 mod ply;
