@@ -588,3 +588,49 @@ fn small_things_read_right() {
         stderr(&out)
     );
 }
+
+#[test]
+fn mangled_files_give_errors_not_panics() {
+    let quads = generate::corner_supported_shell(1.0, 0.25);
+    let triangles = generate::triangulate_quads(&quads);
+    let files: Vec<(&str, Vec<u8>)> = vec![
+        ("obj", obj::to_string(&quads).into_bytes()),
+        ("off", off(&quads).into_bytes()),
+        ("ply", ascii_ply(&quads).into_bytes()),
+        ("ply", binary_ply(&quads)),
+        ("stl", ascii_stl(&triangles).into_bytes()),
+        ("stl", binary_stl(&triangles)),
+    ];
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = move |n: usize| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % n as u64) as usize
+    };
+    for (extension, bytes) in &files {
+        for _ in 0..400 {
+            let mut mangled = bytes.clone();
+            match next(4) {
+                // Overwrite a few bytes (header counts and list sizes included).
+                0 | 1 => {
+                    for _ in 0..1 + next(4) {
+                        let at = next(mangled.len().min(400));
+                        mangled[at] = next(256) as u8;
+                    }
+                }
+                // Cut the file short.
+                2 => mangled.truncate(next(mangled.len())),
+                // Overwrite anywhere.
+                _ => {
+                    let at = next(mangled.len());
+                    mangled[at] = next(256) as u8;
+                }
+            }
+            let result = std::panic::catch_unwind(|| {
+                io::parse(&mangled, Some(extension), Weld::default()).map(|l| l.mesh.face_count())
+            });
+            assert!(result.is_ok(), "{extension}: a mangled file panicked");
+        }
+    }
+}

@@ -69,3 +69,16 @@ def test_a_plain_tiling_is_quiet():
             warnings.simplefilter("error")
             placed = tp.tiles(v, f, pattern, up=(0, 0, 1))
     assert placed.warnings == [] and placed.report["warnings"] == []
+
+
+def test_a_level_floor_and_normals_down():
+    v, f = grid(8, 6)
+    with tp.match(v, f, time_limit=5) as pattern:
+        with pytest.warns(tp.TilePatternWarning, match="no_support"):
+            floor = tp.tiles(v, f, pattern)
+    assert floor.report["sequence"]["support"] == "level"
+    assert floor.report["sequence"]["unsupported"] == 0
+    # The same grid seen from below: normals point down.
+    with tp.match(v, f, time_limit=5) as pattern:
+        with pytest.warns(tp.TilePatternWarning, match="normals_down"):
+            tp.tiles(v, f, pattern, up=(0, 0, -1))

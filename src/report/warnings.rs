@@ -253,6 +253,33 @@ mod tests {
         assert_eq!(tile_shape(&long).unwrap().code, WarningCode::TileShape);
     }
 
+    /// Half a cylinder of `radius` in quads of about unit size.
+    fn half_cylinder(radius: f64) -> PolyMesh {
+        let grid = generate::grid(4, (std::f64::consts::PI * radius).ceil() as usize);
+        let ny = grid.faces().len() / 4;
+        let positions = grid
+            .positions()
+            .iter()
+            .map(|p| {
+                let a = std::f64::consts::PI * p.y / ny as f64;
+                nalgebra::Point3::new(p.x, radius * a.cos(), radius * a.sin())
+            })
+            .collect();
+        PolyMesh::new(positions, grid.faces().to_vec()).unwrap()
+    }
+
+    #[test]
+    fn a_tile_much_larger_than_the_curvature_radius_is_flagged() {
+        let tight = curvature(&half_cylinder(1.5), &TILE).expect("1.9 long on radius 1.5");
+        assert_eq!(tight.code, WarningCode::TileVsCurvature);
+        assert!(
+            tight.message.contains("curvature radius"),
+            "{}",
+            tight.message
+        );
+        assert!(curvature(&half_cylinder(10.0), &TILE).is_none());
+    }
+
     #[test]
     fn a_grid_is_open_whole_and_faces_up() {
         let grid = generate::grid(4, 3);
