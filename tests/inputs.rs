@@ -522,7 +522,22 @@ fn units_are_chosen_from_the_shell_size_and_said() {
                     "{err}"
                 );
                 assert!(err.contains("--units"), "{err}");
+                // Every output names the unit, and the same one.
                 assert_eq!(json(&out_dir.join("report.json"))["units"], unit);
+                assert_eq!(json(&out_dir.join("sequence.json"))["units"], unit);
+                let csv = std::fs::read_to_string(out_dir.join("cutlist.csv")).unwrap();
+                assert!(csv.lines().next().unwrap().ends_with(",units"), "{csv}");
+                assert!(
+                    csv.lines()
+                        .skip(1)
+                        .all(|l| l.ends_with(&format!(",{unit}"))),
+                    "{csv}"
+                );
+                assert!(
+                    std::fs::read_to_string(out_dir.join("gaps.svg"))
+                        .unwrap()
+                        .contains(" mm")
+                );
             }
             None => {
                 assert_eq!(out.status.code(), Some(1), "{err}");

@@ -343,7 +343,7 @@ fn run(cli: Cli) -> Result<()> {
                 write_text(&svg_path, &svg::pattern_svg(&mesh, &tiling.tiles))?;
             }
             if let Some(dir) = fabrication {
-                write_fabrication(&dir, &mesh, &tiling, units.per_mm())?;
+                write_fabrication(&dir, &mesh, &tiling, units)?;
             }
             eprintln!("{}", tiling_summary(&tiling, units));
             print_warnings(&tiling.report.warnings);
@@ -506,13 +506,17 @@ fn write_outputs(
             report: &tiling.report,
         },
     )?;
-    write_fabrication(out, quads, tiling, units.per_mm())
+    write_fabrication(out, quads, tiling, units)
 }
 
 /// Writes cutlist.csv, cutlist.json, sequence.json and gaps.svg into `dir`.
-fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: f64) -> Result<()> {
+fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, units: Units) -> Result<()> {
+    let millimetre = units.per_mm();
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    write_text(&dir.join("cutlist.csv"), &cutlist_csv(&tiling.cut_list))?;
+    write_text(
+        &dir.join("cutlist.csv"),
+        &cutlist_csv(&tiling.cut_list, units.name()),
+    )?;
     write_json(Some(&dir.join("cutlist.json")), &tiling.cut_list)?;
     let mut order: Vec<&Tile> = tiling.tiles.iter().collect();
     order.sort_by_key(|t| t.step);
@@ -528,7 +532,11 @@ fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: 
     let summary = tiling.report.sequence.as_ref();
     write_json(
         Some(&dir.join("sequence.json")),
-        &SequenceFile { summary, steps },
+        &SequenceFile {
+            units: units.name(),
+            summary,
+            steps,
+        },
     )?;
     write_text(
         &dir.join("gaps.svg"),
@@ -543,9 +551,10 @@ fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: 
 }
 
 /// `cutlist.csv`: one row per cut shape; outlines (boundary shapes) as loops separated by
-/// `|`, points `x y` separated by `;`, in the blank's frame and model units.
-fn cutlist_csv(groups: &[CutGroup]) -> String {
-    let mut csv = String::from("label,kind,count,blank_length,blank_width,area,outline\n");
+/// `|`, points `x y` separated by `;`, in the blank's frame and model units, which the last
+/// column names.
+fn cutlist_csv(groups: &[CutGroup], units: &str) -> String {
+    let mut csv = String::from("label,kind,count,blank_length,blank_width,area,outline,units\n");
     for g in groups {
         let outline: Vec<String> = g
             .outline
@@ -562,7 +571,7 @@ fn cutlist_csv(groups: &[CutGroup]) -> String {
             .and_then(|v| v.as_str().map(str::to_owned))
             .unwrap_or_default();
         csv.push_str(&format!(
-            "{},{},{},{},{},{:.6},{}\n",
+            "{},{},{},{},{},{:.6},{},{units}\n",
             g.label,
             kind,
             g.count,
@@ -578,6 +587,8 @@ fn cutlist_csv(groups: &[CutGroup]) -> String {
 /// `sequence.json`: the laying order's summary and the tiles step by step.
 #[derive(Serialize)]
 struct SequenceFile<'a> {
+    /// The model unit of `origin` (as `report.json`'s `units`).
+    units: &'static str,
     summary: Option<&'a Sequence>,
     steps: Vec<SequenceStep<'a>>,
 }
