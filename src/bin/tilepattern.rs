@@ -295,7 +295,9 @@ fn run(cli: Cli) -> Result<()> {
             up,
             json,
         } => {
-            let mesh = read_mesh(&quads)?.mesh;
+            let loaded = read_mesh(&quads)?;
+            print_warnings(weld_warning(&loaded).as_slice());
+            let mesh = loaded.mesh;
             let found = pattern::solve(&mesh, &pattern.options(false, up)?)?;
             eprintln!("{}", pattern_summary(&found));
             write_json(json.as_deref(), &found)

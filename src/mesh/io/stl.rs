@@ -59,8 +59,15 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
         owned = bytes.to_vec();
         owned[..5].fill(b' ');
         &owned[..]
+    } else if let Some(rest) = bytes.trim_ascii_start().strip_prefix(b"solid")
+        && !rest.starts_with(b" ")
+    {
+        // `stl_io` wants "solid " and a name; some exporters write "solid" alone.
+        owned = b"solid ".to_vec();
+        owned.extend_from_slice(rest);
+        &owned[..]
     } else {
-        bytes
+        bytes.trim_ascii_start()
     };
     let mut cursor = Cursor::new(bytes);
     let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| error(e.to_string()))?;
@@ -127,6 +134,9 @@ mod tests {
     fn ascii_reads_and_names_its_errors() {
         let text = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n";
         let (positions, faces) = parse(text.as_bytes(), Format::StlAscii).unwrap();
+        assert_eq!((positions.len(), faces.len()), (3, 1));
+        let unnamed = text.replacen("solid s\n", "  solid\r\n", 1);
+        let (positions, faces) = parse(unnamed.as_bytes(), Format::StlAscii).unwrap();
         assert_eq!((positions.len(), faces.len()), (3, 1));
         let bad = text.replace("vertex 1 0 0", "vertex 1 zero 0");
         let error = parse(bad.as_bytes(), Format::StlAscii)
