@@ -1,7 +1,7 @@
 """Tile a COMPAS mesh with standard rectangular tiles.
 
-Loads a surface (an OBJ file, or COMPAS's sample hypar made of triangles), quadrangulates
-it when it is not made of quads, matches the quads into tiles (staggered bond by default),
+Loads a surface (an OBJ file, or COMPAS's sample hypar: 64 quads of 625 mm), quadrangulates
+it unless it already is a mesh of quads of half a tile (as the remesher makes them), matches the quads into tiles (staggered bond by default),
 fits them so that the joints come close to the mortar joint (cutting what cannot fit), cuts
 them to the surface's boundary, prints the report, and writes a Rhino file (layers
 tiles::full, tiles::half, tiles::cuts) and, with --json, the tiles as COMPAS boxes.
@@ -36,7 +36,7 @@ UNITS = {"m": (0.001, "Meters"), "cm": (0.1, "Centimeters"), "mm": (1.0, "Millim
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("mesh", nargs="?", help="OBJ surface (triangles, quads or polygons); default: COMPAS's hypar, triangulated")
+    parser.add_argument("mesh", nargs="?", help="OBJ surface (triangles, quads or polygons); default: COMPAS's hypar")
     parser.add_argument("--units", choices=sorted(UNITS), default="m", help="units of the mesh coordinates (default m)")
     parser.add_argument("--tile", default="280x140x15", help="tile length x width x thickness in mm (default 280x140x15)")
     parser.add_argument("--joint", type=float, default=10.0, help="mortar joint in mm (default 10)")
@@ -71,6 +71,23 @@ class Progress:
         self.shown = None
 
 
+def half_tile_quads(mesh, edge, tolerance=0.25):
+    """Why ``mesh`` must be remeshed for quads of ``edge`` (half a tile), or None when it
+    already is such a quad mesh: every face a quad, 90 % of the edges within ``tolerance``
+    of ``edge``. Quads of another size would give tiles over pairs far larger or smaller
+    than a tile (COMPAS's hypar: 625 mm quads, 1.25 m "tiles", coverage 0)."""
+    sizes = [len(mesh.face_vertices(face)) for face in mesh.faces()]
+    if any(n != 4 for n in sizes):
+        return "%d of %d faces are not quads" % (sum(n != 4 for n in sizes), len(sizes))
+    lengths = [mesh.edge_length(e) for e in mesh.edges()]
+    near = sum(abs(length / edge - 1.0) <= tolerance for length in lengths)
+    if near < 0.9 * len(lengths):
+        lengths.sort()
+        return "its quads are not half a tile: median edge %.4g, half a tile %.4g (%d of %d edges within %d %%)" % (
+            lengths[len(lengths) // 2], edge, near, len(lengths), round(100 * tolerance))
+    return None
+
+
 def main():
     args = parse_args()
     per_mm, rhino_units = UNITS[args.units]
@@ -80,15 +97,17 @@ def main():
     if args.mesh:
         surface = Mesh.from_obj(args.mesh)
     else:
-        surface = Mesh.from_obj(compas.get("hypar.obj"))  # 5 x 5 x 3, read as metres
-        surface.quads_to_triangles()
+        surface = Mesh.from_obj(compas.get("hypar.obj"))  # 5 x 5 x 3 in 64 quads, read as metres
     print("surface: %d vertices, %d faces" % (surface.number_of_vertices(), surface.number_of_faces()))
 
     start = time.perf_counter()
-    if all(len(surface.face_vertices(face)) == 4 for face in surface.faces()):
+    edge = tp.quad_edge(length, width, joint, courses=args.courses)
+    reason = half_tile_quads(surface, edge)
+    if reason is None:
         quads = surface
+        print("the surface's quads are half a tile: matched as they are")
     else:
-        edge = tp.quad_edge(length, width, joint, courses=args.courses)
+        print("remeshing: " + reason)
         quads = tpc.remesh(surface, target_edge=edge, progress=Progress())
         print("remeshed into %d quads" % quads.number_of_faces())
 
@@ -118,6 +137,8 @@ def main():
         fit = report["fit"]
         print("fit: %s after %d steps, %d tiles cut to fit, mean move %.1f mm, largest %.1f mm" % (
             fit["status"], fit["iterations"], joints["fit_cuts"], fit["mean_move"] / per_mm, fit["max_move"] / per_mm))
+    for w in report.get("warnings", []):
+        print("warning [%s]: %s" % (w["code"], w["message"]))
     print("cut list:")
     for entry in boxes.tiles.cutlist:
         print("  %-4s %-8s x %4d   blank %s" % (entry["label"], entry["kind"], entry["count"], " x ".join("%.0f" % (b / per_mm) for b in entry["blank"])))

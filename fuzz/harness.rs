@@ -8,16 +8,21 @@ use std::ptr;
 
 use nalgebra::Point3;
 use tilepattern::ffi::*;
-use tilepattern::mesh::{MAX_COORDINATE, PolyMesh, Topology, obj};
+use tilepattern::mesh::{MAX_COORDINATE, PolyMesh, Topology, io, obj};
 use tilepattern::pattern::{Bond, DualGraph, score};
 
 /// Arbitrary bytes as an OBJ file: parsed and validated, or refused with an error; never a
-/// panic. A parsed mesh writes back to OBJ and parses again to the same mesh.
+/// panic. A parsed mesh writes back to OBJ and parses again to the same mesh. The same bytes
+/// as a file of every format the command line reads (STL, PLY, OFF, by extension and by
+/// content), welded: a mesh or an error, never a panic.
 pub fn obj_reader(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     if let Ok(mesh) = obj::parse(&text) {
         let again = obj::parse(&obj::to_string(&mesh)).expect("a written mesh parses");
         assert_eq!(again, mesh, "OBJ round trip");
+    }
+    for extension in [Some("obj"), Some("stl"), Some("ply"), Some("off"), None] {
+        let _ = io::parse(data, extension, io::Weld::default());
     }
 }
 

@@ -151,8 +151,11 @@ namespace TilePattern.Gh
             Report report = result.Tiling.Report;
             foreach (UserMessage message in UserMessage.ForJoints(report))
                 Show(message);
-            if (report.Cutting != null && report.Cutting.Slivers > 0)
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, report.Cutting.Slivers + " slivers were left out.");
+            // The library's checks (closed or split surface, tile shape, coverage, dropped tiles
+            // and slivers, no support, ...): each stays visible on the component.
+            if (report.Warnings != null)
+                foreach (TilingWarning warning in report.Warnings)
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, warning.ToString());
             DA.SetDataList(0, tiles.Geometry);
             DA.SetDataList(1, tiles.Labels);
             DA.SetDataList(2, planes);

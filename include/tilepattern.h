@@ -221,6 +221,56 @@ typedef int32_t TpStatus;
 #endif // __cplusplus
 
 /**
+ * Why a tiling deserves a second look (`report.json`'s `warnings[].code`, by number). The
+ * numbers are stable: new codes get new numbers, none is reused.
+ */
+enum TpWarning
+#ifdef __cplusplus
+  : int32_t
+#endif // __cplusplus
+ {
+  /**
+   * The surface has no boundary (a sphere, a torus, a box).
+   */
+  TP_WARNING_CLOSED_SURFACE = 1,
+  /**
+   * The surface falls into several pieces that share no edge.
+   */
+  TP_WARNING_SEVERAL_PIECES = 2,
+  /**
+   * Most face normals point down: tiles are laid on the underside.
+   */
+  TP_WARNING_NORMALS_DOWN = 3,
+  /**
+   * The tile does not fit the half-tile model (length about 2 x width + joint).
+   */
+  TP_WARNING_TILE_SHAPE = 4,
+  /**
+   * The surface turns a lot over one tile length.
+   */
+  TP_WARNING_TILE_VS_CURVATURE = 5,
+  /**
+   * The tiles cover less than 0.95 of the surface.
+   */
+  TP_WARNING_LOW_COVERAGE = 6,
+  /**
+   * Tiles were left out (off the surface, or slivers).
+   */
+  TP_WARNING_TILES_DROPPED = 7,
+  /**
+   * Nothing to lay from: a closed surface, or a level one on the ground.
+   */
+  TP_WARNING_NO_SUPPORT = 8,
+  /**
+   * Reading a file joined coincident vertices.
+   */
+  TP_WARNING_VERTICES_WELDED = 9,
+};
+#ifndef __cplusplus
+typedef int32_t TpWarning;
+#endif // __cplusplus
+
+/**
  * A validated polygon mesh (opaque).
  */
 typedef struct TpMesh TpMesh;
@@ -466,6 +516,8 @@ typedef struct TpTileOptions {
    */
   double units_per_mm;
 } TpTileOptions;
+
+
 
 #ifdef __cplusplus
 extern "C" {
@@ -886,6 +938,34 @@ TpStatus tp_tiles_labels(const struct TpTiles *tiles, char *buf, size_t len, siz
  * `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
  */
 TpStatus tp_tiles_cutlist_json(const struct TpTiles *tiles, char *buf, size_t len, size_t *needed);
+
+/**
+ * Writes the number of warnings on the tiling (0 when all is well): odd input or results to
+ * look at twice, the same as `report.json`'s `warnings`.
+ *
+ * # Safety
+ * `tiles` must be a live handle and `out` writable.
+ */
+TpStatus tp_tiles_warning_count(const struct TpTiles *tiles, size_t *out);
+
+/**
+ * Copies the warnings' codes (`TP_WARNING_*`; capacity: warning count).
+ *
+ * # Safety
+ * `tiles` must be a live handle and `out` hold `capacity` items.
+ */
+TpStatus tp_tiles_copy_warning_codes(const struct TpTiles *tiles, TpWarning *out, size_t capacity);
+
+/**
+ * Copies the warnings' messages (what was found and what to do), one per warning in the
+ * order of [`tp_tiles_copy_warning_codes`], each followed by a newline, as a NUL-terminated
+ * string; `*needed` (if not NULL) gets its length without the NUL. Call with `len = 0` to
+ * ask for the size.
+ *
+ * # Safety
+ * `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
+ */
+TpStatus tp_tiles_warnings(const struct TpTiles *tiles, char *buf, size_t len, size_t *needed);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -246,6 +246,13 @@ pub fn tiles_for_pattern_with(
         report.seconds.fit = seconds;
     }
     report.add_finish(&tiles, &finished, surface.unwrap_or(quads));
+    report.warnings = report::warnings::check(
+        quads,
+        surface.unwrap_or(quads),
+        spec,
+        &finish.sequence.up,
+        &report,
+    );
     report.seconds.tiles = started.elapsed().as_secs_f64();
     Ok(Tiling {
         pattern,

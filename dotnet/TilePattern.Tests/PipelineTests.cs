@@ -145,6 +145,35 @@ namespace TilePattern.Tests
         }
 
         [Test]
+        public void AClosedSurfaceIsReportedThroughWarnings()
+        {
+            // Faces of side 2: the C tests' 1.9 x 0.95 tile fits them.
+            PolyMesh cube = TestMeshes.Cube(2);
+            var tile = new TileOptions { Length = 3.9, Width = 1.9, Thickness = 0.1, Joint = 0.1 };
+            using (Pattern pattern = TilePatternEngine.Match(cube, new PatternOptions { TimeLimitSeconds = 5 }))
+            {
+                Tiling tiling = TilePatternEngine.Tiles(pattern, tile);
+                var codes = tiling.Report.Warnings.Select(w => w.Code).ToList();
+                CollectionAssert.Contains(codes, TilingWarningCode.ClosedSurface);
+                CollectionAssert.Contains(codes, TilingWarningCode.NoSupport);
+                Assert.AreEqual("no_boundary", tiling.Report.Sequence.Support);
+                Assert.AreEqual(0, tiling.Report.Sequence.SupportTiles);
+                foreach (TilingWarning w in tiling.Report.Warnings)
+                {
+                    Assert.That(w.Message.Length, Is.GreaterThan(30), w.Name);
+                    StringAssert.Contains(w.Name, tiling.Report.Json, "the same codes as report.json");
+                }
+            }
+            // A plain grid stood up as a wall on its bottom edge: no warning.
+            PolyMesh wall = TestMeshes.Grid(10, 10);
+            using (Pattern pattern = TilePatternEngine.Match(wall, new PatternOptions { TimeLimitSeconds = 5 }))
+            {
+                var tile2 = new TileOptions { Length = 1.9, Width = 0.95, Thickness = 0.1, Joint = 0.1, Up = new[] { 0.0, 1.0, 0.0 } };
+                Assert.AreEqual(0, TilePatternEngine.Tiles(pattern, tile2).Report.Warnings.Length);
+            }
+        }
+
+        [Test]
         public void PaperFigure5OnATenByTenGrid()
         {
             // The C tests' case: 49 tiles, no continuous joint, proven optimal.

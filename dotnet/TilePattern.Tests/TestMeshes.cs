@@ -34,6 +34,42 @@ namespace TilePattern.Tests
             return PolyMesh.FromFaces(v.ToArray(), faces);
         }
 
+        /// <summary>A closed cube of side 2n, each side n x n unit quads, normals out.</summary>
+        public static PolyMesh Cube(int n)
+        {
+            var v = new List<double>();
+            var index = new Dictionary<string, int>();
+            var faces = new List<int[]>();
+            for (int k = 0; k < 3; k++)
+                for (int sign = -1; sign <= 1; sign += 2)
+                {
+                    int a = (k + 1) % 3, b = (k + 2) % 3;
+                    if (sign < 0) { int t = a; a = b; b = t; }
+                    var at = new int[n + 1, n + 1];
+                    for (int j = 0; j <= n; j++)
+                        for (int i = 0; i <= n; i++)
+                        {
+                            var p = new double[3];
+                            p[k] = sign * n;
+                            p[a] = 2 * i - n;
+                            p[b] = 2 * j - n;
+                            string key = p[0] + "," + p[1] + "," + p[2];
+                            int found;
+                            if (!index.TryGetValue(key, out found))
+                            {
+                                found = v.Count / 3;
+                                index[key] = found;
+                                v.AddRange(p);
+                            }
+                            at[i, j] = found;
+                        }
+                    for (int j = 0; j < n; j++)
+                        for (int i = 0; i < n; i++)
+                            faces.Add(new[] { at[i, j], at[i + 1, j], at[i + 1, j + 1], at[i, j + 1] });
+                }
+            return PolyMesh.FromFaces(v.ToArray(), faces);
+        }
+
         /// <summary>A strongly curved wave of 2 x 1.6 (metres) as triangles, z = 0.6 sin(2x)
         /// sin(3y): tiles of 280 x 140 mm on quads of 145 mm cannot all be fitted to it, so the
         /// fit stage cuts some.</summary>

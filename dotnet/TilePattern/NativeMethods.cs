@@ -329,5 +329,14 @@ namespace TilePattern
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern int tp_tiles_cutlist_json(TilesHandle tiles, [Out] byte[] buffer, UIntPtr length, out UIntPtr needed);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_warning_count(TilesHandle tiles, out UIntPtr count);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_copy_warning_codes(TilesHandle tiles, [Out] int[] output, UIntPtr capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_tiles_warnings(TilesHandle tiles, [Out] byte[] buffer, UIntPtr length, out UIntPtr needed);
     }
 }

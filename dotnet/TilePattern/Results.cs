@@ -2,6 +2,7 @@
 // the Report (plain data, copied out of the library).
 using System;
 using System.Collections.Generic;
+using System.Linq;
 using System.Threading;
 
 namespace TilePattern
@@ -428,9 +429,53 @@ namespace TilePattern
         public double Coverage { get; internal set; }
     }
 
+    /// <summary>Why a tiling deserves a second look (enum TpWarning of the C header; the
+    /// numbers are stable).</summary>
+    public enum TilingWarningCode
+    {
+        /// <summary>The surface has no boundary (a sphere, a torus, a box).</summary>
+        ClosedSurface = 1,
+        /// <summary>The surface falls into several pieces that share no edge.</summary>
+        SeveralPieces = 2,
+        /// <summary>Most face normals point down: tiles are laid on the underside.</summary>
+        NormalsDown = 3,
+        /// <summary>The tile does not fit the half-tile model (length about 2 x width + joint).</summary>
+        TileShape = 4,
+        /// <summary>The surface turns a lot over one tile length.</summary>
+        TileVsCurvature = 5,
+        /// <summary>The tiles cover less than 0.95 of the surface.</summary>
+        LowCoverage = 6,
+        /// <summary>Tiles were left out (off the surface, or slivers).</summary>
+        TilesDropped = 7,
+        /// <summary>Nothing to lay from: a closed surface, or a level one on the ground.</summary>
+        NoSupport = 8,
+        /// <summary>Reading a file joined coincident vertices.</summary>
+        VerticesWelded = 9,
+    }
+
+    /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>
+    public sealed class TilingWarning
+    {
+        /// <summary>The code (report.json's name for it in <see cref="Name"/>).</summary>
+        public TilingWarningCode Code { get; internal set; }
+        /// <summary>The code as report.json writes it, e.g. "closed_surface".</summary>
+        public string Name { get; internal set; }
+        /// <summary>What was found and what to do.</summary>
+        public string Message { get; internal set; }
+
+        public override string ToString()
+        {
+            return "[" + Name + "] " + Message;
+        }
+    }
+
     /// <summary>The laying order's summary.</summary>
     public sealed class SequenceReport
     {
+        /// <summary>What the vault stands on: "edges" (the lowest boundary), "no_boundary" (a
+        /// closed surface: no tile stands on a support) or "level" (a level surface on the
+        /// ground: no tile needs a prop).</summary>
+        public string Support { get; internal set; }
         /// <summary>Tiles standing on the supports.</summary>
         public int SupportTiles { get; internal set; }
         /// <summary>Tiles that at their step touch no lower laid tile and stand on no support.</summary>
@@ -487,6 +532,10 @@ namespace TilePattern
 
         /// <summary>The JSON text as the library wrote it.</summary>
         public string Json { get; private set; }
+
+        /// <summary>Odd input and results to look at twice (tp_tiles_copy_warning_codes and
+        /// tp_tiles_warnings; report.json's "warnings"); empty when all is well.</summary>
+        public TilingWarning[] Warnings { get; internal set; }
 
         /// <summary>Reads a report from its JSON (FormatException if it is not JSON).</summary>
         public static Report Parse(string json)
@@ -545,11 +594,25 @@ namespace TilePattern
                 {
                     SupportTiles = JsonAccess.Integer(sequence, "support_tiles"),
                     Unsupported = JsonAccess.Integer(sequence, "unsupported"),
+                    Support = JsonAccess.Text(sequence, "support") ?? "edges",
                 };
             var seconds = JsonAccess.Object(root, "seconds");
             r.PatternSeconds = JsonAccess.Number(seconds, "pattern");
             r.TileSeconds = JsonAccess.Number(seconds, "tiles");
             r.FitSeconds = JsonAccess.Number(seconds, "fit");
+            var warnings = root.ContainsKey("warnings") ? root["warnings"] as List<object> : null;
+            var parsed = new List<TilingWarning>();
+            if (warnings != null)
+                foreach (object item in warnings)
+                {
+                    var w = item as Dictionary<string, object>;
+                    string name = JsonAccess.Text(w, "code") ?? "";
+                    TilingWarningCode code;
+                    string pascal = string.Concat(name.Split('_').Where(p => p.Length > 0).Select(p => char.ToUpperInvariant(p[0]) + p.Substring(1)).ToArray());
+                    Enum.TryParse(pascal, out code);
+                    parsed.Add(new TilingWarning { Code = code, Name = name, Message = JsonAccess.Text(w, "message") ?? "" });
+                }
+            r.Warnings = parsed.ToArray();
             return r;
         }
     }

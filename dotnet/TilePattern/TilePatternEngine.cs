@@ -296,7 +296,27 @@ namespace TilePattern
             }
             if (loop != loopSizes.Length || 2 * point != points.Length)
                 throw new TilePatternException(TilePatternStatus.InvalidArgument, "the outline counts do not add up: " + loop + " loops, " + point + " points read");
-            return new Tiling(result, Report.Parse(Text(handle, NativeMethods.tp_tiles_report_json)), Text(handle, NativeMethods.tp_tiles_cutlist_json));
+            Report report = Report.Parse(Text(handle, NativeMethods.tp_tiles_report_json));
+            report.Warnings = Warnings(handle);
+            return new Tiling(result, report, Text(handle, NativeMethods.tp_tiles_cutlist_json));
+        }
+
+        /// <summary>The warnings through the C ABI: codes and messages, in the report's order.</summary>
+        static TilingWarning[] Warnings(TilesHandle handle)
+        {
+            UIntPtr count;
+            Native.Check(NativeMethods.tp_tiles_warning_count(handle, out count));
+            var codes = new int[Native.Count(count)];
+            Native.Check(NativeMethods.tp_tiles_copy_warning_codes(handle, codes, Native.Size(codes.Length)));
+            string[] messages = Text(handle, NativeMethods.tp_tiles_warnings).Split(new[] { '\n' }, StringSplitOptions.None);
+            var result = new TilingWarning[codes.Length];
+            for (int i = 0; i < codes.Length; i++)
+            {
+                var code = (TilingWarningCode)codes[i];
+                string words = System.Text.RegularExpressions.Regex.Replace(code.ToString(), "(?<=[a-z])([A-Z])", "_$1").ToLowerInvariant();
+                result[i] = new TilingWarning { Code = code, Name = words, Message = i < messages.Length ? messages[i] : "" };
+            }
+            return result;
         }
 
         internal delegate int TextExport(TilesHandle tiles, byte[] buffer, UIntPtr length, out UIntPtr needed);

@@ -1,4 +1,4 @@
-//! Arbitrary bytes as an OBJ file (see `harness::obj_reader`).
+//! Arbitrary bytes as an OBJ file, and as every other mesh format (see `harness::obj_reader`).
 #![no_main]
 
 #[allow(dead_code, unused_imports)] // each target uses one function of the shared harness

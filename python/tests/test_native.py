@@ -43,6 +43,7 @@ def _c_type(decl):
         "int32_t": ctypes.c_int32,
         "size_t": ctypes.c_size_t,
         "TpStatus": ctypes.c_int32,
+        "TpWarning": ctypes.c_int32,
         "TpMesh": nat.TpMesh,
         "TpPattern": nat.TpPattern,
         "TpTiles": nat.TpTiles,
@@ -126,10 +127,13 @@ def test_constants_and_status_codes_match_the_header():
     for name, value in defines.items():
         mine = nat.ABI_VERSION if name == "TP_ABI_VERSION" else getattr(nat, name)
         assert mine == (0xFFFFFFFF if value == "UINT32_MAX" else int(value)), name
-    enum = dict(re.findall(r"^\s+(TP_\w+) = (\d+),$", text, flags=re.M))
+    enums = dict(re.findall(r"^\s+(TP_\w+) = (\d+),$", text, flags=re.M))
+    enum = {k: v for k, v in enums.items() if not k.startswith("TP_WARNING_")}
     assert len(enum) == 11
     assert {int(v): k for k, v in enum.items()} == nat.STATUS_NAMES
-    for name, value in enum.items():
+    warnings = {k: v for k, v in enums.items() if k.startswith("TP_WARNING_")}
+    assert {int(v): k[len("TP_WARNING_"):].lower() for k, v in warnings.items()} == nat.WARNING_NAMES
+    for name, value in enums.items():
         assert getattr(nat, name) == int(value)
 
 

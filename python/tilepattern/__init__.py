@@ -37,7 +37,7 @@ from ._native import (
     library_path,
     version,
 )
-from .core import Pattern, Tiles, match, quad_edge, remesh, tiles
+from .core import Pattern, TilePatternWarning, Tiles, match, quad_edge, remesh, tiles
 
 __version__ = "0.1.0"
 
@@ -48,6 +48,7 @@ __all__ = [
     "quad_edge",
     "Pattern",
     "Tiles",
+    "TilePatternWarning",
     "TilePatternError",
     "NullPointerError",
     "InvalidArgumentError",

@@ -86,6 +86,30 @@ TP_TILE_FIT_CUT = 3
 
 TP_NO_FACE = 0xFFFFFFFF
 
+# Warning codes (enum TpWarning): report.json's warnings[].code by number.
+TP_WARNING_CLOSED_SURFACE = 1
+TP_WARNING_SEVERAL_PIECES = 2
+TP_WARNING_NORMALS_DOWN = 3
+TP_WARNING_TILE_SHAPE = 4
+TP_WARNING_TILE_VS_CURVATURE = 5
+TP_WARNING_LOW_COVERAGE = 6
+TP_WARNING_TILES_DROPPED = 7
+TP_WARNING_NO_SUPPORT = 8
+TP_WARNING_VERTICES_WELDED = 9
+
+#: Warning code -> its name in report.json, for every code of ``enum TpWarning``.
+WARNING_NAMES = {
+    TP_WARNING_CLOSED_SURFACE: "closed_surface",
+    TP_WARNING_SEVERAL_PIECES: "several_pieces",
+    TP_WARNING_NORMALS_DOWN: "normals_down",
+    TP_WARNING_TILE_SHAPE: "tile_shape",
+    TP_WARNING_TILE_VS_CURVATURE: "tile_vs_curvature",
+    TP_WARNING_LOW_COVERAGE: "low_coverage",
+    TP_WARNING_TILES_DROPPED: "tiles_dropped",
+    TP_WARNING_NO_SUPPORT: "no_support",
+    TP_WARNING_VERTICES_WELDED: "vertices_welded",
+}
+
 MAX_VERTICES = 4_000_000
 MAX_FACES = 4_000_000
 MAX_INDICES = 16_000_000
@@ -462,6 +486,9 @@ PROTOTYPES = {
     "tp_tiles_copy_loop_points": (TpStatus, [TpTilesP, _f64p, c_size_t]),
     "tp_tiles_labels": (TpStatus, [TpTilesP, _charp, c_size_t, _sizep]),
     "tp_tiles_cutlist_json": (TpStatus, [TpTilesP, _charp, c_size_t, _sizep]),
+    "tp_tiles_warning_count": (TpStatus, [TpTilesP, _sizep]),
+    "tp_tiles_copy_warning_codes": (TpStatus, [TpTilesP, _i32p, c_size_t]),
+    "tp_tiles_warnings": (TpStatus, [TpTilesP, _charp, c_size_t, _sizep]),
 }
 
 #: Exports that exist only in some builds: bound when present.
@@ -1030,6 +1057,14 @@ class TilesHandle(Handle):
     def cutlist_json(self):
         """The cut list as a JSON string."""
         return _text(lib().tp_tiles_cutlist_json, self.pointer)
+
+    def warnings(self):
+        """The warnings as a list of ``(code name, message)``."""
+        count = c_size_t()
+        check(lib().tp_tiles_warning_count(self.pointer, ctypes.byref(count)))
+        codes = self._copy("tp_tiles_copy_warning_codes", count.value, np.int32, c_int32)
+        messages = _text(lib().tp_tiles_warnings, self.pointer).splitlines()
+        return [(WARNING_NAMES.get(int(c), str(int(c))), m) for c, m in zip(codes, messages)]
 
 
 def version():

@@ -618,7 +618,14 @@ class Tiles:
         Counts, proof status, tile size, joint gaps (``joints``, with the figures before
         the fit under ``joints["before_fit"]``), the fit (``fit``: status, iterations,
         objective before and after, mean and largest move; absent with ``fit=False``),
-        cutting and sequence (``report.json`` of the command line, without ``units``).
+        cutting, sequence and warnings (``report.json`` of the command line, without
+        ``units``).
+    warnings : list of dict
+        Odd input or results to look at twice, each ``{"code": ..., "message": ...}``:
+        ``closed_surface``, ``several_pieces``, ``normals_down``, ``tile_shape``,
+        ``tile_vs_curvature``, ``low_coverage``, ``tiles_dropped``, ``no_support``,
+        ``vertices_welded`` (the message says what to do). :func:`tiles` also issues each
+        as a :class:`TilePatternWarning`.
     """
 
     kinds: np.ndarray
@@ -633,6 +640,7 @@ class Tiles:
     cutlist: List[dict]
     report: dict
     joint_deviations: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    warnings: List[dict] = field(default_factory=list)
 
     def __len__(self) -> int:
         return len(self.kinds)
@@ -665,7 +673,12 @@ class Tiles:
             "cutlist": self.cutlist,
             "joint_deviations": self.joint_deviations.tolist(),
             "report": self.report,
+            "warnings": list(self.warnings),
         }
+
+
+class TilePatternWarning(UserWarning):
+    """Odd input or a result to look at twice (see :attr:`Tiles.warnings`)."""
 
 
 def _read_tiles(handle) -> Tiles:
@@ -686,6 +699,7 @@ def _read_tiles(handle) -> Tiles:
         cutlist=json.loads(handle.cutlist_json()),
         report=json.loads(handle.report_json()),
         joint_deviations=handle.joint_deviations(n),
+        warnings=[{"code": code, "message": message} for code, message in handle.warnings()],
     )
 
 
@@ -819,7 +833,10 @@ def tiles(
             with mesh_handle(*surface) as reference:
                 built = pattern_pointer.build_tiles(quads, options, reference, progress=progress)
     with built:
-        return _read_tiles(built)
+        placed = _read_tiles(built)
+    for w in placed.warnings:
+        warnings.warn(f"[{w['code']}] {w['message']}", TilePatternWarning, stacklevel=2)
+    return placed
 
 
 def quad_edge(length=0.28, width=0.14, joint=0.01, courses="free"):

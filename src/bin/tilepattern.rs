@@ -8,11 +8,12 @@ use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use serde::Serialize;
 use tilepattern::control::Control;
+use tilepattern::mesh::io::{Loaded, Weld};
 use tilepattern::mesh::{self, MeshError, PolyMesh};
 use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, PatternOptions};
 use tilepattern::pipeline::{self, Tiling};
 use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
-use tilepattern::report::{JointSummary, Report, svg};
+use tilepattern::report::{JointSummary, Report, Warning, WarningCode, svg};
 use tilepattern::tiles::{
     self, CutGroup, FinishOptions, FitOptions, Sequence, SequenceOptions, Tile, TileSpec,
 };
@@ -26,13 +27,17 @@ use tilepattern::tiles::{
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Join mesh vertices closer than this fraction of the bounding-box diagonal when reading
+    /// a file (triangle soups, STL), or `off` to keep the file's vertices as they are.
+    #[arg(long, global = true, value_parser = parse_weld, default_value = "1e-6")]
+    weld: Weld,
 }
 
 #[derive(Subcommand)]
 enum Command {
     /// Match the faces of a quad mesh into tiles (paper eqs. 1-3) and write the pairs as JSON.
     Match {
-        /// Quad mesh (OBJ). Face indices in the output are 0-based, in OBJ order.
+        /// Quad mesh (OBJ, STL, PLY or OFF). Face indices in the output are 0-based, in file order.
         quads: PathBuf,
         #[command(flatten)]
         pattern: PatternArgs,
@@ -45,7 +50,7 @@ enum Command {
     },
     /// Build tile boxes for pairs written by `match`.
     Tiles {
-        /// The quad mesh the pairs refer to (OBJ).
+        /// The quad mesh the pairs refer to (OBJ, STL, PLY or OFF).
         quads: PathBuf,
         /// JSON written by `tilepattern match`.
         #[arg(long)]
@@ -61,7 +66,7 @@ enum Command {
         /// Picture of the pattern (SVG).
         #[arg(long)]
         svg: Option<PathBuf>,
-        /// The input surface the quads were made from (OBJ): tiles are cut to its boundary
+        /// The input surface the quads were made from (OBJ, STL, PLY or OFF): tiles are cut to its boundary
         /// (default: the quad mesh's own boundary).
         #[arg(long)]
         surface: Option<PathBuf>,
@@ -75,10 +80,10 @@ enum Command {
     },
     /// Quadrangulate a triangle (or polygon) mesh into near-square quads of edge T (stage 1).
     Remesh {
-        /// Input surface (OBJ).
+        /// Input surface (OBJ, STL, PLY or OFF).
         input: PathBuf,
         /// Target quad edge in model units.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         edge: f64,
         #[command(flatten)]
         field: FieldArgs,
@@ -90,12 +95,12 @@ enum Command {
         json: Option<PathBuf>,
         /// Wall-clock limit in seconds: when it passes the quad mesh as it stands is written
         /// (final fitting cut short), or the command fails if none is ready yet.
-        #[arg(long, default_value_t = 60.0)]
+        #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
         time_limit: f64,
     },
     /// All three stages on a surface: remesh with quads of (L + joint) / 2, match, tile.
     Run {
-        /// Input surface (OBJ).
+        /// Input surface (OBJ, STL, PLY or OFF).
         input: PathBuf,
         #[command(flatten)]
         tile: TileArgs,
@@ -105,7 +110,7 @@ enum Command {
         pattern: PatternArgs,
         /// Wall-clock limit of the remesh stage in seconds (`--time-limit` is the pattern
         /// stage's).
-        #[arg(long, default_value_t = 60.0)]
+        #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
         remesh_time_limit: f64,
         /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv,
         /// cutlist.json, sequence.json, gaps.svg.
@@ -120,7 +125,7 @@ enum Command {
         #[arg(long, default_value = "demo")]
         out: PathBuf,
         /// Plan size of the shell in metres.
-        #[arg(long, default_value_t = 3.0)]
+        #[arg(long, default_value_t = 3.0, allow_negative_numbers = true)]
         span: f64,
         #[command(flatten)]
         pattern: PatternArgs,
@@ -137,7 +142,7 @@ struct FieldArgs {
     #[arg(long, value_parser = parse_vector, conflicts_with = "angle")]
     direction: Option<[f64; 3]>,
     /// Rotate the curvature-aligned field by this many degrees (e.g. 45).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     angle: Option<f64>,
     /// Pull faces towards squares (shape-up) without leaving the surface.
     #[arg(long)]
@@ -167,10 +172,10 @@ struct PatternArgs {
     pattern: BondArg,
     /// Weight of the bond term: penalty per continuous joint (staggered) or reward per shifted
     /// pair (running-bond).
-    #[arg(long, default_value_t = pattern::DEFAULT_WEIGHT)]
+    #[arg(long, default_value_t = pattern::DEFAULT_WEIGHT, allow_negative_numbers = true)]
     weight: f64,
     /// Solver time limit in seconds (wall clock). 0 returns the greedy start without solving.
-    #[arg(long, default_value_t = 60.0)]
+    #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
     time_limit: f64,
     /// Stop once the relative gap (bound - objective) / bound is at most this, like a MIP
     /// solver's gap: 0 proves optimality (or runs to the time limit), 0.01 stops within 1 %.
@@ -224,44 +229,45 @@ enum FormulationArg {
 #[derive(clap::Args)]
 struct TileArgs {
     /// Tile size LxWxT in millimetres, e.g. 280x140x15.
-    #[arg(long, value_parser = parse_tile)]
+    #[arg(long, value_parser = parse_tile, allow_hyphen_values = true)]
     tile: [f64; 3],
     /// Mortar joint in millimetres.
-    #[arg(long, default_value_t = 10.0, value_parser = parse_mm)]
+    #[arg(long, default_value_t = 10.0, value_parser = parse_mm, allow_negative_numbers = true)]
     joint: f64,
-    /// Units of the mesh coordinates; auto = millimetres if the mesh's bounding-box diagonal
-    /// is 1000 or more, metres otherwise.
+    /// Units of the mesh coordinates; auto = the one reading (m, cm or mm) under which the
+    /// mesh is a plausible shell for this tile (see the README); it refuses when two readings
+    /// are plausible.
     #[arg(long, value_enum, default_value_t = Units::Auto)]
     units: Units,
     /// Cutting tolerance in millimetres: tiles the boundary enters by no more than this stay
     /// whole, cut shapes this close share a label (default: 1 % of the tile width).
-    #[arg(long, value_parser = parse_mm)]
+    #[arg(long, value_parser = parse_mm, allow_negative_numbers = true)]
     cut_tolerance: Option<f64>,
     /// Boundary pieces narrower than this (millimetres) are reported as slivers, not emitted
     /// (default: a fifth of the tile width).
-    #[arg(long, value_parser = parse_mm)]
+    #[arg(long, value_parser = parse_mm, allow_negative_numbers = true)]
     min_kept_width: Option<f64>,
     /// Up direction x,y,z for the laying order.
     #[arg(long, value_parser = parse_vector, default_value = "0,0,1")]
     up: [f64; 3],
     /// Tiles with a boundary edge within this height (millimetres) of the lowest boundary
     /// point stand on the supports (default: one tile width).
-    #[arg(long, value_parser = parse_mm)]
+    #[arg(long, value_parser = parse_mm, allow_negative_numbers = true)]
     support_band: Option<f64>,
     /// Keep the paper's placement (section 3.5): no fit stage moving tiles to even joints.
     #[arg(long)]
     no_fit: bool,
     /// Wall-clock limit of the fit stage in seconds; when it passes, the best placement so far
     /// is kept.
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
     fit_time_limit: f64,
     /// Overlaps the fit leaves (millimetres); deeper ones are cut (default: a twentieth of
     /// the joint).
-    #[arg(long, value_parser = parse_mm)]
+    #[arg(long, value_parser = parse_mm, allow_negative_numbers = true)]
     overlap_tolerance: Option<f64>,
     /// How far (millimetres) the fit may move a running bond's half offset or an aligned
     /// joint (default: a tenth of the tile length).
-    #[arg(long, value_parser = parse_mm)]
+    #[arg(long, value_parser = parse_mm, allow_negative_numbers = true)]
     bond_tolerance: Option<f64>,
 }
 
@@ -284,6 +290,8 @@ fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> Result<()> {
+    let weld = cli.weld;
+    let read_mesh = |path: &Path| read_mesh(path, weld);
     match cli.command {
         Command::Match {
             quads,
@@ -291,7 +299,9 @@ fn run(cli: Cli) -> Result<()> {
             up,
             json,
         } => {
-            let mesh = read_mesh(&quads)?;
+            let loaded = read_mesh(&quads)?;
+            print_warnings(weld_warning(&loaded).as_slice());
+            let mesh = loaded.mesh;
             let found = pattern::solve(&mesh, &pattern.options(false, up)?)?;
             eprintln!("{}", pattern_summary(&found));
             write_json(json.as_deref(), &found)
@@ -307,8 +317,14 @@ fn run(cli: Cli) -> Result<()> {
             fabrication,
             pattern,
         } => {
-            let mesh = read_mesh(&quads)?;
+            let loaded = read_mesh(&quads)?;
             let surface = surface.map(|path| read_mesh(&path)).transpose()?;
+            let mut welds: Vec<Warning> = std::iter::once(&loaded)
+                .chain(surface.as_ref())
+                .filter_map(weld_warning)
+                .collect();
+            let mesh = loaded.mesh;
+            let surface = surface.map(|s| s.mesh);
             let text = std::fs::read_to_string(&pairs)
                 .with_context(|| format!("cannot read {}", pairs.display()))?;
             let found: Pattern = serde_json::from_str(&text).with_context(|| {
@@ -317,21 +333,26 @@ fn run(cli: Cli) -> Result<()> {
                     pairs.display()
                 )
             })?;
-            let (spec, units) = tile.spec(&mesh);
-            let mut finish = tile.finish(&spec, units);
+            let (spec, units) = tile.spec(surface.as_ref().unwrap_or(&mesh))?;
+            eprintln!("{}", units.why);
+            let mut finish = tile.finish(&spec, units.unit);
             if let Some(fit) = finish.fit.as_mut() {
                 fit.bond = pattern.bond(pattern::DEFAULT_WEIGHT);
             }
-            let tiling =
-                pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &finish)?;
+            let mut tiling =
+                pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &finish)
+                    .map_err(|e| units.explain(e))?;
+            tiling.report.warnings.append(&mut welds);
+            let units = units.unit;
             write_text(&output, &tiles::to_obj(&tiling.tiles))?;
             if let Some(svg_path) = svg {
                 write_text(&svg_path, &svg::pattern_svg(&mesh, &tiling.tiles))?;
             }
             if let Some(dir) = fabrication {
-                write_fabrication(&dir, &mesh, &tiling, units.per_mm())?;
+                write_fabrication(&dir, &mesh, &tiling, units)?;
             }
             eprintln!("{}", tiling_summary(&tiling, units));
+            print_warnings(&tiling.report.warnings);
             json.map_or(Ok(()), |path| {
                 write_json(
                     Some(&path),
@@ -351,7 +372,9 @@ fn run(cli: Cli) -> Result<()> {
             json,
             time_limit,
         } => {
-            let surface = read_mesh(&input)?;
+            let loaded = read_mesh(&input)?;
+            print_warnings(weld_warning(&loaded).as_slice());
+            let surface = loaded.mesh;
             let options = RemeshOptions {
                 time_limit: RemeshOptions::time_limit_from_secs(time_limit)?,
                 ..field.options(edge)
@@ -369,23 +392,28 @@ fn run(cli: Cli) -> Result<()> {
             remesh_time_limit,
             out,
         } => {
-            let surface = read_mesh(&input)?;
-            let (spec, units) = tile.spec(&surface);
-            let finish = tile.finish(&spec, units);
+            let loaded = read_mesh(&input)?;
+            let surface = &loaded.mesh;
+            let (spec, units) = tile.spec(surface)?;
+            eprintln!("{}", units.why);
+            let finish = tile.finish(&spec, units.unit);
             let options = pattern.options(true, tile.up)?;
             let edge = spec.quad_edge(options.courses != Courses::Free);
             let remesh = RemeshOptions {
                 time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?,
                 ..field.options(edge)
             };
-            let (remeshed, tiling) = pipeline::tile_surface(
-                &surface,
+            let (remeshed, mut tiling) = pipeline::tile_surface(
+                surface,
                 &remesh,
                 &options,
                 &spec,
                 &finish,
                 &mut Control::none(),
-            )?;
+            )
+            .map_err(|e| units.explain(e))?;
+            tiling.report.warnings.extend(weld_warning(&loaded));
+            let units = units.unit;
             write_outputs(
                 &out,
                 &remeshed.quads,
@@ -395,6 +423,7 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             println!("{}", remesh_summary(&remeshed.metrics));
             println!("{}", tiling_summary(&tiling, units));
+            print_warnings(&tiling.report.warnings);
             Ok(())
         }
         Command::Demo {
@@ -451,6 +480,7 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
     );
     println!("{}", remesh_summary(&remeshed.metrics));
     println!("{}", tiling_summary(&tiling, Units::M));
+    print_warnings(&tiling.report.warnings);
     println!(
         "wrote {}/{{quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv, cutlist.json, sequence.json, gaps.svg}}",
         out.display()
@@ -482,13 +512,17 @@ fn write_outputs(
             report: &tiling.report,
         },
     )?;
-    write_fabrication(out, quads, tiling, units.per_mm())
+    write_fabrication(out, quads, tiling, units)
 }
 
 /// Writes cutlist.csv, cutlist.json, sequence.json and gaps.svg into `dir`.
-fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: f64) -> Result<()> {
+fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, units: Units) -> Result<()> {
+    let millimetre = units.per_mm();
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    write_text(&dir.join("cutlist.csv"), &cutlist_csv(&tiling.cut_list))?;
+    write_text(
+        &dir.join("cutlist.csv"),
+        &cutlist_csv(&tiling.cut_list, units.name()),
+    )?;
     write_json(Some(&dir.join("cutlist.json")), &tiling.cut_list)?;
     let mut order: Vec<&Tile> = tiling.tiles.iter().collect();
     order.sort_by_key(|t| t.step);
@@ -504,7 +538,11 @@ fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: 
     let summary = tiling.report.sequence.as_ref();
     write_json(
         Some(&dir.join("sequence.json")),
-        &SequenceFile { summary, steps },
+        &SequenceFile {
+            units: units.name(),
+            summary,
+            steps,
+        },
     )?;
     write_text(
         &dir.join("gaps.svg"),
@@ -519,9 +557,10 @@ fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, millimetre: 
 }
 
 /// `cutlist.csv`: one row per cut shape; outlines (boundary shapes) as loops separated by
-/// `|`, points `x y` separated by `;`, in the blank's frame and model units.
-fn cutlist_csv(groups: &[CutGroup]) -> String {
-    let mut csv = String::from("label,kind,count,blank_length,blank_width,area,outline\n");
+/// `|`, points `x y` separated by `;`, in the blank's frame and model units, which the last
+/// column names.
+fn cutlist_csv(groups: &[CutGroup], units: &str) -> String {
+    let mut csv = String::from("label,kind,count,blank_length,blank_width,area,outline,units\n");
     for g in groups {
         let outline: Vec<String> = g
             .outline
@@ -538,7 +577,7 @@ fn cutlist_csv(groups: &[CutGroup]) -> String {
             .and_then(|v| v.as_str().map(str::to_owned))
             .unwrap_or_default();
         csv.push_str(&format!(
-            "{},{},{},{},{},{:.6},{}\n",
+            "{},{},{},{},{},{:.6},{},{units}\n",
             g.label,
             kind,
             g.count,
@@ -554,6 +593,8 @@ fn cutlist_csv(groups: &[CutGroup]) -> String {
 /// `sequence.json`: the laying order's summary and the tiles step by step.
 #[derive(Serialize)]
 struct SequenceFile<'a> {
+    /// The model unit of `origin` (as `report.json`'s `units`).
+    units: &'static str,
     summary: Option<&'a Sequence>,
     steps: Vec<SequenceStep<'a>>,
 }
@@ -650,22 +691,21 @@ impl TileArgs {
         }
     }
 
-    /// The tile in model units, and the units chosen.
-    fn spec(&self, mesh: &PolyMesh) -> (TileSpec, Units) {
+    /// The tile in model units, and the units chosen with the reason.
+    ///
+    /// # Errors
+    /// `--units auto` when no reading, or more than one, makes the mesh a plausible shell.
+    fn spec(&self, mesh: &PolyMesh) -> Result<(TileSpec, ChosenUnits)> {
         let units = match self.units {
-            Units::Auto => {
-                let (min, max) = mesh.bounding_box();
-                if (max - min).norm() >= 1000.0 {
-                    Units::Mm
-                } else {
-                    Units::M
-                }
-            }
-            chosen => chosen,
+            Units::Auto => auto_units(mesh, self.tile, self.joint)?,
+            chosen => ChosenUnits {
+                unit: chosen,
+                why: format!("units: {} (--units {})", chosen.name(), chosen.name()),
+            },
         };
-        let mm = units.per_mm();
+        let mm = units.unit.per_mm();
         let [length, width, thickness] = self.tile.map(|d| d * mm);
-        (
+        Ok((
             TileSpec {
                 length,
                 width,
@@ -673,7 +713,129 @@ impl TileArgs {
                 joint: self.joint * mm,
             },
             units,
+        ))
+    }
+}
+
+/// The units the mesh is read in, and why.
+struct ChosenUnits {
+    unit: Units,
+    why: String,
+}
+
+impl ChosenUnits {
+    /// Adds the units to errors a wrong unit typically causes, naming `--units`.
+    fn explain(&self, error: pipeline::Error) -> anyhow::Error {
+        use tilepattern::remesh::RemeshError as R;
+        let scale = matches!(
+            error,
+            pipeline::Error::TileTooSmall { .. }
+                | pipeline::Error::Tiles(tiles::TileError::TileLargerThanMesh { .. })
+                | pipeline::Error::Remesh(
+                    R::NothingExtracted(_)
+                        | R::TargetEdgeTooLarge { .. }
+                        | R::TargetEdgeTooSmall { .. }
+                )
+        );
+        let error = anyhow::Error::new(error);
+        if scale {
+            error.context(format!(
+                "{}; if the mesh is not in these units, give --units m, cm or mm",
+                self.why
+            ))
+        } else {
+            error
+        }
+    }
+}
+
+/// Plausible shells: bounding-box diagonal in metres, and tiles on them.
+const PLAUSIBLE_DIAGONAL_M: [f64; 2] = [0.5, 100.0];
+const PLAUSIBLE_TILES: [f64; 2] = [20.0, 2e6];
+/// Usual shells: a reading in this range wins over one that is merely plausible.
+const USUAL_DIAGONAL_M: [f64; 2] = [2.0, 25.0];
+
+/// `--units auto`: reads the mesh in metres, centimetres and millimetres and keeps the one
+/// reading under which it is a usual shell (diagonal 2 to 25 m), else the one under which it is
+/// at least plausible (0.5 to 100 m, 20 to 2 million tiles of this size).
+fn auto_units(mesh: &PolyMesh, tile_mm: [f64; 3], joint_mm: f64) -> Result<ChosenUnits> {
+    let (min, max) = mesh.bounding_box();
+    let diagonal = (max - min).norm();
+    let area = mesh.area();
+    // Area of one tile with its joint, in square metres.
+    let tile_m2 = (tile_mm[0] + joint_mm) * (tile_mm[1] + joint_mm) * 1e-6;
+    let readings: Vec<(Units, f64, f64)> = [Units::M, Units::Cm, Units::Mm]
+        .into_iter()
+        .map(|u| {
+            let metre = u.per_mm() * 1000.0; // model units per metre
+            (u, diagonal / metre, area / (metre * metre) / tile_m2)
+        })
+        .collect();
+    let within = |v: f64, [lo, hi]: [f64; 2]| (lo..=hi).contains(&v);
+    let plausible: Vec<&(Units, f64, f64)> = readings
+        .iter()
+        .filter(|(_, d, n)| within(*d, PLAUSIBLE_DIAGONAL_M) && within(*n, PLAUSIBLE_TILES))
+        .collect();
+    let usual: Vec<_> = plausible
+        .iter()
+        .copied()
+        .filter(|(_, d, _)| within(*d, USUAL_DIAGONAL_M))
+        .collect();
+    let describe = |(u, d, n): &(Units, f64, f64)| {
+        format!(
+            "in {} it is {} across with about {n:.0} tiles",
+            u.name(),
+            metres(*d)
         )
+    };
+    let all: Vec<String> = readings.iter().map(describe).collect();
+    let candidates = if usual.is_empty() { plausible } else { usual };
+    let chosen = match candidates.as_slice() {
+        [one] => *one,
+        [] => bail!(
+            "--units auto: the mesh ({diagonal:.4} units across) is no plausible shell for a {}x{} mm tile in any unit ({}); give --units m, cm or mm",
+            tile_mm[0],
+            tile_mm[1],
+            all.join("; ")
+        ),
+        several => {
+            let names: Vec<&str> = several.iter().map(|r| r.0.name()).collect();
+            bail!(
+                "--units auto: the mesh ({diagonal:.4} units across) reads as a plausible shell in {} ({}); give --units {} to say which",
+                names.join(" and "),
+                several
+                    .iter()
+                    .map(|r| describe(r))
+                    .collect::<Vec<_>>()
+                    .join("; "),
+                names.join(" or ")
+            )
+        }
+    };
+    let others: Vec<String> = readings
+        .iter()
+        .filter(|r| r.0 != chosen.0)
+        .map(describe)
+        .collect();
+    Ok(ChosenUnits {
+        unit: chosen.0,
+        why: format!(
+            "units: {} (--units auto: {}; {}); give --units to override",
+            chosen.0.name(),
+            describe(chosen),
+            others.join(", ")
+        ),
+    })
+}
+
+/// A length in metres, written with a sensible unit.
+fn metres(m: f64) -> String {
+    if m >= 1000.0 {
+        format!("{:.1} km", m / 1000.0)
+    } else if m >= 1.0 {
+        format!("{m:.1} m")
+    } else {
+        format!("{:.0} mm", m * 1000.0)
     }
 }
 
@@ -706,6 +868,11 @@ fn parse_tile(text: &str) -> Result<[f64; 3], String> {
                 if !(value.is_finite() && value > 0.0) {
                     return Err(format!("tile {name} {value} mm must be a number > 0"));
                 }
+            }
+            if l < w {
+                return Err(format!(
+                    "tile {l}x{w}x{t}: the length {l} is shorter than the width {w}; write length x width x thickness, e.g. {w}x{l}x{t}"
+                ));
             }
             Ok([l, w, t])
         }
@@ -745,15 +912,57 @@ fn parse_pair(text: &str) -> Result<[usize; 2], String> {
     }
 }
 
-fn read_mesh(path: &Path) -> Result<PolyMesh> {
-    mesh::obj::read(path).map_err(|error| {
+fn read_mesh(path: &Path, weld: Weld) -> Result<Loaded> {
+    mesh::io::read(path, weld).map_err(|error| {
         // Errors naming a face or vertex: say how they are counted, as OBJ counts from 1.
         let numbering = match error {
-            MeshError::ObjSyntax { .. } | MeshError::Io { .. } | MeshError::TooLarge { .. } | MeshError::Empty { .. } => "",
-            _ => " (faces and vertices counted from 0 in file order: face 0 is the first `f` line, vertex 0 the first `v` line)",
+            MeshError::ObjSyntax { .. } | MeshError::Format { .. } | MeshError::Io { .. } | MeshError::TooLarge { .. } | MeshError::Empty { .. } => "",
+            _ => " (faces and vertices counted from 0 in file order, after welding: face 0 is the first face of the file, vertex 0 the first vertex)",
         };
         anyhow::Error::new(error).context(format!("cannot use {} as a mesh{numbering}", path.display()))
     })
+}
+
+/// `--weld`: a fraction of the bounding-box diagonal, or `off`.
+fn parse_weld(text: &str) -> Result<Weld, String> {
+    if text.trim().eq_ignore_ascii_case("off") {
+        return Ok(Weld::Off);
+    }
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v < 0.01 => Ok(Weld::Relative(v)),
+        _ => Err(format!(
+            "'{text}' is no weld tolerance; give a fraction of the mesh's diagonal between 0 and 0.01 (default 1e-6), or off"
+        )),
+    }
+}
+
+/// The warning that reading `loaded` welded its vertices, if it did.
+fn weld_warning(loaded: &Loaded) -> Option<Warning> {
+    let w = loaded.weld;
+    w.changed().then(|| {
+        Warning::new(
+            WarningCode::VerticesWelded,
+            format!(
+                "the {} file's faces did not share all their vertices: {} coincident vertices were joined (within {:.3e} model units) and {} collapsed or repeated faces removed{}; give --weld off to keep the file as it is",
+                loaded.format.name(),
+                w.merged_vertices,
+                w.tolerance,
+                w.dropped_faces,
+                if w.dropped_faces > 0 { " (faces after them are renumbered)" } else { "" }
+            ),
+        )
+    })
+}
+
+/// Prints warnings to stderr, one a line with its code.
+fn print_warnings(warnings: &[Warning]) {
+    for w in warnings {
+        let code = serde_json::to_value(w.code)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_owned))
+            .unwrap_or_default();
+        eprintln!("warning [{code}]: {}", w.message);
+    }
 }
 
 fn write_text(path: &Path, text: &str) -> Result<()> {

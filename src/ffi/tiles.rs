@@ -10,6 +10,7 @@ use super::{
 use crate::control::Control;
 use crate::pattern::Bond;
 use crate::pipeline::{self, Tiling};
+use crate::report::WarningCode;
 use crate::tiles::{
     FinishOptions, FitOptions, FitStatus, SequenceOptions, Tile, TileKind, TileSpec,
 };
@@ -610,5 +611,121 @@ pub unsafe extern "C" fn tp_tiles_cutlist_json(
             .map_err(|e| Failure::new(TpStatus::TP_PANIC, e.to_string()))?;
         // SAFETY: forwarded.
         unsafe { output_text(&json, buf, len, needed) }
+    })
+}
+
+/// Why a tiling deserves a second look (`report.json`'s `warnings[].code`, by number). The
+/// numbers are stable: new codes get new numbers, none is reused.
+#[repr(i32)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TpWarning {
+    /// The surface has no boundary (a sphere, a torus, a box).
+    TP_WARNING_CLOSED_SURFACE = 1,
+    /// The surface falls into several pieces that share no edge.
+    TP_WARNING_SEVERAL_PIECES = 2,
+    /// Most face normals point down: tiles are laid on the underside.
+    TP_WARNING_NORMALS_DOWN = 3,
+    /// The tile does not fit the half-tile model (length about 2 x width + joint).
+    TP_WARNING_TILE_SHAPE = 4,
+    /// The surface turns a lot over one tile length.
+    TP_WARNING_TILE_VS_CURVATURE = 5,
+    /// The tiles cover less than 0.95 of the surface.
+    TP_WARNING_LOW_COVERAGE = 6,
+    /// Tiles were left out (off the surface, or slivers).
+    TP_WARNING_TILES_DROPPED = 7,
+    /// Nothing to lay from: a closed surface, or a level one on the ground.
+    TP_WARNING_NO_SUPPORT = 8,
+    /// Reading a file joined coincident vertices.
+    TP_WARNING_VERTICES_WELDED = 9,
+}
+
+impl From<WarningCode> for TpWarning {
+    fn from(code: WarningCode) -> Self {
+        use TpWarning::*;
+        match code {
+            WarningCode::ClosedSurface => TP_WARNING_CLOSED_SURFACE,
+            WarningCode::SeveralPieces => TP_WARNING_SEVERAL_PIECES,
+            WarningCode::NormalsDown => TP_WARNING_NORMALS_DOWN,
+            WarningCode::TileShape => TP_WARNING_TILE_SHAPE,
+            WarningCode::TileVsCurvature => TP_WARNING_TILE_VS_CURVATURE,
+            WarningCode::LowCoverage => TP_WARNING_LOW_COVERAGE,
+            WarningCode::TilesDropped => TP_WARNING_TILES_DROPPED,
+            WarningCode::NoSupport => TP_WARNING_NO_SUPPORT,
+            WarningCode::VerticesWelded => TP_WARNING_VERTICES_WELDED,
+        }
+    }
+}
+
+/// Writes the number of warnings on the tiling (0 when all is well): odd input or results to
+/// look at twice, the same as `report.json`'s `warnings`.
+///
+/// # Safety
+/// `tiles` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_warning_count(
+    tiles: *const TpTiles,
+    out: *mut usize,
+) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle and writable out by the caller's promise.
+        unsafe {
+            write_out(
+                out,
+                borrow(tiles, "tiles")?.tiling.report.warnings.len(),
+                "out",
+            )
+        }
+    })
+}
+
+/// Copies the warnings' codes (`TP_WARNING_*`; capacity: warning count).
+///
+/// # Safety
+/// `tiles` must be a live handle and `out` hold `capacity` items.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_copy_warning_codes(
+    tiles: *const TpTiles,
+    out: *mut TpWarning,
+    capacity: usize,
+) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
+        let codes: Vec<TpWarning> = tiling
+            .report
+            .warnings
+            .iter()
+            .map(|w| w.code.into())
+            .collect();
+        // SAFETY: capacity as promised.
+        unsafe { output(&codes, out, capacity, "out") }
+    })
+}
+
+/// Copies the warnings' messages (what was found and what to do), one per warning in the
+/// order of [`tp_tiles_copy_warning_codes`], each followed by a newline, as a NUL-terminated
+/// string; `*needed` (if not NULL) gets its length without the NUL. Call with `len = 0` to
+/// ask for the size.
+///
+/// # Safety
+/// `tiles` must be a live handle, `buf` hold `len` bytes, `needed` be NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_tiles_warnings(
+    tiles: *const TpTiles,
+    buf: *mut c_char,
+    len: usize,
+    needed: *mut usize,
+) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let tiling = &unsafe { borrow(tiles, "tiles") }?.tiling;
+        let text: String = tiling
+            .report
+            .warnings
+            .iter()
+            .map(|w| format!("{}\n", w.message.replace('\n', " ")))
+            .collect();
+        // SAFETY: forwarded.
+        unsafe { output_text(&text, buf, len, needed) }
     })
 }

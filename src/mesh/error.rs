@@ -40,7 +40,7 @@ pub enum MeshError {
     },
     /// A face refers to a vertex that does not exist.
     #[error(
-        "face {face} refers to vertex {index}, but the mesh has only {vertex_count} vertices (valid: 0..{vertex_count})"
+        "face {face} refers to vertex {index}, but the mesh has only {vertex_count} vertices (counted from 0: the last is {})", vertex_count.saturating_sub(1)
     )]
     IndexOutOfRange {
         /// The face at fault.
@@ -110,6 +110,14 @@ pub enum MeshError {
     ObjSyntax {
         /// 1-based line number.
         line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A file could not be read as the format it was taken for (or as any format).
+    #[error("{format}: {message}")]
+    Format {
+        /// The format's name (`"binary STL"`, `"ASCII PLY"`, `"OFF"`, ...).
+        format: &'static str,
         /// What is wrong.
         message: String,
     },

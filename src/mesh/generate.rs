@@ -102,3 +102,69 @@ fn lattice(xs: &[f64], ys: &[f64], z: impl Fn(f64, f64) -> f64) -> PolyMesh {
         .collect();
     PolyMesh::new(positions, faces).expect("a lattice is a valid mesh")
 }
+
+/// A closed cube of side `size` centred at the origin, each side an `n` x `n` grid of quads,
+/// normals pointing out: the closed surface a designer may hand in by mistake.
+///
+/// # Panics
+/// If `n` is zero or `size` not positive and finite.
+pub fn closed_box(size: f64, n: usize) -> PolyMesh {
+    assert!(
+        n > 0 && size > 0.0 && size.is_finite(),
+        "a box needs a size and faces"
+    );
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    for k in 0..3 {
+        for sign in [-1.0, 1.0] {
+            let axis = |i: usize| nalgebra::Vector3::ith((k + i) % 3, 1.0);
+            // u x v points out of the box.
+            let (u, v) = if sign > 0.0 {
+                (axis(1), axis(2))
+            } else {
+                (axis(2), axis(1))
+            };
+            let centre = axis(0) * (sign * size / 2.0);
+            let first = positions.len();
+            for j in 0..=n {
+                for i in 0..=n {
+                    let (a, b) = (i as f64 / n as f64 - 0.5, j as f64 / n as f64 - 0.5);
+                    positions.push(Point3::from(centre + u * (a * size) + v * (b * size)));
+                }
+            }
+            let vertex = |i: usize, j: usize| first + i + (n + 1) * j;
+            for j in 0..n {
+                for i in 0..n {
+                    faces.push(vec![
+                        vertex(i, j),
+                        vertex(i + 1, j),
+                        vertex(i + 1, j + 1),
+                        vertex(i, j + 1),
+                    ]);
+                }
+            }
+        }
+    }
+    // The sides share their edges: join their corners.
+    let (positions, faces, _) = super::weld::weld(positions, faces, size * 1e-9);
+    PolyMesh::new(positions, faces).expect("a welded box is a valid closed mesh")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Topology;
+
+    #[test]
+    fn a_closed_box_is_closed_and_faces_out() {
+        let cube = closed_box(2.0, 3);
+        assert_eq!(cube.face_count(), 54);
+        assert_eq!(cube.positions().len(), 6 * 9 + 2);
+        let topology = Topology::new(&cube).unwrap();
+        assert!(topology.edges().iter().all(|e| !e.is_boundary()));
+        // Outward normals: each face's normal points away from the centre.
+        for f in 0..cube.face_count() {
+            assert!(cube.face_area_vector(f).dot(&cube.face_centroid(f).coords) > 0.0);
+        }
+    }
+}

@@ -7,8 +7,10 @@
 
 mod error;
 pub mod generate;
+pub mod io;
 pub mod obj;
 mod topology;
+pub mod weld;
 
 pub use error::MeshError;
 pub use topology::{Edge, Topology};

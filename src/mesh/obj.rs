@@ -26,6 +26,16 @@ pub const MAX_FILE_BYTES: u64 = 2 << 30;
 /// [`MeshError::TooLarge`] as soon as the text holds more vertices, faces or face indices
 /// than one mesh may have, then any validation error of [`PolyMesh::new`].
 pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
+    let (positions, faces) = parse_raw(text)?;
+    PolyMesh::new(positions, faces)
+}
+
+/// Parses OBJ text into positions and faces without validating them (for [`super::io`],
+/// which may weld them first).
+///
+/// # Errors
+/// As [`parse`], but no validation error.
+pub(crate) fn parse_raw(text: &str) -> Result<super::io::Raw, MeshError> {
     let mut positions = Vec::new();
     let mut faces: Vec<Vec<usize>> = Vec::new();
     let mut index_count = 0usize;
@@ -97,7 +107,7 @@ pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
             _ => {}
         }
     }
-    PolyMesh::new(positions, faces)
+    Ok((positions, faces))
 }
 
 /// Reads and validates an OBJ file.
@@ -146,7 +156,7 @@ pub fn write(mesh: &PolyMesh, path: &Path) -> Result<(), MeshError> {
     std::fs::write(path, to_string(mesh)).map_err(|e| io_error(path, &e))
 }
 
-fn io_error(path: &Path, e: &std::io::Error) -> MeshError {
+pub(crate) fn io_error(path: &Path, e: &std::io::Error) -> MeshError {
     MeshError::Io {
         path: path.display().to_string(),
         message: e.to_string(),

@@ -127,6 +127,33 @@ impl Topology {
         Some(self.edge_corners[e][k])
     }
 
+    /// The pieces of the mesh: faces joined across shared edges. Returns each face's piece
+    /// (numbered in order of their first face) and the number of pieces.
+    pub fn face_pieces(&self) -> (Vec<usize>, usize) {
+        let mut piece = vec![usize::MAX; self.face_edges.len()];
+        let mut count = 0;
+        let mut stack = Vec::new();
+        for start in 0..piece.len() {
+            if piece[start] != usize::MAX {
+                continue;
+            }
+            piece[start] = count;
+            stack.push(start);
+            while let Some(f) = stack.pop() {
+                for &e in &self.face_edges[f] {
+                    if let Some(g) = self.edges[e].other_face(f)
+                        && piece[g] == usize::MAX
+                    {
+                        piece[g] = count;
+                        stack.push(g);
+                    }
+                }
+            }
+            count += 1;
+        }
+        (piece, count)
+    }
+
     /// All edges.
     pub fn edges(&self) -> &[Edge] {
         &self.edges

@@ -21,7 +21,10 @@ pub enum PatternError {
         max: f64,
     },
     /// A face index in the options does not exist.
-    #[error("face {face} does not exist (the mesh has {face_count} faces, valid: 0..{face_count})")]
+    #[error(
+        "face {face} does not exist (the mesh has {face_count} faces, counted from 0: the last is {})",
+        face_count.saturating_sub(1)
+    )]
     FaceOutOfRange {
         /// The index given.
         face: usize,

@@ -5,8 +5,10 @@
 pub mod coverage;
 pub mod gaps;
 pub mod svg;
+pub mod warnings;
 
 pub use gaps::{Joint, JointSummary};
+pub use warnings::{Warning, WarningCode};
 
 use serde::Serialize;
 
@@ -69,6 +71,9 @@ pub struct Report {
     pub sequence: Option<Sequence>,
     /// Seconds per stage.
     pub seconds: StageSeconds,
+    /// Odd input and results to look at twice, each with a stable code and what to do (see
+    /// [`warnings`]); empty when all is well.
+    pub warnings: Vec<Warning>,
 }
 
 /// How much cutting the boundary needs and how well the tiles cover the surface.
@@ -148,6 +153,7 @@ impl Report {
                 tiles: 0.0,
                 fit: 0.0,
             },
+            warnings: Vec::new(),
         }
     }
 

@@ -32,6 +32,22 @@ pub struct Sequence {
     /// Tiles that, at their step, touch no laid tile lower than themselves and stand on no
     /// support: they need a prop.
     pub unsupported: usize,
+    /// What the vault stands on.
+    pub support: Support,
+}
+
+/// What the tiles are laid from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Support {
+    /// The lowest stretch of the boundary (within the support band): a vault on its supports.
+    Edges,
+    /// Nothing: the mesh has no boundary (a closed surface), so no tile stands on a support
+    /// and the order starts at the lowest tile.
+    NoBoundary,
+    /// The ground: the surface is level (its height varies by less than the support band), so
+    /// every tile lies on the formwork or floor and none needs a prop.
+    Level,
 }
 
 /// Numbers every tile's `step` (0 first) and summarises the order. Tiles touch when their
@@ -79,11 +95,36 @@ pub fn laying_order(
         neighbours[b].insert(a);
     }
     let lowest = boundary_low.iter().copied().fold(f64::INFINITY, f64::min);
+    let (low, high) = mesh
+        .positions()
+        .iter()
+        .map(height)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| {
+            (lo.min(h), hi.max(h))
+        });
+    let support = if high - low <= options.support_band {
+        Support::Level
+    } else if lowest.is_finite() {
+        Support::Edges
+    } else {
+        Support::NoBoundary
+    };
     // Pieces beyond the quad mesh (no faces) stand on a support when they sit low enough.
     let on_support: Vec<bool> = tiles
         .iter()
         .zip(&boundary_low)
-        .map(|(t, &h)| if t.faces.is_empty() { height(&t.frame.origin) } else { h } <= lowest + options.support_band)
+        .map(|(t, &h)| match support {
+            Support::Level => true,
+            Support::NoBoundary => false,
+            Support::Edges => {
+                let h = if t.faces.is_empty() {
+                    height(&t.frame.origin)
+                } else {
+                    h
+                };
+                h <= lowest + options.support_band
+            }
+        })
         .collect();
     // Rank of each tile by height, lowest first (ties by index): the frontier's key.
     let mut by_height: Vec<usize> = (0..tiles.len()).collect();
@@ -136,5 +177,6 @@ pub fn laying_order(
     Sequence {
         support_tiles: on_support.iter().filter(|&&s| s).count(),
         unsupported,
+        support,
     }
 }

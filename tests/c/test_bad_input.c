@@ -485,6 +485,80 @@ int main(void) {
   }
   expect("no remesh handle after failures", r == NULL);
 
+  {
+    /* A closed cube of side 2, each side 2 x 2 unit quads (graceful: tiled, with warnings a
+       caller can read: closed surface, no support). */
+    double cube[3 * 26];
+    uint32_t idx[4 * 24], sizes[24];
+    size_t nv = 0, nf = 0;
+    for (int k = 0; k < 3; k++) {
+      for (int sign = -1; sign <= 1; sign += 2) {
+        int a = (k + 1) % 3, b = (k + 2) % 3;
+        if (sign < 0) { int t = a; a = b; b = t; } /* a x b points out of the cube */
+        uint32_t at[3][3];
+        for (int j = 0; j <= 2; j++) {
+          for (int i = 0; i <= 2; i++) {
+            double p[3];
+            p[k] = sign;
+            p[a] = i - 1.0;
+            p[b] = j - 1.0;
+            size_t found = nv;
+            for (size_t v = 0; v < nv; v++)
+              if (cube[3 * v] == p[0] && cube[3 * v + 1] == p[1] && cube[3 * v + 2] == p[2]) found = v;
+            if (found == nv) {
+              memcpy(&cube[3 * nv], p, sizeof p);
+              nv++;
+            }
+            at[i][j] = (uint32_t)found;
+          }
+        }
+        for (int j = 0; j < 2; j++) {
+          for (int i = 0; i < 2; i++) {
+            uint32_t *q = &idx[4 * nf];
+            q[0] = at[i][j], q[1] = at[i + 1][j], q[2] = at[i + 1][j + 1], q[3] = at[i][j + 1];
+            sizes[nf++] = 4;
+          }
+        }
+      }
+    }
+    TpMesh *closed = NULL;
+    row("closed cube (graceful: a valid mesh)", mesh(cube, nv, idx, 4 * nf, sizes, nf, &closed), TP_OK, NULL);
+    expect("the cube has 26 vertices", nv == 26);
+    TpPatternSummary cs;
+    TpPattern *cp = closed ? solve("pattern of a closed cube", closed, &cs) : NULL;
+    TpTileOptions to;
+    tp_tile_options_init(&to, sizeof to);
+    to.length = 1.9, to.width = 0.95, to.thickness = 0.1, to.joint = 0.1;
+    TpTiles *ct = NULL;
+    if (cp) row("tiles on a closed cube", tp_tiles_build(closed, cp, &to, &ct), TP_OK, NULL);
+    if (ct) {
+      size_t count = 0, needed = 0;
+      row("warning count", tp_tiles_warning_count(ct, &count), TP_OK, NULL);
+      expect("a closed cube gets warnings", count >= 2 && count < 16);
+      TpWarning codes[16];
+      row("warning codes into a short buffer", tp_tiles_copy_warning_codes(ct, codes, 1), TP_BUFFER_TOO_SMALL,
+          "needed");
+      row("warning codes", tp_tiles_copy_warning_codes(ct, codes, 16), TP_OK, NULL);
+      int closed_seen = 0, support_seen = 0;
+      for (size_t i = 0; i < count && i < 16; i++) {
+        closed_seen |= codes[i] == TP_WARNING_CLOSED_SURFACE;
+        support_seen |= codes[i] == TP_WARNING_NO_SUPPORT;
+      }
+      expect("closed surface and no support among the codes", closed_seen && support_seen);
+      row("warning messages: size", tp_tiles_warnings(ct, NULL, 0, &needed), TP_BUFFER_TOO_SMALL, NULL);
+      char text[4096];
+      row("warning messages", tp_tiles_warnings(ct, text, sizeof text, &needed), TP_OK, NULL);
+      size_t lines = 0;
+      for (char *c = text; *c; c++) lines += *c == '\n';
+      expect("one message a warning, naming the closed surface", lines == count && strstr(text, "closed") != NULL);
+      size_t none = 99;
+      row("warning count of NULL tiles", tp_tiles_warning_count(NULL, &none), TP_NULL_POINTER, "tiles");
+    }
+    tp_tiles_free(ct);
+    tp_pattern_free(cp);
+    tp_mesh_free(closed);
+  }
+
   tp_pattern_free(p);
   tp_mesh_free(quads);
   tp_mesh_free(other);

@@ -1,0 +1,255 @@
+//! Reading the mesh formats designers export: OBJ, STL (ASCII and binary), PLY (ASCII and
+//! binary) and OFF, told apart by their content first (a PLY or OFF header, a binary STL's
+//! size) and by the file's extension otherwise; then vertices at the same place are welded
+//! (see [`super::weld`]) and the mesh validated by [`PolyMesh::new`].
+//!
+//! Every front end that reads files goes through [`read`]: today that is the command line
+//! only (the C ABI, C#, Python and Grasshopper take meshes as arrays from their host).
+
+mod off;
+mod ply;
+mod stl;
+
+use std::path::Path;
+
+use nalgebra::Point3;
+use serde::Serialize;
+
+use super::weld::{self, DEFAULT_RELATIVE_TOLERANCE, WeldSummary};
+use super::{MeshError, PolyMesh, obj};
+
+/// Positions and faces as a file gives them, before welding and validation.
+pub type Raw = (Vec<Point3<f64>>, Vec<Vec<usize>>);
+
+/// A mesh file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Format {
+    /// Wavefront OBJ.
+    Obj,
+    /// STL, ASCII flavour (`solid ... facet normal ...`).
+    StlAscii,
+    /// STL, binary flavour (80-byte header, triangle count, 50 bytes per triangle).
+    StlBinary,
+    /// PLY, ASCII encoding.
+    PlyAscii,
+    /// PLY, binary encoding (either byte order).
+    PlyBinary,
+    /// Object File Format (`OFF`, `COFF`, `NOFF`, ...).
+    Off,
+}
+
+impl Format {
+    /// The name error messages use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Obj => "OBJ",
+            Format::StlAscii => "ASCII STL",
+            Format::StlBinary => "binary STL",
+            Format::PlyAscii => "ASCII PLY",
+            Format::PlyBinary => "binary PLY",
+            Format::Off => "OFF",
+        }
+    }
+}
+
+/// Whether and how far to weld coincident vertices.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Weld {
+    /// Keep every vertex of the file (STL still joins identical corners: it has no shared
+    /// vertices at all).
+    Off,
+    /// Join vertices closer than this fraction of the bounding-box diagonal.
+    Relative(f64),
+}
+
+impl Default for Weld {
+    fn default() -> Self {
+        Weld::Relative(DEFAULT_RELATIVE_TOLERANCE)
+    }
+}
+
+/// A mesh read from a file, with what reading it did.
+#[derive(Debug, Clone)]
+pub struct Loaded {
+    /// The validated mesh.
+    pub mesh: PolyMesh,
+    /// The format it was read as.
+    pub format: Format,
+    /// What welding did.
+    pub weld: WeldSummary,
+}
+
+/// Reads, welds and validates a mesh file of any supported format.
+///
+/// # Errors
+/// [`MeshError::Io`] if the file cannot be read or is larger than [`obj::MAX_FILE_BYTES`];
+/// otherwise as [`parse`].
+pub fn read(path: &Path, weld: Weld) -> Result<Loaded, MeshError> {
+    let size = std::fs::metadata(path)
+        .map_err(|e| obj::io_error(path, &e))?
+        .len();
+    if size > obj::MAX_FILE_BYTES {
+        return Err(MeshError::Io {
+            path: path.display().to_string(),
+            message: format!(
+                "the file has {size} bytes; a mesh file may have at most {} (split the shell into parts)",
+                obj::MAX_FILE_BYTES
+            ),
+        });
+    }
+    let bytes = std::fs::read(path).map_err(|e| obj::io_error(path, &e))?;
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    parse(&bytes, extension.as_deref(), weld)
+}
+
+/// Reads a mesh from the bytes of a file whose extension (without the dot, lower case) is
+/// `extension`, welds and validates it.
+///
+/// # Errors
+/// [`MeshError::Format`] naming the format when the bytes cannot be read as it (or as any
+/// format), [`MeshError::TooLarge`], then any validation error of [`PolyMesh::new`].
+pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded, MeshError> {
+    let format = detect(bytes, extension)?;
+    let (positions, faces) = match format {
+        Format::Obj => obj::parse_raw(&text(bytes, format)?)?,
+        Format::Off => off::parse(&text(bytes, format)?)?,
+        Format::StlAscii | Format::StlBinary => stl::parse(bytes, format)?,
+        Format::PlyAscii | Format::PlyBinary => ply::parse(bytes, format)?,
+    };
+    let (positions, faces) = if matches!(format, Format::StlAscii | Format::StlBinary) {
+        // STL has no shared vertices: identical corners are one vertex, always and silently.
+        let (positions, faces, _) = weld::weld(positions, faces, 0.0);
+        (positions, faces)
+    } else {
+        (positions, faces)
+    };
+    let (positions, faces, summary) = match weld {
+        Weld::Relative(fraction) if fraction.is_finite() && fraction > 0.0 => {
+            let tolerance = fraction * diagonal(&positions);
+            weld::weld(positions, faces, tolerance)
+        }
+        _ => (positions, faces, WeldSummary::OFF),
+    };
+    let mesh = PolyMesh::new(positions, faces)?;
+    Ok(Loaded {
+        mesh,
+        format,
+        weld: summary,
+    })
+}
+
+/// Bounding-box diagonal of the finite positions (0 for none).
+fn diagonal(positions: &[Point3<f64>]) -> f64 {
+    let mut finite = positions.iter().filter(|p| {
+        p.coords
+            .iter()
+            .all(|c| c.is_finite() && c.abs() <= super::MAX_COORDINATE)
+    });
+    let Some(first) = finite.next() else {
+        return 0.0;
+    };
+    let (lo, hi) = finite.fold((*first, *first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    (hi - lo).norm()
+}
+
+/// The format of `bytes`: a PLY or OFF header or a binary STL's exact size decide first, then
+/// the extension, then an ASCII STL's `solid` or OBJ's `v` lines.
+fn detect(bytes: &[u8], extension: Option<&str>) -> Result<Format, MeshError> {
+    if bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r\n") {
+        return Ok(ply::encoding(bytes));
+    }
+    if stl::is_binary(bytes) {
+        return Ok(Format::StlBinary);
+    }
+    let head = first_word(bytes);
+    if off::is_header(&head) {
+        return Ok(Format::Off);
+    }
+    let binary = looks_binary(bytes);
+    match extension {
+        Some("obj") => return Ok(Format::Obj),
+        Some("off") => return Ok(Format::Off),
+        Some("ply") => return Ok(Format::PlyAscii),
+        Some("stl") => {
+            return Ok(if binary || head != "solid" {
+                Format::StlBinary
+            } else {
+                Format::StlAscii
+            });
+        }
+        _ => {}
+    }
+    if !binary {
+        if head == "solid" {
+            return Ok(Format::StlAscii);
+        }
+        let text = String::from_utf8_lossy(bytes);
+        if text
+            .lines()
+            .any(|l| matches!(l.split_whitespace().next(), Some("v" | "f")))
+        {
+            return Ok(Format::Obj);
+        }
+    }
+    Err(MeshError::Format {
+        format: "mesh file",
+        message: format!(
+            "not a mesh format this program reads{}; give OBJ, STL (ASCII or binary), PLY or OFF, named .obj, .stl, .ply or .off",
+            extension.map_or(String::new(), |e| format!(" (extension .{e})"))
+        ),
+    })
+}
+
+/// The first whitespace-separated word of the text at the start of `bytes`.
+fn first_word(bytes: &[u8]) -> String {
+    let head = &bytes[..bytes.len().min(256)];
+    String::from_utf8_lossy(head)
+        .split_whitespace()
+        .next()
+        .unwrap_or("")
+        .to_owned()
+}
+
+/// True when the start of `bytes` holds a NUL byte: no text format has one.
+fn looks_binary(bytes: &[u8]) -> bool {
+    bytes[..bytes.len().min(4096)].contains(&0)
+}
+
+/// The bytes as text for a text format; bytes that are not UTF-8 (in comments or group names
+/// of older exporters) become replacement characters, but a binary file is refused.
+fn text(bytes: &[u8], format: Format) -> Result<std::borrow::Cow<'_, str>, MeshError> {
+    if looks_binary(bytes) {
+        return Err(MeshError::Format {
+            format: format.name(),
+            message:
+                "the file is binary, not text: is it a binary STL or PLY with the wrong extension?"
+                    .into(),
+        });
+    }
+    Ok(String::from_utf8_lossy(bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn content_decides_before_the_extension() {
+        let off = b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        assert_eq!(detect(off, Some("obj")).unwrap(), Format::Off);
+        let ply = b"ply\nformat ascii 1.0\nend_header\n";
+        assert_eq!(detect(ply, None).unwrap(), Format::PlyAscii);
+        let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        assert_eq!(detect(obj, Some("txt")).unwrap(), Format::Obj);
+        assert_eq!(detect(obj, None).unwrap(), Format::Obj);
+        let error = detect(b"hello\n", Some("dwg")).unwrap_err().to_string();
+        assert!(
+            error.contains(".dwg") && error.contains("OBJ, STL"),
+            "{error}"
+        );
+    }
+}

@@ -1,0 +1,147 @@
+//! STL through the `stl_io` crate: ASCII and binary, every triangle with its own three corners
+//! (the caller welds them).
+
+use std::io::Cursor;
+
+use nalgebra::Point3;
+
+use super::{Format, Raw};
+use crate::mesh::{MAX_FACES, MeshError};
+
+/// Bytes of a binary STL's header and triangle count, and of one triangle.
+const HEADER: usize = 84;
+const TRIANGLE: usize = 50;
+
+/// True when `bytes` is exactly as long as the binary STL its triangle count announces. This
+/// tells binary from ASCII even when a binary header starts with `solid`, as many exporters
+/// write it.
+pub(super) fn is_binary(bytes: &[u8]) -> bool {
+    announced(bytes).is_some_and(|n| {
+        Some(bytes.len()) == n.checked_mul(TRIANGLE).and_then(|b| b.checked_add(HEADER))
+    })
+}
+
+/// The triangle count in a binary STL header.
+fn announced(bytes: &[u8]) -> Option<usize> {
+    let count: [u8; 4] = bytes.get(80..84)?.try_into().ok()?;
+    Some(u32::from_le_bytes(count) as usize)
+}
+
+/// Parses an STL file of the given flavour.
+pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
+    let error = |message: String| MeshError::Format {
+        format: format.name(),
+        message,
+    };
+    let mut owned;
+    let bytes = if format == Format::StlBinary {
+        let Some(count) = announced(bytes) else {
+            return Err(error(format!(
+                "the file has {} bytes, fewer than the {HEADER} of a binary STL's header",
+                bytes.len()
+            )));
+        };
+        if count > MAX_FACES {
+            return Err(MeshError::TooLarge {
+                what: "faces",
+                count,
+                limit: MAX_FACES,
+            });
+        }
+        if !is_binary(bytes) {
+            return Err(error(format!(
+                "the header announces {count} triangles ({} bytes), but the file has {} bytes: the file is cut short or not an STL",
+                HEADER as u64 + TRIANGLE as u64 * count as u64,
+                bytes.len()
+            )));
+        }
+        // `stl_io` takes a header starting with "solid " for ASCII; the size proved binary.
+        owned = bytes.to_vec();
+        owned[..5].fill(b' ');
+        &owned[..]
+    } else if let Some(rest) = bytes.trim_ascii_start().strip_prefix(b"solid")
+        && !rest.starts_with(b" ")
+    {
+        // `stl_io` wants "solid " and a name; some exporters write "solid" alone.
+        owned = b"solid ".to_vec();
+        owned.extend_from_slice(rest);
+        &owned[..]
+    } else {
+        bytes.trim_ascii_start()
+    };
+    let mut cursor = Cursor::new(bytes);
+    let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| error(e.to_string()))?;
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    for (k, triangle) in reader.enumerate() {
+        let triangle = triangle.map_err(|e| error(format!("triangle {k}: {e}")))?;
+        if faces.len() >= MAX_FACES {
+            return Err(MeshError::TooLarge {
+                what: "faces",
+                count: faces.len() + 1,
+                limit: MAX_FACES,
+            });
+        }
+        let first = positions.len();
+        positions.extend(
+            triangle
+                .vertices
+                .iter()
+                .map(|v| Point3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]))),
+        );
+        faces.push(vec![first, first + 1, first + 2]);
+    }
+    Ok((positions, faces))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A binary STL of the given triangles, its header starting with "solid" as some
+    /// exporters write it.
+    pub(crate) fn binary(triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
+        let mut bytes = b"solid exported".to_vec();
+        bytes.resize(80, 0);
+        bytes.extend((triangles.len() as u32).to_le_bytes());
+        for t in triangles {
+            bytes.extend([0u8; 12]);
+            for c in t.iter().flatten() {
+                bytes.extend(c.to_le_bytes());
+            }
+            bytes.extend([0u8; 2]);
+        }
+        bytes
+    }
+
+    #[test]
+    fn binary_with_a_solid_header_is_binary() {
+        let bytes = binary(&[[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]]);
+        assert!(is_binary(&bytes));
+        let (positions, faces) = parse(&bytes, Format::StlBinary).unwrap();
+        assert_eq!(positions.len(), 3);
+        assert_eq!(faces, vec![vec![0, 1, 2]]);
+        let cut = parse(&bytes[..100], Format::StlBinary)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            cut.starts_with("binary STL") && cut.contains("cut short"),
+            "{cut}"
+        );
+    }
+
+    #[test]
+    fn ascii_reads_and_names_its_errors() {
+        let text = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n";
+        let (positions, faces) = parse(text.as_bytes(), Format::StlAscii).unwrap();
+        assert_eq!((positions.len(), faces.len()), (3, 1));
+        let unnamed = text.replacen("solid s\n", "  solid\r\n", 1);
+        let (positions, faces) = parse(unnamed.as_bytes(), Format::StlAscii).unwrap();
+        assert_eq!((positions.len(), faces.len()), (3, 1));
+        let bad = text.replace("vertex 1 0 0", "vertex 1 zero 0");
+        let error = parse(bad.as_bytes(), Format::StlAscii)
+            .unwrap_err()
+            .to_string();
+        assert!(error.starts_with("ASCII STL"), "{error}");
+    }
+}

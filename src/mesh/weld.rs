@@ -1,0 +1,198 @@
+//! Welding: joining vertices that lie (nearly) at the same place, as files without shared
+//! vertices need (STL always, triangle soups exported as OBJ, PLY or OFF).
+
+use std::collections::HashMap;
+
+use nalgebra::Point3;
+use serde::Serialize;
+
+use super::MAX_COORDINATE;
+use crate::geom::HashGrid;
+
+/// Default weld tolerance as a fraction of the mesh's bounding-box diagonal: far below any
+/// tile or face, far above the rounding of 32-bit floats (STL) and of six decimals (OBJ).
+pub const DEFAULT_RELATIVE_TOLERANCE: f64 = 1e-6;
+
+/// What welding did.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WeldSummary {
+    /// Largest distance (model units) at which two vertices were joined; 0 joins only
+    /// vertices with identical coordinates, and negative means welding was off.
+    pub tolerance: f64,
+    /// Vertices joined to an earlier one (the mesh has this many fewer).
+    pub merged_vertices: usize,
+    /// Faces removed because welding left them with fewer than three corners or made them
+    /// repeat an earlier face (faces after the first removed one are renumbered).
+    pub dropped_faces: usize,
+}
+
+impl WeldSummary {
+    /// Nothing welded: welding was off.
+    pub const OFF: Self = Self {
+        tolerance: -1.0,
+        merged_vertices: 0,
+        dropped_faces: 0,
+    };
+
+    /// True when welding changed the mesh.
+    pub fn changed(&self) -> bool {
+        self.merged_vertices > 0 || self.dropped_faces > 0
+    }
+}
+
+/// Joins every vertex to the first earlier vertex within `tolerance` (0: identical
+/// coordinates only), then removes the faces this collapses and repeats. Vertices keep their
+/// order (joined ones are left out), faces theirs. Meshes welding cannot read (an index out
+/// of range, a non-finite or too large coordinate) are returned as they are, for validation to name the
+/// fault.
+pub fn weld(
+    positions: Vec<Point3<f64>>,
+    faces: Vec<Vec<usize>>,
+    tolerance: f64,
+) -> (Vec<Point3<f64>>, Vec<Vec<usize>>, WeldSummary) {
+    let tolerance = if tolerance.is_finite() {
+        tolerance.max(0.0)
+    } else {
+        0.0
+    };
+    let untouched = WeldSummary {
+        tolerance,
+        merged_vertices: 0,
+        dropped_faces: 0,
+    };
+    let readable = positions.iter().all(|p| {
+        p.coords
+            .iter()
+            .all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE)
+    }) && faces.iter().flatten().all(|&v| v < positions.len());
+    if !readable {
+        return (positions, faces, untouched);
+    }
+    let first = representatives(&positions, tolerance);
+    let merged = first.iter().enumerate().filter(|&(i, &r)| i != r).count();
+    if merged == 0 {
+        return (positions, faces, untouched);
+    }
+    // New numbers: the representatives in their order.
+    let mut number = vec![usize::MAX; positions.len()];
+    let mut kept = Vec::with_capacity(positions.len() - merged);
+    for (i, &r) in first.iter().enumerate() {
+        if i == r {
+            number[i] = kept.len();
+            kept.push(positions[i]);
+        }
+    }
+    let mut seen: HashMap<Vec<usize>, ()> = HashMap::with_capacity(faces.len());
+    let mut out = Vec::with_capacity(faces.len());
+    let mut dropped = 0;
+    for face in faces {
+        let mut f: Vec<usize> = face.iter().map(|&v| number[first[v]]).collect();
+        // Corners joined along the face's edges collapse into one.
+        f.dedup();
+        while f.len() > 1 && f.first() == f.last() {
+            f.pop();
+        }
+        let mut key = f.clone();
+        key.sort_unstable();
+        key.dedup();
+        if key.len() < 3 || seen.insert(key, ()).is_some() {
+            dropped += 1;
+            continue;
+        }
+        out.push(f);
+    }
+    (
+        kept,
+        out,
+        WeldSummary {
+            tolerance,
+            merged_vertices: merged,
+            dropped_faces: dropped,
+        },
+    )
+}
+
+/// For each vertex, the first vertex (itself included) within `tolerance` of it among those
+/// that are their own representative.
+fn representatives(positions: &[Point3<f64>], tolerance: f64) -> Vec<usize> {
+    if tolerance == 0.0 {
+        let mut index: HashMap<[u64; 3], usize> = HashMap::with_capacity(positions.len());
+        return positions
+            .iter()
+            .enumerate()
+            // -0.0 and 0.0 are the same place.
+            .map(|(i, p)| {
+                *index
+                    .entry([p.x, p.y, p.z].map(|c| (c + 0.0).to_bits()))
+                    .or_insert(i)
+            })
+            .collect();
+    }
+    let mut grid = HashGrid::new(tolerance);
+    let mut first = Vec::with_capacity(positions.len());
+    for (i, p) in positions.iter().enumerate() {
+        let near = grid
+            .near(p, tolerance)
+            .into_iter()
+            .find(|&j| (positions[j] - p).norm() <= tolerance);
+        match near {
+            Some(j) => first.push(j),
+            None => {
+                grid.insert(i, p, p);
+                first.push(i);
+            }
+        }
+    }
+    first
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64) -> Point3<f64> {
+        Point3::new(x, y, 0.0)
+    }
+
+    #[test]
+    fn a_triangle_soup_becomes_a_mesh() {
+        // Two triangles of a square, each with its own corners, one corner off by 1e-9.
+        let positions = vec![
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(1.0, 1.0),
+            p(0.0, 0.0),
+            p(1.0, 1.0 + 1e-9),
+            p(0.0, 1.0),
+        ];
+        let faces = vec![vec![0, 1, 2], vec![3, 4, 5]];
+        let (kept, welded, summary) = weld(positions.clone(), faces.clone(), 1e-6);
+        assert_eq!(kept.len(), 4);
+        assert_eq!(welded, vec![vec![0, 1, 2], vec![0, 2, 3]]);
+        assert_eq!(summary.merged_vertices, 2);
+        // Exact welding leaves the corner that is off apart.
+        let (kept, _, summary) = weld(positions, faces, 0.0);
+        assert_eq!(kept.len(), 5);
+        assert_eq!(summary.merged_vertices, 1);
+    }
+
+    #[test]
+    fn collapsed_and_repeated_faces_are_dropped() {
+        let positions = vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1e-9), p(0.0, 1.0)];
+        let faces = vec![vec![0, 1, 3], vec![0, 2, 1], vec![3, 2, 0]];
+        let (kept, faces, summary) = weld(positions, faces, 1e-6);
+        assert_eq!(kept.len(), 3);
+        // The sliver collapses; the last face repeats the first once 2 is 1.
+        assert_eq!(faces, vec![vec![0, 1, 2]]);
+        assert_eq!(summary.dropped_faces, 2);
+    }
+
+    #[test]
+    fn unreadable_meshes_are_left_for_validation() {
+        let positions = vec![p(0.0, 0.0), p(0.0, 0.0), p(1.0, 0.0)];
+        let faces = vec![vec![0, 1, 7]];
+        let (kept, same, summary) = weld(positions, faces.clone(), 1e-6);
+        assert_eq!((kept.len(), same), (3, faces));
+        assert!(!summary.changed());
+    }
+}

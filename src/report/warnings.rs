@@ -1,0 +1,294 @@
+//! Warnings: input that is odd but valid, and results a designer must not take at face value.
+//! Each has a stable code (its name in `report.json`, its number through the C ABI) and a
+//! message that says what to do. The checks read the surface, the quad mesh, the tile and the
+//! finished report; they never change a result.
+
+use nalgebra::Vector3;
+use serde::Serialize;
+
+use super::Report;
+use crate::mesh::{PolyMesh, Topology};
+use crate::tiles::{Support, TileSpec};
+
+/// Why a result deserves a second look. The numbers are stable: new codes get new numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WarningCode {
+    /// The surface has no boundary (a sphere, a torus, a box).
+    ClosedSurface = 1,
+    /// The surface falls into several pieces that share no edge.
+    SeveralPieces = 2,
+    /// Most faces' normals point down: tiles are laid on the underside.
+    NormalsDown = 3,
+    /// The tile does not fit the half-tile model: length is not about 2 x width + joint.
+    TileShape = 4,
+    /// The surface turns a lot over one tile: its curvature radius is not much larger than a
+    /// tile.
+    TileVsCurvature = 5,
+    /// The tiles cover less than [`MIN_COVERAGE`] of the surface.
+    LowCoverage = 6,
+    /// Tiles were left out: off the surface, or slivers.
+    TilesDropped = 7,
+    /// Nothing to lay the tiles from: a closed surface, or a level one lying on the ground.
+    NoSupport = 8,
+    /// Reading the file joined coincident vertices or removed faces (see
+    /// [`crate::mesh::weld`]).
+    VerticesWelded = 9,
+}
+
+/// One warning.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Warning {
+    /// What kind of trouble.
+    pub code: WarningCode,
+    /// What was found and what to do.
+    pub message: String,
+}
+
+impl Warning {
+    /// A warning with its message.
+    pub fn new(code: WarningCode, message: impl Into<String>) -> Self {
+        Self {
+            code,
+            message: message.into(),
+        }
+    }
+}
+
+/// Coverage below which a tiling is flagged.
+pub const MIN_COVERAGE: f64 = 0.95;
+
+/// How far a tile's length may be from `2 x width + joint` (as a fraction of the length)
+/// before the half-tile model (paper section 3.1: quads of half a tile, square within the
+/// joint) stops fitting.
+pub const TILE_SHAPE_TOLERANCE: f64 = 0.1;
+
+/// Turning angle (radians) over one tile length, at the 90th percentile of the quad mesh's
+/// edges, above which tiles gape: about 29 degrees, a curvature radius of twice the tile
+/// length.
+pub const MAX_TURN_PER_TILE: f64 = 0.5;
+
+/// The checks of the input and of a finished tiling: `surface` is the surface the tiles were
+/// cut to (the quad mesh when there is none), `up` the laying order's up direction.
+pub fn check(
+    quads: &PolyMesh,
+    surface: &PolyMesh,
+    spec: &TileSpec,
+    up: &Vector3<f64>,
+    report: &Report,
+) -> Vec<Warning> {
+    let mut out = Vec::new();
+    out.extend(surface_checks(surface, up));
+    out.extend(tile_shape(spec));
+    out.extend(curvature(quads, spec));
+    if let Some(c) = &report.cutting {
+        if c.coverage < MIN_COVERAGE {
+            out.push(Warning::new(
+                WarningCode::LowCoverage,
+                format!(
+                    "the tiles cover {:.3} of the surface (below {MIN_COVERAGE}): look at the pattern picture; usual causes are quads far from half a tile (remesh), mesh and tile in different units, or a surface in pieces or full of holes",
+                    c.coverage
+                ),
+            ));
+        }
+        let dropped = c.outside_tiles + c.slivers.len();
+        if dropped > 0 {
+            out.push(Warning::new(
+                WarningCode::TilesDropped,
+                format!(
+                    "{dropped} tiles were left out ({} off the surface, {} slivers narrower than the smallest kept width): the gaps they leave are filled by hand (report: cutting.slivers)",
+                    c.outside_tiles,
+                    c.slivers.len()
+                ),
+            ));
+        }
+    }
+    if let Some(s) = &report.sequence {
+        match s.support {
+            Support::Edges => {}
+            Support::NoBoundary => out.push(Warning::new(
+                WarningCode::NoSupport,
+                "the quad mesh has no boundary, so no tile stands on a support and the laying order's props mean nothing: open the surface where the vault stands",
+            )),
+            Support::Level => out.push(Warning::new(
+                WarningCode::NoSupport,
+                "the surface is level (it rises less than the support band): every tile lies on the ground or formwork and none needs a prop; give --up (up) if the vault stands another way",
+            )),
+        }
+    }
+    out.sort_by_key(|w| w.code);
+    out
+}
+
+/// Checks of the surface alone: closed, in pieces, upside down.
+pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>) -> Vec<Warning> {
+    let mut out = Vec::new();
+    let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
+    if !topology.edges().iter().any(|e| e.is_boundary()) {
+        out.push(Warning::new(
+            WarningCode::ClosedSurface,
+            "the surface is closed (it has no boundary edge): a vault needs an edge to stand on, and quads on sharp edges leave the surface; remove the faces where the shell stands or meets the ground, and tile the shell only",
+        ));
+    }
+    let (piece, pieces) = topology.face_pieces();
+    if pieces > 1 {
+        let mut sizes = vec![0usize; pieces];
+        piece.iter().for_each(|&p| sizes[p] += 1);
+        let largest = sizes.iter().copied().max().unwrap_or(0);
+        out.push(Warning::new(
+            WarningCode::SeveralPieces,
+            format!(
+                "the surface has {pieces} separate pieces (the largest {largest} of {} faces) that share no edge: if they should be one surface, weld them (the command line welds coincident vertices unless --weld off; raise the tolerance with --weld); otherwise tile each piece on its own",
+                surface.face_count()
+            ),
+        ));
+    }
+    if let Some(up) = up.try_normalize(0.0) {
+        let (mut signed, mut projected, mut area) = (0.0, 0.0, 0.0);
+        for f in 0..surface.face_count() {
+            let a = surface.face_area_vector(f);
+            signed += a.dot(&up);
+            projected += a.dot(&up).abs();
+            area += a.norm();
+        }
+        if projected > 0.1 * area && signed < -0.5 * projected {
+            out.push(Warning::new(
+                WarningCode::NormalsDown,
+                "most face normals point down (against up): tiles are laid on the side the normals point to, the underside here; flip the mesh (Rhino: Flip) unless the tiles belong underneath",
+            ));
+        }
+    }
+    out
+}
+
+/// The half-tile model: a tile over two quads of side `(length + joint) / 2` that are also
+/// `width + joint` wide, so `length = 2 x width + joint`.
+pub fn tile_shape(spec: &TileSpec) -> Option<Warning> {
+    let fits = 2.0 * spec.width + spec.joint;
+    if (spec.length - fits).abs() <= TILE_SHAPE_TOLERANCE * spec.length {
+        return None;
+    }
+    let hint = if spec.length < spec.width {
+        "the length is shorter than the width: are they swapped? Give the length first"
+    } else {
+        "the tiles will overlap or leave wide gaps; use a tile about twice as long as wide (plus a joint)"
+    };
+    Some(Warning::new(
+        WarningCode::TileShape,
+        format!(
+            "tile {} x {} with joint {} does not fit the half-tile model (length = 2 x width + joint = {}, off by more than {:.0} %): {hint}",
+            spec.length,
+            spec.width,
+            spec.joint,
+            fits,
+            100.0 * TILE_SHAPE_TOLERANCE
+        ),
+    ))
+}
+
+/// The surface's turning over one tile length, from the angles between neighbouring quads.
+pub fn curvature(quads: &PolyMesh, spec: &TileSpec) -> Option<Warning> {
+    let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
+    let normals: Vec<Option<Vector3<f64>>> = (0..quads.face_count())
+        .map(|f| quads.face_area_vector(f).try_normalize(0.0))
+        .collect();
+    let mut curvatures: Vec<f64> = topology
+        .edges()
+        .iter()
+        .filter_map(|e| match e.faces[..] {
+            [f, g] => {
+                let (a, b) = (normals[f]?, normals[g]?);
+                let distance = (quads.face_centroid(f) - quads.face_centroid(g)).norm();
+                (distance > 0.0).then(|| a.angle(&b) / distance)
+            }
+            _ => None,
+        })
+        .collect();
+    if curvatures.is_empty() {
+        return None;
+    }
+    curvatures.sort_by(f64::total_cmp);
+    let p90 = curvatures[(curvatures.len() * 9 / 10).min(curvatures.len() - 1)];
+    let turn = p90 * spec.length;
+    (turn > MAX_TURN_PER_TILE).then(|| {
+        Warning::new(
+            WarningCode::TileVsCurvature,
+            format!(
+                "the surface turns by {:.0} degrees over one tile length (curvature radius about {:.3} against a tile {} long, at the 90th percentile of the quads' edges): tiles will gape and leave the surface; use smaller tiles or a smoother surface",
+                turn.to_degrees(),
+                1.0 / p90,
+                spec.length
+            ),
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::generate;
+
+    const TILE: TileSpec = TileSpec {
+        length: 1.9,
+        width: 0.95,
+        thickness: 0.1,
+        joint: 0.1,
+    };
+
+    #[test]
+    fn the_half_tile_model_is_checked() {
+        assert!(tile_shape(&TILE).is_none());
+        let swapped = TileSpec {
+            length: 0.95,
+            width: 1.9,
+            ..TILE
+        };
+        let w = tile_shape(&swapped).unwrap();
+        assert!(w.message.contains("swapped"), "{}", w.message);
+        let long = TileSpec {
+            length: 3.0,
+            width: 1.0,
+            ..TILE
+        };
+        assert_eq!(tile_shape(&long).unwrap().code, WarningCode::TileShape);
+    }
+
+    /// Half a cylinder of `radius` in quads of about unit size.
+    fn half_cylinder(radius: f64) -> PolyMesh {
+        let grid = generate::grid(4, (std::f64::consts::PI * radius).ceil() as usize);
+        let ny = grid.faces().len() / 4;
+        let positions = grid
+            .positions()
+            .iter()
+            .map(|p| {
+                let a = std::f64::consts::PI * p.y / ny as f64;
+                nalgebra::Point3::new(p.x, radius * a.cos(), radius * a.sin())
+            })
+            .collect();
+        PolyMesh::new(positions, grid.faces().to_vec()).unwrap()
+    }
+
+    #[test]
+    fn a_tile_much_larger_than_the_curvature_radius_is_flagged() {
+        let tight = curvature(&half_cylinder(1.5), &TILE).expect("1.9 long on radius 1.5");
+        assert_eq!(tight.code, WarningCode::TileVsCurvature);
+        assert!(
+            tight.message.contains("curvature radius"),
+            "{}",
+            tight.message
+        );
+        assert!(curvature(&half_cylinder(10.0), &TILE).is_none());
+    }
+
+    #[test]
+    fn a_grid_is_open_whole_and_faces_up() {
+        let grid = generate::grid(4, 3);
+        assert!(surface_checks(&grid, &Vector3::z()).is_empty());
+        let codes: Vec<_> = surface_checks(&grid, &-Vector3::z())
+            .iter()
+            .map(|w| w.code)
+            .collect();
+        assert_eq!(codes, vec![WarningCode::NormalsDown]);
+        assert!(curvature(&grid, &TILE).is_none());
+    }
+}
