@@ -6,7 +6,8 @@ LIB_DIR := target/release
 C_FLAGS := -Wall -Wextra -Werror -DTP_TEST_PANIC -Iinclude
 C_LINK := -L$(LIB_DIR) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(LIB_DIR)
 
-.PHONY: demo test setup build bench header header-check lint rust-test c-test asan-test dotnet-test gh-compile python-test
+.PHONY: demo test setup build bench header header-check lint rust-test c-test asan-test dotnet-test gh-compile python-test \
+	static-check
 
 setup:
 	@scripts/setup.sh
@@ -35,9 +36,11 @@ lint:
 rust-test:
 	$(CARGO) test --release
 
-# The C tests link the cdylib built with the test-panic feature (tp_test_panic).
+# The C tests link the cdylib built with the test-panic feature (tp_test_panic), after checking
+# that it needs no shared COIN-OR library (static-check).
 c-test:
 	$(CARGO) build --release --lib --features test-panic
+	scripts/check-static.sh $(LIB_DIR)/libtilepattern.so
 	mkdir -p target/c
 	$(CC) -std=c11 $(C_FLAGS) tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_c
 	$(CXX) -std=c++17 $(C_FLAGS) -x c++ tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_cpp
@@ -81,6 +84,11 @@ gh-compile:
 python-test:
 	$(CARGO) build --release --lib
 	scripts/test-python.sh
+
+# The native library of a release build links COIN-OR statically: ldd lists no COIN-OR library.
+static-check:
+	$(CARGO) build --release --lib
+	scripts/check-static.sh $(LIB_DIR)/libtilepattern.so
 
 header:
 	cbindgen --quiet --config cbindgen.toml --crate tilepattern --output include/tilepattern.h
