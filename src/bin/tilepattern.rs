@@ -8,6 +8,10 @@ use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use serde::Serialize;
 use tilepattern::control::Control;
+
+#[path = "tilepattern/progress_line.rs"]
+mod progress_line;
+use progress_line::ProgressLine;
 use tilepattern::mesh::{self, MeshError, PolyMesh};
 use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, PatternOptions};
 use tilepattern::pipeline::{self, Tiling};
@@ -288,7 +292,17 @@ fn run(cli: Cli) -> Result<()> {
             json,
         } => {
             let mesh = read_mesh(&quads)?;
-            let found = pattern::solve(&mesh, &pattern.options(false, up)?)?;
+            let options = pattern.options(false, up)?;
+            let mut line = ProgressLine::on_terminal();
+            let found = pattern::solve_with(
+                &mesh,
+                &options,
+                &mut Control::with_figures(&mut |fraction, figures| {
+                    line.update("pattern", fraction, figures)
+                }),
+            );
+            line.finish();
+            let found = found?;
             eprintln!("{}", pattern_summary(&found));
             write_json(json.as_deref(), &found)
         }
@@ -374,14 +388,19 @@ fn run(cli: Cli) -> Result<()> {
                 time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?,
                 ..field.options(edge)
             };
-            let (remeshed, tiling) = pipeline::tile_surface(
+            let mut line = ProgressLine::on_terminal();
+            let found = pipeline::tile_surface(
                 &surface,
                 &remesh,
                 &options,
                 &spec,
                 &finish,
-                &mut Control::none(),
-            )?;
+                &mut Control::with_figures(&mut |fraction, figures| {
+                    line.update_run(fraction, figures)
+                }),
+            );
+            line.finish();
+            let (remeshed, tiling) = found?;
             write_outputs(
                 &out,
                 &remeshed.quads,
@@ -426,14 +445,17 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
         fit: FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit),
         ..FinishOptions::for_spec(&spec)
     };
-    let (remeshed, tiling) = pipeline::tile_surface(
+    let mut line = ProgressLine::on_terminal();
+    let found = pipeline::tile_surface(
         &surface,
         &remesh,
         &options,
         &spec,
         &finish,
-        &mut Control::none(),
-    )?;
+        &mut Control::with_figures(&mut |fraction, figures| line.update_run(fraction, figures)),
+    );
+    line.finish();
+    let (remeshed, tiling) = found?;
     write_outputs(
         out,
         &remeshed.quads,

@@ -38,7 +38,7 @@ use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
-use crate::control::Control;
+use crate::control::{Control, Figures};
 use crate::mesh::{PolyMesh, Topology};
 
 /// Which laying pattern the objective asks for.
@@ -458,6 +458,14 @@ fn search_pattern(
     };
     starts.sort_by(|a, b| value(b).total_cmp(&value(a)));
     let mut best = starts.swap_remove(0);
+    // The figures a watching caller sees (the command line's progress line).
+    let note = |control: &mut Control<'_>, best: &[bool], bound: Bound| {
+        control.note(Figures {
+            best: value(best),
+            bound: bound.value,
+        })
+    };
+    note(control, &best, bound);
     let faces = graph.face_count();
     let left = || deadline.saturating_duration_since(Instant::now());
     let anneal = |best: &mut Vec<bool>,
@@ -510,6 +518,7 @@ fn search_pattern(
         )? {
             bound.tighten(rounded(found.value), BoundSource::LinearRelaxation);
             relaxation_solved = found.converged;
+            note(control, &best, bound);
         }
     }
     // With the whole relaxation solved, the rounds below rarely tighten the bound soon, and
@@ -531,6 +540,7 @@ fn search_pattern(
         let mut size = FIRST_LINEAR_PATCH_SIZE;
         let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
         while !proven(&best, bound) && Instant::now() < deadline {
+            note(control, &best, bound);
             let partition = decompose::next_partition(graph, size, 0, &[], finer.take());
             let started = Instant::now();
             let proven_here = decompose::bound(
@@ -566,6 +576,7 @@ fn search_pattern(
     // The last round's partition and what it proved.
     let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
     while !proven(&best, bound) && Instant::now() < deadline {
+        note(control, &best, bound);
         if size >= faces
             && faces <= WHOLE_MODEL_FACES
             && mip::expected_linear_seconds(faces) <= left().as_secs_f64()
