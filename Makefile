@@ -6,7 +6,8 @@ LIB_DIR := target/release
 C_FLAGS := -Wall -Wextra -Werror -DTP_TEST_PANIC -Iinclude
 C_LINK := -L$(LIB_DIR) -ltilepattern -lm -Wl,-rpath,$(CURDIR)/$(LIB_DIR)
 
-.PHONY: demo test setup build bench header header-check lint rust-test c-test asan-test dotnet-test gh-compile python-test
+.PHONY: demo test setup build bench header header-check lint rust-test c-test asan-test dotnet-test gh-compile python-test \
+	static-check wheel wheel-test package package-test
 
 setup:
 	@scripts/setup.sh
@@ -19,25 +20,29 @@ demo: build
 
 # Every test: the house rules (format, clippy, rustdoc), the header matches the code, the Rust tests, the C tests under valgrind, the C#
 # wrapper's NUnit tests under mono, the Grasshopper components compiled against checked
-# RhinoCommon/Grasshopper stubs, the Python package's pytest suite.
+# RhinoCommon/Grasshopper stubs, the Python package's pytest suite and its wheel in a fresh venv,
+# the Yak package's layout.
 test: setup
 	$(MAKE) lint
 	scripts/check-header.sh
-	$(MAKE) rust-test c-test dotnet-test gh-compile python-test
+	$(MAKE) rust-test c-test dotnet-test gh-compile python-test package-test
 
 # House rules: rustfmt's layout, no clippy warning on any target, rustdoc without warnings
-# (maintainers' docs, private items included).
+# (maintainers' docs, private items included). Checked against the system's shared COIN-OR
+# (--no-default-features), so that the check build does not compile COIN-OR from source again.
 lint:
 	$(CARGO) fmt --check
-	$(CARGO) clippy --all-targets -- -D warnings
-	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --document-private-items
+	$(CARGO) clippy --all-targets --no-default-features -- -D warnings
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --document-private-items --no-default-features
 
 rust-test:
 	$(CARGO) test --release
 
-# The C tests link the cdylib built with the test-panic feature (tp_test_panic).
+# The C tests link the cdylib built with the test-panic feature (tp_test_panic), after checking
+# that it needs no shared COIN-OR library (static-check).
 c-test:
 	$(CARGO) build --release --lib --features test-panic
+	scripts/check-static.sh $(LIB_DIR)/libtilepattern.so
 	mkdir -p target/c
 	$(CC) -std=c11 $(C_FLAGS) tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_c
 	$(CXX) -std=c++17 $(C_FLAGS) -x c++ tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_cpp
@@ -77,10 +82,38 @@ dotnet-test:
 gh-compile:
 	scripts/gh-compile.sh
 
-# The Python package (python/) in a venv under target/, tested with pytest.
+# The Python package (python/) in a venv under target/, tested with pytest; then the wheel
+# (wheel-test).
 python-test:
 	$(CARGO) build --release --lib
 	scripts/test-python.sh
+	$(MAKE) wheel-test
+
+# The native library of a release build links COIN-OR statically: ldd lists no COIN-OR library.
+static-check:
+	$(CARGO) build --release --lib
+	scripts/check-static.sh $(LIB_DIR)/libtilepattern.so
+
+# A Python wheel carrying the native library: target/wheels/tilepattern-VERSION-py3-none-PLATFORM.whl.
+wheel:
+	$(CARGO) build --release --lib
+	scripts/wheel.sh
+
+# The wheel installed into a fresh venv outside the repository, no environment variable:
+# python/README.md's example runs and writes a .3dm.
+wheel-test: wheel
+	scripts/test-wheel.sh
+
+# The Yak package folder of the Grasshopper plug-in in target/yak/ (manifest, .gha, wrapper,
+# runtimes/<rid>/native/), checked; `yak build` there (Rhino's tool) makes the .yak.
+package: gh-compile
+	$(CARGO) build --release --lib
+	scripts/package.sh
+
+# make package, then broken copies of the folder must fail the check.
+package-test: gh-compile
+	$(CARGO) build --release --lib
+	scripts/test-package.sh
 
 header:
 	cbindgen --quiet --config cbindgen.toml --crate tilepattern --output include/tilepattern.h

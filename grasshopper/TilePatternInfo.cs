@@ -26,7 +26,7 @@ namespace TilePattern.Gh
 
         public override string AuthorName { get { return "TilePattern contributors"; } }
 
-        public override string AuthorContact { get { return "https://github.com/ (see the project's README)"; } }
+        public override string AuthorContact { get { return "TilePattern contributors (no public address yet: set it with the manifest's url)"; } }
 
         public override string Version { get { return "0.1.0"; } }
     }

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs what TilePattern needs on a fresh Debian/Ubuntu machine: the CBC and Clp solver libraries
-# and pkg-config (to build), a C/C++ compiler and valgrind (C tests), mono with NUnit (C#
+# Installs what TilePattern needs on a fresh Debian/Ubuntu machine: a C/C++ compiler (the build
+# compiles COIN-OR's CBC and Clp from source and links them statically; C tests), the system's
+# CBC and Clp libraries and pkg-config (for `--no-default-features` builds, which link them
+# dynamically, and the package check's counter-example), valgrind (C tests), mono with NUnit (C#
 # wrapper tests), Python's venv (Python package tests, which install numpy, compas,
 # rhino3dm and pytest from PyPI into target/py-venv; the Grasshopper compile check, which installs
 # the published RhinoCommon/Grasshopper type stubs into target/gh-venv), and cbindgen 0.29.2 (header check). System packages need root or sudo;

@@ -28,6 +28,13 @@
 #![allow(rustdoc::private_intra_doc_links)]
 #![deny(unsafe_code)]
 
+// COIN-OR built from source and linked statically (feature static-coin, build.rs): naming the
+// crates links their archives.
+#[cfg(feature = "static-coin")]
+extern crate cbc_src as _;
+#[cfg(feature = "static-coin")]
+extern crate clp_src as _;
+
 pub mod control;
 pub mod ffi;
 pub(crate) mod geom;

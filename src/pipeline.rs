@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use thiserror::Error;
 
-use crate::control::Control;
+use crate::control::{Control, Figures};
 use crate::mesh::{MeshError, PolyMesh};
 use crate::pattern::{self, Pattern, PatternError, PatternOptions};
 use crate::remesh::{self, RemeshError, RemeshOptions, Remeshed};
@@ -131,11 +131,17 @@ pub fn tile_surface(
         )?
     };
     let pattern = {
-        let mut second_half = |fraction: f64| control.keep_going(0.5 + 0.5 * fraction);
+        // The pattern stage's figures (best, bound) go on to the caller's control.
+        let mut second_half = |fraction: f64, figures: Option<Figures>| {
+            if let Some(figures) = figures {
+                control.note(figures);
+            }
+            control.keep_going(0.5 + 0.5 * fraction)
+        };
         pattern::solve_with(
             &remeshed.quads,
             options,
-            &mut Control::with_progress(&mut second_half),
+            &mut Control::with_figures(&mut second_half),
         )?
     };
     // The fit stage is fast next to the others: it reports as done, and can still cancel.

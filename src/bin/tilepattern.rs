@@ -9,6 +9,10 @@ use clap::{Parser, Subcommand, ValueEnum};
 use serde::Serialize;
 use tilepattern::control::Control;
 use tilepattern::mesh::io::{Loaded, Weld};
+
+#[path = "tilepattern/progress_line.rs"]
+mod progress_line;
+use progress_line::ProgressLine;
 use tilepattern::mesh::{self, MeshError, PolyMesh};
 use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, PatternOptions};
 use tilepattern::pipeline::{self, Tiling};
@@ -302,7 +306,17 @@ fn run(cli: Cli) -> Result<()> {
             let loaded = read_mesh(&quads)?;
             print_warnings(weld_warning(&loaded).as_slice());
             let mesh = loaded.mesh;
-            let found = pattern::solve(&mesh, &pattern.options(false, up)?)?;
+            let options = pattern.options(false, up)?;
+            let mut line = ProgressLine::on_terminal();
+            let found = pattern::solve_with(
+                &mesh,
+                &options,
+                &mut Control::with_figures(&mut |fraction, figures| {
+                    line.update("pattern", fraction, figures)
+                }),
+            );
+            line.finish();
+            let found = found?;
             eprintln!("{}", pattern_summary(&found));
             write_json(json.as_deref(), &found)
         }
@@ -403,15 +417,19 @@ fn run(cli: Cli) -> Result<()> {
                 time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?,
                 ..field.options(edge)
             };
-            let (remeshed, mut tiling) = pipeline::tile_surface(
+            let mut line = ProgressLine::on_terminal();
+            let found = pipeline::tile_surface(
                 surface,
                 &remesh,
                 &options,
                 &spec,
                 &finish,
-                &mut Control::none(),
-            )
-            .map_err(|e| units.explain(e))?;
+                &mut Control::with_figures(&mut |fraction, figures| {
+                    line.update_run(fraction, figures)
+                }),
+            );
+            line.finish();
+            let (remeshed, mut tiling) = found.map_err(|e| units.explain(e))?;
             tiling.report.warnings.extend(weld_warning(&loaded));
             let units = units.unit;
             write_outputs(
@@ -459,14 +477,17 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
         fit: FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit),
         ..FinishOptions::for_spec(&spec)
     };
-    let (remeshed, tiling) = pipeline::tile_surface(
+    let mut line = ProgressLine::on_terminal();
+    let found = pipeline::tile_surface(
         &surface,
         &remesh,
         &options,
         &spec,
         &finish,
-        &mut Control::none(),
-    )?;
+        &mut Control::with_figures(&mut |fraction, figures| line.update_run(fraction, figures)),
+    );
+    line.finish();
+    let (remeshed, tiling) = found?;
     write_outputs(
         out,
         &remeshed.quads,

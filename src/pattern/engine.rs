@@ -10,7 +10,7 @@ use super::{
     decompose, linear, mip, program, relative_gap, score, search,
 };
 use super::{Bound, Found};
-use crate::control::Control;
+use crate::control::{Control, Figures};
 use crate::mesh::Topology;
 
 /// Faces per patch in the first decomposition bound of [`Method::Auto`]: patches this small
@@ -171,6 +171,17 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     fn tighten(&mut self, value: f64, source: BoundSource) {
         let rounded = bound::round_down(value, self.bond, 1.0, self.most_tiles as f64);
         self.bound.tighten(rounded, source);
+        self.note();
+    }
+
+    /// Tells a watching caller (the command line's progress line) the best objective and the
+    /// bound so far; they reach it with the next progress report.
+    fn note(&mut self) {
+        let best = self.value(&self.best);
+        self.control.note(Figures {
+            best,
+            bound: self.bound.value,
+        });
     }
 
     /// The whole program on CBC for `limit`: keeps CBC's pattern if it beats the best, and
@@ -218,6 +229,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
         };
         starts.sort_by(|a, b| self.value(b).total_cmp(&self.value(a)));
         self.best = starts.swap_remove(0);
+        self.note();
     }
 
     /// Anneals the best pattern for `share` of the time left from `temperature`.
@@ -290,6 +302,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
         let mut size = FIRST_LINEAR_PATCH_SIZE;
         let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
         while !self.done() && Instant::now() < self.deadline {
+            self.note();
             let partition = decompose::next_partition(self.graph, size, 0, &[], finer.take());
             let started = Instant::now();
             let proven_here = decompose::bound(
@@ -332,6 +345,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
         // The last round's partition and what it proved.
         let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
         while !self.done() && Instant::now() < self.deadline {
+            self.note();
             if size >= faces
                 && faces <= WHOLE_MODEL_FACES
                 && mip::expected_linear_seconds(faces) <= self.left().as_secs_f64()

@@ -1,0 +1,160 @@
+//! The command line's progress line: while a long stage runs, one line on the terminal,
+//! redrawn in place at most five times a second, with the stage, the time since the command
+//! started, the share of the stage's work (or time budget) done and, for the pattern stage,
+//! the best objective found, the proven bound and their gap (the [`Figures`] the engine
+//! notes through its [`Control`]; the C library's callback hears the same stage and fraction).
+//! Silent when standard error is not a terminal (a pipe, a file, CI), so logs and scripts see
+//! only the final summary. The line is erased when the stage ends.
+
+use std::io::{IsTerminal, Write};
+use std::time::{Duration, Instant};
+
+use tilepattern::control::Figures;
+
+/// Least time between two redraws.
+const REDRAW: Duration = Duration::from_millis(200);
+
+/// The line, drawn on `out` when enabled.
+pub struct ProgressLine<W: Write> {
+    out: W,
+    enabled: bool,
+    started: Instant,
+    last: Option<Instant>,
+    drawn: bool,
+}
+
+impl ProgressLine<std::io::Stderr> {
+    /// On standard error, enabled only when it is a terminal.
+    pub fn on_terminal() -> Self {
+        let err = std::io::stderr();
+        let enabled = err.is_terminal();
+        Self::new(err, enabled)
+    }
+}
+
+impl<W: Write> ProgressLine<W> {
+    /// A line on `out`; with `enabled` false nothing is ever written.
+    pub fn new(out: W, enabled: bool) -> Self {
+        Self {
+            out,
+            enabled,
+            started: Instant::now(),
+            last: None,
+            drawn: false,
+        }
+    }
+
+    /// Shows `stage` at `fraction` with the pattern's `figures`, if the last redraw is old
+    /// enough. Always lets the stage go on (the command line cancels with Ctrl-C).
+    pub fn update(&mut self, stage: &str, fraction: f64, figures: Option<Figures>) -> bool {
+        if !self.enabled {
+            return true;
+        }
+        let now = Instant::now();
+        if self
+            .last
+            .is_some_and(|last| now.duration_since(last) < REDRAW)
+        {
+            return true;
+        }
+        self.last = Some(now);
+        let line = format_line(stage, now.duration_since(self.started), fraction, figures);
+        // A failed write to the terminal is no reason to stop the work.
+        let _ = write!(self.out, "\r{line}\x1b[K");
+        let _ = self.out.flush();
+        self.drawn = true;
+        true
+    }
+
+    /// For [`tilepattern::pipeline::tile_surface`], which reports the remesh stage as
+    /// fractions `0..0.5` and the pattern stage as `0.5..1` (then the tiles at 1).
+    pub fn update_run(&mut self, fraction: f64, figures: Option<Figures>) -> bool {
+        if fraction < 0.5 {
+            self.update("remesh", 2.0 * fraction, None)
+        } else {
+            self.update("pattern", 2.0 * fraction - 1.0, figures)
+        }
+    }
+
+    /// Erases the line (if one was drawn).
+    pub fn finish(&mut self) {
+        if self.drawn {
+            let _ = write!(self.out, "\r\x1b[K");
+            let _ = self.out.flush();
+            self.drawn = false;
+        }
+    }
+}
+
+/// `pattern  12.3 s  45 %  best 688.5  bound 691.5  gap 0.43 %` (figures only when known).
+pub fn format_line(
+    stage: &str,
+    elapsed: Duration,
+    fraction: f64,
+    figures: Option<Figures>,
+) -> String {
+    let mut line = format!(
+        "{stage:<7} {:>6.1} s {:>4.0} %",
+        elapsed.as_secs_f64(),
+        100.0 * fraction.clamp(0.0, 1.0)
+    );
+    if let Some(f) = figures {
+        line.push_str(&format!(
+            "  best {}  bound {}  gap {:.2} %",
+            f.best,
+            f.bound,
+            100.0 * f.gap()
+        ));
+    }
+    line
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_line_names_stage_time_share_and_figures() {
+        let figures = Figures {
+            best: 688.5,
+            bound: 691.5,
+        };
+        let line = format_line(
+            "pattern",
+            Duration::from_millis(12_340),
+            0.45,
+            Some(figures),
+        );
+        assert_eq!(
+            line,
+            "pattern   12.3 s   45 %  best 688.5  bound 691.5  gap 0.43 %"
+        );
+        assert_eq!(
+            format_line("remesh", Duration::from_secs(2), 0.5, None),
+            "remesh     2.0 s   50 %"
+        );
+    }
+
+    #[test]
+    fn silent_when_not_a_terminal_and_erased_at_the_end() {
+        let mut quiet = ProgressLine::new(Vec::new(), false);
+        assert!(quiet.update("pattern", 0.5, None));
+        quiet.finish();
+        assert!(quiet.out.is_empty());
+
+        let mut shown = ProgressLine::new(Vec::new(), true);
+        assert!(shown.update_run(0.75, None));
+        // Within the redraw interval nothing more is drawn.
+        assert!(shown.update_run(0.8, None));
+        shown.finish();
+        let text = String::from_utf8(shown.out).unwrap();
+        assert!(text.starts_with("\rpattern "), "{text:?}");
+        assert!(text.contains("   50 %"), "{text:?}");
+        assert_eq!(
+            text.matches('\r').count(),
+            2,
+            "one draw, one erase: {text:?}"
+        );
+        assert!(text.ends_with("\r\x1b[K"));
+    }
+}
