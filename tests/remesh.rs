@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use nalgebra::Point3;
 use tilepattern::control::Control;
-use tilepattern::mesh::{PolyMesh, obj};
+use tilepattern::mesh::{PolyMesh, generate, obj};
 use tilepattern::remesh::{
     BoundaryAlignment, FieldDirection, Metrics, RemeshError, RemeshOptions, metrics, remesh,
     remesh_with,
@@ -262,6 +262,32 @@ fn hypar_patch_becomes_regular_quads() {
 fn spherical_cap_is_covered() {
     let result = remesh(&cap(), &options(0.15)).expect("remesh");
     check("cap", &result.metrics, 16);
+}
+
+/// Issue 19's 3 m dome: a spherical cap of radius 3 over 60 % of the sphere (its rim
+/// overhangs), about 18k near-equilateral triangles; every point of it is umbilic.
+fn dome_3m() -> PolyMesh {
+    generate::spherical_cap(3.0, 0.6, 0.087)
+}
+
+#[test]
+fn a_3m_dome_is_remeshed_soundly() {
+    // At the default pipeline's 150 mm quads (3144 of them): a sound pure quad mesh on the
+    // surface, with 31 interior irregular vertices today (issue 19 asks for 12 or fewer,
+    // see `issue_19_dome_acceptance`) and 91 % of edges within 20 %.
+    let result = remesh(&dome_3m(), &options(0.15)).expect("remesh");
+    let m = &result.metrics;
+    check("3 m dome", m, 40);
+    assert!(m.edges_within_20pct >= 0.9, "{m:?}");
+}
+
+#[test]
+#[ignore = "issue 19's acceptance, not met yet: 31 interior irregular vertices (at most 12), 91 % of edges within 20 % (at least 95 %)"]
+fn issue_19_dome_acceptance() {
+    let result = remesh(&dome_3m(), &options(0.15)).expect("remesh");
+    let m = &result.metrics;
+    assert!(m.interior_irregular_vertices <= 12, "{m:?}");
+    assert!(m.edges_within_20pct >= 0.95, "{m:?}");
 }
 
 #[test]

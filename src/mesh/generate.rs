@@ -150,6 +150,72 @@ pub fn closed_box(size: f64, n: usize) -> PolyMesh {
     PolyMesh::new(positions, faces).expect("a welded box is a valid closed mesh")
 }
 
+/// A spherical cap of `radius` covering `area_fraction` of the sphere (0.6 reaches past the
+/// equator, so its rim overhangs), triangulated with edges of about `edge`: rings of
+/// vertices at equal steps of polar angle, each with as many vertices as its circumference
+/// holds at that spacing, neighbouring rings zipped into near-equilateral triangles. The
+/// crown is on +z, the rim lies in the plane z = 0 and faces are counter-clockwise seen from
+/// outside (the test and benchmark dome of the remesher: every point of a sphere is umbilic).
+///
+/// # Panics
+/// If `radius` or `edge` is not positive and finite, `edge` is not smaller than the radius,
+/// or `area_fraction` is not in `(0, 1)`.
+pub fn spherical_cap(radius: f64, area_fraction: f64, edge: f64) -> PolyMesh {
+    assert!(
+        radius.is_finite() && edge.is_finite() && radius > 0.0 && edge > 0.0 && edge < radius,
+        "radius and edge must be positive, the edge smaller than the radius"
+    );
+    assert!(
+        area_fraction > 0.0 && area_fraction < 1.0,
+        "the cap covers a fraction of the sphere in (0, 1)"
+    );
+    use std::f64::consts::TAU;
+    // Cap area 2 pi R h = fraction * 4 pi R^2: height h = 2 R fraction.
+    let theta_max = (1.0 - 2.0 * area_fraction).acos();
+    let rings = ((radius * theta_max / edge).round() as usize).max(1);
+    let z_rim = radius * theta_max.cos();
+    let mut positions = vec![Point3::new(0.0, 0.0, radius - z_rim)];
+    // First vertex and vertex count of each ring; ring 0 is the crown.
+    let mut ring = vec![(0usize, 1usize)];
+    for k in 1..=rings {
+        let theta = theta_max * k as f64 / rings as f64;
+        let count = ((TAU * radius * theta.sin() / edge).round() as usize).max(6);
+        ring.push((positions.len(), count));
+        for i in 0..count {
+            let phi = TAU * i as f64 / count as f64;
+            positions.push(Point3::new(
+                radius * theta.sin() * phi.cos(),
+                radius * theta.sin() * phi.sin(),
+                radius * theta.cos() - z_rim,
+            ));
+        }
+    }
+    let mut faces = Vec::new();
+    for k in 1..=rings {
+        let (inner, m) = ring[k - 1];
+        let (outer, n) = ring[k];
+        let at = |first: usize, count: usize, i: usize| first + i % count;
+        if m == 1 {
+            faces.extend((0..n).map(|j| vec![inner, at(outer, n, j), at(outer, n, j + 1)]));
+            continue;
+        }
+        // Zip the two rings by azimuth: advance on whichever ring's next vertex comes first.
+        let (mut i, mut j) = (0, 0);
+        while i < m || j < n {
+            let next_inner = (i + 1) as f64 / m as f64;
+            let next_outer = (j + 1) as f64 / n as f64;
+            if j < n && (i == m || next_outer <= next_inner) {
+                faces.push(vec![at(inner, m, i), at(outer, n, j), at(outer, n, j + 1)]);
+                j += 1;
+            } else {
+                faces.push(vec![at(inner, m, i), at(outer, n, j), at(inner, m, i + 1)]);
+                i += 1;
+            }
+        }
+    }
+    PolyMesh::new(positions, faces).expect("a zipped cap is a valid mesh")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -166,5 +232,45 @@ mod tests {
         for f in 0..cube.face_count() {
             assert!(cube.face_area_vector(f).dot(&cube.face_centroid(f).coords) > 0.0);
         }
+    }
+
+    #[test]
+    fn spherical_cap_is_on_its_sphere_with_an_overhanging_rim_and_outward_faces() {
+        let (radius, fraction, edge) = (3.0, 0.6, 0.2);
+        let cap = spherical_cap(radius, fraction, edge);
+        let theta_max = (1.0 - 2.0 * fraction).acos();
+        let centre = Point3::new(0.0, 0.0, -radius * theta_max.cos());
+        for p in cap.positions() {
+            assert!(((p - centre).norm() - radius).abs() < 1e-9);
+            assert!(p.z >= -1e-9, "the rim is the lowest level");
+        }
+        // Area close to the cap's 2 pi R h, h = 2 R fraction.
+        let exact = 2.0 * std::f64::consts::PI * radius * 2.0 * radius * fraction;
+        assert!((cap.area() - exact).abs() / exact < 0.01, "{}", cap.area());
+        // Triangles near-equilateral: every edge within a factor of two of `edge`.
+        for f in cap.faces() {
+            assert_eq!(f.len(), 3);
+            for k in 0..3 {
+                let l = (cap.positions()[f[k]] - cap.positions()[f[(k + 1) % 3]]).norm();
+                assert!(l > 0.5 * edge && l < 2.0 * edge, "edge {l}");
+            }
+            // Counter-clockwise seen from outside: the face normal points away from the centre.
+            let [a, b, c] = [0, 1, 2].map(|k| cap.positions()[f[k]]);
+            let n = (b - a).cross(&(c - a));
+            assert!(n.dot(&(a - centre)) > 0.0);
+        }
+        // The rim overhangs: it lies below the equator, so the cap is wider above it.
+        let rim = cap
+            .positions()
+            .iter()
+            .filter(|p| p.z.abs() < 1e-9)
+            .map(|p| p.x.hypot(p.y))
+            .fold(0.0, f64::max);
+        let widest = cap
+            .positions()
+            .iter()
+            .map(|p| p.x.hypot(p.y))
+            .fold(0.0, f64::max);
+        assert!(widest > rim + 1e-3, "widest {widest} rim {rim}");
     }
 }

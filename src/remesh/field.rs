@@ -8,8 +8,10 @@
 //! `sum_edges |z_a - r_ab z_b|^2 + sum_i w_i |z_i - c_i|^2`
 //!
 //! where `r_ab` is the discrete Levi-Civita transport (to the fourth power), `c_i` the
-//! principal curvature direction (to the fourth power) scaled by how anisotropic the surface
-//! is there, and the boundary crosses are fixed to the boundary tangents (Dirichlet), so quads
+//! principal curvature direction (to the fourth power) and `w_i` how anisotropic the surface
+//! is there ([`alignment_weight`]: zero where the two principal curvatures are nearly equal,
+//! on a sphere, a dome's crown or a plane, where the principal directions are noise; the
+//! same at any model scale), and the boundary crosses are fixed to the boundary tangents (Dirichlet), so quads
 //! line up with the boundary. One global conjugate-gradient solve replaces Instant Meshes'
 //! multi-resolution Gauss-Seidel sweeps and is deterministic.
 
@@ -135,6 +137,26 @@ fn curvature(
     Some((angle, aniso, mean))
 }
 
+/// How much a vertex's cross is pulled towards its principal directions, in `[0, 1]`: the
+/// relative anisotropy `a = |k1 - k2| / (|k1 - k2| + |H| + 4 / extent)` squared, but nothing
+/// where `a` is below [`UMBILIC`] (a sphere, a plane, the crown of a dome: there the two
+/// principal curvatures are equal and the principal directions are noise, so only the
+/// boundary and smoothness orient the crosses), rising smoothly to the full `a^2` at twice
+/// that. `extent` is the surface's size (its bounding-box diagonal), which keeps nearly flat
+/// parts from reading as anisotropic. Every term is a curvature (1 / length), so the weight
+/// does not change when the model is scaled: a 3 m and a 20 m dome are treated alike.
+fn alignment_weight(aniso: f64, mean: f64, extent: f64) -> f64 {
+    let rel = aniso / (aniso + mean + 4.0 / extent);
+    if !rel.is_finite() {
+        return 0.0;
+    }
+    let ramp = ((rel - UMBILIC) / UMBILIC).clamp(0.0, 1.0);
+    rel * rel * ramp * ramp * (3.0 - 2.0 * ramp)
+}
+
+/// Relative anisotropy below which a point counts as umbilic (see [`alignment_weight`]).
+const UMBILIC: f64 = 0.05;
+
 /// Solves the orientation field on `s`; returns one unit tangent per vertex (any of the four
 /// directions of its cross).
 /// Stops early (with a usable but less smooth field) once `budget` says so.
@@ -176,8 +198,7 @@ pub(crate) fn solve(
             let total = CURVATURE_WEIGHT;
             for v in 0..n {
                 if let Some((angle, aniso, mean)) = curvature(s, &frames, v, &mut mark) {
-                    let rel = aniso / (aniso + mean + 4.0 / diagonal);
-                    weight[v] = total / n as f64 * rel * rel;
+                    weight[v] = total / n as f64 * alignment_weight(aniso, mean, diagonal);
                     target[v] = C::from_angle(4.0 * angle).mul(rotation);
                 }
             }
@@ -387,6 +408,49 @@ pub(crate) fn snap_boundary(
             };
             let r = rotation_deg.to_radians();
             frames[v] = (tangent * r.cos() + n.cross(&tangent) * r.sin()).normalize();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn umbilic_points_get_no_curvature_weight_at_any_scale() {
+        // Spheres of radius 3 and 20 (k1 = k2 = 1/R, |H| = 1/R), a plane, and an apparent
+        // anisotropy of a few per cent of the curvature (noise of the fit): all zero.
+        for radius in [3.0, 20.0] {
+            let k = 1.0 / radius;
+            let extent = 2.0 * radius;
+            assert_eq!(alignment_weight(0.0, k, extent), 0.0);
+            assert_eq!(alignment_weight(0.04 * k, k, extent), 0.0);
+        }
+        assert_eq!(alignment_weight(0.0, 0.0, 10.0), 0.0);
+    }
+
+    #[test]
+    fn anisotropic_points_keep_their_weight_and_it_is_scale_invariant() {
+        // Hypar (k1 = -k2, H = 0): nearly full weight; barrel vault (k2 = 0): a^2, a = 2/3.
+        let hypar = alignment_weight(2.0, 0.0, 100.0);
+        assert!(hypar > 0.9, "{hypar}");
+        let barrel = alignment_weight(1.0, 0.5, 1e9);
+        assert!((barrel - 4.0 / 9.0).abs() < 1e-6, "{barrel}");
+        // Scaling the model by s scales curvatures by 1/s and the extent by s.
+        for (aniso, mean, extent) in [(0.3, 1.0, 6.0), (1.0, 0.5, 4.0), (0.08, 1.0, 10.0)] {
+            let w = alignment_weight(aniso, mean, extent);
+            for s in [0.01, 3.0, 1000.0] {
+                let scaled = alignment_weight(aniso / s, mean / s, extent * s);
+                assert!((scaled - w).abs() < 1e-12, "{w} vs {scaled} at scale {s}");
+            }
+        }
+        // Monotone and continuous through the umbilic threshold.
+        let mut last = 0.0;
+        for k in 0..=200 {
+            let w = alignment_weight(k as f64 * 0.005, 1.0, 1e9);
+            assert!(w >= last - 1e-15);
+            assert!(w - last < 0.02);
+            last = w;
         }
     }
 }
