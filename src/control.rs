@@ -20,10 +20,16 @@ pub struct Figures {
 }
 
 impl Figures {
-    /// The relative gap `(bound - best) / max(|bound|, 1)`, as the pattern reports it.
+    /// The relative gap ([`relative_gap`]), zero once the best meets the bound.
     pub fn gap(&self) -> f64 {
-        ((self.bound - self.best) / self.bound.abs().max(1.0)).max(0.0)
+        relative_gap(self.best, self.bound).max(0.0)
     }
+}
+
+/// `(bound - objective) / max(|bound|, 1)`: the pattern's gap (`Pattern::gap`), what its
+/// `PatternOptions::gap` is compared with, and the progress line's.
+pub fn relative_gap(objective: f64, bound: f64) -> f64 {
+    (bound - objective) / bound.abs().max(1.0)
 }
 
 /// Watches a stage on behalf of its caller.

@@ -271,7 +271,7 @@ pub fn tiles_for_pattern_with(
 }
 
 /// `finish` with its fit keeping `bond`, the bond the pattern was matched for.
-fn with_bond(finish: &FinishOptions, bond: pattern::Bond) -> FinishOptions {
+pub fn with_bond(finish: &FinishOptions, bond: pattern::Bond) -> FinishOptions {
     let mut finish = *finish;
     if let Some(fit) = finish.fit.as_mut() {
         fit.bond = bond;

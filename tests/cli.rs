@@ -1,29 +1,8 @@
 //! The `tilepattern` command line: files written, JSON contract, errors a designer can act on.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn tilepattern(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tilepattern"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("tp-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
-
-fn s(path: &Path) -> &str {
-    path.to_str().unwrap()
-}
+use common::{json, s, scratch, tilepattern};
 
 #[test]
 fn demo_writes_the_four_files() {

@@ -4,34 +4,16 @@
 //! silently with poor coverage or dropped tiles.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use std::path::PathBuf;
+use std::process::Output;
+
+use common::{json, s, scratch, tilepattern};
 
 use nalgebra::Point3;
 use tilepattern::mesh::io::{self, Format, Weld};
 use tilepattern::mesh::{PolyMesh, generate, obj};
-
-fn tilepattern(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tilepattern"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("tp-inputs-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn s(path: &Path) -> &str {
-    path.to_str().unwrap()
-}
-
-fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
 
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()

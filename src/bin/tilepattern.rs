@@ -349,10 +349,10 @@ fn run(cli: Cli) -> Result<()> {
             })?;
             let (spec, units) = tile.spec(surface.as_ref().unwrap_or(&mesh))?;
             eprintln!("{}", units.why);
-            let mut finish = tile.finish(&spec, units.unit);
-            if let Some(fit) = finish.fit.as_mut() {
-                fit.bond = pattern.bond(pattern::DEFAULT_WEIGHT);
-            }
+            let finish = pipeline::with_bond(
+                &tile.finish(&spec, units.unit),
+                pattern.bond(pattern::DEFAULT_WEIGHT),
+            );
             let mut tiling =
                 pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &finish)
                     .map_err(|e| units.explain(e))?;

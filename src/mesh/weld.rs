@@ -1,7 +1,7 @@
 //! Welding: joining vertices that lie (nearly) at the same place, as files without shared
 //! vertices need (STL always, triangle soups exported as OBJ, PLY or OFF).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use nalgebra::Point3;
 use serde::Serialize;
@@ -82,7 +82,7 @@ pub fn weld(
             kept.push(positions[i]);
         }
     }
-    let mut seen: HashMap<Vec<usize>, ()> = HashMap::with_capacity(faces.len());
+    let mut seen: HashSet<Vec<usize>> = HashSet::with_capacity(faces.len());
     let mut out = Vec::with_capacity(faces.len());
     let mut dropped = 0;
     for face in faces {
@@ -95,7 +95,7 @@ pub fn weld(
         let mut key = f.clone();
         key.sort_unstable();
         key.dedup();
-        if key.len() < 3 || seen.insert(key, ()).is_some() {
+        if key.len() < 3 || !seen.insert(key) {
             dropped += 1;
             continue;
         }

@@ -7,10 +7,10 @@ use std::time::{Duration, Instant};
 
 use super::{
     Bond, BoundSource, DualGraph, Method, PatternError, PatternOptions, anneal, bound, construct,
-    decompose, linear, mip, program, relative_gap, score, search,
+    decompose, linear, mip, program, score, search,
 };
 use super::{Bound, Found};
-use crate::control::{Control, Figures};
+use crate::control::{Control, Figures, relative_gap};
 use crate::mesh::Topology;
 
 /// Faces per patch in the first decomposition bound of [`Method::Auto`]: patches this small
@@ -301,8 +301,9 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     fn linear_patch_rounds(&mut self) -> Result<(), PatternError> {
         let mut size = FIRST_LINEAR_PATCH_SIZE;
         let mut finer: Option<(decompose::Partition, decompose::Proven)> = None;
+        // These rounds only tighten the bound (and `tighten` notes it): the best stays.
+        self.note();
         while !self.done() && Instant::now() < self.deadline {
-            self.note();
             let partition = decompose::next_partition(self.graph, size, 0, &[], finer.take());
             let started = Instant::now();
             let proven_here = decompose::bound(

@@ -40,7 +40,7 @@ use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
-use crate::control::Control;
+use crate::control::{Control, relative_gap};
 use crate::mesh::{PolyMesh, Topology};
 
 /// Which laying pattern the objective asks for.
@@ -338,12 +338,6 @@ pub fn solve_with(
         bound_source: found.bound.source,
         seconds: started.elapsed().as_secs_f64(),
     })
-}
-
-/// `(bound - objective) / max(|bound|, 1)`: the pattern's [`Pattern::gap`], and what
-/// [`PatternOptions::gap`] is compared with.
-fn relative_gap(objective: f64, bound: f64) -> f64 {
-    (bound - objective) / bound.abs().max(1.0)
 }
 
 /// A proven upper bound and where it came from.

@@ -100,13 +100,14 @@ impl Program {
         let mut constant = 0.0;
         let role: Vec<Role> = (0..tiles.len())
             .map(|t| {
+                let worth = worth(t);
                 if restriction.fixed[t] {
-                    constant += worth(t);
+                    constant += worth;
                     Role::Fixed
-                } else if worth(t) == 0.0 {
+                } else if worth == 0.0 {
                     Role::Outside
                 } else if restriction.free[t] && !tiles[t].faces.iter().any(|&f| blocked[f]) {
-                    objective.push(worth(t));
+                    objective.push(worth);
                     Role::Column(objective.len() - 1)
                 } else {
                     Role::Off

@@ -71,10 +71,15 @@ impl Frame {
         if z.dot(&up) < 0.0 {
             z = -z;
         }
-        // A degenerate face (zero area, coincident corners) gives no direction: any axis in
-        // the plane will do.
+        Self::from_normal(origin, z, &along)
+    }
+
+    /// Frame at `origin` with unit normal `z` and `x` the direction `along` laid into the
+    /// plane normal to `z`. Where `along` gives no direction in that plane (zero, or along
+    /// `z`: a degenerate face), any axis in the plane will do.
+    pub(crate) fn from_normal(origin: Point3<f64>, z: Vector3<f64>, along: &Vector3<f64>) -> Self {
         let x = (along - z * along.dot(&z))
-            .try_normalize(1e-300)
+            .try_normalize(along.norm() * 1e-12)
             .unwrap_or_else(|| {
                 let other = if z.x.abs() < 0.9 {
                     Vector3::x()

@@ -1,8 +1,37 @@
 //! Helpers shared by the integration tests: small irregular quad meshes and brute force.
 #![allow(dead_code)]
 
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
 use nalgebra::Point3;
 use tilepattern::mesh::PolyMesh;
+
+/// Runs the `tilepattern` command line with `args`.
+pub fn tilepattern(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tilepattern"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// An empty scratch folder for the test `name` (of this test process).
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("tp-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The JSON file at `path`.
+pub fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// `path` as a command-line argument.
+pub fn s(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
 
 /// Splits every face into quads through its centroid and edge midpoints (one Catmull-Clark
 /// topology step without smoothing): an n-gon becomes n quads, and its centre an interior

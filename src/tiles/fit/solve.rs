@@ -466,25 +466,7 @@ pub(crate) fn place(
     if z.dot(up) < 0.0 {
         z = -z;
     }
-    let x = (along - z * along.dot(&z))
-        .try_normalize(1e-12)
-        .unwrap_or_else(|| {
-            let other = if z.x.abs() < 0.9 {
-                Vector3::x()
-            } else {
-                Vector3::y()
-            };
-            (other - z * other.dot(&z)).normalize()
-        });
-    (
-        Frame {
-            origin: point.into(),
-            x,
-            y: z.cross(&x),
-            z,
-        },
-        beyond,
-    )
+    (Frame::from_normal(point.into(), z, along), beyond)
 }
 
 /// `step` held within a trust region: a tile moves at most a quarter of its width and turns
