@@ -127,6 +127,15 @@ fn extend_run(
         .map(|k| (pos[run[k]] - spokes[k - 1]).norm())
         .fold(0.0, f64::max);
     let rows = ((longest / t).round() as usize).clamp(1, MAX_ROWS);
+    if rows == 1 {
+        let fans = [
+            locator.boundary_point(lp, from + offsets[1] * 0.5),
+            locator.boundary_point(lp, to - (span - offsets[m]) * 0.5),
+        ];
+        if single_row(pos, faces, run, &spokes, fans) {
+            return;
+        }
+    }
     fn add(pos: &mut Vec<Vector3<f64>>, p: Vector3<f64>) -> usize {
         pos.push(p);
         pos.len() - 1
@@ -181,6 +190,67 @@ fn extend_run(
     for r in 0..rows {
         faces.push(vec![z[r], spoke[m][r], spoke[m][r + 1], z[r + 1]]);
     }
+}
+
+/// One row of quads from `run` (near vertex, far vertices, near vertex) to the boundary
+/// points `spokes` (one per far vertex; `fans` are the boundary points of the two end
+/// quads), where a far vertex next to an end is the inner
+/// corner of a staircase (three quads already meet there, as where the lattice crosses the
+/// boundary at a slant): that vertex gets no spoke, so it keeps four edges instead of five,
+/// and the quad between it and the end reaches the boundary directly. Returns false (and
+/// adds nothing) where no end has such a corner; the caller then fans both ends.
+fn single_row(
+    pos: &mut Vec<Vector3<f64>>,
+    faces: &mut Vec<Vec<usize>>,
+    run: &[usize],
+    spokes: &[Vector3<f64>],
+    fans: [Vector3<f64>; 2],
+) -> bool {
+    let m = run.len() - 2;
+    let corner = |v: usize| faces.iter().filter(|f| f.contains(&v)).count() >= 3;
+    let (near0, near1) = (run[0], run[m + 1]);
+    let first = corner(run[1]);
+    // With one far vertex the quad is the tooth itself; with two, one of them keeps its
+    // spoke so the quad between them reaches the boundary.
+    let last = m >= 2 && corner(run[m]) && !(m == 2 && first);
+    if !first && !last {
+        return false;
+    }
+    if m == 1 {
+        let s = pos.len();
+        pos.push(spokes[0]);
+        faces.push(vec![run[1], near0, s, near1]);
+        return true;
+    }
+    // Spoke ends of the far vertices that keep one.
+    let mut end = vec![usize::MAX; m + 2];
+    for k in 1..=m {
+        if !(k == 1 && first || k == m && last) {
+            end[k] = pos.len();
+            pos.push(spokes[k - 1]);
+        }
+    }
+    let (lo, hi) = (if first { 2 } else { 1 }, if last { m - 1 } else { m });
+    for k in lo..hi {
+        faces.push(vec![run[k + 1], run[k], end[k], end[k + 1]]);
+    }
+    if first {
+        faces.push(vec![run[2], run[1], near0, end[2]]);
+    } else {
+        // Fan from the first spoke onto the boundary: as in the general case, one quad
+        // through a boundary point between the end and the spoke.
+        let y = pos.len();
+        pos.push(fans[0]);
+        faces.push(vec![run[1], near0, y, end[1]]);
+    }
+    if last {
+        faces.push(vec![run[m], run[m - 1], end[m - 1], near1]);
+    } else {
+        let z = pos.len();
+        pos.push(fans[1]);
+        faces.push(vec![near1, run[m], end[m], z]);
+    }
+    true
 }
 
 /// Deviation above which [`conform`] works on a face, times `t`.
@@ -363,5 +433,54 @@ pub(crate) fn shorten_boundary_chords(
         if !moved {
             break;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::remesh::quadmesh::samples::{grid, lines, valences};
+
+    #[test]
+    fn a_staircase_tooth_becomes_one_quad_and_its_corner_stays_regular() {
+        // An L of three unit quads; its inner corner f = (1, 1) is a tooth of a staircase
+        // whose ends (2, 1) and (1, 2) are near the boundary and f is not.
+        let (mut pos, mut faces) = grid(&lines(0.0, 2.0, 2), &lines(0.0, 2.0, 2));
+        faces.remove(3);
+        let at = |i: usize, j: usize| j * 3 + i;
+        let (near0, far, near1) = (at(2, 1), at(1, 1), at(1, 2));
+        let spoke = Vector3::new(1.8, 1.8, 0.0);
+        let fans = [Vector3::new(2.0, 1.5, 0.0), Vector3::new(1.5, 2.0, 0.0)];
+        assert!(single_row(
+            &mut pos,
+            &mut faces,
+            &[near0, far, near1],
+            &[spoke],
+            fans
+        ));
+        assert_eq!(faces.len(), 4, "one quad for the tooth");
+        assert_eq!(faces[3], vec![far, near0, pos.len() - 1, near1]);
+        assert_eq!(valences(pos.len(), &faces)[far], 4);
+        // Counter-clockwise like the others: no directed edge twice.
+        let mut directed: Vec<(usize, usize)> = faces
+            .iter()
+            .flat_map(|f| (0..4).map(move |i| (f[i], f[(i + 1) % 4])))
+            .collect();
+        let total = directed.len();
+        directed.sort_unstable();
+        directed.dedup();
+        assert_eq!(directed.len(), total);
+    }
+
+    #[test]
+    fn a_run_whose_ends_are_not_corners_is_left_to_the_fans() {
+        // A straight row: its far vertices have two quads each, so every one needs a spoke.
+        let (mut pos, mut faces) = grid(&lines(0.0, 3.0, 3), &lines(0.0, 1.0, 1));
+        let before = faces.clone();
+        let run = [3, 7, 6, 5, 4];
+        let spokes = [Vector3::new(2.0, 2.0, 0.0); 3];
+        let fans = [Vector3::zeros(); 2];
+        assert!(!single_row(&mut pos, &mut faces, &run, &spokes, fans));
+        assert_eq!(faces, before);
     }
 }

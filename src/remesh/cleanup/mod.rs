@@ -17,8 +17,9 @@
 //!    to the input boundary, boundary vertices snapped onto it (input corners onto corners),
 //!    all others onto the surface, with a few rounds of tangential smoothing; faces that
 //!    still leave the surface are pulled back, peeled and re-extended ([`peel`]), halved
-//!    along their quad strip, or (on the rim) dropped ([`trim`]); edges are rotated where
-//!    that makes vertices regular, and doublets merged ([`valence`]).
+//!    along their quad strip, or (on the rim) dropped ([`trim`]); edges are rotated and quads
+//!    collapsed across a diagonal where that makes vertices regular, and doublets merged
+//!    ([`valence`]).
 //!
 //! Throughout, the face list is kept a manifold mesh ([`manifold`]).
 
@@ -40,7 +41,7 @@ use super::surface::Locator;
 use manifold::{distinct, drop_small_components, make_edge_manifold, split_pinched_vertices};
 use repair::{fill_holes, make_quads};
 use trim::{FINAL, SPLIT_ROUNDS, drop_rim_slivers, drop_unfit_rim_faces, split_unfit_faces};
-use valence::{remove_doublets, rotate_edges};
+use valence::{collapse_diagonals, remove_doublets, rotate_edges};
 
 /// A quad mesh in progress.
 #[derive(Debug, Clone)]
@@ -72,6 +73,8 @@ pub(crate) fn pure_quads(
     budget.check()?;
     let (mut pos, mut faces) = compact(pos, faces);
     peel::snap_and_peel(&mut pos, &mut faces, locator, t, budget)?;
+    rotate_edges(&pos, &mut faces);
+    collapse_diagonals(&mut pos, &mut faces, |p| locator.closest(p).0);
     rotate_edges(&pos, &mut faces);
     remove_doublets(&mut faces);
     for _ in 0..SPLIT_ROUNDS {

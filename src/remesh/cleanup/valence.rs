@@ -110,6 +110,124 @@ pub(super) fn rotate_edges(pos: &[Vector3<f64>], faces: &mut [Vec<usize>]) {
     }
 }
 
+/// Collapses quads across a diagonal where that brings the valences of its four corners
+/// closer to four (the "diagonal collapse" of Bozzo, Panozzo, Puppo, Pietroni and Rocca,
+/// "Adaptive quad mesh simplification", 2010; Tarini et al., "Practical quad mesh
+/// simplification", 2010): two valence-three corners opposite each other, left by extraction
+/// around a cone of the field, merge into one regular vertex and the two other corners each
+/// lose an edge. The merged vertex goes to the mean of its neighbours, on the surface.
+///
+/// Only interior quads are collapsed, never one whose diagonal ends already share another
+/// neighbour or face (that would pinch the mesh), and only where the quads around the merged
+/// vertex stay no worse shaped than a bound.
+pub(super) fn collapse_diagonals(
+    pos: &mut [Vector3<f64>],
+    faces: &mut Vec<Vec<usize>>,
+    closest: impl Fn(&Vector3<f64>) -> Vector3<f64>,
+) {
+    for _ in 0..ROTATION_PASSES {
+        let map = edge_faces(faces);
+        let mut valence = vec![0i64; pos.len()];
+        let mut boundary = vec![false; pos.len()];
+        let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); pos.len()];
+        for (&(a, b), list) in &map {
+            valence[a] += 1;
+            valence[b] += 1;
+            neighbours[a].push(b);
+            neighbours[b].push(a);
+            if list.len() != 2 {
+                boundary[a] = true;
+                boundary[b] = true;
+            }
+        }
+        let mut around: Vec<Vec<usize>> = vec![Vec::new(); pos.len()];
+        for (fi, f) in faces.iter().enumerate() {
+            for &v in f {
+                around[v].push(fi);
+            }
+        }
+        let cost = |v: i64| (v - 4).pow(2);
+        let mut gone = vec![false; faces.len()];
+        let mut touched = vec![false; pos.len()];
+        let mut changed = false;
+        for fi in 0..faces.len() {
+            let f = &faces[fi];
+            if f.len() != 4 || f.iter().any(|&v| boundary[v] || touched[v]) {
+                continue;
+            }
+            let mut best: Option<(i64, f64, usize, usize, Vector3<f64>)> = None;
+            for i in 0..2 {
+                let [a, b, c, d] = [f[i], f[i + 1], f[(i + 2) % 4], f[(i + 3) % 4]];
+                let now = cost(valence[a]) + cost(valence[b]) + cost(valence[c]) + cost(valence[d]);
+                let after =
+                    cost(valence[a] + valence[c] - 2) + cost(valence[b] - 1) + cost(valence[d] - 1);
+                if after >= now || valence[b] < 4 || valence[d] < 4 {
+                    continue;
+                }
+                let shared = neighbours[a]
+                    .iter()
+                    .filter(|w| neighbours[c].contains(w))
+                    .count();
+                let common_faces = around[a].iter().filter(|g| around[c].contains(g)).count();
+                if shared != 2 || common_faces != 1 {
+                    continue;
+                }
+                // The merged vertex's neighbours: a's and c's, less b and d counted twice.
+                let ring: Vec<usize> = neighbours[a]
+                    .iter()
+                    .chain(&neighbours[c])
+                    .copied()
+                    .filter(|&w| w != b && w != d)
+                    .chain([b, d])
+                    .collect();
+                let mean = ring.iter().map(|&w| pos[w]).sum::<Vector3<f64>>() / ring.len() as f64;
+                let m = closest(&mean);
+                let quads: Vec<[usize; 4]> = around[a]
+                    .iter()
+                    .chain(&around[c])
+                    .filter(|&&g| g != fi && faces[g].len() == 4)
+                    .map(|&g| [faces[g][0], faces[g][1], faces[g][2], faces[g][3]])
+                    .collect();
+                let shape_now: f64 = quads.iter().map(|&q| quad_cost(pos, q)).sum::<f64>()
+                    + quad_cost(pos, [a, b, c, d]);
+                let (pa, pc) = (pos[a], pos[c]);
+                pos[a] = m;
+                pos[c] = m;
+                let shape: f64 = quads.iter().map(|&q| quad_cost(pos, q)).sum();
+                pos[a] = pa;
+                pos[c] = pc;
+                if shape <= shape_now + ROTATION_SHAPE_SLACK
+                    && best.is_none_or(|(c0, s0, ..)| (after - now, shape) < (c0, s0))
+                {
+                    best = Some((after - now, shape, a, c, m));
+                }
+            }
+            if let Some((_, _, a, c, m)) = best {
+                for &g in &around[c] {
+                    for v in &mut faces[g] {
+                        if *v == c {
+                            *v = a;
+                        }
+                    }
+                }
+                pos[a] = m;
+                gone[fi] = true;
+                for &v in faces[fi].iter() {
+                    touched[v] = true;
+                }
+                for &w in neighbours[a].iter().chain(&neighbours[c]) {
+                    touched[w] = true;
+                }
+                changed = true;
+            }
+        }
+        if !changed {
+            return;
+        }
+        replace_faces(faces, &gone, Vec::new());
+    }
+}
+
 /// Passes of [`rotate_edges`].
 const ROTATION_PASSES: usize = 6;
 
@@ -211,6 +329,52 @@ mod tests {
         // A regular grid stays as it is.
         let mut same = regular.clone();
         rotate_edges(&pos, &mut same);
+        assert_eq!(same, regular);
+    }
+
+    #[test]
+    fn a_vertex_split_into_two_valence_three_corners_is_collapsed_back() {
+        let (mut pos, regular) = grid(&lines(0.0, 6.0, 6), &lines(0.0, 6.0, 6));
+        let n = pos.len();
+        let at = |i: usize, j: usize| j * 7 + i;
+        // Split vertex (3, 3) along the row: `a` keeps the two quads above, a new vertex `c`
+        // takes the two below, and a new quad a-b-c-d fills the slit between the row's
+        // neighbours b = (2, 3) and d = (4, 3). a and c get three edges, b and d five.
+        let (a, b, d) = (at(3, 3), at(2, 3), at(4, 3));
+        let c = n;
+        pos.push(Vector3::new(3.0, 2.8, 0.0));
+        pos[a] = Vector3::new(3.0, 3.2, 0.0);
+        let mut faces = regular.clone();
+        for f in faces.iter_mut() {
+            let below = f.iter().any(|&v| v == at(3, 2));
+            for v in f.iter_mut() {
+                if *v == a && below {
+                    *v = c;
+                }
+            }
+        }
+        faces.push(vec![a, b, c, d]);
+        let v = valences(n + 1, &faces);
+        assert_eq!([v[a], v[b], v[c], v[d]], [3, 5, 3, 5]);
+        collapse_diagonals(&mut pos, &mut faces, |p| *p);
+        let inside = interior(pos.len(), &faces);
+        let v = valences(pos.len(), &faces);
+        assert!(
+            (0..pos.len())
+                .filter(|&k| inside[k] && v[k] > 0)
+                .all(|k| v[k] == 4),
+            "every interior vertex regular again: {v:?}"
+        );
+        assert_eq!(faces.len(), regular.len(), "the slit quad is gone");
+        assert!(
+            (pos[a] - Vector3::new(3.0, 3.0, 0.0)).norm() < 1e-9,
+            "{:?}",
+            pos[a]
+        );
+        // A regular grid stays as it is.
+        let (mut pos, regular) = grid(&lines(0.0, 6.0, 6), &lines(0.0, 6.0, 6));
+        let mut same = regular.clone();
+        collapse_diagonals(&mut pos, &mut same, |p| *p);
         assert_eq!(same, regular);
     }
 
