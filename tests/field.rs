@@ -34,14 +34,6 @@ fn meridian(p: &Vector3<f64>) -> Vector3<f64> {
     Vector3::new(r.x / horizontal * cos, r.y / horizontal * cos, -sin)
 }
 
-/// The meridian turned by `degrees` about the dome's normal (45: a loxodrome-like spiral).
-fn turned(p: &Vector3<f64>, degrees: f64) -> Vector3<f64> {
-    let m = meridian(p);
-    let n = (p - centre()).normalize();
-    let a = degrees.to_radians();
-    m * a.cos() + n.cross(&m) * a.sin()
-}
-
 /// Share of interior quad edges within `tolerance` degrees of `field` or its perpendicular,
 /// measured in the tangent plane at the edge's midpoint.
 fn aligned_share(

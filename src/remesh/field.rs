@@ -28,6 +28,7 @@ use nalgebra::{Matrix5, Vector3, Vector5};
 use super::budget::Budget;
 use super::linalg::conjugate_gradient;
 use super::surface::{Surface, any_tangent};
+use super::user_field::Samples;
 use super::{FieldDirection, RemeshOptions};
 
 /// Complex number as (re, im); the field needs only a few operations.
@@ -189,7 +190,7 @@ const UMBILIC: f64 = 0.05;
 pub(crate) fn solve(
     s: &Surface,
     options: &RemeshOptions,
-    user: Option<&(Vec<Vec<(Vector3<f64>, f64)>>, f64)>,
+    user: Option<&(Samples, f64)>,
     budget: &mut Budget,
 ) -> Vec<Vector3<f64>> {
     let n = s.len();
@@ -279,7 +280,7 @@ pub(crate) fn solve(
 
     let mut fixed = vec![false; n];
     let mut z = vec![C(0.0, 0.0); n];
-    let aligned = s.aligned_boundary(options.boundary);
+    let aligned = s.aligned_boundary(options.effective_boundary());
     for v in (0..n).filter(|&v| aligned[v]) {
         if let Some((din, dout)) = s.bdirs[v] {
             let nv = s.normals[v];
@@ -545,17 +546,14 @@ mod tests {
         skip: f64,
     ) -> (f64, f64) {
         let (mut worst, mut sum, mut count) = (0.0f64, 0.0, 0);
-        for v in 0..s.len() {
+        for (v, o) in frames.iter().enumerate() {
             if (s.pos[v] - Vector3::new(0.0, 0.0, top)).norm() < skip {
                 continue;
             }
             let n = s.normals[v];
             let w = want(&s.pos[v]);
             let w = w - n * n.dot(&w);
-            let a = (frames[v].dot(&w).abs() / w.norm())
-                .min(1.0)
-                .acos()
-                .to_degrees();
+            let a = (o.dot(&w).abs() / w.norm()).min(1.0).acos().to_degrees();
             let d = a.min(90.0 - a);
             worst = worst.max(d);
             sum += d;

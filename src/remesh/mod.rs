@@ -111,6 +111,7 @@ pub struct RemeshOptions {
     pub user_field: Option<UserField>,
     /// Which boundary loops the quads follow (field pinned to the boundary tangents and a
     /// lattice line pinned onto the boundary, so no ragged strip is left along the edge).
+    /// `Auto` aligns no loop when `user_field` has a share ([`Self::effective_boundary`]).
     pub boundary: BoundaryAlignment,
     /// Run the shape-up step that pulls faces towards squares of side `t`.
     pub shapeup: bool,
@@ -142,6 +143,18 @@ impl Default for RemeshOptions {
 }
 
 impl RemeshOptions {
+    /// The boundary alignment in effect: [`BoundaryAlignment::Auto`] aligns no loop when the
+    /// designer's field has a share (its vectors decide along the boundary too, where thrust
+    /// lines meet the supports at their own angle); an explicit choice is kept.
+    pub fn effective_boundary(&self) -> BoundaryAlignment {
+        match (&self.user_field, self.boundary) {
+            (Some(field), BoundaryAlignment::Auto) if field.weight > 0.0 => {
+                BoundaryAlignment::Never
+            }
+            (_, boundary) => boundary,
+        }
+    }
+
     /// Converts seconds (as typed on a command line or passed through the C ABI) into a time
     /// limit.
     ///
@@ -303,7 +316,7 @@ pub fn remesh_with(
         FieldDirection::Angle(deg) => deg,
         _ => 0.0,
     };
-    let aligned = work.aligned_boundary(options.boundary);
+    let aligned = work.aligned_boundary(options.effective_boundary());
     field::snap_boundary(&work, &aligned, &mut work_frames, rotation);
     // Lattice lines can lie on the boundary only when the crosses follow it.
     let pin = (rotation / 90.0 - (rotation / 90.0).round()).abs() < 1e-9;

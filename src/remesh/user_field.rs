@@ -12,6 +12,9 @@ use nalgebra::Vector3;
 use super::RemeshError;
 use crate::mesh::PolyMesh;
 
+/// Weighted unit vectors per vertex of the working surface.
+pub(crate) type Samples = Vec<Vec<(Vector3<f64>, f64)>>;
+
 /// Where the vectors of a [`UserField`] sit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FieldSite {
@@ -115,12 +118,7 @@ impl UserField {
     /// The vectors as weighted samples on the working surface: per surface vertex, unit
     /// vectors with their weights. `surface_of[v]` is the surface vertex of input vertex `v`
     /// (`usize::MAX` when no face uses it), `count` the number of surface vertices.
-    pub(crate) fn samples(
-        &self,
-        mesh: &PolyMesh,
-        surface_of: &[usize],
-        count: usize,
-    ) -> Vec<Vec<(Vector3<f64>, f64)>> {
+    pub(crate) fn samples(&self, mesh: &PolyMesh, surface_of: &[usize], count: usize) -> Samples {
         let mut out = vec![Vec::new(); count];
         let unit = |v: &[f64; 3]| {
             let v = Vector3::from(*v);
