@@ -171,3 +171,50 @@ fn bad_field_files_name_what_is_wrong() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--field"));
 }
+
+#[test]
+fn as_many_vertices_as_faces_reads_per_vertex_with_a_warning() {
+    // A quad torus of 12 x 8 faces has 96 vertices and 96 faces.
+    let dir = scratch("cli-field-torus");
+    let (n, m) = (12, 8);
+    let mut text = String::new();
+    for j in 0..m {
+        for i in 0..n {
+            let (u, v) = (
+                std::f64::consts::TAU * i as f64 / n as f64,
+                std::f64::consts::TAU * j as f64 / m as f64,
+            );
+            let r = 2.0 + 0.8 * v.cos();
+            text += &format!("v {} {} {}\n", r * u.cos(), r * u.sin(), 0.8 * v.sin());
+        }
+    }
+    let at = |i: usize, j: usize| (i % n) + n * (j % m) + 1;
+    for j in 0..m {
+        for i in 0..n {
+            text += &format!(
+                "f {} {} {} {}\n",
+                at(i, j),
+                at(i + 1, j),
+                at(i + 1, j + 1),
+                at(i, j + 1)
+            );
+        }
+    }
+    let surface = dir.join("torus.obj");
+    std::fs::write(&surface, text).unwrap();
+    let field = dir.join("field.csv");
+    std::fs::write(&field, "0,0,1\n".repeat(n * m)).unwrap();
+    let quads = dir.join("q.obj");
+    let out = tilepattern(&[
+        "remesh",
+        s(&surface),
+        "--edge",
+        "0.4",
+        "-o",
+        s(&quads),
+        "--field",
+        s(&field),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("as many vertices as faces (96)"), "{err}");
+}

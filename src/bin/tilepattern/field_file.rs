@@ -23,6 +23,13 @@ pub fn read(path: &Path, mesh: &PolyMesh, weight: f64) -> Result<UserField> {
     field
         .check(mesh)
         .with_context(|| format!("field file {}", path.display()))?;
+    if mesh.positions().len() == mesh.face_count() {
+        eprintln!(
+            "warning: the mesh has as many vertices as faces ({}); the field file {} is read as one vector per vertex",
+            mesh.face_count(),
+            path.display()
+        );
+    }
     Ok(field)
 }
 
