@@ -1,5 +1,6 @@
 // Stage 1: a triangle (or polygon) surface mesh to near-square quads of half a tile plus a joint.
 using System;
+using System.Collections.Generic;
 using Grasshopper.Kernel;
 using Grasshopper.Kernel.Parameters;
 using Rhino.Geometry;
@@ -10,7 +11,7 @@ namespace TilePattern.Gh
     {
         public QuadRemeshComponent()
             : base("Quad Remesh", "QRemesh",
-                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, or for level courses at least a course's height (width + joint), aligned with the principal curvature, a direction or a rotated curvature field. Solves in the background; right-click to cancel.",
+                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, or for level courses at least a course's height (width + joint), aligned with the principal curvature, a direction, a rotated curvature field or the designer's own field (e.g. stress or thrust directions, one vector per mesh vertex or face). Solves in the background; right-click to cancel.",
                 "1 Mesh")
         {
         }
@@ -32,9 +33,13 @@ namespace TilePattern.Gh
             // Appended inputs keep the indices above (saved definitions wire by index).
             pManager.AddNumberParameter("Tile width", "W", "Width of a tile in model units (default: 140 mm in the document's units); with level courses the quads are at least width + joint high", GH_ParamAccess.item);
             pManager.AddIntegerParameter("Courses", "C", "As Tile Pattern's Courses: 1 = level (default), quads of max((length + joint) / 2, width + joint); 0 = free, quads of (length + joint) / 2", GH_ParamAccess.item, (int)Courses.Level);
+            pManager.AddVectorParameter("Field", "F", "Optional: the designer's direction field (e.g. principal stress or thrust directions from a structural analysis), one vector per mesh vertex or one per mesh face, in mesh order; signs and lengths do not matter", GH_ParamAccess.list);
+            pManager.AddNumberParameter("Field weight", "FW", "Share of the Field against the curvature field (or Direction / Angle), 0 to 1 (default 1: the field alone)", GH_ParamAccess.item, 1.0);
             for (int i = 1; i <= 4; i++)
                 pManager[i].Optional = true;
             pManager[6].Optional = true;
+            pManager[8].Optional = true;
+            pManager[9].Optional = true;
             ((Param_Number)pManager[4]).AngleParameter = true;
             var courses = (Param_Integer)pManager[7];
             courses.AddNamedValue("Level", (int)Courses.Level);
@@ -64,6 +69,10 @@ namespace TilePattern.Gh
             DA.GetData(5, ref shapeUp);
             DA.GetData(6, ref width);
             DA.GetData(7, ref courses);
+            var field = new List<Vector3d>();
+            DA.GetDataList(8, field);
+            double fieldWeight = 1.0;
+            DA.GetData(9, ref fieldWeight);
             if (courses != (int)Courses.Free && courses != (int)Courses.Level)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
@@ -86,11 +95,38 @@ namespace TilePattern.Gh
                 options.Direction = FieldDirection.Angle;
                 options.AngleDegrees = angle;
             }
+            if (field.Count > 0)
+            {
+                if (field.Count != mesh.Vertices.Count && field.Count != mesh.Faces.Count)
+                {
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Field has " + field.Count + " vectors but the mesh has " + mesh.Vertices.Count
+                        + " vertices and " + mesh.Faces.Count + " faces: give one vector per vertex or one per face.");
+                    return;
+                }
+                var vectors = new double[field.Count][];
+                for (int i = 0; i < field.Count; i++)
+                {
+                    Vector3d v = field[i];
+                    if (!v.IsValid || v.IsZero)
+                    {
+                        AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Field vector " + i + " is " + (v.IsValid ? "zero" : "invalid")
+                            + ": every vector must be a non-zero direction.");
+                        return;
+                    }
+                    vectors[i] = new[] { v.X, v.Y, v.Z };
+                }
+                options.Field = vectors;
+                options.FieldWeight = fieldWeight;
+            }
             PolyMesh surface = null;
             if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh)))
                 return;
             var key = new InputKey().Add(surface).Add(options.TargetEdge).Add(shapeUp).Add((int)options.Direction)
                 .Add(options.AngleDegrees).Add(hasDirection ? direction.X : 0).Add(hasDirection ? direction.Y : 0).Add(hasDirection ? direction.Z : 0);
+            // The field in the key too, so a changed field solves again.
+            key.Add(field.Count).Add(options.FieldWeight);
+            foreach (Vector3d v in field)
+                key.Add(v.X).Add(v.Y).Add(v.Z);
             PolyMesh quads = Solve(DA, key, (token, progress) => TilePatternEngine.Remesh(surface, options, progress, token));
             if (quads == null)
                 return;

@@ -20,8 +20,10 @@
  * 3: `TpTileOptions` grew (the fit stage) and `TpPatternOptions` too (courses); callers
  * that initialise with `tp_*_options_init` keep working unchanged.
  * 4: `TpPatternOptions` grew (`gap`); callers built against ABI 3 keep working unchanged.
+ * 5: `TpRemeshOptions` grew (the designer's field: `field_vectors`, `field_count`,
+ * `field_weight`); callers built against ABI 4 keep working unchanged.
  */
-#define TP_ABI_VERSION 4
+#define TP_ABI_VERSION 5
 
 /**
  * Stage numbers passed to a progress callback.
@@ -440,10 +442,26 @@ typedef struct TpRemeshOptions {
   /**
    * Wall-clock limit of the stage in seconds; default 60. When it passes, the quad mesh as
    * it stands is returned if one exists (the final fitting is cut short), otherwise
-   * `TP_TIME_LIMIT`. The last field: callers compiled with an older, shorter struct get
-   * the default.
+   * `TP_TIME_LIMIT`. Callers compiled with an older, shorter struct get the default for
+   * this and every later field.
    */
   double time_limit_seconds;
+  /**
+   * The designer's direction field (e.g. principal stress or thrust directions): `3 *
+   * field_count` doubles, xyz per vector, one vector per mesh vertex or one per mesh face
+   * (told apart by `field_count`); NULL with `field_count` 0 (default) for none. Signs and
+   * lengths do not matter; every vector must be finite and non-zero. Read during
+   * `tp_remesh` only.
+   */
+  const double *field_vectors;
+  /**
+   * Number of vectors at `field_vectors`: the mesh's vertex or face count, or 0.
+   */
+  size_t field_count;
+  /**
+   * Share of the field against the curvature field (or `direction`), 0 to 1; default 1.
+   */
+  double field_weight;
 } TpRemeshOptions;
 
 /**

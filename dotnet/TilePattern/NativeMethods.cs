@@ -59,7 +59,7 @@ namespace TilePattern
         public int status;
     }
 
-    /// <summary>Mirror of TpRemeshOptions (72 bytes on 64-bit targets). The C array
+    /// <summary>Mirror of TpRemeshOptions (96 bytes on 64-bit targets; 72 before ABI 5). The C array
     /// <c>double direction_vector[3]</c> is spelled as three doubles, which has the same
     /// layout and keeps the struct blittable.</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -74,6 +74,9 @@ namespace TilePattern
         public double angle_degrees;
         public int shapeup;
         public double time_limit_seconds;
+        public IntPtr field_vectors;
+        public UIntPtr field_count;
+        public double field_weight;
     }
 
     /// <summary>Mirror of TpTileOptions (128 bytes; 88 before ABI 3); <c>double up[3]</c> is
@@ -129,7 +132,7 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 4;
+        internal const int TP_ABI_VERSION = 5;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const uint TP_STAGE_TILES = 3;

@@ -141,6 +141,7 @@ namespace TilePattern
             AngleDegrees = d.angle_degrees;
             ShapeUp = d.shapeup != 0;
             TimeLimitSeconds = d.time_limit_seconds;
+            FieldWeight = d.field_weight;
         }
 
         /// <summary>Quads whose edge is half a tile plus a joint: (length + joint) / 2.</summary>
@@ -176,6 +177,34 @@ namespace TilePattern
         /// mesh as it stands is returned if one exists, otherwise a <see cref="SolverTimeLimitException"/>.</summary>
         public double TimeLimitSeconds { get; set; }
 
+        /// <summary>The designer's direction field (e.g. principal stress or thrust directions):
+        /// one xyz vector per vertex or one per face of the surface, told apart by the count;
+        /// null (default) for none. Signs and lengths do not matter; NaN, infinite or zero
+        /// vectors are refused with their index.</summary>
+        public double[][] Field { get; set; }
+
+        /// <summary>Share of <see cref="Field"/> against the curvature field (or
+        /// <see cref="Direction"/>), from 0 to 1; default 1 (the field alone).</summary>
+        public double FieldWeight { get; set; }
+
+        /// <summary><see cref="Field"/> as 3 n doubles, or null.</summary>
+        internal double[] FlatField()
+        {
+            if (Field == null)
+                return null;
+            var flat = new double[3 * Field.Length];
+            for (int i = 0; i < Field.Length; i++)
+            {
+                double[] v = Field[i];
+                if (v == null || v.Length != 3)
+                    throw new ArgumentException("Field[" + i + "] must be 3 numbers (x, y, z)", "Field");
+                flat[3 * i] = v[0];
+                flat[3 * i + 1] = v[1];
+                flat[3 * i + 2] = v[2];
+            }
+            return flat;
+        }
+
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal TpRemeshOptions ToNative()
         {
@@ -188,6 +217,8 @@ namespace TilePattern
             o.angle_degrees = AngleDegrees;
             o.shapeup = ShapeUp ? 1 : 0;
             o.time_limit_seconds = TimeLimitSeconds;
+            o.field_weight = FieldWeight;
+            // field_vectors and field_count are set by the caller around the pinned array.
             return o;
         }
     }

@@ -91,17 +91,32 @@ namespace TilePattern
         static PolyMesh RemeshCore(PolyMesh surface, RemeshOptions options, IProgress<double> progress, CancellationToken cancellationToken)
         {
             TpRemeshOptions native = options.ToNative();
+            double[] field = options.FlatField();
             var bridge = new ProgressBridge(progress, cancellationToken);
             bridge.ThrowIfCancelled();
-            using (MeshHandle input = surface.CreateHandle())
+            GCHandle pinned = field == null ? default(GCHandle) : GCHandle.Alloc(field, GCHandleType.Pinned);
+            try
             {
-                MeshHandle quads;
-                int status = NativeMethods.tp_remesh(input, ref native, bridge.Callback, IntPtr.Zero, out quads);
-                using (quads)
+                if (field != null)
                 {
-                    bridge.Finish(status);
-                    return PolyMesh.FromHandle(quads);
+                    native.field_vectors = pinned.AddrOfPinnedObject();
+                    native.field_count = (UIntPtr)(field.Length / 3);
                 }
+                using (MeshHandle input = surface.CreateHandle())
+                {
+                    MeshHandle quads;
+                    int status = NativeMethods.tp_remesh(input, ref native, bridge.Callback, IntPtr.Zero, out quads);
+                    using (quads)
+                    {
+                        bridge.Finish(status);
+                        return PolyMesh.FromHandle(quads);
+                    }
+                }
+            }
+            finally
+            {
+                if (pinned.IsAllocated)
+                    pinned.Free();
             }
         }
 

@@ -47,7 +47,7 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 4
+ABI_VERSION = 5
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
@@ -389,6 +389,9 @@ class TpRemeshOptions(Structure):
         ("angle_degrees", c_double),
         ("shapeup", c_int32),
         ("time_limit_seconds", c_double),
+        ("field_vectors", POINTER(c_double)),
+        ("field_count", c_size_t),
+        ("field_weight", c_double),
     ]
 
 

@@ -10,6 +10,7 @@ face indices in results refer to the faces as given.
 
 from __future__ import annotations
 
+import ctypes
 import itertools
 import json
 import warnings
@@ -200,11 +201,14 @@ def remesh(
     shapeup: bool = False,
     time_limit: float = 60.0,
     progress: Optional[Progress] = None,
+    field=None,
+    field_weight: float = 1.0,
 ) -> Tuple[np.ndarray, np.ndarray]:
     """Quadrangulate a surface into near-square quads (stage 1).
 
     The quads follow the principal curvature (the paper's choice), a direction projected
-    onto the surface, or the curvature field rotated by an angle.
+    onto the surface, the curvature field rotated by an angle, or the designer's own field
+    (``field``, e.g. principal stress or thrust directions) blended with it.
 
     Parameters
     ----------
@@ -227,6 +231,13 @@ def remesh(
     progress : callable, optional
         ``progress(stage, fraction)`` with ``stage == "remesh"``, called about every 10 ms;
         return True to cancel (:class:`~tilepattern.CancelledError`).
+    field : array_like (V, 3) or (F, 3), optional
+        The designer's direction field: one vector per vertex or one per face of the surface
+        (told apart by the count), a numpy array or a sequence of 3-sequences. Signs and
+        lengths do not matter; NaN, infinite or zero vectors are refused with their index.
+    field_weight : float, optional
+        Share of ``field`` against the curvature field (or ``direction`` / ``angle``),
+        from 0 to 1 (default 1: the field alone).
 
     Returns
     -------
@@ -272,6 +283,20 @@ def remesh(
         options.angle_degrees = float(angle)
     options.shapeup = 1 if shapeup else 0
     options.time_limit_seconds = float(time_limit)
+    keep = None
+    if field is not None:
+        try:
+            keep = np.ascontiguousarray(np.asarray(field, dtype=np.float64))
+        except (TypeError, ValueError) as error:
+            raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "field must be an (n, 3) array of numbers: %s" % error)
+        if keep.ndim != 2 or keep.shape[1] != 3 or len(keep) == 0:
+            raise InvalidArgumentError(
+                nat.TP_INVALID_ARGUMENT,
+                "field must be an (n, 3) array, one vector per vertex or per face; got shape %r" % (keep.shape,),
+            )
+        options.field_vectors = keep.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+        options.field_count = len(keep)
+    options.field_weight = float(field_weight)
     with mesh_handle(vertices, faces) as surface:
         with surface.remesh(options, progress) as quads:
             return mesh_arrays(quads)

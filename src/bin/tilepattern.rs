@@ -10,6 +10,8 @@ use serde::Serialize;
 use tilepattern::control::Control;
 use tilepattern::mesh::io::{Loaded, Weld};
 
+#[path = "tilepattern/field_file.rs"]
+mod field_file;
 #[path = "tilepattern/progress_line.rs"]
 mod progress_line;
 use progress_line::ProgressLine;
@@ -151,21 +153,42 @@ struct FieldArgs {
     /// Pull faces towards squares (shape-up) without leaving the surface.
     #[arg(long)]
     shapeup: bool,
+    /// The designer's direction field (e.g. principal stress or thrust directions): a CSV
+    /// (x,y,z per line) or JSON ([[x,y,z], ...]) file with one vector per input vertex or one
+    /// per input face, told apart by the count; signs and lengths do not matter.
+    #[arg(long, value_name = "FILE")]
+    field: Option<PathBuf>,
+    /// Share of --field against the curvature field (or --direction / --angle), from 0 to 1.
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        requires = "field",
+        allow_negative_numbers = true
+    )]
+    field_weight: f64,
 }
 
 impl FieldArgs {
-    fn options(&self, target_edge: f64) -> RemeshOptions {
+    /// The remesh options for quads of edge `target_edge` on `surface` (the field file's
+    /// vectors are counted against its vertices and faces).
+    fn options(&self, target_edge: f64, surface: &PolyMesh) -> Result<RemeshOptions> {
         let direction = match (self.direction, self.angle) {
             (Some(v), _) => FieldDirection::Vector(v),
             (None, Some(a)) => FieldDirection::Angle(a),
             (None, None) => FieldDirection::Curvature,
         };
-        RemeshOptions {
+        let user_field = self
+            .field
+            .as_deref()
+            .map(|path| field_file::read(path, surface, self.field_weight))
+            .transpose()?;
+        Ok(RemeshOptions {
             target_edge,
             direction,
+            user_field,
             shapeup: self.shapeup,
             ..RemeshOptions::default()
-        }
+        })
     }
 }
 
@@ -391,7 +414,7 @@ fn run(cli: Cli) -> Result<()> {
             let surface = loaded.mesh;
             let options = RemeshOptions {
                 time_limit: RemeshOptions::time_limit_from_secs(time_limit)?,
-                ..field.options(edge)
+                ..field.options(edge, &surface)?
             };
             let remeshed = tilepattern::remesh::remesh(&surface, &options)?;
             mesh::obj::write(&remeshed.quads, &output)?;
@@ -415,7 +438,7 @@ fn run(cli: Cli) -> Result<()> {
             let edge = spec.quad_edge(options.courses != Courses::Free);
             let remesh = RemeshOptions {
                 time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?,
-                ..field.options(edge)
+                ..field.options(edge, surface)?
             };
             let mut line = ProgressLine::on_terminal();
             let found = pipeline::tile_surface(

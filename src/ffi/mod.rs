@@ -39,7 +39,9 @@ use status::{Failure, TpStatus::*};
 /// 3: `TpTileOptions` grew (the fit stage) and `TpPatternOptions` too (courses); callers
 /// that initialise with `tp_*_options_init` keep working unchanged.
 /// 4: `TpPatternOptions` grew (`gap`); callers built against ABI 3 keep working unchanged.
-pub const TP_ABI_VERSION: u32 = 4;
+/// 5: `TpRemeshOptions` grew (the designer's field: `field_vectors`, `field_count`,
+/// `field_weight`); callers built against ABI 4 keep working unchanged.
+pub const TP_ABI_VERSION: u32 = 5;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;

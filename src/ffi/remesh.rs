@@ -8,7 +8,7 @@ use super::{
     progress_reporter, read_options,
 };
 use crate::control::Control;
-use crate::remesh::{self, FieldDirection, RemeshError, RemeshOptions};
+use crate::remesh::{self, FieldDirection, RemeshError, RemeshOptions, UserField};
 
 /// `direction`: follow the principal curvature (the paper's choice).
 pub const TP_DIRECTION_CURVATURE: i32 = 0;
@@ -35,9 +35,19 @@ pub struct TpRemeshOptions {
     pub shapeup: i32,
     /// Wall-clock limit of the stage in seconds; default 60. When it passes, the quad mesh as
     /// it stands is returned if one exists (the final fitting is cut short), otherwise
-    /// `TP_TIME_LIMIT`. The last field: callers compiled with an older, shorter struct get
-    /// the default.
+    /// `TP_TIME_LIMIT`. Callers compiled with an older, shorter struct get the default for
+    /// this and every later field.
     pub time_limit_seconds: f64,
+    /// The designer's direction field (e.g. principal stress or thrust directions): `3 *
+    /// field_count` doubles, xyz per vector, one vector per mesh vertex or one per mesh face
+    /// (told apart by `field_count`); NULL with `field_count` 0 (default) for none. Signs and
+    /// lengths do not matter; every vector must be finite and non-zero. Read during
+    /// `tp_remesh` only.
+    pub field_vectors: *const f64,
+    /// Number of vectors at `field_vectors`: the mesh's vertex or face count, or 0.
+    pub field_count: usize,
+    /// Share of the field against the curvature field (or `direction`), 0 to 1; default 1.
+    pub field_weight: f64,
 }
 
 /// The default remesh options.
@@ -51,6 +61,9 @@ pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
         angle_degrees: 0.0,
         shapeup: 0,
         time_limit_seconds: 60.0,
+        field_vectors: std::ptr::null(),
+        field_count: 0,
+        field_weight: 1.0,
     }
 }
 
@@ -110,9 +123,12 @@ pub unsafe extern "C" fn tp_remesh(
             }
         };
         let time_limit = RemeshOptions::time_limit_from_secs(raw.time_limit_seconds)?;
+        // SAFETY: the caller's promise on field_vectors.
+        let user_field = unsafe { read_field(surface, &raw) }?;
         let options = RemeshOptions {
             target_edge: raw.target_edge,
             direction,
+            user_field,
             shapeup: raw.shapeup != 0,
             time_limit,
             ..RemeshOptions::default()
@@ -136,4 +152,35 @@ pub unsafe extern "C" fn tp_remesh(
             )
         }
     })
+}
+
+/// The user field of `raw`, checked against `mesh` (the count before anything is read).
+///
+/// # Safety
+/// `raw.field_vectors` must be NULL or point to `3 * raw.field_count` readable doubles.
+unsafe fn read_field(
+    mesh: &crate::mesh::PolyMesh,
+    raw: &TpRemeshOptions,
+) -> Result<Option<UserField>, Failure> {
+    if raw.field_count == 0 {
+        return Ok(None);
+    }
+    if raw.field_vectors.is_null() {
+        return Err(Failure::null("options->field_vectors"));
+    }
+    if raw.field_count != mesh.positions().len() && raw.field_count != mesh.face_count() {
+        return Err(RemeshError::FieldCount {
+            given: raw.field_count,
+            vertices: mesh.positions().len(),
+            faces: mesh.face_count(),
+        }
+        .into());
+    }
+    // SAFETY: the count is the mesh's vertex or face count, and the caller promises that
+    // many vectors.
+    let flat = unsafe { std::slice::from_raw_parts(raw.field_vectors, 3 * raw.field_count) };
+    let vectors = flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let field = UserField::for_mesh(mesh, vectors, raw.field_weight)?;
+    field.check(mesh)?;
+    Ok(Some(field))
 }

@@ -14,12 +14,21 @@
 //! same at any model scale), and the boundary crosses are fixed to the boundary tangents (Dirichlet), so quads
 //! line up with the boundary. One global conjugate-gradient solve replaces Instant Meshes'
 //! multi-resolution Gauss-Seidel sweeps and is deterministic.
+//!
+//! A designer's field ([`super::UserField`], the force flow of the paper's section 4.4)
+//! enters the same energy as a second data term: with share `s`, `w_i |z_i - c_i|^2` becomes
+//! `a_i |z_i - u_i|^2 + b_i |z_i - c_i|^2`, `a_i = W s q_i`, `b_i = W (1 - s) w'_i`, where
+//! `u_i` is the user cross at vertex `i` (the mean fourth power of the vectors there, per
+//! face vectors counted at their corners by area), `q_i` how clear it is ([`user_cross`]) and
+//! `w'_i` whether the other source has a direction there at all (`principal_defined`). Both terms are one quadratic term with target
+//! `(a u + b c) / (a + b)`, so the smoothing below is the same for every source.
 
 use nalgebra::{Matrix5, Vector3, Vector5};
 
 use super::budget::Budget;
 use super::linalg::conjugate_gradient;
 use super::surface::{Surface, any_tangent};
+use super::user_field::Samples;
 use super::{FieldDirection, RemeshOptions};
 
 /// Complex number as (re, im); the field needs only a few operations.
@@ -142,16 +151,34 @@ fn curvature(
 /// where `a` is below [`UMBILIC`] (a sphere, a plane, the crown of a dome: there the two
 /// principal curvatures are equal and the principal directions are noise, so only the
 /// boundary and smoothness orient the crosses), rising smoothly to the full `a^2` at twice
-/// that. `extent` is the surface's size (its bounding-box diagonal), which keeps nearly flat
-/// parts from reading as anisotropic. Every term is a curvature (1 / length), so the weight
-/// does not change when the model is scaled: a 3 m and a 20 m dome are treated alike.
+/// that ([`principal_defined`]). `extent` is the surface's size (its bounding-box diagonal),
+/// which keeps nearly flat parts from reading as anisotropic. Every term is a curvature
+/// (1 / length), so the weight does not change when the model is scaled: a 3 m and a 20 m
+/// dome are treated alike.
 fn alignment_weight(aniso: f64, mean: f64, extent: f64) -> f64 {
-    let rel = aniso / (aniso + mean + 4.0 / extent);
-    if !rel.is_finite() {
-        return 0.0;
-    }
-    let ramp = ((rel - UMBILIC) / UMBILIC).clamp(0.0, 1.0);
+    let rel = relative_anisotropy(aniso, mean, extent);
+    let ramp = umbilic_ramp(rel);
     rel * rel * ramp * ramp * (3.0 - 2.0 * ramp)
+}
+
+/// 0 below [`UMBILIC`] relative anisotropy, 1 above twice that, linear in between.
+fn umbilic_ramp(rel: f64) -> f64 {
+    ((rel - UMBILIC) / UMBILIC).clamp(0.0, 1.0)
+}
+
+/// The relative anisotropy `a` of [`alignment_weight`] (0 where it is not a number).
+fn relative_anisotropy(aniso: f64, mean: f64, extent: f64) -> f64 {
+    let rel = aniso / (aniso + mean + 4.0 / extent);
+    if rel.is_finite() { rel } else { 0.0 }
+}
+
+/// Whether the principal directions mean anything, in `[0, 1]`: 0 below [`UMBILIC`]
+/// relative anisotropy, 1 above twice that, smooth in between. A designer's field is blended
+/// with the curvature field by this (the curvature then counts fully at its share wherever
+/// it has a direction at all).
+fn principal_defined(aniso: f64, mean: f64, extent: f64) -> f64 {
+    let ramp = umbilic_ramp(relative_anisotropy(aniso, mean, extent));
+    ramp * ramp * (3.0 - 2.0 * ramp)
 }
 
 /// Relative anisotropy below which a point counts as umbilic (see [`alignment_weight`]).
@@ -163,6 +190,7 @@ const UMBILIC: f64 = 0.05;
 pub(crate) fn solve(
     s: &Surface,
     options: &RemeshOptions,
+    user: Option<&(Samples, f64)>,
     budget: &mut Budget,
 ) -> Vec<Vector3<f64>> {
     let n = s.len();
@@ -183,34 +211,58 @@ pub(crate) fn solve(
         .iter()
         .fold((s.pos[0], s.pos[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
     let diagonal = (hi - lo).norm().max(1e-12);
-    let mut weight = vec![0.0; n];
+    // Per vertex: how clearly the source of `direction` points (in [0, 1]), whether it has
+    // a direction at all (the same for a global vector; for a blend with a user field) and
+    // where it points.
+    let mut clarity = vec![0.0; n];
+    let mut defined = vec![0.0; n];
     let mut target = vec![C(0.0, 0.0); n];
     let rotation = match options.direction {
         FieldDirection::Angle(deg) => C::from_angle(4.0 * deg.to_radians()),
         _ => C(1.0, 0.0),
     };
-    match options.direction {
+    let strength = match options.direction {
         FieldDirection::Curvature | FieldDirection::Angle(_) => {
             let mut mark = vec![usize::MAX; n];
-            // Total alignment weight comparable to the smoothness energy of a field that
-            // turns once across the surface: curvature leads where it is clear, the boundary
-            // and smoothness elsewhere.
-            let total = CURVATURE_WEIGHT;
             for v in 0..n {
                 if let Some((angle, aniso, mean)) = curvature(s, &frames, v, &mut mark) {
-                    weight[v] = total / n as f64 * alignment_weight(aniso, mean, diagonal);
+                    clarity[v] = alignment_weight(aniso, mean, diagonal);
+                    defined[v] = principal_defined(aniso, mean, diagonal);
                     target[v] = C::from_angle(4.0 * angle).mul(rotation);
                 }
             }
+            // Total alignment weight comparable to the smoothness energy of a field that
+            // turns once across the surface: curvature leads where it is clear, the boundary
+            // and smoothness elsewhere.
+            CURVATURE_WEIGHT / n as f64
         }
         FieldDirection::Vector(d) => {
             let d = Vector3::new(d[0], d[1], d[2]).normalize();
             for v in 0..n {
                 let nv = s.normals[v];
                 let p = d - nv * nv.dot(&d);
-                let len2 = p.norm_squared();
-                weight[v] = 4.0 * len2;
+                clarity[v] = p.norm_squared();
+                defined[v] = clarity[v];
                 target[v] = C::from_angle(4.0 * angle_in(&frames[v], &nv, &p));
+            }
+            VECTOR_WEIGHT
+        }
+    };
+    let mut weight: Vec<f64> = clarity.iter().map(|c| c * strength).collect();
+    if let Some((samples, share)) = user {
+        for v in 0..n {
+            let (z, clear) = user_cross(&frames[v], &s.normals[v], &samples[v]);
+            // Both sources held firmly, in proportion to the share: the minimiser of
+            // a |z - u|^2 + b |z - c|^2 is (a u + b c) / (a + b).
+            let a = USER_WEIGHT * share * clear;
+            let b = USER_WEIGHT * (1.0 - share) * defined[v];
+            weight[v] = a + b;
+            if a + b > 0.0 {
+                target[v] = z
+                    .mul(rotation)
+                    .scale(a)
+                    .add(target[v].scale(b))
+                    .scale(1.0 / (a + b));
             }
         }
     }
@@ -228,7 +280,7 @@ pub(crate) fn solve(
 
     let mut fixed = vec![false; n];
     let mut z = vec![C(0.0, 0.0); n];
-    let aligned = s.aligned_boundary(options.boundary);
+    let aligned = s.aligned_boundary(options.effective_boundary());
     for v in (0..n).filter(|&v| aligned[v]) {
         if let Some((din, dout)) = s.bdirs[v] {
             let nv = s.normals[v];
@@ -330,6 +382,36 @@ pub(crate) fn solve(
         })
         .collect()
 }
+
+/// The cross a vertex's user samples ask for and how clearly, in `[0, 1]`: the weighted
+/// mean of their fourth powers (so opposite and perpendicular vectors agree), each counted by
+/// the square of its tangential part; its modulus is 1 only when all samples are tangent and
+/// agree modulo 90 degrees, and falls where they are nearly normal or disagree (around a
+/// singular point of the given field), leaving those vertices to smoothness.
+fn user_cross(e: &Vector3<f64>, n: &Vector3<f64>, samples: &[(Vector3<f64>, f64)]) -> (C, f64) {
+    let mut sum = C(0.0, 0.0);
+    let mut total = 0.0;
+    for (d, w) in samples {
+        let p = d - n * n.dot(d);
+        sum = sum.add(C::from_angle(4.0 * angle_in(e, n, &p)).scale(w * p.norm_squared()));
+        total += w;
+    }
+    let norm = sum.norm();
+    if total > 0.0 && norm > 1e-12 * total {
+        (sum.scale(1.0 / norm), (norm / total).min(1.0))
+    } else {
+        (C(1.0, 0.0), 0.0)
+    }
+}
+
+/// Alignment weight per vertex of a global direction ([`FieldDirection::Vector`]), against
+/// the smoothness energy of one edge.
+const VECTOR_WEIGHT: f64 = 4.0;
+
+/// Alignment weight per vertex of the user field at full share, against the smoothness
+/// energy of one edge: firm enough that the crosses follow the given directions, loose
+/// enough to smooth out noise over a ring or two of the input.
+const USER_WEIGHT: f64 = 1.0;
 
 /// Total weight of curvature alignment, in units of the smoothness energy of a field that
 /// turns once across the surface.
@@ -452,5 +534,123 @@ mod tests {
             assert!(w - last < 0.02);
             last = w;
         }
+    }
+
+    /// Worst and mean deviation (degrees, modulo 90) of the solved crosses from `want` over
+    /// the vertices at least `skip` from the point `(0, 0, top)`.
+    fn deviation(
+        s: &Surface,
+        frames: &[Vector3<f64>],
+        want: impl Fn(&Vector3<f64>) -> Vector3<f64>,
+        top: f64,
+        skip: f64,
+    ) -> (f64, f64) {
+        let (mut worst, mut sum, mut count) = (0.0f64, 0.0, 0);
+        for (v, o) in frames.iter().enumerate() {
+            if (s.pos[v] - Vector3::new(0.0, 0.0, top)).norm() < skip {
+                continue;
+            }
+            let n = s.normals[v];
+            let w = want(&s.pos[v]);
+            let w = w - n * n.dot(&w);
+            let a = (o.dot(&w).abs() / w.norm()).min(1.0).acos().to_degrees();
+            let d = a.min(90.0 - a);
+            worst = worst.max(d);
+            sum += d;
+            count += 1;
+        }
+        (worst, sum / count as f64)
+    }
+
+    #[test]
+    fn the_solved_field_follows_a_user_field_on_a_dome() {
+        use crate::mesh::generate::spherical_cap;
+        let (radius, fraction) = (3.0, 0.3);
+        let cap = spherical_cap(radius, fraction, 0.1);
+        let (s, map) = Surface::from_polymesh_mapped(&cap).unwrap();
+        let centre = Vector3::new(0.0, 0.0, -radius * (1.0 - 2.0 * fraction));
+        let top = radius + centre.z;
+        for turn in [0.0f64, 30.0] {
+            let want = |p: &Vector3<f64>| {
+                let r = p - centre;
+                let n = r.normalize();
+                let m = Vector3::new(r.x * r.z, r.y * r.z, -(r.x * r.x + r.y * r.y));
+                let m = m.try_normalize(1e-12).unwrap_or_else(Vector3::x);
+                let a = turn.to_radians();
+                m * a.cos() + n.cross(&m) * a.sin()
+            };
+            let vectors = cap
+                .positions()
+                .iter()
+                .map(|p| want(&p.coords).into())
+                .collect();
+            let user = super::super::UserField::for_mesh(&cap, vectors, 1.0).unwrap();
+            let samples = (user.samples(&cap, &map, s.len()), 1.0);
+            let mut control = crate::control::Control::none();
+            let mut budget = Budget::new(
+                &mut control,
+                std::time::Instant::now(),
+                std::time::Duration::from_secs(60),
+            );
+            let frames = solve(&s, &RemeshOptions::default(), Some(&samples), &mut budget);
+            // Away from the crown (where the meridians meet and no cross field can follow
+            // them) the crosses are on the given directions.
+            let (worst, mean) = deviation(&s, &frames, want, top, 0.5);
+            assert!(
+                worst < 3.0 && mean < 0.5,
+                "turn {turn}: worst {worst:.2} mean {mean:.2}"
+            );
+            // Without the user field the umbilic dome's crosses go their own way.
+            let free = solve(&s, &RemeshOptions::default(), None, &mut budget);
+            let (_, mean) = deviation(&s, &free, want, top, 0.5);
+            assert!(mean > 10.0, "turn {turn}: mean {mean:.2} by chance");
+        }
+    }
+
+    /// Solves the field on a barrel vault (axis along y, principal directions along x and
+    /// y) against a user field turned 20 degrees from the axis, with the given share; the
+    /// mean angle of the crosses from the axis, modulo 90 degrees, in `[-45, 45]`.
+    fn barrel_angle(share: f64) -> f64 {
+        use crate::remesh::BoundaryAlignment;
+        use crate::remesh::surface::samples::sheet;
+        let s = sheet(20, 0.1, (0..0, 0..0), |x, _| {
+            (4.0f64 - (x - 1.0) * (x - 1.0)).sqrt()
+        });
+        let turn = 20f64.to_radians();
+        let user: Vec<Vec<(Vector3<f64>, f64)>> = (0..s.len())
+            .map(|_| vec![(Vector3::new(turn.sin(), turn.cos(), 0.0), 1.0)])
+            .collect();
+        let options = RemeshOptions {
+            boundary: BoundaryAlignment::Never,
+            ..RemeshOptions::default()
+        };
+        let mut control = crate::control::Control::none();
+        let mut budget = Budget::new(
+            &mut control,
+            std::time::Instant::now(),
+            std::time::Duration::from_secs(60),
+        );
+        let frames = solve(&s, &options, Some(&(user, share)), &mut budget);
+        let mut sum = 0.0;
+        for (v, o) in frames.iter().enumerate() {
+            let o = match_rosy(&Vector3::y(), o, &s.normals[v]);
+            // Angle from the axis (y) towards +x, seen in the tangent plane.
+            sum += o.x.atan2(o.y).to_degrees();
+        }
+        sum / s.len() as f64
+    }
+
+    #[test]
+    fn the_share_blends_the_user_field_with_the_curvature_field() {
+        let (none, half, full) = (barrel_angle(0.0), barrel_angle(0.5), barrel_angle(1.0));
+        assert!(none.abs() < 2.0, "share 0: {none:.2} degrees from the axis");
+        assert!(
+            (full - 20.0).abs() < 2.0,
+            "share 1: {full:.2} degrees from the axis"
+        );
+        assert!(
+            half > none + 3.0 && half < full - 3.0,
+            "share 0.5: {half:.2} (0: {none:.2}, 1: {full:.2})"
+        );
     }
 }

@@ -52,6 +52,7 @@ mod quadmesh;
 mod refine;
 mod shapeup;
 mod surface;
+mod user_field;
 
 use std::time::{Duration, Instant};
 
@@ -63,6 +64,7 @@ use crate::control::Control;
 use crate::mesh::{MeshError, PolyMesh};
 
 pub use metrics::{Metrics, metrics};
+pub use user_field::{FieldSite, UserField};
 
 /// How the quads are oriented on the surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,8 +105,13 @@ pub struct RemeshOptions {
     pub target_edge: f64,
     /// What the orientation field follows.
     pub direction: FieldDirection,
+    /// The designer's own field (stress or thrust directions, one vector per input vertex or
+    /// face), blended with `direction`'s field by its weight and smoothed with it; `None`
+    /// (default) for `direction` alone.
+    pub user_field: Option<UserField>,
     /// Which boundary loops the quads follow (field pinned to the boundary tangents and a
     /// lattice line pinned onto the boundary, so no ragged strip is left along the edge).
+    /// `Auto` aligns no loop when `user_field` has a share ([`Self::effective_boundary`]).
     pub boundary: BoundaryAlignment,
     /// Run the shape-up step that pulls faces towards squares of side `t`.
     pub shapeup: bool,
@@ -125,6 +132,7 @@ impl Default for RemeshOptions {
         Self {
             target_edge: 0.145,
             direction: FieldDirection::Curvature,
+            user_field: None,
             boundary: BoundaryAlignment::Auto,
             shapeup: false,
             shapeup_tolerance: 0.1,
@@ -135,6 +143,18 @@ impl Default for RemeshOptions {
 }
 
 impl RemeshOptions {
+    /// The boundary alignment in effect: [`BoundaryAlignment::Auto`] aligns no loop when the
+    /// designer's field has a share (its vectors decide along the boundary too, where thrust
+    /// lines meet the supports at their own angle); an explicit choice is kept.
+    pub fn effective_boundary(&self) -> BoundaryAlignment {
+        match (&self.user_field, self.boundary) {
+            (Some(field), BoundaryAlignment::Auto) if field.weight > 0.0 => {
+                BoundaryAlignment::Never
+            }
+            (_, boundary) => boundary,
+        }
+    }
+
     /// Converts seconds (as typed on a command line or passed through the C ABI) into a time
     /// limit.
     ///
@@ -187,6 +207,33 @@ pub enum RemeshError {
     /// A user direction vector is zero or not finite.
     #[error("field direction vector {0:?} must be finite and non-zero")]
     BadDirection([f64; 3]),
+    /// The user field's vector count matches neither the vertices nor the faces.
+    #[error(
+        "the field has {given} vectors but the mesh has {vertices} vertices and {faces} faces; give one vector per vertex or one per face"
+    )]
+    FieldCount {
+        /// Vectors given.
+        given: usize,
+        /// Vertices of the input mesh.
+        vertices: usize,
+        /// Faces of the input mesh.
+        faces: usize,
+    },
+    /// A user field vector is zero or not finite.
+    #[error(
+        "field vector of {site} {index} is {vector:?}; every vector must be finite and non-zero (give the local direction, any length)"
+    )]
+    BadFieldVector {
+        /// Its index among the vertices or faces.
+        index: usize,
+        /// Whether it is a vertex or a face.
+        site: FieldSite,
+        /// The vector given.
+        vector: [f64; 3],
+    },
+    /// The user field's weight is outside `[0, 1]`.
+    #[error("field weight {0} must be a number from 0 (curvature only) to 1 (user field only)")]
+    BadFieldWeight(f64),
     /// A rotation angle is not finite.
     #[error("field rotation angle {0} is not finite")]
     BadAngle(f64),
@@ -254,10 +301,14 @@ pub fn remesh_with(
     let t = options.target_edge;
     budget.stage(0.0, 0.02);
     budget.check()?;
-    let mut base = surface::Surface::from_polymesh(input)?;
+    let (mut base, surface_of) = surface::Surface::from_polymesh_mapped(input)?;
     base.set_boundary_scale(t * 0.5);
+    let samples = options
+        .user_field
+        .as_ref()
+        .map(|u| (u.samples(input, &surface_of, base.len()), u.weight));
     budget.stage(0.02, 0.15);
-    let frames = field::solve(&base, options, &mut budget);
+    let frames = field::solve(&base, options, samples.as_ref(), &mut budget);
     budget.check()?;
     budget.stage(0.15, 0.2);
     let (work, mut work_frames) = refine::refine(&base, &frames, t);
@@ -265,7 +316,7 @@ pub fn remesh_with(
         FieldDirection::Angle(deg) => deg,
         _ => 0.0,
     };
-    let aligned = work.aligned_boundary(options.boundary);
+    let aligned = work.aligned_boundary(options.effective_boundary());
     field::snap_boundary(&work, &aligned, &mut work_frames, rotation);
     // Lattice lines can lie on the boundary only when the crosses follow it.
     let pin = (rotation / 90.0 - (rotation / 90.0).round()).abs() < 1e-9;
@@ -316,6 +367,9 @@ fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), Remesh
         }
         FieldDirection::Angle(a) if !a.is_finite() => return Err(RemeshError::BadAngle(a)),
         _ => {}
+    }
+    if let Some(field) = &options.user_field {
+        field.check(input)?;
     }
     if options.shapeup
         && !(options.shapeup_tolerance.is_finite() && options.shapeup_tolerance > 0.0)

@@ -49,8 +49,15 @@ pub(crate) struct Surface {
 }
 
 impl Surface {
-    /// Fan-triangulates the input polygons, dropping vertices no face uses.
+    /// [`Self::from_polymesh_mapped`] without the vertex map.
+    #[cfg(test)]
     pub fn from_polymesh(mesh: &PolyMesh) -> Result<Self, RemeshError> {
+        Self::from_polymesh_mapped(mesh).map(|(surface, _)| surface)
+    }
+
+    /// Fan-triangulates the input polygons, dropping vertices no face uses; also returns, per
+    /// input vertex, its vertex on the surface (`usize::MAX` for vertices no face uses).
+    pub fn from_polymesh_mapped(mesh: &PolyMesh) -> Result<(Self, Vec<usize>), RemeshError> {
         let mut remap = vec![usize::MAX; mesh.positions().len()];
         let mut pos = Vec::new();
         let mut tris = Vec::new();
@@ -73,7 +80,7 @@ impl Surface {
                 "vertex {v} is where two boundary loops or two surface sheets touch; split it into separate vertices"
             )));
         }
-        Ok(surface)
+        Ok((surface, remap))
     }
 
     /// Builds adjacency, boundary loops and (unless given) area-weighted vertex normals.
