@@ -182,3 +182,17 @@ def test_a_cancel_inside_cbc_returns_at_once_and_leaves_cbc_free():
     # Generous for a loaded machine; a CBC still busy with the cancelled solve would hold the
     # next one up for seconds.
     assert after < 2.0 * before + 0.25, "%.3f s after the cancel, %.3f s before" % (after, before)
+
+
+def test_a_time_limit_inside_cbc_stops_it_and_leaves_cbc_free():
+    """The same whole program on CBC with a 2 s limit, which falls in its root linear program
+    (which CBC's own clock does not reach): the call keeps its limit, no solver thread is left
+    running, and the next CBC solve takes as long as before."""
+    before = small_mip()
+    start = time.perf_counter()
+    pattern = tp.match(*grid(45, 45), method="mip", time_limit=2)
+    took = time.perf_counter() - start
+    assert pattern.status == "time_limit" and took < 3.0, "%s after %.3f s" % (pattern.status, took)
+    assert solver_threads() == 0
+    after = small_mip()
+    assert after < 2.0 * before + 0.25, "%.3f s after the limit, %.3f s before" % (after, before)

@@ -102,3 +102,90 @@ pub(super) fn solve(
         timed_out: ending == Ending::TimeLimit,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use std::time::Instant;
+
+    use super::*;
+    use crate::mesh::{Topology, generate};
+
+    /// The whole program of an `n` x `n` grid, staggered, on CBC for at most `limit`.
+    fn whole(
+        n: usize,
+        limit: Duration,
+        control: &mut Control<'_>,
+    ) -> Result<Outcome, PatternError> {
+        let mesh = generate::grid(n, n);
+        let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
+        let free = vec![true; graph.tiles().len()];
+        let fixed = vec![false; graph.tiles().len()];
+        let restriction = Restriction {
+            free: &free,
+            fixed: &fixed,
+            patch: None,
+        };
+        let bond = Bond::Staggered { weight: 0.5 };
+        solve(
+            &graph,
+            bond,
+            Formulation::Strengthened,
+            &restriction,
+            limit,
+            0.0,
+            control,
+            || 0.0,
+        )
+    }
+
+    /// Seconds CBC takes to prove a 12 x 12 grid.
+    fn small() -> f64 {
+        let started = Instant::now();
+        let outcome = whole(12, Duration::from_secs(60), &mut Control::none()).unwrap();
+        assert!(outcome.chosen.is_some() && !outcome.timed_out);
+        started.elapsed().as_secs_f64()
+    }
+
+    #[test]
+    fn a_cancel_or_the_deadline_inside_cbc_stops_it_and_leaves_it_free() {
+        let before = small();
+        // 45 x 45 grid: CBC's root linear program alone takes seconds. Cancel 1 s in.
+        let started = Instant::now();
+        let mut asked: Option<Instant> = None;
+        let mut cancel_after_a_second = |_: f64| {
+            if started.elapsed() < Duration::from_secs(1) {
+                return true;
+            }
+            asked.get_or_insert_with(Instant::now);
+            false
+        };
+        let mut control = Control::with_progress(&mut cancel_after_a_second);
+        let outcome = whole(45, Duration::from_secs(60), &mut control);
+        let returned = Instant::now();
+        assert!(matches!(outcome, Err(PatternError::Cancelled)));
+        let after_cancel = returned - asked.unwrap();
+        assert!(
+            after_cancel < Duration::from_millis(200),
+            "returned {after_cancel:?} after the cancel"
+        );
+        let after = small();
+        assert!(
+            after < 2.0 * before + 0.25,
+            "{after:.3} s, {before:.3} s before"
+        );
+
+        // The deadline, inside the root linear program, stops CBC the same way.
+        let started = Instant::now();
+        let outcome = whole(45, Duration::from_secs(1), &mut Control::none()).unwrap();
+        let took = started.elapsed().as_secs_f64();
+        assert!(
+            outcome.timed_out && outcome.chosen.is_none() && took < 1.5,
+            "{took:.3} s"
+        );
+        let after = small();
+        assert!(
+            after < 2.0 * before + 0.25,
+            "{after:.3} s, {before:.3} s before"
+        );
+    }
+}
