@@ -47,7 +47,7 @@ c-test:
 	$(CC) -std=c11 $(C_FLAGS) tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_c
 	$(CXX) -std=c++17 $(C_FLAGS) -x c++ tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_cpp
 	RUST_BACKTRACE=0 target/c/test_cpp
-	RUST_BACKTRACE=0 valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
+	RUST_BACKTRACE=0 TP_TEST_TIME_SCALE=50 valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
 		--show-leak-kinds=definite,indirect,possible --suppressions=tests/c/valgrind.supp target/c/test_c
 	$(CC) -std=c11 $(C_FLAGS) tests/c/test_bad_input.c $(C_LINK) -o target/c/test_bad_input
 	$(CXX) -std=c++17 $(C_FLAGS) -x c++ tests/c/test_bad_input.c $(C_LINK) -o target/c/test_bad_input_cpp

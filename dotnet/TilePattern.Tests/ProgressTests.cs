@@ -59,6 +59,45 @@ namespace TilePattern.Tests
             }
         }
 
+        // The paper's whole program on CBC for a 12 x 12 grid; its time in seconds.
+        static double TimedSmallMip()
+        {
+            var watch = Stopwatch.StartNew();
+            TilePatternEngine.Match(TestMeshes.Grid(12, 12), new PatternOptions { Method = SolveMethod.Mip, TimeLimitSeconds = 60 });
+            return watch.Elapsed.TotalSeconds;
+        }
+
+        // Cancel from the progress callback in the middle of the whole program on CBC (45 x 45
+        // grid, 2025 faces, whose root linear program alone takes CBC seconds) returns within
+        // 0.2 s and leaves CBC free: a CBC solve right after takes as long as before the cancel.
+        [Test]
+        public void CancelInsideCbcReturnsAtOnceAndLeavesCbcFree()
+        {
+            double before = TimedSmallMip();
+            using (var cts = new CancellationTokenSource())
+            {
+                var solving = Stopwatch.StartNew();
+                var asked = new Stopwatch();
+                // The callbacks of this solve come only while CBC runs: cancel a second into it.
+                var progress = new SyncProgress(f =>
+                {
+                    if (solving.Elapsed.TotalSeconds >= 1.0 && !asked.IsRunning)
+                    {
+                        asked.Start();
+                        cts.Cancel();
+                    }
+                });
+                var options = new PatternOptions { Method = SolveMethod.Mip, TimeLimitSeconds = 60 };
+                Assert.Throws<TilePatternCanceledException>(() => TilePatternEngine.Match(TestMeshes.Grid(45, 45), options, progress, cts.Token));
+                Assert.IsTrue(asked.IsRunning, "cancelled from the callback");
+                Assert.Less(asked.Elapsed.TotalSeconds, 0.2, "returned within 0.2 s of the cancel");
+            }
+            double after = TimedSmallMip();
+            // Generous for a loaded machine; a CBC still busy with the cancelled solve would hold
+            // the next one up for seconds.
+            Assert.Less(after, 2.0 * before + 0.25, "the next CBC solve took " + after + " s, " + before + " s before");
+        }
+
         [Test]
         public void AlreadyCancelledTokenThrowsBeforeTheCall()
         {

@@ -160,7 +160,8 @@ pub unsafe extern "C" fn tp_pattern_options_init(
 
 /// Matches the faces of `mesh` into tiles. `progress` (may be NULL) is called with
 /// `TP_STAGE_PATTERN` and the share of the time limit used; a non-zero return cancels the
-/// solve within about a second and returns `TP_CANCELLED`. A solve stopped by the time
+/// solve (CBC and Clp too, at their next node or iteration) within a fraction of a second
+/// and returns `TP_CANCELLED`, leaving nothing running. A solve stopped by the time
 /// limit still succeeds: read its status with [`tp_pattern_summary`].
 ///
 /// # Safety

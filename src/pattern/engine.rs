@@ -24,9 +24,9 @@ const FIRST_LINEAR_PATCH_SIZE: usize = 200;
 const LINEAR_ROUND_GROWTH: f64 = 3.0;
 /// Largest patches: a few seconds each for CBC.
 const LAST_PATCH_SIZE: usize = 1600;
-/// Largest mesh [`Method::Auto`] gives to CBC whole. CBC cannot be stopped while Clp solves
-/// the root LP, which on larger staggered programs can take minutes (6589 faces: 110 s), and
-/// a solve past its time limit would keep the solver busy for later calls.
+/// Largest mesh [`Method::Auto`] gives to CBC whole. The root LP of larger staggered
+/// programs can take minutes (6589 faces: 110 s), and a solve stopped before its root gives
+/// nothing for the time it took.
 const WHOLE_MODEL_FACES: usize = 2000;
 /// Share of the time left after the first annealing run that the linear relaxation of the
 /// whole program may take; it is solved only if expected to finish in that time.

@@ -20,10 +20,10 @@ use std::time::Duration;
 use super::program::{Patch, Program, Restriction};
 use super::{Bond, DualGraph, Formulation, PatternError, worker};
 use crate::control::Control;
-use crate::solver::clp;
+use crate::solver::{Stop, clp};
 
 /// Share of its time limit Clp is given, so that it stops and hands over its duals before
-/// the caller's deadline (it counts processor time and checks it between iterations).
+/// the caller's deadline (it counts wall-clock time and checks it at every iteration).
 const CLP_SHARE_OF_LIMIT: f64 = 0.9;
 
 /// Seconds the barrier needs on a 1400-face staggered relaxation here (2 cores, 2026), and
@@ -75,9 +75,9 @@ pub(super) fn bound(
 ) -> Result<Option<LinearBound>, PatternError> {
     let relaxation = relaxation(graph, bond, patch);
     let seconds = time_limit.as_secs_f64() * CLP_SHARE_OF_LIMIT;
-    let work = move || {
+    let work = move |stop: Stop| {
         let model = relaxation.model();
-        clp::barrier(model, seconds).map(|duals| LinearBound {
+        clp::barrier(model, seconds, &stop).map(|duals| LinearBound {
             value: relaxation.constant() + model.dual_bound(&duals.row_duals),
             converged: duals.converged,
         })
@@ -141,10 +141,73 @@ mod tests {
                 .unwrap();
                 assert!(converged.converged);
                 assert!(converged.value >= optimum.objective - 1e-9);
-                let cut_short = clp::barrier(model, 1e-4).unwrap();
+                let cut_short = clp::barrier(model, 1e-4, &Stop::new()).unwrap();
                 assert!(model.dual_bound(&cut_short.row_duals) >= optimum.objective - 1e-9);
             }
         }
+    }
+
+    #[test]
+    fn the_barrier_stops_on_the_clock_and_on_a_cancel_within_moments() {
+        use std::time::Instant;
+        // 70 x 70 grid, staggered: the barrier needs seconds to converge, each iteration some
+        // 30 ms (before the first, some 0.2 s to set up, which it cannot be stopped in).
+        let mesh = generate::grid(70, 70);
+        let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
+        let bond = Bond::Staggered { weight: 0.5 };
+        let relaxation = relaxation(&graph, bond, None);
+
+        // Clp's limit is wall-clock time: with two threads spinning beside it, the process's
+        // processor time runs ahead of the clock, and a limit counted in it would stop the
+        // barrier early.
+        let spinning = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+        let spinners: Vec<_> = (0..2)
+            .map(|_| {
+                let spinning = spinning.clone();
+                std::thread::spawn(move || {
+                    while spinning.load(std::sync::atomic::Ordering::Relaxed) {
+                        std::hint::spin_loop();
+                    }
+                })
+            })
+            .collect();
+        let started = Instant::now();
+        let stopped = clp::barrier(relaxation.model(), 1.0, &Stop::new()).unwrap();
+        let took = started.elapsed().as_secs_f64();
+        spinning.store(false, std::sync::atomic::Ordering::Relaxed);
+        spinners.into_iter().for_each(|s| s.join().unwrap());
+        assert!(!stopped.converged);
+        assert!(
+            (1.0..1.6).contains(&took),
+            "1 s of wall-clock time took {took:.3} s"
+        );
+
+        // A cancel from the caller's callback ends the barrier within 0.2 s.
+        let started = Instant::now();
+        let mut asked: Option<Instant> = None;
+        let mut cancel_after_a_second = |_: f64| {
+            if started.elapsed() < Duration::from_secs(1) {
+                return true;
+            }
+            asked.get_or_insert_with(Instant::now);
+            false
+        };
+        let mut control = Control::with_progress(&mut cancel_after_a_second);
+        let outcome = bound(
+            &graph,
+            bond,
+            None,
+            Duration::from_secs(60),
+            &mut control,
+            || 0.0,
+        );
+        let returned = Instant::now();
+        assert!(matches!(outcome, Err(PatternError::Cancelled)));
+        let after = returned - asked.unwrap();
+        assert!(
+            after < Duration::from_millis(200),
+            "returned {after:?} after the cancel"
+        );
     }
 
     #[test]

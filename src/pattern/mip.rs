@@ -7,6 +7,7 @@ use std::time::Duration;
 use super::program::{Program, Restriction};
 use super::{Bond, DualGraph, Formulation, PatternError, worker};
 use crate::control::Control;
+use crate::solver::Stop;
 use crate::solver::cbc::{self, Ending};
 
 /// CBC gets this share of the time limit, so that it can stop and hand over its incumbent
@@ -30,10 +31,9 @@ pub(super) struct Outcome {
 const LINEAR_SECONDS_AT_1000_FACES: f64 = 1.0;
 const LINEAR_TIME_EXPONENT: f64 = 2.5;
 
-/// About how long CBC's root linear program takes on a program over `faces` faces. Clp's
-/// simplex method does not check the clock, and a solve that outlives its deadline keeps
-/// CBC's process-wide lock until it ends, so the engine starts none it does not expect to
-/// finish in time.
+/// About how long CBC's root linear program takes on a program over `faces` faces. A solve
+/// stopped by its deadline before its root is solved gives neither a pattern nor a bound, so
+/// the engine starts none it does not expect to get past it in time.
 pub(super) fn expected_linear_seconds(faces: usize) -> f64 {
     LINEAR_SECONDS_AT_1000_FACES * (faces as f64 / 1000.0).powf(LINEAR_TIME_EXPONENT)
 }
@@ -65,13 +65,11 @@ pub(super) fn solve(
     }
     let seconds = time_limit.as_secs_f64() * CBC_SHARE_OF_LIMIT;
 
-    // CBC checks its clock in branch-and-bound but not while Clp solves the root LP, which
-    // can take minutes on a large staggered model. It therefore runs on a worker thread and
-    // the caller gets what is known at the deadline; a worker that outlives it stops at CBC's
-    // own limit right after its LP and is discarded. The engine keeps windows small so this
-    // only happens when a caller asks for the whole model on a large mesh.
-    let worker = move || {
-        cbc::solve(program.model(), seconds, gap).map(|solved| {
+    // CBC runs on a worker thread, so that progress callbacks stay on the caller's thread;
+    // the caller's cancel and deadline reach it through its stop handlers, which end it
+    // within milliseconds wherever it is (in Clp's root linear program too).
+    let worker = move |stop: Stop| {
+        cbc::solve(program.model(), seconds, gap, &stop).map(|solved| {
             let chosen = solved.values.map(|values| program.chosen(&values));
             (chosen, solved.bound, solved.ending)
         })
@@ -85,8 +83,9 @@ pub(super) fn solve(
     };
     let (chosen, bound, ending) = result.map_err(PatternError::Solver)?;
     // CBC stopped by its time limit before it had a solution may call the problem
-    // infeasible; every program here is feasible (no tiles at all).
-    if ending == Ending::Infeasible {
+    // infeasible; every program here is feasible (no tiles at all). A stopped CBC (the
+    // worker's deadline came first) has nothing to give.
+    if matches!(ending, Ending::Infeasible | Ending::Stopped) {
         return Ok(Outcome {
             chosen: None,
             bound: f64::INFINITY,
@@ -102,4 +101,91 @@ pub(super) fn solve(
         },
         timed_out: ending == Ending::TimeLimit,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Instant;
+
+    use super::*;
+    use crate::mesh::{Topology, generate};
+
+    /// The whole program of an `n` x `n` grid, staggered, on CBC for at most `limit`.
+    fn whole(
+        n: usize,
+        limit: Duration,
+        control: &mut Control<'_>,
+    ) -> Result<Outcome, PatternError> {
+        let mesh = generate::grid(n, n);
+        let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
+        let free = vec![true; graph.tiles().len()];
+        let fixed = vec![false; graph.tiles().len()];
+        let restriction = Restriction {
+            free: &free,
+            fixed: &fixed,
+            patch: None,
+        };
+        let bond = Bond::Staggered { weight: 0.5 };
+        solve(
+            &graph,
+            bond,
+            Formulation::Strengthened,
+            &restriction,
+            limit,
+            0.0,
+            control,
+            || 0.0,
+        )
+    }
+
+    /// Seconds CBC takes to prove a 12 x 12 grid.
+    fn small() -> f64 {
+        let started = Instant::now();
+        let outcome = whole(12, Duration::from_secs(60), &mut Control::none()).unwrap();
+        assert!(outcome.chosen.is_some() && !outcome.timed_out);
+        started.elapsed().as_secs_f64()
+    }
+
+    #[test]
+    fn a_cancel_or_the_deadline_inside_cbc_stops_it_and_leaves_it_free() {
+        let before = small();
+        // 45 x 45 grid: CBC's root linear program alone takes seconds. Cancel 1 s in.
+        let started = Instant::now();
+        let mut asked: Option<Instant> = None;
+        let mut cancel_after_a_second = |_: f64| {
+            if started.elapsed() < Duration::from_secs(1) {
+                return true;
+            }
+            asked.get_or_insert_with(Instant::now);
+            false
+        };
+        let mut control = Control::with_progress(&mut cancel_after_a_second);
+        let outcome = whole(45, Duration::from_secs(60), &mut control);
+        let returned = Instant::now();
+        assert!(matches!(outcome, Err(PatternError::Cancelled)));
+        let after_cancel = returned - asked.unwrap();
+        assert!(
+            after_cancel < Duration::from_millis(200),
+            "returned {after_cancel:?} after the cancel"
+        );
+        let after = small();
+        assert!(
+            after < 2.0 * before + 0.25,
+            "{after:.3} s, {before:.3} s before"
+        );
+
+        // The deadline, inside the root linear program, stops CBC the same way.
+        let started = Instant::now();
+        let outcome = whole(45, Duration::from_secs(1), &mut Control::none()).unwrap();
+        let took = started.elapsed().as_secs_f64();
+        assert!(
+            outcome.timed_out && outcome.chosen.is_none() && took < 1.5,
+            "{took:.3} s"
+        );
+        let after = small();
+        assert!(
+            after < 2.0 * before + 0.25,
+            "{after:.3} s, {before:.3} s before"
+        );
+    }
 }

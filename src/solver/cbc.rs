@@ -1,15 +1,30 @@
-//! CBC's branch and bound on a [`Model`], through `good_lp` and its `coin_cbc` backend: one
-//! `good_lp` variable per column, one `<=` constraint per row, written straight from the
-//! model's sparse entries. `coin_cbc` serialises CBC's calls behind a process-wide lock (CBC
-//! is not thread-safe).
+//! CBC's branch and bound on a [`Model`], written through `good_lp` (one `good_lp` variable
+//! per column, one `<=` constraint per row, straight from the model's sparse entries) and
+//! solved through its `coin_cbc` backend's raw model, to which our event handlers are attached
+//! first (`tp_cbc_watch`, `src/solver/watch.cpp`) so that a [`Stop`] ends the solve within
+//! milliseconds, wherever CBC is: in its branch and bound, or in Clp's simplex under it (the
+//! root linear program, which CBC's own time limit does not reach). `coin_cbc` serialises
+//! CBC's calls behind a process-wide lock (CBC is not thread-safe); a stopped solve releases
+//! it at once.
 
+use std::ffi::{c_int, c_void};
+
+use coin_cbc::raw::{self, SecondaryStatus, Status};
 use good_lp::solvers::coin_cbc::coin_cbc;
-use good_lp::{
-    Expression, ProblemVariables, ResolutionError, Solution, SolutionStatus, SolverModel, Variable,
-    constraint, variable,
-};
+use good_lp::{Expression, ProblemVariables, SolverModel, Variable, constraint, variable};
 
-use super::Model;
+use super::{Model, Stop};
+
+unsafe extern "C" {
+    /// Makes the `Cbc_Model` (CBC's C interface) stop once `*flag` is non-zero; 0 on success.
+    fn tp_cbc_watch(model: *mut c_void, flag: *const c_int) -> c_int;
+}
+
+// `coin_cbc::raw::Model` (0.1.9, pinned in Cargo.toml) holds one field, the `Cbc_Model`
+// pointer of CBC's C interface, and exposes it no other way: a struct of one field with the
+// size of a pointer has that field at offset 0. These fail to compile if its layout changes.
+const _: () = assert!(size_of::<raw::Model>() == size_of::<*mut c_void>());
+const _: () = assert!(align_of::<raw::Model>() == align_of::<*mut c_void>());
 
 /// How CBC's search ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -23,11 +38,13 @@ pub(crate) enum Ending {
     /// CBC declared the model infeasible (with a time limit too short for a first
     /// solution it can say so of a feasible one).
     Infeasible,
+    /// A [`Stop`] ended it; what it had is dropped.
+    Stopped,
 }
 
 /// What CBC returned.
 pub(crate) struct Solved {
-    /// Value of every column in the best solution found (`None` when infeasible).
+    /// Value of every column in the best solution found (`None` when infeasible or stopped).
     pub values: Option<Vec<f64>>,
     /// CBC's bound on the optimum (the optimum itself when finished).
     pub bound: f64,
@@ -35,13 +52,14 @@ pub(crate) struct Solved {
     pub ending: Ending,
 }
 
-/// Maximises `model` with CBC, stopping after `seconds` of wall-clock time, or once the
-/// relative gap between its bound and its best solution is at most `gap` (0: prove).
+/// Maximises `model` with CBC, stopping after `seconds` of wall-clock time, once the
+/// relative gap between its bound and its best solution is at most `gap` (0: prove), or
+/// within milliseconds of `stop` being requested.
 ///
 /// # Errors
 /// A message when the model is malformed or CBC gives up (abandoned, stopped for another
 /// reason, unbounded).
-pub(crate) fn solve(model: &Model, seconds: f64, gap: f64) -> Result<Solved, String> {
+pub(crate) fn solve(model: &Model, seconds: f64, gap: f64, stop: &Stop) -> Result<Solved, String> {
     if !model.is_well_formed() {
         return Err("malformed model".into());
     }
@@ -80,27 +98,63 @@ pub(crate) fn solve(model: &Model, seconds: f64, gap: f64) -> Result<Solved, Str
     for (row, &upper) in rows.into_iter().zip(&model.row_upper) {
         problem.add_constraint(constraint::leq(row, upper));
     }
-    match problem.solve() {
-        Ok(solution) => {
-            let ending = match solution.status() {
-                SolutionStatus::TimeLimit => Ending::TimeLimit,
-                SolutionStatus::GapLimit => Ending::GapLimit,
-                SolutionStatus::Optimal => Ending::Finished,
-            };
-            Ok(Solved {
-                values: Some(columns.iter().map(|&v| solution.value(v)).collect()),
-                bound: solution.model().best_possible_value(),
-                ending,
-            })
-        }
-        Err(ResolutionError::Infeasible) => Ok(Solved {
+    // good_lp's `solve` would build this raw model and solve it at once; it is built here
+    // instead (the same model: good_lp adds column j for variable j, in order) so that the
+    // handlers go in before CBC starts.
+    let mut cbc = problem.as_inner().to_raw();
+    // SAFETY: `cbc` is a `raw::Model` whose only field is its `*mut Cbc_Model` (asserted
+    // above by size and alignment), so its first pointer-sized bytes are that pointer, valid
+    // until `cbc` is dropped. `tp_cbc_watch` attaches handlers (copies) that read the flag of
+    // `stop`, which this function keeps alive (borrowed) until after `solve` returns; the
+    // model and its handlers are deleted together when `cbc` is dropped, and CBC calls them
+    // only during `solve`.
+    let watched = unsafe {
+        let pointer = std::ptr::from_ref(&cbc).cast::<*mut c_void>().read();
+        tp_cbc_watch(pointer, stop.flag())
+    };
+    if watched != 0 {
+        return Err("cannot attach the stop handlers to CBC".into());
+    }
+    cbc.solve();
+    if stop.requested() {
+        return Ok(Solved {
             values: None,
             bound: f64::INFINITY,
-            ending: Ending::Infeasible,
-        }),
-        Err(ResolutionError::Unbounded) => Err("the model is unbounded".into()),
-        Err(other) => Err(format!("CBC gave up: {other}")),
+            ending: Ending::Stopped,
+        });
     }
+    let values = || Some(cbc.col_solution().to_vec());
+    let bound = cbc.best_possible_value();
+    let ending = match cbc.status() {
+        Status::Stopped if cbc.secondary_status() == SecondaryStatus::StoppedOnTime => {
+            Ending::TimeLimit
+        }
+        Status::Stopped => return Err("CBC stopped".into()),
+        Status::Abandoned => return Err("CBC gave up: Abandoned".into()),
+        Status::UserEvent => return Err("CBC gave up: UserEvent".into()),
+        Status::Finished | Status::Unlaunched => {
+            if cbc.is_continuous_unbounded() {
+                return Err("the model is unbounded".into());
+            }
+            if cbc.is_proven_infeasible() {
+                return Ok(Solved {
+                    values: None,
+                    bound: f64::INFINITY,
+                    ending: Ending::Infeasible,
+                });
+            }
+            match cbc.secondary_status() {
+                SecondaryStatus::StoppedOnTime => Ending::TimeLimit,
+                SecondaryStatus::StoppedOnGap => Ending::GapLimit,
+                _ => Ending::Finished,
+            }
+        }
+    };
+    Ok(Solved {
+        values: values(),
+        bound,
+        ending,
+    })
 }
 
 #[cfg(test)]
@@ -116,7 +170,7 @@ mod tests {
             vec![1.0, 1.0],
             vec![true, true],
         );
-        let solved = solve(&model, 10.0, 0.0).unwrap();
+        let solved = solve(&model, 10.0, 0.0, &Stop::new()).unwrap();
         assert_eq!(solved.ending, Ending::Finished);
         let values = solved.values.unwrap();
         assert!(
@@ -128,6 +182,6 @@ mod tests {
             rows: vec![3, 0],
             ..model
         };
-        assert!(solve(&broken, 10.0, 0.0).is_err());
+        assert!(solve(&broken, 10.0, 0.0, &Stop::new()).is_err());
     }
 }

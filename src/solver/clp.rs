@@ -2,10 +2,15 @@
 //! which comes with CBC. CBC's C interface solves linear programs only by the simplex method,
 //! which does not check the clock and on the star-row relaxations is 4-10x slower, and it
 //! returns no row duals; Clp's barrier stops at a time limit and gives them.
+//!
+//! The time limit is Clp's barrier iterations asking our event handler (`tp_clp_watch`,
+//! `src/solver/watch.cpp`), which counts wall-clock time and also ends the solve within an
+//! iteration of a [`Stop`]; Clp's own limit counts the whole process's processor time, which
+//! a busy host (Rhino, several threads) spends many times faster than the clock.
 
-use std::ffi::{c_double, c_int};
+use std::ffi::{c_double, c_int, c_void};
 
-use super::Model;
+use super::{Model, Stop};
 
 /// Clp's opaque model.
 #[repr(C)]
@@ -33,10 +38,15 @@ unsafe extern "C" {
     );
     fn Clp_setOptimizationDirection(model: *mut ClpSimplex, value: c_double);
     fn Clp_setLogLevel(model: *mut ClpSimplex, value: c_int);
-    fn Clp_setMaximumSeconds(model: *mut ClpSimplex, value: c_double);
     fn Clp_initialBarrierNoCrossSolve(model: *mut ClpSimplex) -> c_int;
     fn Clp_status(model: *mut ClpSimplex) -> c_int;
     fn Clp_dualRowSolution(model: *mut ClpSimplex) -> *mut c_double;
+}
+
+unsafe extern "C" {
+    /// Makes the `Clp_Simplex` (Clp's C interface) stop once `*flag` is non-zero or `seconds`
+    /// of wall-clock time have passed (negative: no limit); 0 on success.
+    fn tp_clp_watch(model: *mut c_void, flag: *const c_int, seconds: f64) -> c_int;
 }
 
 /// What the barrier left: its row duals, and whether it converged.
@@ -49,8 +59,9 @@ pub(crate) struct BarrierDuals {
 
 /// Runs Clp's barrier (without crossover: the duals are what is wanted) on the linear
 /// relaxation of `program` (its integrality is ignored) for at most about `seconds` of
-/// processor time. `None` when the program is malformed (see [`Model::is_well_formed`]).
-pub(crate) fn barrier(program: &Model, seconds: f64) -> Option<BarrierDuals> {
+/// wall-clock time, or until `stop` is requested. `None` when the program is malformed (see
+/// [`Model::is_well_formed`]) or the handler cannot be attached.
+pub(crate) fn barrier(program: &Model, seconds: f64, stop: &Stop) -> Option<BarrierDuals> {
     if !program.is_well_formed() {
         return None;
     }
@@ -72,6 +83,8 @@ pub(crate) fn barrier(program: &Model, seconds: f64) -> Option<BarrierDuals> {
     // `numcols` and `numrows` entries); Clp copies them. A null lower bound means 0 for the
     // columns and minus infinity for the rows. The dual row solution Clp returns has
     // `numrows` entries and lives until the model is deleted; it is copied before that.
+    // `tp_clp_watch` attaches a handler (a copy) that reads the flag of `stop`, borrowed for
+    // the whole call; it is deleted with the model.
     unsafe {
         let model = Clp_newModel();
         if model.is_null() {
@@ -92,7 +105,10 @@ pub(crate) fn barrier(program: &Model, seconds: f64) -> Option<BarrierDuals> {
             program.row_upper.as_ptr(),
         );
         Clp_setOptimizationDirection(model, -1.0);
-        Clp_setMaximumSeconds(model, seconds.max(1e-3));
+        if tp_clp_watch(model.cast(), stop.flag(), seconds.max(1e-3)) != 0 {
+            Clp_deleteModel(model);
+            return None;
+        }
         Clp_initialBarrierNoCrossSolve(model);
         let converged = Clp_status(model) == 0;
         let duals = Clp_dualRowSolution(model);
@@ -126,19 +142,19 @@ mod tests {
         };
         // max x, x <= 1, 0 <= x <= 2: the row is binding, its dual is 1.
         assert!(
-            barrier(&program(vec![0, 1], vec![0]), 1.0)
+            barrier(&program(vec![0, 1], vec![0]), 1.0, &Stop::new())
                 .is_some_and(|d| d.converged && (d.row_duals[0] - 1.0).abs() < 1e-6)
         );
         assert!(
-            barrier(&program(vec![0, 1], vec![1]), 1.0).is_none(),
+            barrier(&program(vec![0, 1], vec![1]), 1.0, &Stop::new()).is_none(),
             "row out of range"
         );
         assert!(
-            barrier(&program(vec![0, 2], vec![0]), 1.0).is_none(),
+            barrier(&program(vec![0, 2], vec![0]), 1.0, &Stop::new()).is_none(),
             "column past the entries"
         );
         assert!(
-            barrier(&program(vec![0], vec![0]), 1.0).is_none(),
+            barrier(&program(vec![0], vec![0]), 1.0, &Stop::new()).is_none(),
             "starts too short"
         );
         let empty = Model {
@@ -150,6 +166,9 @@ mod tests {
             integer: vec![],
             row_upper: vec![],
         };
-        assert!(barrier(&empty, 1.0).is_some_and(|d| d.converged && d.row_duals.is_empty()));
+        assert!(
+            barrier(&empty, 1.0, &Stop::new())
+                .is_some_and(|d| d.converged && d.row_duals.is_empty())
+        );
     }
 }

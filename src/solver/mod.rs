@@ -6,19 +6,58 @@
 //! * [`Model`](crate::solver::Model): a solver-neutral sparse program, `max c.x` subject to
 //!   `A x <= b`, `0 <= x <= u`, some columns integer, with `A` stored column by column;
 //! * [`cbc`](crate::solver::cbc): CBC's branch and bound on a [`Model`](crate::solver::Model),
-//!   through `good_lp` and its `coin_cbc` backend (safe APIs; no `unsafe` here);
+//!   written through `good_lp` and solved through its `coin_cbc` backend's raw model, with
+//!   our event handlers attached;
 //! * [`clp`](crate::solver::clp): Clp's interior-point method through Clp's C interface, for
-//!   a model's linear relaxation and its row prices. Its declarations are ours, so that
-//!   module alone allows `unsafe` (every block states why it is sound); the rest of the
-//!   crate denies it.
+//!   a model's linear relaxation and its row prices;
+//! * [`Stop`](crate::solver::Stop): how a caller stops either of them mid-solve (cancel,
+//!   deadline), through CBC's and Clp's event handlers, written in C++ in
+//!   `src/solver/watch.cpp` (compiled by build.rs against the linked COIN-OR's headers).
+//!
+//! `cbc` and `clp` call C, so they alone allow `unsafe` (every block states why it is
+//! sound); the rest of the crate denies it.
 //!
 //! Stages build their programs in their own terms (the pattern stage: `pattern::program`)
 //! and hand them over as a [`Model`](crate::solver::Model); nothing here knows of tiles or
 //! bonds.
 
+#[allow(unsafe_code)]
 pub(crate) mod cbc;
 #[allow(unsafe_code)]
 pub(crate) mod clp;
+
+use std::ffi::c_int;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicI32, Ordering};
+
+/// A request to stop a running solver, shared by the thread that watches the caller
+/// ([`Control`](crate::control::Control), the deadline) and the thread the solver runs on:
+/// CBC and Clp ask it at every node and every iteration (through their event handlers) and
+/// return within milliseconds of [`Stop::request`], releasing CBC's process-wide lock.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Stop(Arc<AtomicI32>);
+
+impl Stop {
+    /// A stop not yet requested.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Asks the solver to stop as soon as it can.
+    pub fn request(&self) {
+        self.0.store(1, Ordering::Relaxed);
+    }
+
+    /// Whether a stop was requested.
+    pub fn requested(&self) -> bool {
+        self.0.load(Ordering::Relaxed) != 0
+    }
+
+    /// The flag the event handlers read (atomically); it lives as long as this `Stop`.
+    fn flag(&self) -> *const c_int {
+        self.0.as_ptr().cast_const()
+    }
+}
 
 /// `max objective.x` subject to `A x <= row_upper` and `0 <= x <= column_upper`, the columns
 /// marked `integer` integral, with `A` stored column by column: column `j` has the entries

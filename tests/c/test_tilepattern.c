@@ -606,6 +606,64 @@ static void test_cancel_and_time_limit(void) {
   tp_mesh_free(mesh);
 }
 
+/* How much slower than native this run is: 1, or TP_TEST_TIME_SCALE (the Makefile sets it for
+   the run under valgrind, which is tens of times slower). */
+static double time_scale(void) {
+  const char *scale = getenv("TP_TEST_TIME_SCALE");
+  double value = scale != NULL ? atof(scale) : 1.0;
+  return value >= 1.0 ? value : 1.0;
+}
+
+/* The paper's whole program on CBC for a 12 x 12 grid; its time in seconds (negative when it
+   does not end proven optimal). */
+static double timed_small_mip(const TpMesh *small) {
+  TpPatternOptions options = tp_pattern_options_default();
+  options.method = TP_METHOD_MIP;
+  options.time_limit_seconds = 60.0;
+  TpPattern *pattern = NULL;
+  double start = now_seconds();
+  TpStatus s = tp_pattern_solve(small, &options, NULL, NULL, &pattern);
+  double took = now_seconds() - start;
+  TpPatternSummary summary;
+  int optimal = s == TP_OK && tp_pattern_summary(pattern, &summary) == TP_OK && summary.status == TP_SOLVE_OPTIMAL;
+  tp_pattern_free(pattern);
+  return optimal ? took : -1.0;
+}
+
+/* Cancel from the progress callback in the middle of the whole program on CBC (the paper's
+   route; 45 x 45 grid, 2025 faces, whose root linear program alone takes CBC seconds) returns
+   within 0.2 s and leaves CBC free: a CBC solve right after takes as long as the same solve
+   did before the cancel. */
+static void test_cancel_inside_cbc(void) {
+  double scale = time_scale();
+  TpMesh *small = grid_mesh(12, 12);
+  TpMesh *big = grid_mesh(45, 45);
+  double before = timed_small_mip(small);
+  CHECK(before > 0.0);
+
+  TpPatternOptions options = tp_pattern_options_default();
+  options.method = TP_METHOD_MIP;
+  options.time_limit_seconds = 60.0;
+  /* The callbacks of this solve come only while CBC runs (after the program is written):
+     cancel at the first one from 1 s on. */
+  struct cancel_state state = {now_seconds(), 1.0, 0.0, 0, 0};
+  TpPattern *pattern = NULL;
+  TpStatus s = tp_pattern_solve(big, &options, cancel_later, &state, &pattern);
+  double returned = now_seconds();
+  CHECK(s == TP_CANCELLED && pattern == NULL && last_error_contains("cancelled"));
+  printf("cancel inside CBC: returned %.3f s after the callback asked, %.2f s into the solve\n",
+         returned - state.cancelled_at, state.cancelled_at - state.start);
+  CHECK(state.cancelled_at > 0.0 && returned - state.cancelled_at < 0.2 * scale);
+
+  double after = timed_small_mip(small);
+  printf("cancel inside CBC: the next solve took %.3f s (%.3f s before the cancel)\n", after, before);
+  /* Generous for a loaded machine; a CBC still busy with the cancelled solve would hold the
+     next one up for seconds. */
+  CHECK(after > 0.0 && after < 2.0 * before + 0.25 * scale);
+  tp_mesh_free(small);
+  tp_mesh_free(big);
+}
+
 /* The tile options of the fit tests: 1.9 x 0.95 x 0.1 tiles, joint 0.1, on unit quads. */
 static TpTileOptions fit_tile(void) {
   TpTileOptions tile;
@@ -865,6 +923,7 @@ int main(void) {
   test_pattern_and_tiles();
   test_remesh();
   test_cancel_and_time_limit();
+  test_cancel_inside_cbc();
   test_fit();
   test_courses();
   test_gap();
