@@ -260,3 +260,82 @@ fn shared_shells_get_valid_patterns_with_an_honest_bound() {
         }
     }
 }
+
+#[test]
+fn the_command_line_lays_both_bonds_and_refuses_them_in_level_courses() {
+    let dir = common::scratch("bonds");
+    let quads = dir.join("grid.obj");
+    // An 8 x 8 grid of quads of (280 + 10) / 2 mm, half a 280 x 140 mm tile with its joint.
+    let mut text = String::new();
+    for j in 0..=8 {
+        for i in 0..=8 {
+            text += &format!("v {} {} 0\n", 145 * i, 145 * j);
+        }
+    }
+    for j in 0..8 {
+        for i in 0..8 {
+            let v = |i: usize, j: usize| j * 9 + i + 1;
+            let corners = [v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)];
+            text += &format!(
+                "f {} {} {} {}\n",
+                corners[0], corners[1], corners[2], corners[3]
+            );
+        }
+    }
+    std::fs::write(&quads, text).unwrap();
+    for (name, tiles) in [("basket-weave", 32), ("herringbone", 0)] {
+        let (json, svg) = (dir.join(format!("{name}.json")), dir.join("p.svg"));
+        let out = common::tilepattern(&[
+            "match",
+            common::s(&quads),
+            "--pattern",
+            name,
+            "--json",
+            common::s(&json),
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {stderr}");
+        // The tiles stage keeps the bond and draws it.
+        let out = common::tilepattern(&[
+            "tiles",
+            common::s(&quads),
+            "--pairs",
+            common::s(&json),
+            "--tile",
+            "280x140x15",
+            "--joint",
+            "10",
+            "--pattern",
+            name,
+            "--output",
+            common::s(&dir.join("tiles.obj")),
+            "--svg",
+            common::s(&svg),
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name} tiles: {stderr}");
+        let found = common::json(&json);
+        assert_eq!(found["status"], "optimal", "{name}");
+        assert!(found["bond_pairs"].is_u64(), "{name}");
+        if tiles > 0 {
+            // The 8 x 8 basket weave: 16 squares, every face paired, no pair penalised.
+            assert_eq!(found["pairs"].as_array().unwrap().len(), tiles);
+            assert_eq!(found["bond_pairs"], 0);
+        }
+        assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+        let level = common::tilepattern(&[
+            "match",
+            common::s(&quads),
+            "--pattern",
+            name,
+            "--courses",
+            "level",
+        ]);
+        let stderr = String::from_utf8_lossy(&level.stderr);
+        assert!(!level.status.success(), "{name}");
+        assert!(
+            stderr.contains(name) && stderr.contains("courses free"),
+            "{name}: {stderr}"
+        );
+    }
+}

@@ -137,6 +137,23 @@ impl Bond {
         }
     }
 
+    /// True for the bonds that lay tiles both ways (the herringbone and the basket weave):
+    /// they need tiles free to lie either way ([`Courses::Free`]).
+    pub fn lays_both_ways(self) -> bool {
+        matches!(self, Bond::Herringbone { .. } | Bond::BasketWeave { .. })
+    }
+
+    /// Its name on the command line and in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Bond::Stack => "stack",
+            Bond::Staggered { .. } => "staggered",
+            Bond::RunningBond { .. } => "running-bond",
+            Bond::Herringbone { .. } => "herringbone",
+            Bond::BasketWeave { .. } => "basket-weave",
+        }
+    }
+
     /// True when the bond's relation starts with the continuous joints at a penalty: then
     /// the compact joint form of eq. (2) (one column and one star row per regular vertex,
     /// see `program`) holds for them.
@@ -350,6 +367,11 @@ pub fn solve_with(
         })? = true;
     }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
+    if options.bond.lays_both_ways() && options.courses != Courses::Free {
+        return Err(PatternError::BondAcrossCourses {
+            bond: options.bond.name(),
+        });
+    }
     let middle = match options.courses {
         Courses::Free => None,
         Courses::Level { up } => Some(courses::middle_edges(mesh, &topology, up)?),
