@@ -182,8 +182,10 @@ pub enum Formulation {
     /// The paper's program plus valid inequalities that cut off fractional points but no
     /// integer solution, so the optimum is the same: for eq. (2), one "star" row per regular
     /// interior vertex, `x_a + x_b + x_c + x_d - y_ac - y_bd <= 1` (two opposite tiles fit
-    /// only together with their continuous joint). Proves optimality far sooner. Eq. (1) and
-    /// (3) are passed as printed.
+    /// only together with their continuous joint); and every other penalty pair's row takes
+    /// the tiles bridging its two tiles, `x_a + x_b + x_c - y <= 1` (e.g. the tile across the
+    /// shared end edge of two tiles laid end to end). Proves optimality far sooner. Eq. (1)
+    /// and (3) are passed as printed.
     #[default]
     Strengthened,
 }
