@@ -13,7 +13,7 @@ namespace TilePattern.Gh
     {
         public TilePatternComponent()
             : base("Tile Pattern", "TPattern",
-                "Matches adjacent quads into tiles: stack bond (maximum matching), staggered bond (fewest continuous joints) or running bond, solved to a proven optimum or until the time limit; tiles along level courses (default, they fit far better) or either way. Solves in the background; right-click to cancel.",
+                "Matches adjacent quads into tiles: stack bond (maximum matching), staggered bond (fewest continuous joints), running bond, herringbone or basket weave, solved to a proven optimum or until the time limit; tiles along level courses (default, they fit far better) or either way. Solves in the background; right-click to cancel.",
                 "2 Pattern")
         {
         }
@@ -27,8 +27,8 @@ namespace TilePattern.Gh
         protected override void RegisterInputParams(GH_InputParamManager pManager)
         {
             pManager.AddMeshParameter("Quad mesh", "Q", "Quad mesh (from Quad Remesh)", GH_ParamAccess.item);
-            pManager.AddIntegerParameter("Bond", "B", "0 = stack (maximum matching), 1 = staggered, 2 = running bond", GH_ParamAccess.item, 1);
-            pManager.AddNumberParameter("Weight", "W", "Staggered: penalty per continuous joint; running bond: reward per shifted pair", GH_ParamAccess.item, 0.5);
+            pManager.AddIntegerParameter("Bond", "B", "0 = stack (maximum matching), 1 = staggered, 2 = running bond, 3 = herringbone, 4 = basket weave (3 and 4 lay tiles both ways: always in free courses)", GH_ParamAccess.item, 1);
+            pManager.AddNumberParameter("Weight", "W", "Staggered: penalty per continuous joint; running bond: reward per shifted pair; herringbone: penalty per continuous joint or end-to-end pair; basket weave: penalty per shifted, end-to-end or one-course-apart pair", GH_ParamAccess.item, 0.5);
             pManager.AddNumberParameter("Time limit", "T", "Seconds; 0 returns the greedy start at once", GH_ParamAccess.item, 10.0);
             pManager.AddIntegerParameter("Forced pairs", "F", "Optional: face indices a0, b0, a1, b1, ... of adjacent quads that must form tiles", GH_ParamAccess.list);
             pManager.AddIntegerParameter("Excluded", "X", "Optional: faces that take part in no tile (openings, areas laid by hand)", GH_ParamAccess.list);
@@ -42,6 +42,8 @@ namespace TilePattern.Gh
             bond.AddNamedValue("Stack", (int)Bond.Stack);
             bond.AddNamedValue("Staggered", (int)Bond.Staggered);
             bond.AddNamedValue("Running bond", (int)Bond.RunningBond);
+            bond.AddNamedValue("Herringbone", (int)Bond.Herringbone);
+            bond.AddNamedValue("Basket weave", (int)Bond.BasketWeave);
             var courses = (Param_Integer)pManager[6];
             courses.AddNamedValue("Level", (int)Courses.Level);
             courses.AddNamedValue("Free", (int)Courses.Free);
@@ -80,15 +82,21 @@ namespace TilePattern.Gh
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Forced pairs needs an even number of face indices (a0, b0, a1, b1, ...).");
                 return;
             }
-            if (bond < 0 || bond > 2)
+            if (bond < 0 || bond > 4)
             {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Bond is 0 (stack), 1 (staggered) or 2 (running bond), not " + bond + ".");
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Bond is 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), not " + bond + ".");
                 return;
             }
             if (courses != (int)Courses.Free && courses != (int)Courses.Level)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
                 return;
+            }
+            if ((bond == (int)Bond.Herringbone || bond == (int)Bond.BasketWeave) && courses == (int)Courses.Level)
+            {
+                // Both lay tiles both ways: level courses (the input's default) cannot hold them.
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Herringbone and basket weave lay tiles both ways: laid in free courses.");
+                courses = (int)Courses.Free;
             }
             var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit, Gap = gap, Courses = (Courses)courses };
             for (int k = 0; k < forced.Count; k += 2)

@@ -56,6 +56,18 @@
 #define TP_BOND_RUNNING 2
 
 /**
+ * `bond`: herringbone (the 90-degree zig-zag); `weight` is the penalty per continuous joint
+ * and per pair laid end to end. Needs `courses` free.
+ */
+#define TP_BOND_HERRINGBONE 3
+
+/**
+ * `bond`: basket weave (2 x 2 squares of parallel tiles, alternating); `weight` is the
+ * penalty per shifted, end-to-end and one-course-apart pair. Needs `courses` free.
+ */
+#define TP_BOND_BASKET_WEAVE 4
+
+/**
  * `method`: the fastest route to a proven optimum.
  */
 #define TP_METHOD_AUTO 0

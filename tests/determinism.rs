@@ -83,7 +83,7 @@ fn outputs(tiling: &Tiling) -> [String; 4] {
 }
 
 /// Meshes, bonds and tiles the permutation tests run on: all solve to a proven optimum fast.
-fn cases() -> [(PolyMesh, Bond, TileSpec); 4] {
+fn cases() -> [(PolyMesh, Bond, TileSpec); 6] {
     let shell_tile = TileSpec {
         length: 0.58,
         width: 0.29,
@@ -102,6 +102,16 @@ fn cases() -> [(PolyMesh, Bond, TileSpec); 4] {
             generate::corner_supported_shell(2.0, 0.3),
             Bond::Staggered { weight: 0.5 },
             shell_tile,
+        ),
+        (
+            generate::grid(6, 6),
+            Bond::Herringbone { weight: 0.4 },
+            SPEC,
+        ),
+        (
+            generate::grid(6, 5),
+            Bond::BasketWeave { weight: 0.4 },
+            SPEC,
         ),
     ]
 }
@@ -167,7 +177,14 @@ fn the_whole_pipeline_is_deterministic_from_a_triangle_surface() {
 
 #[test]
 fn permuted_vertices_give_the_same_pairs_and_tiles() {
-    for (mesh, bond, spec) in cases() {
+    // The herringbone's two mirror images and the basket weave's two colourings tie on a
+    // grid, and which one CBC returns follows the order of its columns, which the edges'
+    // vertex numbers give: their optima are compared in
+    // `permuted_faces_and_vertices_give_the_same_optimum` instead.
+    let cases = cases().into_iter().filter(|(_, bond, _)| {
+        !matches!(bond, Bond::Herringbone { .. } | Bond::BasketWeave { .. })
+    });
+    for (mesh, bond, spec) in cases {
         let same_faces: Vec<usize> = (0..mesh.face_count()).collect();
         let shuffled = permuted(&mesh, &same_faces, &shuffle(mesh.positions().len()));
         let a = pattern::solve(&mesh, &options(bond)).unwrap();
@@ -206,6 +223,7 @@ fn permuted_faces_and_vertices_give_the_same_optimum() {
                 Bond::Stack => 0,
                 Bond::Staggered { .. } => p.continuous_joints,
                 Bond::RunningBond { .. } => p.shifted_pairs,
+                Bond::Herringbone { .. } | Bond::BasketWeave { .. } => p.bond_pairs,
             };
             (p.objective, p.bound, p.pairs.len(), p.unpaired.len(), term)
         };

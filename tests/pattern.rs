@@ -21,12 +21,15 @@ fn graph_of(mesh: &PolyMesh) -> DualGraph {
     DualGraph::new(mesh, &Topology::new(mesh).unwrap(), &[])
 }
 
-const BONDS: [Bond; 5] = [
+const BONDS: [Bond; 8] = [
     Bond::Stack,
     Bond::Staggered { weight: 0.5 },
     Bond::Staggered { weight: 2.0 },
     Bond::RunningBond { weight: 0.5 },
     Bond::RunningBond { weight: 0.3 },
+    Bond::Herringbone { weight: 0.5 },
+    Bond::Herringbone { weight: 2.0 },
+    Bond::BasketWeave { weight: 0.5 },
 ];
 
 #[test]

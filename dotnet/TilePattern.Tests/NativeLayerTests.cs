@@ -94,6 +94,8 @@ namespace TilePattern.Tests
             }
             // The public enums carry the same numbers.
             Assert.AreEqual(NativeMethods.TP_BOND_RUNNING, (int)Bond.RunningBond);
+            Assert.AreEqual(NativeMethods.TP_BOND_HERRINGBONE, (int)Bond.Herringbone);
+            Assert.AreEqual(NativeMethods.TP_BOND_BASKET_WEAVE, (int)Bond.BasketWeave);
             Assert.AreEqual(NativeMethods.TP_METHOD_MIP, (int)SolveMethod.Mip);
             Assert.AreEqual(NativeMethods.TP_FORMULATION_PAPER, (int)Formulation.Paper);
             Assert.AreEqual(NativeMethods.TP_SOLVE_FEASIBLE, (int)SolveStatus.Feasible);

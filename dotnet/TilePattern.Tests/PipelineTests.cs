@@ -174,6 +174,30 @@ namespace TilePattern.Tests
         }
 
         [Test]
+        public void HerringboneAndBasketWeaveOnAnEightByEightGrid()
+        {
+            // Issue 20: the basket weave of an 8 x 8 grid is 16 squares of two parallel tiles,
+            // alternating: every face paired, no pair penalised, proven.
+            PolyMesh grid = TestMeshes.Grid(8, 8);
+            using (Pattern pattern = TilePatternEngine.Match(grid, new PatternOptions { Bond = Bond.BasketWeave, Courses = Courses.Free }))
+            {
+                Assert.AreEqual(32, pattern.Pairs.Length);
+                Assert.AreEqual(SolveStatus.Optimal, pattern.Status);
+                Assert.AreEqual(32.0, pattern.Objective);
+                // Each tile within one 2 x 2 square: its first face at even x (along x) or even y.
+                Assert.IsTrue(pattern.Pairs.All(p => p.B == p.A + 1 ? p.A % 2 == 0 : (p.A / 8) % 2 == 0));
+            }
+            using (Pattern pattern = TilePatternEngine.Match(grid, new PatternOptions { Bond = Bond.Herringbone, Courses = Courses.Free, TimeLimitSeconds = 5 }))
+            {
+                Assert.Greater(pattern.Pairs.Length, 0);
+                Assert.GreaterOrEqual(pattern.Bound, pattern.Objective);
+            }
+            var level = Assert.Throws<InvalidArgumentException>(() =>
+                TilePatternEngine.Match(grid, new PatternOptions { Bond = Bond.Herringbone, Courses = Courses.Level }));
+            StringAssert.Contains("courses free", level.Message);
+        }
+
+        [Test]
         public void PaperFigure5OnATenByTenGrid()
         {
             // The C tests' case: 49 tiles, no continuous joint, proven optimal.

@@ -139,6 +139,8 @@ namespace TilePattern
         internal const int TP_BOND_STACK = 0;
         internal const int TP_BOND_STAGGERED = 1;
         internal const int TP_BOND_RUNNING = 2;
+        internal const int TP_BOND_HERRINGBONE = 3;
+        internal const int TP_BOND_BASKET_WEAVE = 4;
         internal const int TP_METHOD_AUTO = 0;
         internal const int TP_METHOD_MIP = 1;
         internal const int TP_FORMULATION_STRENGTHENED = 0;

@@ -16,6 +16,10 @@ namespace TilePattern
         Staggered = 1,
         /// <summary>Running bond, eq. (3): <see cref="PatternOptions.Weight"/> is the reward per shifted pair.</summary>
         RunningBond = 2,
+        /// <summary>Herringbone, the 90-degree zig-zag: <see cref="PatternOptions.Weight"/> is the penalty per continuous joint and per pair laid end to end. Needs <see cref="Courses.Free"/>.</summary>
+        Herringbone = 3,
+        /// <summary>Basket weave, 2 x 2 squares of parallel tiles, alternating: <see cref="PatternOptions.Weight"/> is the penalty per shifted, end-to-end and one-course-apart pair. Needs <see cref="Courses.Free"/>.</summary>
+        BasketWeave = 4,
     }
 
     /// <summary>TP_METHOD_*.</summary>

@@ -185,3 +185,19 @@ def test_patch_relaxations_prove_the_paper_figure_5():
     # The paper's route proves it by branch and bound on the whole program.
     paper = tp.match(vertices, faces, bond="staggered", weight=2.0, time_limit=30, method="mip")
     assert (paper.objective, paper.status, paper.bound_source) == (49.0, "optimal", "whole_program")
+
+
+def test_herringbone_and_basket_weave():
+    # Issue 20: the basket weave of an 8 x 8 grid is 16 squares of two parallel tiles,
+    # alternating: every face paired, no pair penalised, proven.
+    v, f = grid(8, 8)
+    basket = tp.match(v, f, bond="basket-weave", time_limit=30)
+    assert basket.optimal and len(basket.pairs) == 32 and basket.objective == 32.0
+    a, b = basket.pairs[:, 0], basket.pairs[:, 1]
+    along_x = b == a + 1
+    assert np.all(np.where(along_x, a % 2 == 0, (a // 8) % 2 == 0))
+    assert tp.match(v, f, bond="basket_weave", time_limit=30).pairs.tolist() == basket.pairs.tolist()
+    herring = tp.match(v, f, bond="herringbone", time_limit=5)
+    assert len(herring.pairs) > 0 and herring.bound >= herring.objective
+    with pytest.raises(tp.InvalidArgumentError, match="courses free"):
+        tp.match(v, f, bond="herringbone", courses="level")

@@ -51,7 +51,7 @@ def test_bad_meshes(vertices, faces, fragment):
         (dict(gap=-0.01), 2, "relative gap"),
         (dict(gap=1.5), 2, "relative gap"),
         (dict(gap=NAN), 2, "relative gap"),
-        (dict(bond="herringbone"), 2, "herringbone"),
+        (dict(bond="flemish"), 2, "flemish"),
         (dict(bond=7), 2, "bond 7"),
         (dict(method="magic"), 2, "magic"),
         (dict(formulation=5), 2, ""),

@@ -38,7 +38,15 @@ __all__ = [
 ]
 
 #: ``bond`` names of :func:`match` and their ``TP_BOND_*`` codes.
-BONDS = {"stack": nat.TP_BOND_STACK, "staggered": nat.TP_BOND_STAGGERED, "running": nat.TP_BOND_RUNNING, "running-bond": nat.TP_BOND_RUNNING}
+BONDS = {
+    "stack": nat.TP_BOND_STACK,
+    "staggered": nat.TP_BOND_STAGGERED,
+    "running": nat.TP_BOND_RUNNING,
+    "running-bond": nat.TP_BOND_RUNNING,
+    "herringbone": nat.TP_BOND_HERRINGBONE,
+    "basket-weave": nat.TP_BOND_BASKET_WEAVE,
+    "basket_weave": nat.TP_BOND_BASKET_WEAVE,
+}
 #: ``method`` names of :func:`match`.
 METHODS = {"auto": nat.TP_METHOD_AUTO, "mip": nat.TP_METHOD_MIP}
 #: ``formulation`` names of :func:`match`.
@@ -493,12 +501,16 @@ def match(
         Vertices of the quad mesh.
     faces : list of list of int or array_like (F, k)
         Its faces; faces that are not quads take part in no tile.
-    bond : {"staggered", "stack", "running"}, optional
+    bond : {"staggered", "stack", "running", "herringbone", "basket-weave"}, optional
         ``"staggered"`` (eq. 2, default): as many tiles as possible with few continuous
-        joints; ``"stack"`` (eq. 1): maximum matching; ``"running"`` (eq. 3): running bond.
+        joints; ``"stack"`` (eq. 1): maximum matching; ``"running"`` (eq. 3): running bond;
+        ``"herringbone"``: the 90-degree zig-zag; ``"basket-weave"`` (or
+        ``"basket_weave"``): 2 x 2 squares of parallel tiles, alternating. The last two lay
+        tiles both ways and need ``courses="free"``.
     weight : float, optional
-        Penalty per continuous joint (staggered) or reward per shifted pair (running);
-        default 0.5.
+        Penalty per continuous joint (staggered), reward per shifted pair (running),
+        penalty per continuous joint or end-to-end pair (herringbone), penalty per
+        shifted, end-to-end or one-course-apart pair (basket weave); default 0.5.
     time_limit : float, optional
         Wall-clock seconds (default 60); 0 returns the greedy start at once. A solve
         stopped by the limit still returns a valid pattern with ``status="time_limit"``.

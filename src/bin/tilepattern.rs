@@ -194,11 +194,14 @@ impl FieldArgs {
 
 #[derive(clap::Args)]
 struct PatternArgs {
-    /// Laying pattern: stack = maximum matching (eq. 1), staggered (eq. 2), running-bond (eq. 3).
+    /// Laying pattern: stack = maximum matching (eq. 1), staggered (eq. 2), running-bond (eq. 3),
+    /// herringbone (90-degree zig-zag), basket-weave (2 x 2 squares of parallel tiles,
+    /// alternating); the last two lay tiles either way (courses free by default, level refused).
     #[arg(long, value_enum, default_value_t = BondArg::Staggered)]
     pattern: BondArg,
-    /// Weight of the bond term: penalty per continuous joint (staggered) or reward per shifted
-    /// pair (running-bond).
+    /// Weight of the bond term: penalty per continuous joint (staggered), reward per shifted
+    /// pair (running-bond), penalty per continuous joint or end-to-end pair (herringbone),
+    /// penalty per shifted, end-to-end or one-course-apart pair (basket-weave).
     #[arg(long, default_value_t = pattern::DEFAULT_WEIGHT, allow_negative_numbers = true)]
     weight: f64,
     /// Solver time limit in seconds (wall clock). 0 returns the greedy start without solving.
@@ -239,6 +242,8 @@ enum BondArg {
     Stack,
     Staggered,
     RunningBond,
+    Herringbone,
+    BasketWeave,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -669,18 +674,23 @@ impl BondArg {
             BondArg::Stack => Bond::Stack,
             BondArg::Staggered => Bond::Staggered { weight },
             BondArg::RunningBond => Bond::RunningBond { weight },
+            BondArg::Herringbone => Bond::Herringbone { weight },
+            BondArg::BasketWeave => Bond::BasketWeave { weight },
         }
     }
 }
 
 impl PatternArgs {
     /// The options, with tiles in level courses (with respect to `up`) unless `--courses`
-    /// says otherwise and `level_by_default` is false.
+    /// says otherwise, `level_by_default` is false or the bond lays tiles both ways.
     fn options(&self, level_by_default: bool, up: [f64; 3]) -> Result<PatternOptions> {
+        let bond = self.pattern.bond(self.weight);
+        // Bonds laid both ways need tiles free to lie either way.
         let level = self
             .courses
-            .map_or(level_by_default, |c| c == CoursesArg::Level);
-        let bond = self.pattern.bond(self.weight);
+            .map_or(level_by_default && !bond.lays_both_ways(), |c| {
+                c == CoursesArg::Level
+            });
         let formulation = match self.formulation {
             FormulationArg::Paper => Formulation::Paper,
             FormulationArg::Strengthened => Formulation::Strengthened,

@@ -18,6 +18,12 @@ pub const TP_BOND_STACK: i32 = 0;
 pub const TP_BOND_STAGGERED: i32 = 1;
 /// `bond`: running bond, eq. (3); `weight` is the reward per shifted pair.
 pub const TP_BOND_RUNNING: i32 = 2;
+/// `bond`: herringbone (the 90-degree zig-zag); `weight` is the penalty per continuous joint
+/// and per pair laid end to end. Needs `courses` free.
+pub const TP_BOND_HERRINGBONE: i32 = 3;
+/// `bond`: basket weave (2 x 2 squares of parallel tiles, alternating); `weight` is the
+/// penalty per shifted, end-to-end and one-course-apart pair. Needs `courses` free.
+pub const TP_BOND_BASKET_WEAVE: i32 = 4;
 /// `method`: the fastest route to a proven optimum.
 pub const TP_METHOD_AUTO: i32 = 0;
 /// `method`: the paper's whole program on CBC.
@@ -211,9 +217,11 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
         TP_BOND_STACK => Bond::Stack,
         TP_BOND_STAGGERED => Bond::Staggered { weight: raw.weight },
         TP_BOND_RUNNING => Bond::RunningBond { weight: raw.weight },
+        TP_BOND_HERRINGBONE => Bond::Herringbone { weight: raw.weight },
+        TP_BOND_BASKET_WEAVE => Bond::BasketWeave { weight: raw.weight },
         other => {
             return Err(invalid(format!(
-                "bond {other} is not one of TP_BOND_STACK, TP_BOND_STAGGERED, TP_BOND_RUNNING"
+                "bond {other} is not one of TP_BOND_STACK, TP_BOND_STAGGERED, TP_BOND_RUNNING, TP_BOND_HERRINGBONE, TP_BOND_BASKET_WEAVE"
             )));
         }
     };

@@ -86,7 +86,8 @@ impl From<PatternError> for Failure {
             | PatternError::ForcedExcluded { .. }
             | PatternError::ForcedNonQuad { .. }
             | PatternError::InvalidUp { .. }
-            | PatternError::ForcedAcrossCourses { .. } => TpStatus::TP_INVALID_ARGUMENT,
+            | PatternError::ForcedAcrossCourses { .. }
+            | PatternError::BondAcrossCourses { .. } => TpStatus::TP_INVALID_ARGUMENT,
         };
         Self::new(status, e.to_string())
     }

@@ -299,7 +299,8 @@ pub(super) fn bound(
 ) -> Result<Proven, PatternError> {
     let tiles = graph.tiles();
     let (relation, per_pair) = graph.bond_pairs(bond);
-    let running = matches!(bond, Bond::RunningBond { .. });
+    // Only a reward lifts a patch above half a tile per face.
+    let running = per_pair > 0.0;
     let mut members = vec![Vec::new(); partition.count];
     for (f, &p) in partition
         .patch_of
@@ -548,6 +549,8 @@ pub(super) mod tests {
                 Bond::Staggered { weight: 0.5 },
                 Bond::Staggered { weight: 2.0 },
                 Bond::RunningBond { weight: 0.5 },
+                Bond::Herringbone { weight: 0.5 },
+                Bond::BasketWeave { weight: 0.5 },
             ] {
                 let options = PatternOptions {
                     bond,

@@ -2,7 +2,7 @@
 //! (two quads sharing an edge) are dual edges, and two relations between candidate tiles
 //! carry the bond terms of the integer models.
 
-use super::Bond;
+use super::{Bond, Relation};
 use crate::mesh::{PolyMesh, Topology};
 
 /// Two adjacent quads that may become one tile. The mesh edge between them is the tile's
@@ -23,6 +23,11 @@ pub struct DualGraph {
     face_tiles: Vec<Vec<usize>>,
     continuous_joints: Vec<[usize; 2]>,
     shifted_pairs: Vec<[usize; 2]>,
+    end_to_end: Vec<[usize; 2]>,
+    one_course_apart: Vec<[usize; 2]>,
+    /// The relation of each bond with more than one ([`Bond::relations`]), built once.
+    herringbone: Vec<[usize; 2]>,
+    basket_weave: Vec<[usize; 2]>,
     regular_vertex_stars: Vec<[usize; 4]>,
     star_joints: Vec<[usize; 2]>,
 }
@@ -68,15 +73,46 @@ impl DualGraph {
             star_joints,
         } = continuous_joints(mesh, topology, &edge_tile);
         let shifted_pairs = shifted_pairs(topology, &edge_tile, &tiles);
-        Self {
+        let end_to_end = end_to_end(topology, &edge_tile, &tiles);
+        let one_course_apart = one_course_apart(topology, &edge_tile, &tiles);
+        let mut graph = Self {
             face_count: mesh.face_count(),
             tiles,
             face_tiles,
             continuous_joints,
             shifted_pairs,
+            end_to_end,
+            one_course_apart,
+            herringbone: Vec::new(),
+            basket_weave: Vec::new(),
             regular_vertex_stars,
             star_joints,
+        };
+        graph.herringbone = graph.union(Bond::Herringbone { weight: 0.0 }.relations());
+        graph.basket_weave = graph.union(Bond::BasketWeave { weight: 0.0 }.relations());
+        graph
+    }
+
+    /// The pairs of one relation.
+    pub fn relation(&self, relation: Relation) -> &[[usize; 2]] {
+        match relation {
+            Relation::ContinuousJoints => &self.continuous_joints,
+            Relation::ShiftedPairs => &self.shifted_pairs,
+            Relation::EndToEnd => &self.end_to_end,
+            Relation::OneCourseApart => &self.one_course_apart,
         }
+    }
+
+    /// The pairs of `relations`, each once, in the order of the relations (so the first
+    /// relation's pairs keep their indices: the star joints of the continuous joints stay
+    /// valid when those come first).
+    fn union(&self, relations: &[Relation]) -> Vec<[usize; 2]> {
+        let mut seen = std::collections::HashSet::new();
+        relations
+            .iter()
+            .flat_map(|&r| self.relation(r).iter().copied())
+            .filter(|&pair| seen.insert(pair))
+            .collect()
     }
 
     /// Number of faces of the mesh (paired or not).
@@ -130,16 +166,31 @@ impl DualGraph {
         })
     }
 
-    /// The pairs of candidate tiles that `bond`'s objective scores, and what each pair of
-    /// chosen tiles adds to it: continuous joints at `-w` (eq. 2), shifted pairs at `+w`
-    /// (eq. 3), none for the stack bond (eq. 1).
+    /// The pairs of candidate tiles that `bond`'s objective scores (the pairs of its
+    /// [`Bond::relations`], each once, the first relation's first, at their own indices),
+    /// and what each pair of chosen tiles adds to it ([`Bond::pair_weight`]): continuous
+    /// joints at `-w` (eq. 2), shifted pairs at `+w` (eq. 3), the herringbone's and the
+    /// basket weave's pairs at `-w`, none for the stack bond (eq. 1).
     pub fn bond_pairs(&self, bond: Bond) -> (&[[usize; 2]], f64) {
-        let relation: &[[usize; 2]] = match bond {
-            Bond::Stack => &[],
-            Bond::Staggered { .. } => &self.continuous_joints,
-            Bond::RunningBond { .. } => &self.shifted_pairs,
+        let relation: &[[usize; 2]] = match bond.relations() {
+            [] => &[],
+            [one] => self.relation(*one),
+            _ if matches!(bond, Bond::Herringbone { .. }) => &self.herringbone,
+            _ => &self.basket_weave,
         };
         (relation, bond.pair_weight())
+    }
+
+    /// Pairs of candidate tiles laid end to end along a quad strip: an end face of each
+    /// shares the other's end edge, the edge opposite its middle edge.
+    pub fn end_to_end(&self) -> &[[usize; 2]] {
+        &self.end_to_end
+    }
+
+    /// Pairs of parallel candidate tiles aligned one course apart: their middle edges are
+    /// two steps apart along a line of edges through regular vertices.
+    pub fn one_course_apart(&self) -> &[[usize; 2]] {
+        &self.one_course_apart
     }
 
     /// The candidate tile made of faces `a` and `b`, if they are adjacent usable quads.
@@ -230,6 +281,76 @@ fn shifted_pairs(
                 continue;
             }
             pairs.push([a.min(b), a.max(b)]);
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
+/// The edge of quad `f` opposite its edge `e`.
+fn opposite_in_quad(topology: &Topology, f: usize, e: usize) -> Option<usize> {
+    let own = topology.face_edges(f);
+    if own.len() != 4 {
+        return None;
+    }
+    let i = own.iter().position(|&x| x == e)?;
+    Some(own[(i + 2) % 4])
+}
+
+/// The pair of tiles `a` and `b`, smaller first, if they share no face.
+fn disjoint(tiles: &[CandidateTile], a: usize, b: usize) -> Option<[usize; 2]> {
+    let [fa, fb] = [tiles[a].faces, tiles[b].faces];
+    (!fa.iter().any(|f| fb.contains(f))).then(|| [a.min(b), a.max(b)])
+}
+
+/// End-to-end pairs, found from each tile's end faces: across the end edge (opposite the
+/// middle edge) lies a face whose opposite edge is another tile's middle edge.
+fn end_to_end(
+    topology: &Topology,
+    edge_tile: &[Option<usize>],
+    tiles: &[CandidateTile],
+) -> Vec<[usize; 2]> {
+    let mut pairs = Vec::new();
+    for (a, tile) in tiles.iter().enumerate() {
+        for f in tile.faces {
+            let Some(end) = opposite_in_quad(topology, f, tile.middle_edge) else {
+                continue;
+            };
+            let Some(g) = topology.edges()[end].other_face(f) else {
+                continue;
+            };
+            let Some(b) = opposite_in_quad(topology, g, end).and_then(|m| edge_tile[m]) else {
+                continue;
+            };
+            pairs.extend(disjoint(tiles, a, b));
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
+/// Pairs one course apart, found from each tile's middle edge: two steps along the line
+/// of edges through each of its ends, where both vertices passed are regular.
+fn one_course_apart(
+    topology: &Topology,
+    edge_tile: &[Option<usize>],
+    tiles: &[CandidateTile],
+) -> Vec<[usize; 2]> {
+    let mut pairs = Vec::new();
+    for (a, tile) in tiles.iter().enumerate() {
+        let m = tile.middle_edge;
+        for v in topology.edges()[m].vertices {
+            let Some(next) = topology.opposite_edge(v, m) else {
+                continue;
+            };
+            let [p, q] = topology.edges()[next].vertices;
+            let w = if p == v { q } else { p };
+            let Some(b) = topology.opposite_edge(w, next).and_then(|e| edge_tile[e]) else {
+                continue;
+            };
+            pairs.extend(disjoint(tiles, a, b));
         }
     }
     pairs.sort_unstable();

@@ -89,6 +89,15 @@ pub enum PatternError {
         /// Second face.
         b: usize,
     },
+    /// A bond that lays tiles both ways (herringbone, basket weave) was asked for with tiles
+    /// in level courses, where every tile runs along the courses.
+    #[error(
+        "the {bond} bond lays tiles both ways, but in level courses every tile runs along the courses; lay tiles either way (courses free)"
+    )]
+    BondAcrossCourses {
+        /// The bond's name.
+        bond: &'static str,
+    },
     /// The caller cancelled the stage through its [`crate::control::Control`].
     #[error("cancelled by the caller")]
     Cancelled,

@@ -5,7 +5,9 @@
 //!
 //! * [`Bond::Stack`]: maximum matching, eq. (1);
 //! * [`Bond::Staggered`]: eq. (2), each continuous joint costs `weight`;
-//! * [`Bond::RunningBond`]: eq. (3), each shifted pair earns `weight`.
+//! * [`Bond::RunningBond`]: eq. (3), each shifted pair earns `weight`;
+//! * [`Bond::Herringbone`], [`Bond::BasketWeave`]: the other patterns of section 3.4 and
+//!   Figure 1, each pair of their [`Relation`]s costs `weight`.
 //!
 //! The answer says honestly how good it is: the objective of the returned pattern, a
 //! proven bound and where it came from ([`BoundSource`]), and [`SolveStatus::Optimal`] only
@@ -58,19 +60,105 @@ pub enum Bond {
         /// The paper's w_R (default 0.5).
         weight: f64,
     },
+    /// Herringbone (the paper's Figure 1, its other objective terms of section 3.4): as many
+    /// tiles as possible, minus `weight` per continuous joint and per pair of tiles laid end
+    /// to end. On a regular grid the only tilings with neither are the 90-degree zig-zag, in
+    /// which each tile's ends abut the sides of perpendicular tiles.
+    Herringbone {
+        /// The penalty per pair (default 0.5).
+        weight: f64,
+    },
+    /// Basket weave (the paper's Figure 1): as many tiles as possible, minus `weight` per
+    /// shifted pair, per pair laid end to end and per pair of parallel tiles one course
+    /// apart. On a regular grid the only tiling with none is the checkerboard of 2 x 2
+    /// squares, each two parallel tiles, alternating in direction.
+    BasketWeave {
+        /// The penalty per pair (default 0.5).
+        weight: f64,
+    },
+}
+
+/// A relation between candidate tiles of a quad mesh, found from its topology alone
+/// (see [`DualGraph`]); each bond scores the pairs of some of them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Relation {
+    /// Side by side and aligned: middle edges opposite at a regular vertex (eq. 2's y).
+    ContinuousJoints,
+    /// Side by side, shifted by one face (eq. 3's z).
+    ShiftedPairs,
+    /// End to end along one quad strip: an end face of each shares the other's end edge.
+    EndToEnd,
+    /// Parallel and aligned one course apart: middle edges two steps apart along one line
+    /// of edges through regular vertices.
+    OneCourseApart,
 }
 
 impl Bond {
     /// What a pair of the bond's relation ([`DualGraph::bond_pairs`]) adds to the objective
     /// when both its tiles are chosen: `-w` per continuous joint (eq. 2), `+w` per shifted
-    /// pair (eq. 3), nothing for the stack bond (eq. 1). A tile adds one in every bond; the
-    /// score, the program, the bounds and the heuristics all read the bond's terms from here.
+    /// pair (eq. 3), `-w` per pair of the herringbone's and the basket weave's relations,
+    /// nothing for the stack bond (eq. 1). A tile adds one in every bond; the score, the
+    /// program, the bounds and the heuristics all read the bond's terms from here and from
+    /// [`Bond::relations`].
     pub fn pair_weight(self) -> f64 {
         match self {
             Bond::Stack => 0.0,
-            Bond::Staggered { weight } => -weight,
             Bond::RunningBond { weight } => weight,
+            Bond::Staggered { weight }
+            | Bond::Herringbone { weight }
+            | Bond::BasketWeave { weight } => -weight,
         }
+    }
+
+    /// The relations whose pairs the bond scores, each at [`Bond::pair_weight`]: the rule
+    /// of each bond, written once. A pair in several counts once.
+    pub fn relations(self) -> &'static [Relation] {
+        match self {
+            Bond::Stack => &[],
+            Bond::Staggered { .. } => &[Relation::ContinuousJoints],
+            Bond::RunningBond { .. } => &[Relation::ShiftedPairs],
+            Bond::Herringbone { .. } => &[Relation::ContinuousJoints, Relation::EndToEnd],
+            Bond::BasketWeave { .. } => &[
+                Relation::ShiftedPairs,
+                Relation::EndToEnd,
+                Relation::OneCourseApart,
+            ],
+        }
+    }
+
+    /// The bond's weight (`None` for the stack bond).
+    pub fn weight(self) -> Option<f64> {
+        match self {
+            Bond::Stack => None,
+            Bond::Staggered { weight }
+            | Bond::RunningBond { weight }
+            | Bond::Herringbone { weight }
+            | Bond::BasketWeave { weight } => Some(weight),
+        }
+    }
+
+    /// True for the bonds that lay tiles both ways (the herringbone and the basket weave):
+    /// they need tiles free to lie either way ([`Courses::Free`]).
+    pub fn lays_both_ways(self) -> bool {
+        matches!(self, Bond::Herringbone { .. } | Bond::BasketWeave { .. })
+    }
+
+    /// Its name on the command line and in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Bond::Stack => "stack",
+            Bond::Staggered { .. } => "staggered",
+            Bond::RunningBond { .. } => "running-bond",
+            Bond::Herringbone { .. } => "herringbone",
+            Bond::BasketWeave { .. } => "basket-weave",
+        }
+    }
+
+    /// True when the bond's relation starts with the continuous joints at a penalty: then
+    /// the compact joint form of eq. (2) (one column and one star row per regular vertex,
+    /// see `program`) holds for them.
+    pub fn penalises_continuous_joints(self) -> bool {
+        self.relations().first() == Some(&Relation::ContinuousJoints) && self.pair_weight() < 0.0
     }
 }
 
@@ -94,8 +182,10 @@ pub enum Formulation {
     /// The paper's program plus valid inequalities that cut off fractional points but no
     /// integer solution, so the optimum is the same: for eq. (2), one "star" row per regular
     /// interior vertex, `x_a + x_b + x_c + x_d - y_ac - y_bd <= 1` (two opposite tiles fit
-    /// only together with their continuous joint). Proves optimality far sooner. Eq. (1) and
-    /// (3) are passed as printed.
+    /// only together with their continuous joint); and every other penalty pair's row takes
+    /// the tiles bridging its two tiles, `x_a + x_b + x_c - y <= 1` (e.g. the tile across the
+    /// shared end edge of two tiles laid end to end). Proves optimality far sooner. Eq. (1)
+    /// and (3) are passed as printed.
     #[default]
     Strengthened,
 }
@@ -228,6 +318,11 @@ pub struct Pattern {
     pub continuous_joints: usize,
     /// Shifted pairs in the pattern (pairs of chosen tiles counted by eq. 3's z).
     pub shifted_pairs: usize,
+    /// Pairs of the bond's own relation in the pattern ([`DualGraph::bond_pairs`]: for the
+    /// herringbone its continuous joints and end-to-end pairs, for the basket weave its
+    /// shifted, end-to-end and one-course-apart pairs), each at the bond's weight.
+    #[serde(default)]
+    pub bond_pairs: usize,
     /// Objective value of this pattern under the chosen bond.
     pub objective: f64,
     /// Proven upper bound on the objective.
@@ -274,6 +369,11 @@ pub fn solve_with(
         })? = true;
     }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
+    if options.bond.lays_both_ways() && options.courses != Courses::Free {
+        return Err(PatternError::BondAcrossCourses {
+            bond: options.bond.name(),
+        });
+    }
     let middle = match options.courses {
         Courses::Free => None,
         Courses::Level { up } => Some(courses::middle_edges(mesh, &topology, up)?),
@@ -331,6 +431,7 @@ pub fn solve_with(
         non_quad,
         continuous_joints: s.continuous_joints,
         shifted_pairs: s.shifted_pairs,
+        bond_pairs: s.bond_pairs,
         objective: s.objective,
         bound,
         gap,
@@ -365,18 +466,14 @@ struct Found {
 }
 
 fn validate_weights(bond: Bond) -> Result<(), PatternError> {
-    match bond {
-        Bond::Staggered { weight } | Bond::RunningBond { weight }
-            if !(weight.is_finite() && weight >= 0.0) =>
-        {
+    match bond.weight() {
+        Some(weight) if !(weight.is_finite() && weight >= 0.0) => {
             Err(PatternError::InvalidWeight { weight })
         }
-        Bond::Staggered { weight } | Bond::RunningBond { weight } if weight > MAX_WEIGHT => {
-            Err(PatternError::WeightTooLarge {
-                weight,
-                max: MAX_WEIGHT,
-            })
-        }
+        Some(weight) if weight > MAX_WEIGHT => Err(PatternError::WeightTooLarge {
+            weight,
+            max: MAX_WEIGHT,
+        }),
         _ => Ok(()),
     }
 }

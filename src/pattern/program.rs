@@ -135,8 +135,8 @@ impl Program {
         // Eq. (2) in the compact joint form: one column and one star row per regular vertex
         // whose four tiles are columns with all their faces in the patch, its joints owned.
         let mut starred = vec![false; relation.len()];
-        if matches!(bond, Bond::Staggered { .. }) && formulation == Formulation::Strengthened {
-            let inside = |t: usize| tiles[t].faces.iter().all(|&f| counted(f));
+        let inside = |t: usize| tiles[t].faces.iter().all(|&f| counted(f));
+        if bond.penalises_continuous_joints() && formulation == Formulation::Strengthened {
             for (star, joints) in graph
                 .regular_vertex_stars()
                 .iter()
@@ -165,17 +165,23 @@ impl Program {
                 (Role::Column(xa), Role::Column(xb)) => {
                     objective.push(per_pair);
                     let pair = objective.len() - 1;
-                    match bond {
-                        Bond::Stack => {}
-                        // Eq. (2): y >= x_a + x_b - 1.
-                        Bond::Staggered { .. } => {
-                            rows.push((vec![(xa, 1.0), (xb, 1.0), (pair, -1.0)], 1.0))
+                    if per_pair < 0.0 {
+                        // Eq. (2) and every penalty pair: y >= x_a + x_b - 1; strengthened
+                        // by the tiles bridging the two (see `bridges`).
+                        let mut row = vec![(xa, 1.0), (xb, 1.0), (pair, -1.0)];
+                        if formulation == Formulation::Strengthened {
+                            row.extend(
+                                bridges(graph, a, b, &inside)
+                                    .into_iter()
+                                    .filter_map(&column)
+                                    .map(|j| (j, 1.0)),
+                            );
                         }
+                        rows.push((row, 1.0));
+                    } else if per_pair > 0.0 {
                         // Eq. (3): z <= x_a and z <= x_b.
-                        Bond::RunningBond { .. } => {
-                            rows.push((vec![(xa, -1.0), (pair, 1.0)], 0.0));
-                            rows.push((vec![(xb, -1.0), (pair, 1.0)], 0.0));
-                        }
+                        rows.push((vec![(xa, -1.0), (pair, 1.0)], 0.0));
+                        rows.push((vec![(xb, -1.0), (pair, 1.0)], 0.0));
                     }
                 }
                 (Role::Column(x), Role::Fixed) | (Role::Fixed, Role::Column(x)) => {
@@ -289,6 +295,28 @@ impl Program {
     }
 }
 
+/// The tiles that share a face with each of the penalty pair `a`, `b` (both with all their
+/// faces `inside` the program), kept only while they pairwise share a face, so that of
+/// `a`, `b` and the bridges at most one is chosen unless `a` and `b` both are: then
+/// `x_a + x_b + sum of the bridges' x - y <= 1` holds for every pattern and cuts off
+/// fractional points that `y >= x_a + x_b - 1` allows (the end-to-end and shifted pairs'
+/// counterpart of the star rows). Empty when a tile is not inside.
+fn bridges(graph: &DualGraph, a: usize, b: usize, inside: &impl Fn(usize) -> bool) -> Vec<usize> {
+    let tiles = graph.tiles();
+    let share = |s: usize, t: usize| tiles[s].faces.iter().any(|f| tiles[t].faces.contains(f));
+    if !(inside(a) && inside(b)) {
+        return Vec::new();
+    }
+    let mut found: Vec<usize> = Vec::new();
+    for &t in tiles[a].faces.iter().flat_map(|&f| graph.face_tiles(f)) {
+        let fits = t != a && t != b && share(t, b) && inside(t);
+        if fits && !found.contains(&t) && found.iter().all(|&u| share(u, t)) {
+            found.push(t);
+        }
+    }
+    found
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -368,12 +396,16 @@ mod tests {
         graphs
     }
 
-    const BONDS: [Bond; 5] = [
+    const BONDS: [Bond; 9] = [
         Bond::Stack,
         Bond::Staggered { weight: 0.5 },
         Bond::Staggered { weight: 2.0 },
         Bond::RunningBond { weight: 0.5 },
         Bond::RunningBond { weight: 1.5 },
+        Bond::Herringbone { weight: 0.5 },
+        Bond::Herringbone { weight: 0.2 },
+        Bond::BasketWeave { weight: 0.5 },
+        Bond::BasketWeave { weight: 0.2 },
     ];
 
     #[test]

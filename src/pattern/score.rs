@@ -11,6 +11,8 @@ pub struct Score {
     pub continuous_joints: usize,
     /// Shifted pairs among chosen tiles (sum of z at optimum).
     pub shifted_pairs: usize,
+    /// Pairs of the bond's relation among chosen tiles ([`DualGraph::bond_pairs`]).
+    pub bond_pairs: usize,
     /// The bond's objective value.
     pub objective: f64,
 }
@@ -28,11 +30,13 @@ pub fn score(graph: &DualGraph, chosen: &[bool], bond: Bond) -> Score {
     let shifted_pairs = both(graph.shifted_pairs());
     // Eq. (1)-(3): a tile scores one, each pair of the bond's relation what the bond gives it.
     let (relation, per_pair) = graph.bond_pairs(bond);
-    let objective = tiles as f64 + per_pair * both(relation) as f64;
+    let bond_pairs = both(relation);
+    let objective = tiles as f64 + per_pair * bond_pairs as f64;
     Score {
         tiles,
         continuous_joints,
         shifted_pairs,
+        bond_pairs,
         objective,
     }
 }

@@ -114,27 +114,26 @@ fn defects(graph: &DualGraph, bond: Bond, chosen: &[bool]) -> Vec<usize> {
             .iter()
             .for_each(|&f| flagged[f] = true)
     };
-    match bond {
-        Bond::Stack => {}
-        Bond::Staggered { .. } => {
-            for &[a, b] in graph.continuous_joints() {
-                if chosen[a] && chosen[b] {
-                    flag_tile(a);
-                    flag_tile(b);
-                }
+    let (relation, per_pair) = graph.bond_pairs(bond);
+    if per_pair < 0.0 {
+        // A penalised pair: both its tiles.
+        for &[a, b] in relation {
+            if chosen[a] && chosen[b] {
+                flag_tile(a);
+                flag_tile(b);
             }
         }
-        Bond::RunningBond { .. } => {
-            let mut partners = vec![0usize; chosen.len()];
-            for &[a, b] in graph.shifted_pairs() {
-                if chosen[a] && chosen[b] {
-                    partners[a] += 1;
-                    partners[b] += 1;
-                }
+    } else if per_pair > 0.0 {
+        // A reward: tiles with fewer than two partners (a running bond's inner tiles have two).
+        let mut partners = vec![0usize; chosen.len()];
+        for &[a, b] in relation {
+            if chosen[a] && chosen[b] {
+                partners[a] += 1;
+                partners[b] += 1;
             }
-            for t in (0..chosen.len()).filter(|&t| chosen[t] && partners[t] < 2) {
-                flag_tile(t);
-            }
+        }
+        for t in (0..chosen.len()).filter(|&t| chosen[t] && partners[t] < 2) {
+            flag_tile(t);
         }
     }
     (0..graph.face_count()).filter(|&f| flagged[f]).collect()

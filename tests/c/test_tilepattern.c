@@ -904,6 +904,49 @@ static void test_gap(void) {
   tp_mesh_free(mesh);
 }
 
+/* Issue 20: the herringbone and the basket weave. An 8 x 8 basket weave is 16 squares of two
+   parallel tiles, alternating: every face paired, proven; in level courses both are refused. */
+static void test_bonds(void) {
+  TpMesh *mesh = grid_mesh(8, 8);
+  TpPatternOptions options = tp_pattern_options_default();
+  options.bond = TP_BOND_BASKET_WEAVE;
+  TpPattern *pattern = NULL;
+  TpPatternSummary summary;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &pattern) == TP_OK);
+  CHECK(tp_pattern_summary(pattern, &summary) == TP_OK);
+  CHECK(summary.pairs == 32 && summary.status == TP_SOLVE_OPTIMAL && summary.objective == 32.0);
+  uint32_t pairs[64];
+  CHECK(tp_pattern_copy_pairs(pattern, pairs, 64) == TP_OK);
+  /* Each tile lies in one 2 x 2 square, along x where the square's (x + y) is even. */
+  int textbook = 1, swapped = 1;
+  for (int k = 0; k < 32; k++) {
+    uint32_t a = pairs[2 * k], b = pairs[2 * k + 1];
+    uint32_t x = a % 8, y = a / 8;
+    int along_x = b == a + 1, even = ((x / 2 + y / 2) % 2) == 0;
+    textbook &= along_x == even && (along_x ? x % 2 == 0 : y % 2 == 0);
+    swapped &= along_x != even && (along_x ? x % 2 == 0 : y % 2 == 0);
+  }
+  CHECK(textbook || swapped);
+  tp_pattern_free(pattern);
+
+  options.bond = TP_BOND_HERRINGBONE;
+  options.time_limit_seconds = 5.0;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &pattern) == TP_OK);
+  CHECK(tp_pattern_summary(pattern, &summary) == TP_OK);
+  CHECK(summary.pairs > 0 && summary.bound >= summary.objective);
+  tp_pattern_free(pattern);
+
+  options.courses = TP_COURSES_LEVEL;
+  pattern = NULL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &pattern) == TP_INVALID_ARGUMENT && pattern == NULL);
+  CHECK(last_error_contains("herringbone") && last_error_contains("courses free"));
+  options.bond = 5;
+  options.courses = TP_COURSES_FREE;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &pattern) == TP_INVALID_ARGUMENT);
+  CHECK(last_error_contains("TP_BOND_BASKET_WEAVE"));
+  tp_mesh_free(mesh);
+}
+
 static void test_panic_boundary(void) {
 #if defined(TP_TEST_PANIC)
   CHECK(tp_test_panic() == TP_PANIC);
@@ -927,6 +970,7 @@ int main(void) {
   test_fit();
   test_courses();
   test_gap();
+  test_bonds();
   test_panic_boundary();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;

@@ -171,6 +171,7 @@ mod tests {
             non_quad: vec![],
             continuous_joints: 0,
             shifted_pairs: 0,
+            bond_pairs: 0,
             objective: 0.0,
             bound: 0.0,
             gap: 0.0,

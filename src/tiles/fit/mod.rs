@@ -248,9 +248,14 @@ fn bond_band(
     let half = (spec.length + spec.joint) / 2.0;
     let nominal = (offset / half).round().clamp(-1.0, 1.0) * half;
     let tolerance = match (options.bond, nominal == 0.0) {
-        (_, true) | (Bond::RunningBond { .. }, false) | (Bond::Stack, false) => {
-            options.bond_tolerance
-        }
+        (_, true)
+        | (
+            Bond::RunningBond { .. }
+            | Bond::Stack
+            | Bond::Herringbone { .. }
+            | Bond::BasketWeave { .. },
+            false,
+        ) => options.bond_tolerance,
         (Bond::Staggered { .. }, false) => half - spec.length / 4.0,
     };
     Some(BondBand { nominal, tolerance })
