@@ -24,9 +24,11 @@ const FIRST_LINEAR_PATCH_SIZE: usize = 200;
 const LINEAR_ROUND_GROWTH: f64 = 3.0;
 /// Largest patches: a few seconds each for CBC.
 const LAST_PATCH_SIZE: usize = 1600;
-/// Largest mesh [`Method::Auto`] gives to CBC whole. The root LP of larger staggered
-/// programs can take minutes (6589 faces: 110 s), and a solve stopped before its root gives
-/// nothing for the time it took.
+/// Largest program [`Method::Auto`] gives to CBC whole, in faces of a mesh whose faces may
+/// pair either way (two candidate tiles per face): a program over level courses, where each
+/// face pairs only along its course, counts half as many (see [`Engine::program_faces`]).
+/// The root LP of larger staggered programs can take minutes (6589 faces: 110 s), and a solve
+/// stopped before its root gives nothing for the time it took.
 const WHOLE_MODEL_FACES: usize = 2000;
 /// Share of the time left after the first annealing run that the linear relaxation of the
 /// whole program may take; it is solved only if expected to finish in that time.
@@ -330,6 +332,13 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
         Ok(())
     }
 
+    /// The program's size in faces of a mesh whose faces pair either way: half its candidate
+    /// tiles (a free quad has two, one along each of its directions; in level courses it has
+    /// one), which is what CBC's root LP grows with.
+    fn program_faces(&self) -> usize {
+        self.graph.tiles().len().div_ceil(2)
+    }
+
     /// Rounds of: a decomposition bound with patches twice as large as the round before,
     /// made of its patches (so nothing proven is lost when the deadline cuts a round short)
     /// and centred on the forced defects it found (the last round, one patch, is the whole
@@ -337,6 +346,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     /// cooler.
     fn exact_rounds(&mut self) -> Result<(), PatternError> {
         let faces = self.graph.face_count();
+        let whole = self.program_faces() <= WHOLE_MODEL_FACES;
         let mut size = FIRST_PATCH_SIZE;
         let mut variant = 0;
         let mut round = 0;
@@ -348,8 +358,8 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
         while !self.done() && Instant::now() < self.deadline {
             self.note();
             if size >= faces
-                && faces <= WHOLE_MODEL_FACES
-                && mip::expected_linear_seconds(faces) <= self.left().as_secs_f64()
+                && whole
+                && mip::expected_linear_seconds(self.program_faces()) <= self.left().as_secs_f64()
             {
                 let (cbc_bound, cbc_timed_out) = self.whole_program(self.left())?;
                 self.tighten(cbc_bound, BoundSource::WholeProgram);
@@ -404,7 +414,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
             round += 1;
             self.anneal(ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 1 + round)?;
             // Patches grow to the largest size; from there on their partitions vary instead.
-            if size < LAST_PATCH_SIZE || (size < faces && faces <= WHOLE_MODEL_FACES) {
+            if size < LAST_PATCH_SIZE || (size < faces && whole) {
                 size *= 2;
             } else {
                 variant += 1;
