@@ -150,9 +150,10 @@ mod tests {
     #[test]
     fn the_barrier_stops_on_the_clock_and_on_a_cancel_within_moments() {
         use std::time::Instant;
-        // 70 x 70 grid, staggered: the barrier needs seconds to converge, each iteration some
-        // 30 ms (before the first, some 0.2 s to set up, which it cannot be stopped in).
-        let mesh = generate::grid(70, 70);
+        // 100 x 100 grid, staggered: the barrier needs many seconds to converge even on a
+        // quiet machine (70 x 70 converged within the second on one), each iteration some
+        // 60 ms (before the first, some 0.4 s to set up, which it cannot be stopped in).
+        let mesh = generate::grid(100, 100);
         let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
         let bond = Bond::Staggered { weight: 0.5 };
         let relaxation = relaxation(&graph, bond, None);
