@@ -345,6 +345,47 @@ fn never_silent(out: &Output, report: &serde_json::Value) {
         );
         assert!(stderr(out).contains("warning ["), "{}", stderr(out));
     }
+    // Joints that need cutting or filling on site are said too.
+    let joints = &report["joints"];
+    let tiles = report["full_tiles"].as_u64().unwrap() + report["half_tiles"].as_u64().unwrap();
+    let cuts = joints["fit_cuts"].as_u64().unwrap();
+    let codes = codes(report);
+    assert_eq!(
+        100 * cuts > tiles,
+        codes.contains(&"fit_cuts".to_owned()),
+        "{cuts} of {tiles} tiles cut to fit: {codes:?}"
+    );
+    let (p95, joint) = (
+        joints["p95_deviation"].as_f64().unwrap(),
+        joints["joint"].as_f64().unwrap(),
+    );
+    assert_eq!(
+        joints["contacts"].as_u64().unwrap() > 0 && p95 > 0.5 * joint,
+        codes.contains(&"wide_joints".to_owned()),
+        "p95 deviation {p95} against the joint {joint}: {codes:?}"
+    );
+}
+
+#[test]
+fn a_dome_whose_courses_converge_says_so() {
+    // A 1.5 m spherical cap in level courses: near the crown the courses converge and rigid
+    // tiles cannot meet, so the fit cuts tiles and leaves wide joints. Before: no word.
+    let dome = generate::spherical_cap(1.5, 0.5, 0.06);
+    let (out, report, _) = run(
+        "dome",
+        "dome.obj",
+        obj::to_string(&dome).as_bytes(),
+        &["--tile", "280x140x15", "--units", "m"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    let codes = codes(&report);
+    assert!(
+        codes.contains(&"fit_cuts".to_owned()) || codes.contains(&"wide_joints".to_owned()),
+        "{codes:?}: {}",
+        report["joints"]
+    );
+    never_silent(&out, &report);
 }
 
 #[test]

@@ -451,6 +451,10 @@ namespace TilePattern
         NoSupport = 8,
         /// <summary>Reading a file joined coincident vertices.</summary>
         VerticesWelded = 9,
+        /// <summary>The fit stage cut more than 1 % of the tiles (courses converge or diverge).</summary>
+        FitCuts = 10,
+        /// <summary>The joints' p95 deviation from the nominal joint is more than half the joint.</summary>
+        WideJoints = 11,
     }
 
     /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>

@@ -98,6 +98,8 @@ TP_WARNING_LOW_COVERAGE = 6
 TP_WARNING_TILES_DROPPED = 7
 TP_WARNING_NO_SUPPORT = 8
 TP_WARNING_VERTICES_WELDED = 9
+TP_WARNING_FIT_CUTS = 10
+TP_WARNING_WIDE_JOINTS = 11
 
 #: Warning code -> its name in report.json, for every code of ``enum TpWarning``.
 WARNING_NAMES = {
@@ -110,6 +112,8 @@ WARNING_NAMES = {
     TP_WARNING_TILES_DROPPED: "tiles_dropped",
     TP_WARNING_NO_SUPPORT: "no_support",
     TP_WARNING_VERTICES_WELDED: "vertices_welded",
+    TP_WARNING_FIT_CUTS: "fit_cuts",
+    TP_WARNING_WIDE_JOINTS: "wide_joints",
 }
 
 MAX_VERTICES = 4_000_000

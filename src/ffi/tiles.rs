@@ -637,6 +637,10 @@ pub enum TpWarning {
     TP_WARNING_NO_SUPPORT = 8,
     /// Reading a file joined coincident vertices.
     TP_WARNING_VERTICES_WELDED = 9,
+    /// The fit stage cut more than 1 % of the tiles (courses converge or diverge).
+    TP_WARNING_FIT_CUTS = 10,
+    /// The joints' p95 deviation from the nominal joint is more than half the joint.
+    TP_WARNING_WIDE_JOINTS = 11,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -652,6 +656,8 @@ impl From<WarningCode> for TpWarning {
             WarningCode::TilesDropped => TP_WARNING_TILES_DROPPED,
             WarningCode::NoSupport => TP_WARNING_NO_SUPPORT,
             WarningCode::VerticesWelded => TP_WARNING_VERTICES_WELDED,
+            WarningCode::FitCuts => TP_WARNING_FIT_CUTS,
+            WarningCode::WideJoints => TP_WARNING_WIDE_JOINTS,
         }
     }
 }

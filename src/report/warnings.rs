@@ -34,6 +34,12 @@ pub enum WarningCode {
     /// Reading the file joined coincident vertices or removed faces (see
     /// [`crate::mesh::weld`]).
     VerticesWelded = 9,
+    /// The fit stage cut more than [`MAX_FIT_CUT_SHARE`] of the tiles: courses converge or
+    /// diverge (domes, bends, around singularities) where rigid tiles cannot meet.
+    FitCuts = 10,
+    /// The joints stray far from the nominal joint: their p95 deviation is more than
+    /// [`MAX_P95_DEVIATION_SHARE`] of the joint.
+    WideJoints = 11,
 }
 
 /// One warning.
@@ -55,6 +61,14 @@ impl Warning {
     }
 }
 
+/// Share of the tiles the fit stage may cut before the tiling is flagged (issue 16's limit:
+/// cutting is what the method minimises).
+pub const MAX_FIT_CUT_SHARE: f64 = 0.01;
+
+/// p95 of |gap - joint| as a share of the joint above which the joints are flagged (5 mm on
+/// a 10 mm joint).
+pub const MAX_P95_DEVIATION_SHARE: f64 = 0.5;
+
 /// Coverage below which a tiling is flagged.
 pub const MIN_COVERAGE: f64 = 0.95;
 
@@ -67,6 +81,35 @@ pub const TILE_SHAPE_TOLERANCE: f64 = 0.1;
 /// edges, above which tiles gape: about 29 degrees, a curvature radius of twice the tile
 /// length.
 pub const MAX_TURN_PER_TILE: f64 = 0.5;
+
+/// The checks of the joints a tiling leaves: cuts by the fit stage, and joints far from
+/// the nominal one (both measured as the report measures them, after the fit when it ran).
+pub fn joint_checks(report: &Report) -> Vec<Warning> {
+    let mut out = Vec::new();
+    let j = &report.joints;
+    let tiles = report.full_tiles + report.half_tiles;
+    if tiles > 0 && j.fit_cuts as f64 > MAX_FIT_CUT_SHARE * tiles as f64 {
+        out.push(Warning::new(
+            WarningCode::FitCuts,
+            format!(
+                "{} tiles ({:.1} % of the {tiles} full and half tiles) had to be cut to fit (cut list: C labels): courses converge or diverge here (a dome's crown, a bend, around the quad mesh's singularities) and rigid tiles cannot meet; look at gaps.svg, and try another field direction (--direction, --field) or lay those parts by hand (--exclude)",
+                j.fit_cuts,
+                100.0 * j.fit_cuts as f64 / tiles as f64
+            ),
+        ));
+    }
+    if j.contacts > 0 && j.joint > 0.0 && j.p95_deviation > MAX_P95_DEVIATION_SHARE * j.joint {
+        out.push(Warning::new(
+            WarningCode::WideJoints,
+            format!(
+                "the joints stray from the nominal joint: p95 |gap - joint| is {:.2} joint widths and the widest gap {:.0} joint widths (report: joints, in model units); wedge-shaped joints open where courses converge, so look at gaps.svg before laying, and fill or cut where it is red",
+                j.p95_deviation / j.joint,
+                j.max_gap / j.joint
+            ),
+        ));
+    }
+    out
+}
 
 /// The checks of the input and of a finished tiling: `surface` is the surface the tiles were
 /// cut to (the quad mesh when there is none), `up` the laying order's up direction.
@@ -103,6 +146,7 @@ pub fn check(
             ));
         }
     }
+    out.extend(joint_checks(report));
     if let Some(s) = &report.sequence {
         match s.support {
             Support::Edges => {}
