@@ -176,18 +176,6 @@
 #define TP_NO_FACE UINT32_MAX
 
 /**
- * Share of the tiles the fit stage may cut before the tiling is flagged (issue 16's limit:
- * cutting is what the method minimises).
- */
-#define MAX_FIT_CUT_SHARE 0.01
-
-/**
- * p95 of |gap - joint| as a share of the joint above which the joints are flagged (5 mm on
- * a 10 mm joint).
- */
-#define MAX_P95_DEVIATION_SHARE 0.5
-
-/**
  * What a call did. The numbers are stable: new codes get new numbers, none is reused.
  */
 enum TpStatus
