@@ -29,6 +29,9 @@ pub(crate) fn extend_boundary(
     locator: &Locator,
     t: f64,
 ) {
+    // Faces at each vertex, counted once: a far vertex belongs to one run only, so the
+    // faces earlier extensions add never change its count.
+    let faces_at = faces_at(pos.len(), faces);
     for lp in loops {
         let n = lp.len();
         if n < 3 {
@@ -63,7 +66,9 @@ pub(crate) fn extend_boundary(
                 let (Some(first), Some(last)) = (places[i], places[j]) else {
                     break;
                 };
-                extend_run(pos, faces, &run, first.lp, first.arc, last.arc, locator, t);
+                extend_run(
+                    pos, faces, &faces_at, &run, first.lp, first.arc, last.arc, locator, t,
+                );
                 walked += steps;
                 i = j;
             } else {
@@ -80,6 +85,7 @@ pub(crate) fn extend_boundary(
 fn extend_run(
     pos: &mut Vec<Vector3<f64>>,
     faces: &mut Vec<Vec<usize>>,
+    faces_at: &[usize],
     run: &[usize],
     lp: usize,
     from: f64,
@@ -132,7 +138,7 @@ fn extend_run(
             locator.boundary_point(lp, from + offsets[1] * 0.5),
             locator.boundary_point(lp, to - (span - offsets[m]) * 0.5),
         ];
-        if single_row(pos, faces, run, &spokes, fans) {
+        if single_row(pos, faces, faces_at, run, &spokes, fans) {
             return;
         }
     }
@@ -199,15 +205,17 @@ fn extend_run(
 /// boundary at a slant): that vertex gets no spoke, so it keeps four edges instead of five,
 /// and the quad between it and the end reaches the boundary directly. Returns false (and
 /// adds nothing) where no end has such a corner; the caller then fans both ends.
+/// `faces_at` counts the faces at each vertex of `faces`.
 fn single_row(
     pos: &mut Vec<Vector3<f64>>,
     faces: &mut Vec<Vec<usize>>,
+    faces_at: &[usize],
     run: &[usize],
     spokes: &[Vector3<f64>],
     fans: [Vector3<f64>; 2],
 ) -> bool {
     let m = run.len() - 2;
-    let corner = |v: usize| faces.iter().filter(|f| f.contains(&v)).count() >= 3;
+    let corner = |v: usize| faces_at[v] >= 3;
     let (near0, near1) = (run[0], run[m + 1]);
     let first = corner(run[1]);
     // With one far vertex the quad is the tooth itself; with two, one of them keeps its
@@ -251,6 +259,15 @@ fn single_row(
         faces.push(vec![near1, run[m], end[m], z]);
     }
     true
+}
+
+/// How many of `faces` meet at each of `n` vertices.
+fn faces_at(n: usize, faces: &[Vec<usize>]) -> Vec<usize> {
+    let mut count = vec![0; n];
+    for &v in faces.iter().flatten() {
+        count[v] += 1;
+    }
+    count
 }
 
 /// Deviation above which [`conform`] works on a face, times `t`.
@@ -451,9 +468,11 @@ mod tests {
         let (near0, far, near1) = (at(2, 1), at(1, 1), at(1, 2));
         let spoke = Vector3::new(1.8, 1.8, 0.0);
         let fans = [Vector3::new(2.0, 1.5, 0.0), Vector3::new(1.5, 2.0, 0.0)];
+        let at = faces_at(pos.len(), &faces);
         assert!(single_row(
             &mut pos,
             &mut faces,
+            &at,
             &[near0, far, near1],
             &[spoke],
             fans
@@ -480,7 +499,8 @@ mod tests {
         let run = [3, 7, 6, 5, 4];
         let spokes = [Vector3::new(2.0, 2.0, 0.0); 3];
         let fans = [Vector3::zeros(); 2];
-        assert!(!single_row(&mut pos, &mut faces, &run, &spokes, fans));
+        let at = faces_at(pos.len(), &faces);
+        assert!(!single_row(&mut pos, &mut faces, &at, &run, &spokes, fans));
         assert_eq!(faces, before);
     }
 }
