@@ -711,6 +711,7 @@ impl PatternArgs {
                 Courses::Free
             },
             gap: self.gap,
+            zones: None,
         })
     }
 }

@@ -287,6 +287,7 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
             }
         },
         gap: raw.gap,
+        zones: None,
     })
 }
 

@@ -87,7 +87,9 @@ impl From<PatternError> for Failure {
             | PatternError::ForcedNonQuad { .. }
             | PatternError::InvalidUp { .. }
             | PatternError::ForcedAcrossCourses { .. }
-            | PatternError::BondAcrossCourses { .. } => TpStatus::TP_INVALID_ARGUMENT,
+            | PatternError::BondAcrossCourses { .. }
+            | PatternError::ZoneCount { .. }
+            | PatternError::InvalidZone { .. } => TpStatus::TP_INVALID_ARGUMENT,
         };
         Self::new(status, e.to_string())
     }

@@ -98,6 +98,24 @@ pub enum PatternError {
         /// The bond's name.
         bond: &'static str,
     },
+    /// The zones do not give one bond per face.
+    #[error(
+        "zones give {given} bonds for a mesh of {faces} faces; give one bond per face, in face order"
+    )]
+    ZoneCount {
+        /// Bonds given.
+        given: usize,
+        /// Faces of the mesh.
+        faces: usize,
+    },
+    /// The bond of a zone is not valid (its weight).
+    #[error("zone of face {face}: {reason}")]
+    InvalidZone {
+        /// The first face at fault.
+        face: usize,
+        /// What is wrong with its bond.
+        reason: String,
+    },
     /// The caller cancelled the stage through its [`crate::control::Control`].
     #[error("cancelled by the caller")]
     Cancelled,

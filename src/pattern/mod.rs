@@ -213,6 +213,13 @@ pub struct PatternOptions {
     /// default: prove optimality or reach the time limit) to 1. A pattern stopped by the gap
     /// has [`SolveStatus::Feasible`] (or [`SolveStatus::Optimal`] when proven).
     pub gap: f64,
+    /// Zones: a bond per face (one per face of the mesh, in face order), e.g. a band of
+    /// herringbone in a staggered vault as in Guastavino soffits; `None` (the default) lays
+    /// every face in [`PatternOptions::bond`]. A pair of the relation of a zone's bond is
+    /// scored, at that bond's weight, when both its tiles lie in the zone (all four faces);
+    /// tiles across a zone border are allowed and score one like any tile, and pairs across
+    /// the border score nothing. Faces of non-quad or excluded faces may carry any bond.
+    pub zones: Option<Vec<Bond>>,
 }
 
 /// How the pattern stage searches.
@@ -247,11 +254,22 @@ impl Default for PatternOptions {
             method: Method::default(),
             courses: Courses::Free,
             gap: 0.0,
+            zones: None,
         }
     }
 }
 
 impl PatternOptions {
+    /// Every bond the options lay: [`PatternOptions::bond`], or the zones' bonds (in face
+    /// order, repeated).
+    pub fn bonds(&self) -> impl Iterator<Item = Bond> + '_ {
+        let zoned = self.zones.as_deref();
+        zoned
+            .unwrap_or(std::slice::from_ref(&self.bond))
+            .iter()
+            .copied()
+    }
+
     /// Converts seconds (as typed on a command line or passed through the C ABI) into a time
     /// limit. Finite limits longer than [`MAX_TIME_LIMIT_SECONDS`] become that limit.
     ///
@@ -358,6 +376,7 @@ pub fn solve_with(
 ) -> Result<Pattern, PatternError> {
     let started = Instant::now();
     validate_weights(options.bond)?;
+    validate_zones(options, mesh.face_count())?;
     if !(0.0..=1.0).contains(&options.gap) {
         return Err(PatternError::InvalidGap { gap: options.gap });
     }
@@ -369,10 +388,10 @@ pub fn solve_with(
         })? = true;
     }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
-    if options.bond.lays_both_ways() && options.courses != Courses::Free {
-        return Err(PatternError::BondAcrossCourses {
-            bond: options.bond.name(),
-        });
+    if let Some(bond) = options.bonds().find(|b| b.lays_both_ways())
+        && options.courses != Courses::Free
+    {
+        return Err(PatternError::BondAcrossCourses { bond: bond.name() });
     }
     let middle = match options.courses {
         Courses::Free => None,
@@ -463,6 +482,26 @@ struct Found {
     bound: Bound,
     /// A solver stopped on the time limit (CBC stops a little before the caller's deadline).
     timed_out: bool,
+}
+
+/// Checks the zones: one bond per face, each with a valid weight.
+fn validate_zones(options: &PatternOptions, faces: usize) -> Result<(), PatternError> {
+    let Some(zones) = &options.zones else {
+        return Ok(());
+    };
+    if zones.len() != faces {
+        return Err(PatternError::ZoneCount {
+            given: zones.len(),
+            faces,
+        });
+    }
+    for (face, &bond) in zones.iter().enumerate() {
+        validate_weights(bond).map_err(|error| PatternError::InvalidZone {
+            face,
+            reason: error.to_string(),
+        })?;
+    }
+    Ok(())
 }
 
 fn validate_weights(bond: Bond) -> Result<(), PatternError> {
