@@ -55,10 +55,10 @@ fn basket_weave(c: Cell) -> Cell {
     }
 }
 
-/// The partner of each cell of an `n` x `n` grid in `found` (`None`: a half tile).
+/// The partner of each cell of a grid `n` cells wide in `found` (`None`: a half tile).
 fn partners(n: usize, found: &Pattern) -> Vec<Option<Cell>> {
     let cell = |f: usize| ((f % n) as i64, (f / n) as i64);
-    let mut partner = vec![None; n * n];
+    let mut partner = vec![None; found.faces];
     for &[a, b] in &found.pairs {
         partner[a] = Some(cell(b));
         partner[b] = Some(cell(a));
@@ -69,6 +69,20 @@ fn partners(n: usize, found: &Pattern) -> Vec<Option<Cell>> {
 /// True when some symmetry and shift of `textbook` pairs every cell at least `margin` from
 /// the border of the `n` x `n` grid as `found` does.
 fn matches_textbook(n: usize, found: &Pattern, textbook: fn(Cell) -> Cell, margin: i64) -> bool {
+    let inside: Vec<Cell> = (margin..n as i64 - margin)
+        .flat_map(|y| (margin..n as i64 - margin).map(move |x| (x, y)))
+        .collect();
+    matches_textbook_at(n, found, textbook, &inside)
+}
+
+/// True when some symmetry and shift of `textbook` pairs every one of `cells` of a grid `n`
+/// cells wide as `found` does.
+fn matches_textbook_at(
+    n: usize,
+    found: &Pattern,
+    textbook: fn(Cell) -> Cell,
+    cells: &[Cell],
+) -> bool {
     let partner = partners(n, found);
     let n = n as i64;
     SYMMETRIES.iter().any(|&m| {
@@ -79,10 +93,9 @@ fn matches_textbook(n: usize, found: &Pattern, textbook: fn(Cell) -> Cell, margi
                     let p = apply(m, textbook(u));
                     (p.0 + sx, p.1 + sy)
                 };
-                (margin..n - margin).all(|y| {
-                    (margin..n - margin)
-                        .all(|x| partner[(x + n * y) as usize] == Some(expected((x, y))))
-                })
+                cells
+                    .iter()
+                    .all(|&(x, y)| partner[(x + n * y) as usize] == Some(expected((x, y))))
             })
         })
     })
@@ -100,22 +113,9 @@ fn solve_grid(n: usize, bond: Bond) -> Pattern {
     found
 }
 
-/// Draws the pattern: `-` a cell of a tile along x, `|` along y, `.` a half tile.
+/// Draws the pattern of an `n` x `n` grid (see [`picture_wide`]).
 fn picture(n: usize, found: &Pattern) -> String {
-    let partner = partners(n, found);
-    let mut rows = Vec::new();
-    for y in (0..n).rev() {
-        rows.push(
-            (0..n)
-                .map(|x| match partner[x + n * y] {
-                    None => '.',
-                    Some((_, py)) if py == y as i64 => '-',
-                    Some(_) => '|',
-                })
-                .collect::<String>(),
-        );
-    }
-    rows.join("\n")
+    picture_wide(n, n, found)
 }
 
 #[test]
@@ -148,6 +148,91 @@ fn herringbone_is_the_textbook_pattern_on_grids() {
         );
         assert!(!matches_textbook(n, &found, basket_weave, 2));
     }
+}
+
+#[test]
+fn a_herringbone_band_inside_a_staggered_field_is_laid_as_asked() {
+    // A 16 x 8 grid, staggered, with a band of herringbone 10 cells wide down its middle
+    // (columns 3 to 12), as a herringbone soffit runs along a staggered vault.
+    let (nx, ny) = (16usize, 8usize);
+    let mesh = generate::grid(nx, ny);
+    let staggered = Bond::Staggered { weight: 0.5 };
+    let herring = Bond::Herringbone { weight: 1.0 };
+    let in_band = |f: usize| (3..13).contains(&(f % nx));
+    let zones: Vec<Bond> = (0..mesh.face_count())
+        .map(|f| if in_band(f) { herring } else { staggered })
+        .collect();
+    let solve = |zones: Option<Vec<Bond>>| {
+        let options = PatternOptions {
+            bond: staggered,
+            zones,
+            time_limit: Duration::from_secs(120),
+            ..PatternOptions::default()
+        };
+        let found = pattern::solve(&mesh, &options).unwrap();
+        assert!(common::is_valid_matching(&mesh, &found.pairs));
+        found
+    };
+    let found = solve(Some(zones));
+    let drawn = picture_wide(nx, ny, &found);
+    eprintln!(
+        "zones: objective {}, bound {}, {:?}, {:.1} s\n{drawn}",
+        found.objective, found.bound, found.status, found.seconds
+    );
+    // Inside the band, two cells from its border: the textbook herringbone, cell by cell.
+    let band: Vec<Cell> = (2..ny as i64 - 2)
+        .flat_map(|y| (5..11).map(move |x| (x, y)))
+        .collect();
+    assert!(
+        matches_textbook_at(nx, &found, herringbone, &band),
+        "{}\n{drawn}",
+        found.objective
+    );
+    // In the staggered fields, each 3 cells wide: a stagger, tile by tile, its continuous
+    // joints (if any) only where the herringbone's border makes them the lesser cost.
+    let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
+    let field = |t: [usize; 2]| t.iter().all(|&f| !in_band(f));
+    let joints_in_field = |p: &Pattern| {
+        graph
+            .continuous_joints()
+            .iter()
+            .filter(|&&[a, b]| {
+                let (ta, tb) = (graph.tiles()[a].faces, graph.tiles()[b].faces);
+                field(ta) && field(tb) && p.pairs.contains(&ta) && p.pairs.contains(&tb)
+            })
+            .count()
+    };
+    let joints = joints_in_field(&found);
+    eprintln!("continuous joints in the staggered fields: {joints}");
+    assert!(joints <= 2, "{joints}\n{drawn}");
+    // Its objective is the zones' score, and at least the bound is honest.
+    assert!(found.bound >= found.objective - 1e-9);
+    // Without the zones the same cells are not herringbone: the zones lay it.
+    let plain = solve(None);
+    assert!(
+        !matches_textbook_at(nx, &plain, herringbone, &band),
+        "{}",
+        picture_wide(nx, ny, &plain)
+    );
+}
+
+/// Draws the pattern of an `nx` x `ny` grid: `-` a cell of a tile along x, `|` along y, `.`
+/// a half tile.
+fn picture_wide(nx: usize, ny: usize, found: &Pattern) -> String {
+    let partner = partners(nx, found);
+    let mut rows = Vec::new();
+    for y in (0..ny).rev() {
+        rows.push(
+            (0..nx)
+                .map(|x| match partner[x + nx * y] {
+                    None => '.',
+                    Some((_, py)) if py == y as i64 => '-',
+                    Some(_) => '|',
+                })
+                .collect::<String>(),
+        );
+    }
+    rows.join("\n")
 }
 
 /// On a grid, by geometry alone: `(end to end, one course apart)` for two disjoint tiles.

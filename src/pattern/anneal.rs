@@ -17,8 +17,8 @@
 
 use std::time::Instant;
 
-use super::construct::bond_partners;
-use super::{Bond, DualGraph, score};
+use super::score::evaluate;
+use super::{DualGraph, Terms};
 
 /// Most moves per face at each temperature.
 const MOVES_PER_FACE: usize = 400;
@@ -85,10 +85,9 @@ impl Rng {
 /// The pattern as annealing changes it.
 struct State<'a> {
     graph: &'a DualGraph,
-    /// Per tile: its partners in the bond relation (joints or shifted pairs).
-    partners: Vec<Vec<usize>>,
-    /// Objective change per chosen partner: `-w` for joints, `+w` for shifted pairs.
-    per_partner: f64,
+    /// Per tile: its partners in the scored pairs, with what each adds when both are
+    /// chosen (`-w` for a penalty, `+w` for a reward).
+    partners: Vec<Vec<(usize, f64)>>,
     chosen: Vec<bool>,
     /// The chosen tile on each face.
     tile_on: Vec<Option<usize>>,
@@ -105,7 +104,11 @@ impl State<'_> {
     /// What tile `t` adds to the objective, chosen or not: its own 1 and its bond pairs
     /// with the chosen tiles.
     fn share(&self, t: usize) -> f64 {
-        1.0 + self.per_partner * self.partners[t].iter().filter(|&&u| self.chosen[u]).count() as f64
+        1.0 + self.partners[t]
+            .iter()
+            .filter(|&&(u, _)| self.chosen[u])
+            .map(|&(_, w)| w)
+            .sum::<f64>()
     }
 
     fn set(&mut self, t: usize, on: bool) {
@@ -129,12 +132,12 @@ impl State<'_> {
 /// Moves between two looks at the clock and the caller (a few milliseconds).
 const MOVES_BETWEEN_CHECKS: usize = 1 << 16;
 
-/// Anneals `chosen` (a matching that includes the `locked` tiles) in place under `bond` and
+/// Anneals `chosen` (a matching that includes the `locked` tiles) in place under `terms` and
 /// leaves there the best pattern seen. Stops early at `deadline` or when `keep_going` (asked
 /// every few milliseconds) says so; returns `false` in the second case.
 pub(super) fn anneal(
     graph: &DualGraph,
-    bond: Bond,
+    terms: &Terms<'_>,
     locked: &[bool],
     chosen: &mut [bool],
     schedule: &Schedule,
@@ -147,7 +150,7 @@ pub(super) fn anneal(
     if faces.is_empty() {
         return true;
     }
-    let (partners, per_partner) = bond_partners(graph, bond);
+    let partners = terms.partners(graph.tiles().len());
     let mut tile_on = vec![None; graph.face_count()];
     for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
         graph.tiles()[t]
@@ -155,7 +158,7 @@ pub(super) fn anneal(
             .iter()
             .for_each(|&f| tile_on[f] = Some(t));
     }
-    let value = score(graph, chosen, bond).objective;
+    let value = evaluate(graph, chosen, terms).objective;
     let mut half_tile_slot = vec![usize::MAX; graph.face_count()];
     let half_tiles: Vec<usize> = faces
         .iter()
@@ -168,7 +171,6 @@ pub(super) fn anneal(
     let mut state = State {
         graph,
         partners,
-        per_partner,
         chosen: chosen.to_vec(),
         tile_on,
         locked: locked.to_vec(),
@@ -313,11 +315,10 @@ impl State<'_> {
     /// tiles and every bond pair they are in, the pair between them counted once.
     fn value_around(&self, pair: &[usize; 2]) -> f64 {
         let [p, q] = *pair;
-        let inner = if self.partners[p].contains(&q) {
-            self.per_partner
-        } else {
-            0.0
-        };
+        let inner = self.partners[p]
+            .iter()
+            .find(|&&(u, _)| u == q)
+            .map_or(0.0, |&(_, w)| w);
         self.share(p) + self.share(q) - inner
     }
 }

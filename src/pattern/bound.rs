@@ -2,7 +2,7 @@
 
 use petgraph::graph::{NodeIndex, UnGraph};
 
-use super::{Bond, DualGraph};
+use super::{DualGraph, Terms};
 
 /// A maximum-cardinality matching (Edmonds' blossom algorithm, via `petgraph`) of the faces
 /// not blocked by `fixed` tiles, using only `free` tiles. Returned as chosen free tiles.
@@ -41,11 +41,12 @@ pub(super) fn maximum_matching(graph: &DualGraph, free: &[bool], fixed: &[bool])
 /// Stack and staggered patterns score at most one per tile. In a running bond each chosen
 /// tile has four side edges, each shared with at most one other chosen tile, so there are at
 /// most two shifted pairs per tile.
-pub(super) fn from_tile_count(graph: &DualGraph, bond: Bond, max_tiles: usize) -> f64 {
+/// In zones, every rewarded pair is a shifted pair, at most the largest reward.
+pub(super) fn from_tile_count(terms: &Terms<'_>, max_tiles: usize) -> f64 {
     let tiles = max_tiles as f64;
     // Only a reward can raise the objective above the tile count.
-    let (relation, per_pair) = graph.bond_pairs(bond);
-    tiles + per_pair.max(0.0) * (2.0 * tiles).min(relation.len() as f64)
+    let rewards = terms.iter().filter(|&(_, _, w)| w > 0.0).count();
+    tiles + terms.largest_reward() * (2.0 * tiles).min(rewards as f64)
 }
 
 /// Most values of the pair count `b` that [`round_down`] tries before it gives up rounding
@@ -60,8 +61,25 @@ const MOST_PAIR_COUNTS: usize = 100_000;
 /// `step * a <= most`, and `b >= 0`. A solver's bound lies between the optimum and the next
 /// value of this form (CBC reports e.g. 96.6 where the optimum 96.5 is proven), so rounding
 /// it down to the form keeps it valid and tightens it by up to one step.
-pub(super) fn round_down(bound: f64, bond: Bond, step: f64, most: f64) -> f64 {
-    let per_pair = bond.pair_weight();
+///
+/// Zones of several weights ([`Terms::common_weight`] `None`) take values `q * k` for a
+/// whole `k` when every weight and `step` are whole multiples of a quantum `q`
+/// ([`Terms::quantum`]): their bound is rounded down to a multiple of it (else kept).
+pub(super) fn round_down(bound: f64, terms: &Terms<'_>, step: f64, most: f64) -> f64 {
+    match terms.common_weight() {
+        Some(per_pair) => round_down_with(bound, per_pair, step, most),
+        None => match terms.quantum(step) {
+            Some(q) if bound.is_finite() => {
+                let tolerance = 1e-6 + 1e-9 * bound.abs();
+                ((bound + tolerance) / q).floor() * q
+            }
+            _ => bound,
+        },
+    }
+}
+
+/// [`round_down`] for objectives whose every pair adds `per_pair`.
+fn round_down_with(bound: f64, per_pair: f64, step: f64, most: f64) -> f64 {
     let (weight, reward) = (per_pair.abs(), per_pair > 0.0);
     if !bound.is_finite() {
         return bound;
@@ -100,28 +118,31 @@ mod tests {
 
     #[test]
     fn bounds_round_down_to_values_a_pattern_can_take() {
-        let staggered = |weight| Bond::Staggered { weight };
+        let staggered = |weight: f64| -weight;
         // Half steps: 96.6 cannot be reached, 96.5 can.
-        assert_eq!(round_down(96.6, staggered(0.5), 1.0, 100.0), 96.5);
-        assert_eq!(round_down(96.5, staggered(0.5), 1.0, 100.0), 96.5);
-        assert_eq!(round_down(96.4999999, staggered(0.5), 1.0, 100.0), 96.5);
+        assert_eq!(round_down_with(96.6, staggered(0.5), 1.0, 100.0), 96.5);
+        assert_eq!(round_down_with(96.5, staggered(0.5), 1.0, 100.0), 96.5);
+        assert_eq!(
+            round_down_with(96.4999999, staggered(0.5), 1.0, 100.0),
+            96.5
+        );
         // w = 0.3 and at most 97 tiles: 97 - 0.3 = 96.7 is too much, 97 - 0.6 = 96.4 fits; with
         // 99 tiles allowed, 99 - 8 * 0.3 = 96.6 is reached exactly.
-        assert!((round_down(96.6, staggered(0.3), 1.0, 97.0) - 96.4).abs() < 1e-9);
-        assert!((round_down(96.6, staggered(0.3), 1.0, 100.0) - 96.6).abs() < 1e-9);
+        assert!((round_down_with(96.6, staggered(0.3), 1.0, 97.0) - 96.4).abs() < 1e-9);
+        assert!((round_down_with(96.6, staggered(0.3), 1.0, 100.0) - 96.6).abs() < 1e-9);
         // More tiles than `most` are impossible.
-        assert_eq!(round_down(120.2, staggered(0.5), 1.0, 100.0), 100.0);
-        assert_eq!(round_down(96.7, Bond::Stack, 1.0, 100.0), 96.0);
+        assert_eq!(round_down_with(120.2, staggered(0.5), 1.0, 100.0), 100.0);
+        assert_eq!(round_down_with(96.7, 0.0, 1.0, 100.0), 96.0);
         // Patch relaxations count half a tile per face.
-        assert_eq!(round_down(10.4, staggered(0.5), 0.5, 12.0), 10.0);
-        assert!((round_down(10.4, staggered(0.7), 0.5, 12.0) - 10.3).abs() < 1e-9);
+        assert_eq!(round_down_with(10.4, staggered(0.5), 0.5, 12.0), 10.0);
+        assert!((round_down_with(10.4, staggered(0.7), 0.5, 12.0) - 10.3).abs() < 1e-9);
         // Running bond: tiles plus w per shifted pair; 8 + 8 * 0.3 = 10.4 is reached exactly.
-        let running = |weight| Bond::RunningBond { weight };
-        assert_eq!(round_down(10.4, running(0.5), 1.0, 12.0), 10.0);
-        assert!((round_down(10.45, running(0.3), 1.0, 12.0) - 10.4).abs() < 1e-9);
-        assert_eq!(round_down(0.4, running(0.5), 1.0, 12.0), 0.0);
+        let running = |weight: f64| weight;
+        assert_eq!(round_down_with(10.4, running(0.5), 1.0, 12.0), 10.0);
+        assert!((round_down_with(10.45, running(0.3), 1.0, 12.0) - 10.4).abs() < 1e-9);
+        assert_eq!(round_down_with(0.4, running(0.5), 1.0, 12.0), 0.0);
         assert_eq!(
-            round_down(f64::INFINITY, staggered(0.5), 1.0, 12.0),
+            round_down_with(f64::INFINITY, staggered(0.5), 1.0, 12.0),
             f64::INFINITY
         );
     }

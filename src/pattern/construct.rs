@@ -12,26 +12,27 @@ use std::collections::VecDeque;
 
 use crate::mesh::Topology;
 
-use super::{Bond, DualGraph, score};
+use super::score::evaluate;
+use super::{DualGraph, Terms};
 
 /// The better of the two running bonds (rows along either edge family of the seed face),
 /// completed greedily, never touching faces of `fixed` tiles.
 pub(super) fn running_bond(
     graph: &DualGraph,
     topology: &Topology,
-    bond: Bond,
+    terms: &Terms<'_>,
     fixed: &[bool],
 ) -> Vec<bool> {
     (0..2)
         .map(|seed_slot| {
             let mut chosen = strip_pairs(graph, topology, fixed, seed_slot);
-            complete_greedily(graph, bond, fixed, &mut chosen);
+            complete_greedily(graph, terms, fixed, &mut chosen);
             chosen
         })
         .max_by(|a, b| {
-            score(graph, a, bond)
+            evaluate(graph, a, terms)
                 .objective
-                .total_cmp(&score(graph, b, bond).objective)
+                .total_cmp(&evaluate(graph, b, terms).objective)
                 .then(std::cmp::Ordering::Greater)
         })
         .expect("two candidates")
@@ -105,7 +106,7 @@ fn strip_pairs(
 pub(super) fn boundary_courses(
     graph: &DualGraph,
     topology: &Topology,
-    bond: Bond,
+    terms: &Terms<'_>,
     fixed: &[bool],
 ) -> Vec<bool> {
     let faces = graph.face_count();
@@ -136,7 +137,7 @@ pub(super) fn boundary_courses(
         }
     }
 
-    let (partners, per_partner) = bond_partners(graph, bond);
+    let partners = terms.partners(graph.tiles().len());
     let mut chosen = fixed.to_vec();
     let mut used = faces_of(graph, fixed);
     let mut walked = vec![false; faces];
@@ -169,12 +170,11 @@ pub(super) fn boundary_courses(
         let gain = |tiles: &[usize]| {
             let mut value = tiles.len() as f64;
             for (k, &t) in tiles.iter().enumerate() {
-                let with_laid = partners[t].iter().filter(|&&u| chosen[u]).count();
-                let among = partners[t]
+                value += partners[t]
                     .iter()
-                    .filter(|&&u| tiles[..k].contains(&u))
-                    .count();
-                value += per_partner * (with_laid + among) as f64;
+                    .filter(|&&(u, _)| chosen[u] || tiles[..k].contains(&u))
+                    .map(|&(_, w)| w)
+                    .sum::<f64>();
             }
             value
         };
@@ -184,14 +184,14 @@ pub(super) fn boundary_courses(
             graph.tiles()[t].faces.iter().for_each(|&f| used[f] = true);
         }
     }
-    complete_greedily(graph, bond, fixed, &mut chosen);
+    complete_greedily(graph, terms, fixed, &mut chosen);
     chosen
 }
 
 /// Adds free tiles, in index order, whenever they raise the objective.
 pub(super) fn complete_greedily(
     graph: &DualGraph,
-    bond: Bond,
+    terms: &Terms<'_>,
     fixed: &[bool],
     chosen: &mut [bool],
 ) {
@@ -199,34 +199,23 @@ pub(super) fn complete_greedily(
     for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
         graph.tiles()[t].faces.iter().for_each(|&f| used[f] = true);
     }
-    let (partners, per_partner) = bond_partners(graph, bond);
+    let partners = terms.partners(graph.tiles().len());
     for t in 0..graph.tiles().len() {
         let [a, b] = graph.tiles()[t].faces;
         if used[a] || used[b] {
             continue;
         }
-        let on = partners[t]
+        let on: f64 = partners[t]
             .iter()
-            .filter(|&&u| chosen[u] || fixed[u])
-            .count() as f64;
-        if 1.0 + per_partner * on > 0.0 {
+            .filter(|&&(u, _)| chosen[u] || fixed[u])
+            .map(|&(_, w)| w)
+            .sum();
+        if 1.0 + on > 0.0 {
             used[a] = true;
             used[b] = true;
             chosen[t] = true;
         }
     }
-}
-
-/// Per tile its partners in the bond's relation (continuous joints or shifted pairs), and
-/// what each chosen partner adds to the objective (`-w` or `+w`; nothing for stack bond).
-pub(super) fn bond_partners(graph: &DualGraph, bond: Bond) -> (Vec<Vec<usize>>, f64) {
-    let (relation, per_partner) = graph.bond_pairs(bond);
-    let mut partners = vec![Vec::new(); graph.tiles().len()];
-    for &[a, b] in relation {
-        partners[a].push(b);
-        partners[b].push(a);
-    }
-    (partners, per_partner)
 }
 
 /// Faces covered by the tiles marked in `tiles`.

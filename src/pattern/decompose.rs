@@ -17,7 +17,7 @@ use std::time::Instant;
 use super::bound;
 use super::mip;
 use super::program::{Patch, Restriction};
-use super::{Bond, DualGraph, Formulation, PatternError, linear};
+use super::{DualGraph, Formulation, PatternError, Terms, linear};
 use crate::control::Control;
 
 /// A patch may take this many times its even share of the time left.
@@ -289,7 +289,7 @@ fn deepest_faces(graph: &DualGraph, patch_of: &[usize], count: usize) -> Vec<usi
 )]
 pub(super) fn bound(
     graph: &DualGraph,
-    bond: Bond,
+    terms: &Terms<'_>,
     linear: bool,
     partition: &Partition,
     incumbent: &[bool],
@@ -298,9 +298,8 @@ pub(super) fn bound(
     progress: &impl Fn() -> f64,
 ) -> Result<Proven, PatternError> {
     let tiles = graph.tiles();
-    let (relation, per_pair) = graph.bond_pairs(bond);
     // Only a reward lifts a patch above half a tile per face.
-    let running = per_pair > 0.0;
+    let running = terms.largest_reward() > 0.0;
     let mut members = vec![Vec::new(); partition.count];
     for (f, &p) in partition
         .patch_of
@@ -317,7 +316,8 @@ pub(super) fn bound(
             // its first tile's first face (a reward pair must be counted somewhere).
             let reaches =
                 |t: usize, p: usize| tiles[t].faces.iter().any(|&f| partition.patch_of[f] == p);
-            let owner: Vec<usize> = relation
+            let owner: Vec<usize> = terms
+                .pairs()
                 .iter()
                 .map(|&[a, b]| {
                     tiles[a]
@@ -356,7 +356,7 @@ pub(super) fn bound(
         for (p, m) in members.iter().enumerate() {
             shortfall[p] = patch_bound[p] - 0.5 * m.iter().filter(|&&f| covered[f]).count() as f64;
         }
-        for (i, &[a, b]) in relation.iter().enumerate() {
+        for (i, [a, b], per_pair) in terms.iter() {
             if incumbent[a] && incumbent[b] && owner[i] != usize::MAX {
                 shortfall[owner[i]] -= per_pair;
             }
@@ -401,7 +401,7 @@ pub(super) fn bound(
         };
         // The solver's bound, and for an integer program the relaxed pattern it found.
         let (solver_bound, chosen) = if linear {
-            let found = linear::bound(graph, bond, Some(patch), share, control, progress)?;
+            let found = linear::bound(graph, terms, Some(patch), share, control, progress)?;
             (found.map_or(f64::INFINITY, |found| found.value), None)
         } else {
             let restriction = Restriction {
@@ -411,7 +411,7 @@ pub(super) fn bound(
             };
             let outcome = mip::solve(
                 graph,
-                bond,
+                terms,
                 Formulation::Strengthened,
                 &restriction,
                 share,
@@ -421,12 +421,12 @@ pub(super) fn bound(
             )?;
             (outcome.bound, outcome.chosen)
         };
-        let solved = bound::round_down(solver_bound, bond, 0.5, 0.5 * members[p].len() as f64);
+        let solved = bound::round_down(solver_bound, terms, 0.5, 0.5 * members[p].len() as f64);
         patch_bound[p] = patch_bound[p].min(solved);
         if let (Some(chosen), false) = (&chosen, running) {
             let shortfall = 0.5 * members[p].len() as f64 - patch_bound[p];
             if shortfall > 1e-9 {
-                let defects = defect_faces(graph, relation, &owned, &faces, chosen);
+                let defects = defect_faces(graph, terms, &owned, &faces, chosen);
                 let face = middle(graph, &defects).unwrap_or(members[p][0]);
                 sources.push(Source { face, shortfall });
             }
@@ -469,10 +469,10 @@ pub(super) struct Source {
 }
 
 /// Faces of `patch` that the relaxed pattern `chosen` leaves uncovered or gives a penalty
-/// pair (of the `owned` pairs of `relation`).
+/// pair (of the `owned` pairs of `terms`).
 fn defect_faces(
     graph: &DualGraph,
-    relation: &[[usize; 2]],
+    terms: &Terms<'_>,
     owned: &[bool],
     patch: &[bool],
     chosen: &[bool],
@@ -485,10 +485,9 @@ fn defect_faces(
     let mut defects: Vec<usize> = (0..graph.face_count())
         .filter(|&f| patch[f] && !covered[f])
         .collect();
-    for (_, &[a, b]) in relation
+    for (_, [a, b], _) in terms
         .iter()
-        .enumerate()
-        .filter(|&(i, &[a, b])| owned[i] && chosen[a] && chosen[b])
+        .filter(|&(i, [a, b], weight)| weight < 0.0 && owned[i] && chosen[a] && chosen[b])
     {
         defects.extend(
             tiles[a]
@@ -527,7 +526,7 @@ fn middle(graph: &DualGraph, faces: &[usize]) -> Option<usize> {
 pub(super) mod tests {
     use super::*;
     use crate::mesh::{PolyMesh, Topology, generate};
-    use crate::pattern::{Method, PatternOptions, SolveStatus, solve};
+    use crate::pattern::{Bond, Method, PatternOptions, SolveStatus, solve};
 
     /// A grid with every third boundary face (by a fixed hash) removed.
     pub(in crate::pattern) fn ragged(n: usize) -> PolyMesh {
@@ -544,16 +543,38 @@ pub(super) mod tests {
         for mesh in [ragged(7), ragged(8), generate::grid(6, 7)] {
             let topology = Topology::new(&mesh).unwrap();
             let graph = DualGraph::new(&mesh, &topology, &[]);
-            for bond in [
-                Bond::Stack,
-                Bond::Staggered { weight: 0.5 },
-                Bond::Staggered { weight: 2.0 },
-                Bond::RunningBond { weight: 0.5 },
-                Bond::Herringbone { weight: 0.5 },
-                Bond::BasketWeave { weight: 0.5 },
+            let faces = mesh.face_count();
+            // Zones: bands of staggered, herringbone and running bond.
+            let bands: Vec<Bond> = (0..faces)
+                .map(|f| {
+                    [
+                        Bond::Staggered { weight: 0.5 },
+                        Bond::Herringbone { weight: 0.5 },
+                        Bond::RunningBond { weight: 0.5 },
+                    ][f * 3 / faces]
+                })
+                .collect();
+            for (bond, zones) in [
+                (Bond::Stack, None),
+                (Bond::Staggered { weight: 0.5 }, None),
+                (Bond::Staggered { weight: 2.0 }, None),
+                (Bond::RunningBond { weight: 0.5 }, None),
+                (Bond::Herringbone { weight: 0.5 }, None),
+                (Bond::BasketWeave { weight: 0.5 }, None),
+                (Bond::Stack, Some(bands)),
             ] {
+                let terms = match &zones {
+                    Some(zones) => Terms::zoned(&graph, zones),
+                    None => Terms::uniform(&graph, bond),
+                };
+                let bond = if zones.is_some() {
+                    Bond::RunningBond { weight: 0.5 }
+                } else {
+                    bond
+                };
                 let options = PatternOptions {
                     bond,
+                    zones,
                     method: Method::Mip,
                     time_limit: std::time::Duration::from_secs(20),
                     ..PatternOptions::default()
@@ -571,7 +592,7 @@ pub(super) mod tests {
                     let deadline = Instant::now() + std::time::Duration::from_secs(20);
                     let bound = super::bound(
                         &graph,
-                        bond,
+                        &terms,
                         linear,
                         &partition,
                         &nothing,
@@ -603,7 +624,7 @@ pub(super) mod tests {
                 let deadline = Instant::now() + std::time::Duration::from_secs(20);
                 let finer = super::bound(
                     &graph,
-                    bond,
+                    &terms,
                     false,
                     &finer_partition,
                     &nothing,
@@ -621,7 +642,7 @@ pub(super) mod tests {
                 assert!(coarse.count < finer_partition.count);
                 let refined = super::bound(
                     &graph,
-                    bond,
+                    &terms,
                     false,
                     &coarse,
                     &nothing,

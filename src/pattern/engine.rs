@@ -5,11 +5,12 @@
 
 use std::time::{Duration, Instant};
 
-use super::{
-    Bond, BoundSource, DualGraph, Method, PatternError, PatternOptions, anneal, bound, construct,
-    decompose, linear, mip, program, score, search,
-};
+use super::score::evaluate;
 use super::{Bound, Found};
+use super::{
+    BoundSource, DualGraph, Method, PatternError, PatternOptions, Terms, anneal, bound, construct,
+    decompose, linear, mip, program, search,
+};
 use crate::control::{Control, Figures, relative_gap};
 use crate::mesh::Topology;
 
@@ -52,7 +53,8 @@ pub(super) struct Engine<'a, 'c, P: Fn() -> f64> {
     graph: &'a DualGraph,
     topology: &'a Topology,
     options: &'a PatternOptions,
-    bond: Bond,
+    /// The objective's bond terms (one bond, or zones).
+    terms: &'a Terms<'a>,
     /// The forced tiles, held in every pattern.
     fixed: Vec<bool>,
     /// The tiles a solver may choose: all but the forced ones.
@@ -74,30 +76,34 @@ pub(super) struct Engine<'a, 'c, P: Fn() -> f64> {
 impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     /// A search for `options` on `graph` with the `forced` tiles, until `deadline`; the
     /// first bound is the maximum matching's.
+    #[expect(
+        clippy::too_many_arguments,
+        reason = "the program's inputs, its limits and its control"
+    )]
     pub fn new(
         graph: &'a DualGraph,
         topology: &'a Topology,
         options: &'a PatternOptions,
+        terms: &'a Terms<'a>,
         forced: &[usize],
         deadline: Instant,
         control: &'a mut Control<'c>,
         progress: &'a P,
     ) -> Self {
-        let bond = options.bond;
         let mut fixed = vec![false; graph.tiles().len()];
         forced.iter().for_each(|&t| fixed[t] = true);
         let free: Vec<bool> = fixed.iter().map(|f| !f).collect();
         let matching = union(&bound::maximum_matching(graph, &free, &fixed), &fixed);
         let most_tiles = matching.iter().filter(|&&c| c).count();
         let bound = Bound {
-            value: bound::from_tile_count(graph, bond, most_tiles),
+            value: bound::from_tile_count(terms, most_tiles),
             source: BoundSource::Matching,
         };
         Self {
             graph,
             topology,
             options,
-            bond,
+            terms,
             best: fixed.clone(),
             fixed,
             free,
@@ -126,7 +132,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
 
     /// The paper's route: the whole program on CBC, from a greedy start kept as a fallback.
     fn paper_route(&mut self) -> Result<(), PatternError> {
-        construct::complete_greedily(self.graph, self.bond, &self.fixed, &mut self.best);
+        construct::complete_greedily(self.graph, self.terms, &self.fixed, &mut self.best);
         let (cbc_bound, timed_out) = self.whole_program(self.left())?;
         self.tighten(cbc_bound, BoundSource::WholeProgram);
         self.timed_out = timed_out;
@@ -145,7 +151,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
         if relaxation_solved && !self.done() {
             self.anneal(SOLVED_ANNEAL_SHARE, anneal::FIRST_TEMPERATURE / 2.0, 0)?;
         }
-        if self.bond != Bond::Stack && !relaxation_solved {
+        if !self.terms.is_empty() && !relaxation_solved {
             self.linear_patch_rounds()?;
         }
         self.exact_rounds()
@@ -153,7 +159,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
 
     /// Objective of `chosen`.
     fn value(&self, chosen: &[bool]) -> f64 {
-        score(self.graph, chosen, self.bond).objective
+        evaluate(self.graph, chosen, self.terms).objective
     }
 
     /// The pattern meets its bound, or comes within the gap the caller accepts.
@@ -171,7 +177,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     /// Keeps `value` as the bound if tighter, rounded down to the next objective value a
     /// pattern can take.
     fn tighten(&mut self, value: f64, source: BoundSource) {
-        let rounded = bound::round_down(value, self.bond, 1.0, self.most_tiles as f64);
+        let rounded = bound::round_down(value, self.terms, 1.0, self.most_tiles as f64);
         self.bound.tighten(rounded, source);
         self.note();
     }
@@ -191,7 +197,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     fn whole_program(&mut self, limit: Duration) -> Result<(f64, bool), PatternError> {
         let outcome = mip::solve(
             self.graph,
-            self.bond,
+            self.terms,
             self.options.formulation,
             &program::Restriction {
                 free: &self.free,
@@ -218,13 +224,13 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     /// along quad strips (no joints in the interior), the maximum matching (fewest half
     /// tiles).
     fn best_start(&mut self) {
-        let (graph, bond, fixed) = (self.graph, self.bond, &self.fixed);
-        let mut starts = if bond == Bond::Stack {
+        let (graph, terms, fixed) = (self.graph, self.terms, &self.fixed);
+        let mut starts = if terms.is_empty() {
             vec![self.matching.clone()]
         } else {
-            let courses = construct::boundary_courses(graph, self.topology, bond, fixed);
+            let courses = construct::boundary_courses(graph, self.topology, terms, fixed);
             let laid = union(
-                &construct::running_bond(graph, self.topology, bond, fixed),
+                &construct::running_bond(graph, self.topology, terms, fixed),
                 fixed,
             );
             vec![courses, laid, self.matching.clone()]
@@ -243,7 +249,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
         let control = &mut *self.control;
         let on = anneal::anneal(
             self.graph,
-            self.bond,
+            self.terms,
             &self.fixed,
             &mut self.best,
             &schedule,
@@ -274,7 +280,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     /// the time left: it sees across the seams between forced defects that patches cut.
     /// Whether it converged.
     fn linear_relaxation(&mut self) -> Result<bool, PatternError> {
-        if self.bond == Bond::Stack
+        if self.terms.is_empty()
             || self.done()
             || linear::expected_seconds(self.graph.face_count())
                 > self.left().as_secs_f64() * LINEAR_SHARE
@@ -283,7 +289,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
         }
         let Some(found) = linear::bound(
             self.graph,
-            self.bond,
+            self.terms,
             None,
             self.left().mul_f64(LINEAR_SHARE),
             self.control,
@@ -310,7 +316,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
             let started = Instant::now();
             let proven_here = decompose::bound(
                 self.graph,
-                self.bond,
+                self.terms,
                 true,
                 &partition,
                 &self.best,
@@ -378,7 +384,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
             let step_deadline = Instant::now() + self.left() / 2;
             let proven_here = decompose::bound(
                 self.graph,
-                self.bond,
+                self.terms,
                 false,
                 &partition,
                 &self.best,
@@ -404,7 +410,7 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
             let windows_until = Instant::now() + self.left() / WINDOW_SHARE;
             search::improve(
                 self.graph,
-                self.bond,
+                self.terms,
                 &self.fixed,
                 &mut self.best,
                 windows_until,

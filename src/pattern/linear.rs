@@ -18,7 +18,7 @@
 use std::time::Duration;
 
 use super::program::{Patch, Program, Restriction};
-use super::{Bond, DualGraph, Formulation, PatternError, worker};
+use super::{DualGraph, Formulation, PatternError, Terms, worker};
 use crate::control::Control;
 use crate::solver::{Stop, clp};
 
@@ -41,7 +41,7 @@ pub(super) fn expected_seconds(faces: usize) -> f64 {
 /// The program whose relaxation bounds `bond` on `graph` (the whole program, or one patch's
 /// relaxed program), in the compact joint form. Forced pairs are left out: the bound holds
 /// for the unrestricted program and so for the restricted one.
-fn relaxation(graph: &DualGraph, bond: Bond, patch: Option<Patch<'_>>) -> Program {
+fn relaxation(graph: &DualGraph, terms: &Terms<'_>, patch: Option<Patch<'_>>) -> Program {
     let free = vec![true; graph.tiles().len()];
     let fixed = vec![false; graph.tiles().len()];
     let restriction = Restriction {
@@ -49,7 +49,7 @@ fn relaxation(graph: &DualGraph, bond: Bond, patch: Option<Patch<'_>>) -> Progra
         fixed: &fixed,
         patch,
     };
-    Program::new(graph, bond, Formulation::Strengthened, &restriction)
+    Program::new(graph, terms, Formulation::Strengthened, &restriction)
 }
 
 /// What the barrier proved.
@@ -67,13 +67,13 @@ pub(super) struct LinearBound {
 /// [`PatternError::Cancelled`] when `control` asks to stop.
 pub(super) fn bound(
     graph: &DualGraph,
-    bond: Bond,
+    terms: &Terms<'_>,
     patch: Option<Patch<'_>>,
     time_limit: Duration,
     control: &mut Control<'_>,
     progress: impl Fn() -> f64,
 ) -> Result<Option<LinearBound>, PatternError> {
-    let relaxation = relaxation(graph, bond, patch);
+    let relaxation = relaxation(graph, terms, patch);
     let seconds = time_limit.as_secs_f64() * CLP_SHARE_OF_LIMIT;
     let work = move |stop: Stop| {
         let model = relaxation.model();
@@ -90,7 +90,7 @@ mod tests {
     use super::*;
     use crate::mesh::{Topology, generate};
     use crate::pattern::decompose::tests::ragged;
-    use crate::pattern::{Method, PatternOptions, SolveStatus, solve};
+    use crate::pattern::{Bond, Method, PatternOptions, SolveStatus, solve};
 
     #[test]
     fn any_prices_bound_the_optimum_and_so_do_the_barriers() {
@@ -109,7 +109,8 @@ mod tests {
                 };
                 let optimum = solve(&mesh, &options).unwrap();
                 assert_eq!(optimum.status, SolveStatus::Optimal);
-                let relaxation = relaxation(&graph, bond, None);
+                let terms = Terms::uniform(&graph, bond);
+                let relaxation = relaxation(&graph, &terms, None);
                 let model = relaxation.model();
                 let rows = model.row_upper.len();
                 // Prices of every kind, negative ones included (they count as zero).
@@ -131,7 +132,7 @@ mod tests {
                 // The barrier's prices, converged or cut short.
                 let converged = bound(
                     &graph,
-                    bond,
+                    &terms,
                     None,
                     Duration::from_secs(20),
                     &mut Control::none(),
@@ -155,8 +156,8 @@ mod tests {
         // 60 ms (before the first, some 0.4 s to set up, which it cannot be stopped in).
         let mesh = generate::grid(100, 100);
         let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
-        let bond = Bond::Staggered { weight: 0.5 };
-        let relaxation = relaxation(&graph, bond, None);
+        let terms = Terms::uniform(&graph, Bond::Staggered { weight: 0.5 });
+        let relaxation = relaxation(&graph, &terms, None);
 
         // Clp's limit is wall-clock time: with two threads spinning beside it, the process's
         // processor time runs ahead of the clock, and a limit counted in it would stop the
@@ -196,7 +197,7 @@ mod tests {
         let mut control = Control::with_progress(&mut cancel_after_a_second);
         let outcome = bound(
             &graph,
-            bond,
+            &terms,
             None,
             Duration::from_secs(60),
             &mut control,
@@ -219,7 +220,7 @@ mod tests {
         let graph = DualGraph::new(&mesh, &Topology::new(&mesh).unwrap(), &[]);
         let found = bound(
             &graph,
-            Bond::Staggered { weight: 2.0 },
+            &Terms::uniform(&graph, Bond::Staggered { weight: 2.0 }),
             None,
             Duration::from_secs(20),
             &mut Control::none(),

@@ -5,7 +5,7 @@
 use std::time::Duration;
 
 use super::program::{Program, Restriction};
-use super::{Bond, DualGraph, Formulation, PatternError, worker};
+use super::{DualGraph, Formulation, PatternError, Terms, worker};
 use crate::control::Control;
 use crate::solver::Stop;
 use crate::solver::cbc::{self, Ending};
@@ -46,7 +46,7 @@ pub(super) fn expected_linear_seconds(faces: usize) -> f64 {
 )]
 pub(super) fn solve(
     graph: &DualGraph,
-    bond: Bond,
+    terms: &Terms<'_>,
     formulation: Formulation,
     restriction: &Restriction<'_>,
     time_limit: Duration,
@@ -54,7 +54,7 @@ pub(super) fn solve(
     control: &mut Control<'_>,
     progress: impl Fn() -> f64,
 ) -> Result<Outcome, PatternError> {
-    let program = Program::new(graph, bond, formulation, restriction);
+    let program = Program::new(graph, terms, formulation, restriction);
     let constant = program.constant();
     if program.model().columns() == 0 {
         return Ok(Outcome {
@@ -125,10 +125,10 @@ mod tests {
             fixed: &fixed,
             patch: None,
         };
-        let bond = Bond::Staggered { weight: 0.5 };
+        let terms = Terms::uniform(&graph, crate::pattern::Bond::Staggered { weight: 0.5 });
         solve(
             &graph,
-            bond,
+            &terms,
             Formulation::Strengthened,
             &restriction,
             limit,

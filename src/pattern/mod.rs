@@ -9,6 +9,10 @@
 //! * [`Bond::Herringbone`], [`Bond::BasketWeave`]: the other patterns of section 3.4 and
 //!   Figure 1, each pair of their [`Relation`]s costs `weight`.
 //!
+//! [`PatternOptions::zones`] gives a bond per face (a herringbone band in a staggered vault);
+//! the objective's pair terms, of one bond or of zones, are built once per solve (`terms`)
+//! and read by everything below.
+//!
 //! The answer says honestly how good it is: the objective of the returned pattern, a
 //! proven bound and where it came from ([`BoundSource`]), and [`SolveStatus::Optimal`] only
 //! when the two meet.
@@ -31,12 +35,15 @@ mod mip;
 mod program;
 mod score;
 mod search;
+mod terms;
 mod worker;
 
 pub use courses::Courses;
 pub use dual::{CandidateTile, DualGraph};
 pub use error::PatternError;
 pub use score::{Score, score};
+
+use terms::Terms;
 
 use std::time::{Duration, Instant};
 
@@ -215,10 +222,10 @@ pub struct PatternOptions {
     pub gap: f64,
     /// Zones: a bond per face (one per face of the mesh, in face order), e.g. a band of
     /// herringbone in a staggered vault as in Guastavino soffits; `None` (the default) lays
-    /// every face in [`PatternOptions::bond`]. A pair of the relation of a zone's bond is
-    /// scored, at that bond's weight, when both its tiles lie in the zone (all four faces);
-    /// tiles across a zone border are allowed and score one like any tile, and pairs across
-    /// the border score nothing. Faces of non-quad or excluded faces may carry any bond.
+    /// every face in [`PatternOptions::bond`]. A pair inside a zone scores as the zone's
+    /// bond scores it; tiles across a zone border are allowed, and a pair across it scores
+    /// as each zone would, in proportion to its four faces in each. Non-quad or excluded
+    /// faces may carry any bond.
     pub zones: Option<Vec<Bond>>,
 }
 
@@ -410,13 +417,17 @@ pub fn solve_with(
     if !control.keep_going(0.0) {
         return Err(PatternError::Cancelled);
     }
+    let terms = match &options.zones {
+        Some(zones) => Terms::zoned(&graph, zones),
+        None => Terms::uniform(&graph, options.bond),
+    };
     let found = engine::Engine::new(
-        &graph, &topology, options, &forced, deadline, control, &progress,
+        &graph, &topology, options, &terms, &forced, deadline, control, &progress,
     )
     .run()?;
     control.keep_going(1.0);
     let chosen = &found.chosen;
-    let s = score(&graph, chosen, options.bond);
+    let s = score::evaluate(&graph, chosen, &terms);
     let bound = found.bound.value.max(s.objective);
     let gap = relative_gap(s.objective, bound);
     let status = if gap <= 1e-9 {

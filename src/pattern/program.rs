@@ -29,7 +29,7 @@
 //!   A penalty pair with it is left out (which can only raise the patch's bound), a reward
 //!   pair is bounded by its other tile alone. Only the pairs the patch owns count.
 
-use super::{Bond, DualGraph, Formulation};
+use super::{DualGraph, Formulation, Terms};
 use crate::solver::{Model, Row};
 
 /// Which tiles a program may change.
@@ -82,7 +82,7 @@ impl Program {
     /// Builds the program (see the module documentation for its rules).
     pub fn new(
         graph: &DualGraph,
-        bond: Bond,
+        terms: &Terms<'_>,
         formulation: Formulation,
         restriction: &Restriction<'_>,
     ) -> Self {
@@ -131,24 +131,32 @@ impl Program {
                 rows.push((around, 1.0));
             }
         }
-        let (relation, per_pair) = graph.bond_pairs(bond);
         // Eq. (2) in the compact joint form: one column and one star row per regular vertex
-        // whose four tiles are columns with all their faces in the patch, its joints owned.
-        let mut starred = vec![false; relation.len()];
+        // whose four tiles are columns with all their faces in the patch, its two joints
+        // scored at one penalty and owned.
+        let mut starred = vec![false; terms.pairs().len()];
         let inside = |t: usize| tiles[t].faces.iter().all(|&f| counted(f));
-        if bond.penalises_continuous_joints() && formulation == Formulation::Strengthened {
+        if formulation == Formulation::Strengthened {
             for (star, joints) in graph
                 .regular_vertex_stars()
                 .iter()
                 .zip(graph.regular_vertex_star_joints())
             {
+                let [Some(ac), Some(bd)] = joints.map(|j| terms.joint_term(j)) else {
+                    continue;
+                };
+                let penalty = terms.weight(ac);
                 let columns: Vec<usize> = star.iter().filter_map(|&t| column(t)).collect();
-                if columns.len() == 4
+                if penalty < 0.0
+                    && terms.weight(bd) == penalty
+                    && columns.len() == 4
                     && star.iter().all(|&t| inside(t))
-                    && joints.iter().all(|&i| owned(i))
+                    && owned(ac)
+                    && owned(bd)
                 {
-                    joints.iter().for_each(|&i| starred[i] = true);
-                    objective.push(per_pair);
+                    starred[ac] = true;
+                    starred[bd] = true;
+                    objective.push(penalty);
                     let mut row: Vec<(usize, f64)> = columns.iter().map(|&j| (j, 1.0)).collect();
                     row.push((objective.len() - 1, -1.0));
                     rows.push((row, 1.0));
@@ -156,11 +164,7 @@ impl Program {
             }
         }
         // Every other pair the program owns, by the roles of its two tiles.
-        for (_, &[a, b]) in relation
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| owned(i) && !starred[i])
-        {
+        for (_, [a, b], per_pair) in terms.iter().filter(|&(i, _, _)| owned(i) && !starred[i]) {
             match (role[a], role[b]) {
                 (Role::Column(xa), Role::Column(xb)) => {
                     objective.push(per_pair);
@@ -322,7 +326,8 @@ mod tests {
     use super::*;
     use crate::mesh::{PolyMesh, Topology, generate};
     use crate::pattern::decompose::tests::ragged;
-    use crate::pattern::{courses, score};
+    use crate::pattern::score::evaluate;
+    use crate::pattern::{Bond, courses};
 
     /// xorshift: deterministic pseudo-random numbers for the property tests.
     struct Rng(u64);
@@ -408,6 +413,25 @@ mod tests {
         Bond::BasketWeave { weight: 0.2 },
     ];
 
+    /// The terms of every bond on every face, and of zones: bands of faces (by index) in
+    /// two or three bonds, and a bond drawn per face.
+    fn objectives<'g>(graph: &'g DualGraph, rng: &mut Rng) -> Vec<(String, Terms<'g>)> {
+        let faces = graph.face_count();
+        let mut objectives: Vec<(String, Terms<'g>)> = BONDS
+            .iter()
+            .map(|&bond| (format!("{bond:?}"), Terms::uniform(graph, bond)))
+            .collect();
+        for (a, b, c) in [(1, 5, 1), (3, 7, 0), (2, 3, 8), (6, 4, 2)] {
+            let zones: Vec<Bond> = (0..faces)
+                .map(|f| [BONDS[a], BONDS[b], BONDS[c]][f * 3 / faces])
+                .collect();
+            objectives.push((format!("bands {a} {b} {c}"), Terms::zoned(graph, &zones)));
+        }
+        let zones: Vec<Bond> = (0..faces).map(|_| BONDS[rng.below(BONDS.len())]).collect();
+        objectives.push(("drawn per face".into(), Terms::zoned(graph, &zones)));
+        objectives
+    }
+
     #[test]
     fn the_program_scores_every_pattern_as_score_does() {
         let mut rng = Rng(0x2545_f491_4f6c_dd1d);
@@ -422,8 +446,8 @@ mod tests {
                     .collect();
                 let everything = vec![true; n];
                 let nothing = vec![false; n];
-                for bond in BONDS {
-                    let want = score(&graph, &chosen, bond).objective;
+                for (name, terms) in objectives(&graph, &mut rng) {
+                    let want = evaluate(&graph, &chosen, &terms).objective;
                     for formulation in [Formulation::Paper, Formulation::Strengthened] {
                         for (free, fixed) in [(&everything, &nothing), (&free, &fixed)] {
                             let restriction = Restriction {
@@ -431,11 +455,11 @@ mod tests {
                                 fixed,
                                 patch: None,
                             };
-                            let program = Program::new(&graph, bond, formulation, &restriction);
+                            let program = Program::new(&graph, &terms, formulation, &restriction);
                             let got = program.objective_at(&chosen);
                             assert!(
                                 got.is_some_and(|got| (got - want).abs() < 1e-9),
-                                "{bond:?} {formulation:?}: program {got:?}, score {want}"
+                                "{name} {formulation:?}: program {got:?}, score {want}"
                             );
                         }
                     }
@@ -461,9 +485,9 @@ mod tests {
                     for (t, _) in chosen.iter().enumerate().filter(|(_, c)| **c) {
                         tiles[t].faces.iter().for_each(|&f| covered[f] = true);
                     }
-                    for bond in BONDS {
-                        let (relation, per_pair) = graph.bond_pairs(bond);
-                        let owner: Vec<usize> = relation
+                    for (name, terms) in objectives(&graph, &mut rng) {
+                        let owner: Vec<usize> = terms
+                            .pairs()
                             .iter()
                             .map(|&[a, _]| patch_of[tiles[a].faces[0]])
                             .collect();
@@ -479,8 +503,12 @@ mod tests {
                                     owned: &owned,
                                 }),
                             };
-                            let program =
-                                Program::new(&graph, bond, Formulation::Strengthened, &restriction);
+                            let program = Program::new(
+                                &graph,
+                                &terms,
+                                Formulation::Strengthened,
+                                &restriction,
+                            );
                             let got = program.objective_at(&chosen).unwrap();
                             // The rule, restated: half a tile per covered face of the patch;
                             // an owned pair with both tiles in the patch by the bond, with
@@ -489,8 +517,7 @@ mod tests {
                             let reaches = |t: usize| tiles[t].faces.iter().any(|&f| in_patch[f]);
                             let mut want = 0.5
                                 * (0..faces).filter(|&f| in_patch[f] && covered[f]).count() as f64;
-                            for (_, &[a, b]) in
-                                relation.iter().enumerate().filter(|&(i, _)| owned[i])
+                            for (_, [a, b], per_pair) in terms.iter().filter(|&(i, _, _)| owned[i])
                             {
                                 want += match (reaches(a), reaches(b)) {
                                     (true, true) if chosen[a] && chosen[b] => per_pair,
@@ -501,13 +528,13 @@ mod tests {
                             }
                             assert!(
                                 (got - want).abs() < 1e-9,
-                                "{bond:?}, patch {p} of {patches}: program {got}, rule {want}"
+                                "{name}, patch {p} of {patches}: program {got}, rule {want}"
                             );
                             total += got;
                         }
-                        let whole = score(&graph, &chosen, bond).objective;
-                        assert!(total >= whole - 1e-9, "{bond:?}: {total} < {whole}");
-                        if bond == Bond::Stack {
+                        let whole = evaluate(&graph, &chosen, &terms).objective;
+                        assert!(total >= whole - 1e-9, "{name}: {total} < {whole}");
+                        if terms.is_empty() {
                             assert!((total - whole).abs() < 1e-9);
                         }
                     }
@@ -527,9 +554,9 @@ mod tests {
             fixed: &vec![false; n],
             patch: None,
         };
-        let bond = Bond::Staggered { weight: 0.5 };
-        let compact = Program::new(&graph, bond, Formulation::Strengthened, &restriction);
-        let paper = Program::new(&graph, bond, Formulation::Paper, &restriction);
+        let terms = Terms::uniform(&graph, Bond::Staggered { weight: 0.5 });
+        let compact = Program::new(&graph, &terms, Formulation::Strengthened, &restriction);
+        let paper = Program::new(&graph, &terms, Formulation::Paper, &restriction);
         let joints = graph.continuous_joints().len();
         assert_eq!(graph.regular_vertex_stars().len(), 20);
         assert_eq!(joints, 40);

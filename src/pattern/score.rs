@@ -1,6 +1,6 @@
 //! Objective values of a chosen set of tiles, counted directly from the dual graph.
 
-use super::{Bond, DualGraph};
+use super::{Bond, DualGraph, Terms};
 
 /// What a pattern scores under eq. (1)-(3).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -19,6 +19,11 @@ pub struct Score {
 
 /// Scores the tiles marked in `chosen` (indexed like [`DualGraph::tiles`]).
 pub fn score(graph: &DualGraph, chosen: &[bool], bond: Bond) -> Score {
+    evaluate(graph, chosen, &Terms::uniform(graph, bond))
+}
+
+/// Scores the tiles marked in `chosen` under `terms` (one bond, or a bond per zone).
+pub(crate) fn evaluate(graph: &DualGraph, chosen: &[bool], terms: &Terms<'_>) -> Score {
     let both = |pairs: &[[usize; 2]]| {
         pairs
             .iter()
@@ -29,9 +34,14 @@ pub fn score(graph: &DualGraph, chosen: &[bool], bond: Bond) -> Score {
     let continuous_joints = both(graph.continuous_joints());
     let shifted_pairs = both(graph.shifted_pairs());
     // Eq. (1)-(3): a tile scores one, each pair of the bond's relation what the bond gives it.
-    let (relation, per_pair) = graph.bond_pairs(bond);
-    let bond_pairs = both(relation);
-    let objective = tiles as f64 + per_pair * bond_pairs as f64;
+    let mut bond_pairs = 0;
+    let mut objective = tiles as f64;
+    for (_, [a, b], weight) in terms.iter() {
+        if chosen[a] && chosen[b] {
+            bond_pairs += 1;
+            objective += weight;
+        }
+    }
     Score {
         tiles,
         continuous_joints,

@@ -8,7 +8,8 @@ use std::time::{Duration, Instant};
 
 use super::mip;
 use super::program::Restriction;
-use super::{Bond, DualGraph, Formulation, PatternError, score};
+use super::score::evaluate;
+use super::{DualGraph, Formulation, PatternError, Terms};
 use crate::control::Control;
 
 /// Faces per window in the first sweep; doubled after a sweep without improvement.
@@ -22,7 +23,7 @@ const WINDOW_TIME: Duration = Duration::from_secs(2);
 /// largest window finds nothing better or `deadline` passes.
 pub(super) fn improve(
     graph: &DualGraph,
-    bond: Bond,
+    terms: &Terms<'_>,
     fixed: &[bool],
     chosen: &mut [bool],
     deadline: Instant,
@@ -30,11 +31,11 @@ pub(super) fn improve(
     progress: &impl Fn() -> f64,
 ) -> Result<(), PatternError> {
     let mut size = FIRST_WINDOW;
-    let mut current = score(graph, chosen, bond).objective;
+    let mut current = evaluate(graph, chosen, terms).objective;
     while size <= LAST_WINDOW {
         let mut improved = false;
         let mut covered = vec![false; graph.face_count()];
-        for seed in defects(graph, bond, chosen) {
+        for seed in defects(graph, terms, chosen) {
             if covered[seed] {
                 continue;
             }
@@ -64,7 +65,7 @@ pub(super) fn improve(
             let limit = (deadline - now).min(WINDOW_TIME);
             let outcome = mip::solve(
                 graph,
-                bond,
+                terms,
                 Formulation::Strengthened,
                 &restriction,
                 limit,
@@ -81,7 +82,7 @@ pub(super) fn improve(
                 .zip(&free)
                 .map(|((&h, &w), &f)| h || (w && f))
                 .collect();
-            let value = score(graph, &candidate, bond).objective;
+            let value = evaluate(graph, &candidate, terms).objective;
             if value > current + 1e-9 && is_matching(graph, &candidate) {
                 chosen.copy_from_slice(&candidate);
                 current = value;
@@ -96,7 +97,7 @@ pub(super) fn improve(
 }
 
 /// Faces where the pattern may be improved, in index order.
-fn defects(graph: &DualGraph, bond: Bond, chosen: &[bool]) -> Vec<usize> {
+fn defects(graph: &DualGraph, terms: &Terms<'_>, chosen: &[bool]) -> Vec<usize> {
     let mut flagged = vec![false; graph.face_count()];
     let mut covered = vec![false; graph.face_count()];
     for (t, _) in chosen.iter().enumerate().filter(|(_, on)| **on) {
@@ -114,26 +115,34 @@ fn defects(graph: &DualGraph, bond: Bond, chosen: &[bool]) -> Vec<usize> {
             .iter()
             .for_each(|&f| flagged[f] = true)
     };
-    let (relation, per_pair) = graph.bond_pairs(bond);
-    if per_pair < 0.0 {
-        // A penalised pair: both its tiles.
-        for &[a, b] in relation {
+    // A penalised pair: both its tiles. A reward: tiles with fewer than two rewarded
+    // partners (a running bond's inner tiles have two).
+    let mut rewarded = vec![0usize; chosen.len()];
+    let mut rewards = false;
+    for (_, [a, b], weight) in terms.iter() {
+        if weight < 0.0 && chosen[a] && chosen[b] {
+            flag_tile(a);
+            flag_tile(b);
+        } else if weight > 0.0 {
+            rewards = true;
             if chosen[a] && chosen[b] {
-                flag_tile(a);
-                flag_tile(b);
+                rewarded[a] += 1;
+                rewarded[b] += 1;
             }
         }
-    } else if per_pair > 0.0 {
-        // A reward: tiles with fewer than two partners (a running bond's inner tiles have two).
-        let mut partners = vec![0usize; chosen.len()];
-        for &[a, b] in relation {
-            if chosen[a] && chosen[b] {
-                partners[a] += 1;
-                partners[b] += 1;
+    }
+    if rewards {
+        // In zones, only the tiles that could have a rewarded partner.
+        let partners = (terms.common_weight().is_none()).then(|| terms.partners(chosen.len()));
+        let rewardable = |t: usize| {
+            partners
+                .as_ref()
+                .is_none_or(|p| p[t].iter().any(|&(_, w)| w > 0.0))
+        };
+        for t in (0..chosen.len()).filter(|&t| chosen[t] && rewarded[t] < 2) {
+            if rewardable(t) {
+                flag_tile(t);
             }
-        }
-        for t in (0..chosen.len()).filter(|&t| chosen[t] && partners[t] < 2) {
-            flag_tile(t);
         }
     }
     (0..graph.face_count()).filter(|&f| flagged[f]).collect()
