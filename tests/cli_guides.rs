@@ -147,6 +147,26 @@ fn bad_guides_files_name_what_is_wrong() {
     assert!(err.contains("guide curve 1 is nowhere near"), "{err}");
     let err = run("0 0 0\n1 1\n", &[]);
     assert!(err.contains("line 2"), "{err}");
+    // Half of a curve drawn past the plate's edge: a warning, and the remesh goes on.
+    let path = dir.join("past.txt");
+    std::fs::write(&path, "1 0.2 0\n1 2.6 0\n1 5 0\n").unwrap();
+    let quads = dir.join("past.obj");
+    let out = tilepattern(&[
+        "remesh",
+        s(&surface),
+        "--edge",
+        "0.3",
+        "-o",
+        s(&quads),
+        "--guides",
+        s(&path),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: guide curve 0") && stderr.contains("50 % of its length"),
+        "{stderr}"
+    );
     let err = run(good, &["--guide-weight", "1.5"]);
     assert!(err.contains("guide weight 1.5"), "{err}");
     // A weight without guides is a usage error.

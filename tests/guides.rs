@@ -7,10 +7,12 @@
 use nalgebra::Vector3;
 use tilepattern::mesh::{PolyMesh, generate};
 use tilepattern::remesh::{
-    BoundaryAlignment, GUIDE_REACH, GuideCurves, RemeshError, RemeshOptions, UserField, remesh,
+    BoundaryAlignment, GuideCurves, RemeshError, RemeshOptions, UserField, remesh,
 };
 
 const T: f64 = 0.145;
+/// How far a guide pulls, in target edges (documented on `GuideCurves`).
+const REACH: f64 = 2.0;
 const SPAN: f64 = 3.0;
 
 /// The shell of the paper's Figure 9 as a designer exports it: triangles of a third of `T`.
@@ -135,7 +137,7 @@ fn quads_follow_a_guide_drawn_across_the_shell() {
     let free = remesh(&shell, &options(None)).unwrap();
     let guides = GuideCurves::new(vec![guide.clone()]);
     let guided = remesh(&shell, &options(Some(guides.clone()))).unwrap();
-    for within in [1.0, GUIDE_REACH] {
+    for within in [1.0, REACH] {
         let (n0, before) = along_guide(&free.quads, &guide, shell_normal, within * T, 10.0);
         let (n1, after) = along_guide(&guided.quads, &guide, shell_normal, within * T, 10.0);
         eprintln!(
@@ -163,8 +165,8 @@ fn quads_follow_a_guide_down_a_meridian_of_the_dome() {
     let normal = |p: &Vector3<f64>| (p - dome_centre()).normalize();
     let free = remesh(&dome, &options(None)).unwrap();
     let guided = remesh(&dome, &options(Some(GuideCurves::new(vec![guide.clone()])))).unwrap();
-    let (n0, before) = along_guide(&free.quads, &guide, normal, GUIDE_REACH * T, 10.0);
-    let (n1, after) = along_guide(&guided.quads, &guide, normal, GUIDE_REACH * T, 10.0);
+    let (n0, before) = along_guide(&free.quads, &guide, normal, REACH * T, 10.0);
+    let (n1, after) = along_guide(&guided.quads, &guide, normal, REACH * T, 10.0);
     eprintln!(
         "dome, edges within 2 t of a meridian guide: {before:.3} of {n0} within 10 degrees without, {after:.3} of {n1} with it"
     );

@@ -200,7 +200,7 @@ impl FieldArgs {
         let guides = self
             .guides
             .as_deref()
-            .map(|path| guide_file::read(path, self.guide_weight))
+            .map(|path| guide_file::read(path, self.guide_weight, surface, target_edge))
             .transpose()?;
         Ok(RemeshOptions {
             target_edge,

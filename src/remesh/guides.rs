@@ -13,14 +13,15 @@ use super::RemeshError;
 use super::surface::{Locator, Surface};
 use super::user_field::Samples;
 use crate::geom::{Bvh, closest};
+use crate::mesh::PolyMesh;
 
 /// How far a guide curve reaches, in target edges: a surface vertex this close to a curve is
 /// pulled towards its tangent, fully on the curve and not at all at this distance (or at the
 /// longest edge at the vertex, where the input is coarser than that).
-pub const GUIDE_REACH: f64 = 2.0;
+pub(crate) const REACH: f64 = 2.0;
 
 /// Polylines the quad rows should follow, in model units; each curve lies on or near the
-/// surface (parts farther than [`GUIDE_REACH`] target edges from it are ignored). Only the
+/// surface (parts farther than 2 target edges from it are ignored). Only the
 /// direction of a curve counts, modulo 90 degrees: quad edges run along it or across it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GuideCurves {
@@ -28,7 +29,7 @@ pub struct GuideCurves {
     pub curves: Vec<Vec<[f64; 3]>>,
     /// Share of the guides, on a curve, against every other source (curvature, direction,
     /// the designer's field), in `[0, 1]`: 1 (default) follows the curve alone there, 0
-    /// ignores it. The share falls off to 0 at [`GUIDE_REACH`] target edges from the curve;
+    /// ignores it. The share falls off to 0 at 2 target edges from the curve;
     /// the smoothing carries the direction on beyond.
     pub weight: f64,
 }
@@ -87,6 +88,25 @@ impl GuideCurves {
         Ok(())
     }
 
+    /// The curves partly off `surface` for quads of edge `target_edge`: each with the share
+    /// of its length farther than 2 target edges from the surface (those parts pull nothing),
+    /// for a warning when it is large (a curve drawn in plan over a vault, or running past the
+    /// shell's edge). Curves wholly off the surface are refused by the remesh
+    /// ([`RemeshError::GuideOffSurface`]); they are listed here with share 1.
+    pub fn off_surface(&self, surface: &PolyMesh, target_edge: f64) -> Vec<(usize, f64)> {
+        let locator = Locator::from_polymesh(surface);
+        self.curves
+            .iter()
+            .enumerate()
+            .filter_map(|(curve, polyline)| {
+                let points: Vec<Vector3<f64>> =
+                    polyline.iter().map(|p| Vector3::from(*p)).collect();
+                let share = lie(&points, &locator, target_edge).off_share;
+                (share > 0.0).then_some((curve, share))
+            })
+            .collect()
+    }
+
     /// The curves as weighted samples on the working surface `s` (quads of edge `t`), after
     /// checking that each curve comes within reach of the surface (`locator` on `s`): per
     /// vertex, the unit tangent of the closest segment of any curve, weighted from 1 on the
@@ -94,20 +114,20 @@ impl GuideCurves {
     ///
     /// # Errors
     /// [`RemeshError::GuideOffSurface`] for the first curve no part of which is within
-    /// [`GUIDE_REACH`] target edges of the surface.
+    /// 2 target edges of the surface.
     pub(crate) fn samples(
         &self,
         s: &Surface,
         locator: &Locator,
         t: f64,
     ) -> Result<Samples, RemeshError> {
-        let reach = GUIDE_REACH * t;
+        let reach = REACH * t;
         let mut points: Vec<Vector3<f64>> = Vec::new();
         let mut segments: Vec<[usize; 2]> = Vec::new();
         for (curve, polyline) in self.curves.iter().enumerate() {
             let first = points.len();
             points.extend(polyline.iter().map(|p| Vector3::from(*p)));
-            let nearest = nearest_to_surface(&points[first..], locator, t);
+            let nearest = lie(&points[first..], locator, t).nearest;
             if nearest > reach {
                 return Err(RemeshError::GuideOffSurface {
                     curve,
@@ -150,21 +170,41 @@ impl GuideCurves {
     }
 }
 
-/// The least distance from the polyline `points` to the surface, probed at its points and
-/// along its segments at most half a target edge `t` apart (at most about 100 000 probes a
-/// curve, so a stray long curve cannot stall the remesh).
-fn nearest_to_surface(points: &[Vector3<f64>], locator: &Locator, t: f64) -> f64 {
+/// How a polyline lies against a surface: its least distance to it, and the share of its
+/// length farther than the reach from it.
+struct Lie {
+    nearest: f64,
+    off_share: f64,
+}
+
+/// How the polyline `points` lies against the surface of `locator` for quads of edge `t`,
+/// probed at its points and along its segments at most half a target edge apart (at most
+/// about 100 000 probes a curve, so a stray long curve cannot stall the remesh).
+fn lie(points: &[Vector3<f64>], locator: &Locator, t: f64) -> Lie {
+    let reach = REACH * t;
     let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     let step = (0.5 * t).max(length / 100_000.0);
     let mut nearest = f64::INFINITY;
+    let mut off = 0.0;
     for w in points.windows(2) {
-        let pieces = ((w[1] - w[0]).norm() / step).ceil().max(1.0) as usize;
-        for k in 0..=pieces {
-            let q = w[0] + (w[1] - w[0]) * (k as f64 / pieces as f64);
-            nearest = nearest.min(locator.distance(&q));
+        let d = w[1] - w[0];
+        let pieces = (d.norm() / step).ceil().max(1.0) as usize;
+        let mut last = locator.distance(&w[0]);
+        nearest = nearest.min(last);
+        for k in 1..=pieces {
+            let here = locator.distance(&(w[0] + d * (k as f64 / pieces as f64)));
+            nearest = nearest.min(here);
+            // A piece counts as off when both its ends are.
+            if last > reach && here > reach {
+                off += d.norm() / pieces as f64;
+            }
+            last = here;
         }
     }
-    nearest
+    Lie {
+        nearest,
+        off_share: if length > 0.0 { off / length } else { 0.0 },
+    }
 }
 
 #[cfg(test)]
@@ -243,7 +283,7 @@ mod tests {
         for (v, list) in samples.iter().enumerate() {
             let p = s.pos[v];
             let d = (p.x - p.y).abs() / 2f64.sqrt();
-            if d >= GUIDE_REACH * t - 1e-9 {
+            if d >= REACH * t - 1e-9 {
                 assert!(list.is_empty(), "vertex {v} at {d:.3} has {list:?}");
                 continue;
             }
@@ -252,7 +292,7 @@ mod tests {
                 panic!("vertex {v} at {d:.3}: {list:?}")
             };
             assert!((dir - diagonal).norm() < 1e-12);
-            let r = d / (GUIDE_REACH * t);
+            let r = d / (REACH * t);
             assert!((w - (1.0 - r * r).powi(2)).abs() < 1e-12);
         }
         assert_eq!(
@@ -266,6 +306,20 @@ mod tests {
             vec![[0.0, 0.0, 1.0], [2.0, 2.0, 1.0]],
         ]);
         let err = off.samples(&s, &locator, t).unwrap_err();
+        // Half of a curve running past the sheet's edge is off it.
+        let mesh = PolyMesh::new(
+            s.pos.iter().map(|p| nalgebra::Point3::from(*p)).collect(),
+            s.tris.iter().map(|t| t.to_vec()).collect(),
+        )
+        .unwrap();
+        let past = GuideCurves::new(vec![
+            vec![[1.0, 1.0, 0.0], [1.0, 1.5, 0.0]],
+            vec![[1.0, 1.2, 0.0], [1.0, 2.2, 0.0], [1.0, 3.2, 0.0]],
+        ]);
+        let off_share = past.off_surface(&mesh, t);
+        assert_eq!(off_share.len(), 1, "{off_share:?}");
+        assert_eq!(off_share[0].0, 1);
+        assert!((off_share[0].1 - 0.5).abs() < 0.03, "{off_share:?}");
         assert!(
             matches!(err, RemeshError::GuideOffSurface { curve: 1, distance, .. } if (distance - 1.0).abs() < 1e-9),
             "{err}"

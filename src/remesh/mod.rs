@@ -64,7 +64,7 @@ use thiserror::Error;
 use crate::control::Control;
 use crate::mesh::{MeshError, PolyMesh};
 
-pub use guides::{GUIDE_REACH, GuideCurves};
+pub use guides::GuideCurves;
 pub use metrics::{Metrics, metrics};
 pub use user_field::{FieldSite, UserField};
 
@@ -282,7 +282,7 @@ pub enum RemeshError {
         curve: usize,
         /// The least distance of the curve to the surface.
         distance: f64,
-        /// The distance within which a curve pulls ([`GUIDE_REACH`] target edges).
+        /// The distance within which a curve pulls (2 target edges).
         reach: f64,
     },
     /// The guide curves' weight is outside `[0, 1]`.

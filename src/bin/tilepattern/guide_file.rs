@@ -10,11 +10,16 @@
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
+use tilepattern::mesh::PolyMesh;
 use tilepattern::remesh::GuideCurves;
 
-/// Reads `path` as guide curves with the share `weight`, checked on their own (their
-/// distance to the surface is checked by the remesh).
-pub fn read(path: &Path, weight: f64) -> Result<GuideCurves> {
+/// Share of a guide curve's length off the surface above which it is reported.
+const OFF_SURFACE_WARNING: f64 = 0.1;
+
+/// Reads `path` as guide curves with the share `weight`, checked on their own; curves lying
+/// partly off `surface` (for quads of edge `target_edge`) get a warning, curves wholly off it
+/// are refused by the remesh.
+pub fn read(path: &Path, weight: f64, surface: &PolyMesh, target_edge: f64) -> Result<GuideCurves> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read the guides file {}", path.display()))?;
     let curves = parse(&text).with_context(|| format!("guides file {}", path.display()))?;
@@ -22,6 +27,18 @@ pub fn read(path: &Path, weight: f64) -> Result<GuideCurves> {
     guides
         .check()
         .with_context(|| format!("guides file {}", path.display()))?;
+    if target_edge.is_finite() && target_edge > 0.0 {
+        for (curve, share) in guides.off_surface(surface, target_edge) {
+            if share > OFF_SURFACE_WARNING && share < 1.0 {
+                eprintln!(
+                    "warning: guide curve {curve} of {}: {:.0} % of its length lies farther than 2 target edges ({:.3}) from the surface and pulls nothing there; draw or project it onto the surface",
+                    path.display(),
+                    100.0 * share,
+                    2.0 * target_edge
+                );
+            }
+        }
+    }
     Ok(guides)
 }
 
