@@ -11,7 +11,7 @@ namespace TilePattern.Gh
     {
         public QuadRemeshComponent()
             : base("Quad Remesh", "QRemesh",
-                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, or for level courses at least a course's height (width + joint), aligned with the principal curvature, a direction, a rotated curvature field or the designer's own field (e.g. stress or thrust directions, one vector per mesh vertex or face). Solves in the background; right-click to cancel.",
+                "Quadrangulates a surface mesh into near-square quads whose edge is (tile length + joint) / 2, or for level courses at least a course's height (width + joint), aligned with the principal curvature, a direction, a rotated curvature field or the designer's own field (e.g. stress or thrust directions, one vector per mesh vertex or face), and near guide curves along the curves. Solves in the background; right-click to cancel.",
                 "1 Mesh")
         {
         }
@@ -35,16 +35,24 @@ namespace TilePattern.Gh
             pManager.AddIntegerParameter("Courses", "C", "As Tile Pattern's Courses: 1 = level (default), quads of max((length + joint) / 2, width + joint); 0 = free, quads of (length + joint) / 2", GH_ParamAccess.item, (int)Courses.Level);
             pManager.AddVectorParameter("Field", "F", "Optional: the designer's direction field (e.g. principal stress or thrust directions from a structural analysis), one vector per mesh vertex or one per mesh face, in mesh order; signs and lengths do not matter", GH_ParamAccess.list);
             pManager.AddNumberParameter("Field weight", "FW", "Share of the Field against the curvature field (or Direction / Angle), 0 to 1 (default 1: the field alone)", GH_ParamAccess.item, 1.0);
+            pManager.AddCurveParameter("Guides", "G", "Optional: guide curves the quad rows follow near them (within 2 quad edges, falling off), on or near the mesh, in model units; turned into polylines at the document's tolerance (5 degrees angle tolerance)", GH_ParamAccess.list);
+            pManager.AddNumberParameter("Guide weight", "GW", "Share of the Guides on the curves against every other source (curvature, Direction / Angle, Field), 0 to 1 (default 1: the guides alone on them)", GH_ParamAccess.item, 1.0);
             for (int i = 1; i <= 4; i++)
                 pManager[i].Optional = true;
             pManager[6].Optional = true;
             pManager[8].Optional = true;
             pManager[9].Optional = true;
+            pManager[10].Optional = true;
+            pManager[11].Optional = true;
             ((Param_Number)pManager[4]).AngleParameter = true;
             var courses = (Param_Integer)pManager[7];
             courses.AddNamedValue("Level", (int)Courses.Level);
             courses.AddNamedValue("Free", (int)Courses.Free);
         }
+
+        /// <summary>Angle tolerance (radians) of the guide curves' polylines: 5 degrees, as
+        /// Rhino's ConvertCurveToPolyline defaults to.</summary>
+        const double GuideAngleTolerance = 5.0 * Math.PI / 180.0;
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
         {
@@ -73,6 +81,10 @@ namespace TilePattern.Gh
             DA.GetDataList(8, field);
             double fieldWeight = 1.0;
             DA.GetData(9, ref fieldWeight);
+            var curves = new List<Curve>();
+            DA.GetDataList(10, curves);
+            double guideWeight = 1.0;
+            DA.GetData(11, ref guideWeight);
             if (courses != (int)Courses.Free && courses != (int)Courses.Level)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
@@ -118,6 +130,28 @@ namespace TilePattern.Gh
                 options.Field = vectors;
                 options.FieldWeight = fieldWeight;
             }
+            var guides = new List<double[][]>();
+            for (int c = 0; c < curves.Count; c++)
+            {
+                PolylineCurve polyline = curves[c] == null ? null : curves[c].ToPolyline(DocumentTolerance(), GuideAngleTolerance, 0.0, 0.0);
+                if (polyline == null || polyline.PointCount < 2)
+                {
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Guide curve " + c + " could not be turned into a polyline: give a valid curve.");
+                    return;
+                }
+                var points = new double[polyline.PointCount][];
+                for (int i = 0; i < points.Length; i++)
+                {
+                    Point3d p = polyline.Point(i);
+                    points[i] = new[] { p.X, p.Y, p.Z };
+                }
+                guides.Add(points);
+            }
+            if (guides.Count > 0)
+            {
+                options.Guides = guides.ToArray();
+                options.GuideWeight = guideWeight;
+            }
             PolyMesh surface = null;
             if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh)))
                 return;
@@ -127,6 +161,14 @@ namespace TilePattern.Gh
             key.Add(field.Count).Add(options.FieldWeight);
             foreach (Vector3d v in field)
                 key.Add(v.X).Add(v.Y).Add(v.Z);
+            // The guides' polylines too.
+            key.Add(guides.Count).Add(options.GuideWeight);
+            foreach (double[][] points in guides)
+            {
+                key.Add(points.Length);
+                foreach (double[] p in points)
+                    key.Add(p[0]).Add(p[1]).Add(p[2]);
+            }
             PolyMesh quads = Solve(DA, key, (token, progress) => TilePatternEngine.Remesh(surface, options, progress, token));
             if (quads == null)
                 return;

@@ -22,8 +22,11 @@
  * 4: `TpPatternOptions` grew (`gap`); callers built against ABI 3 keep working unchanged.
  * 5: `TpRemeshOptions` grew (the designer's field: `field_vectors`, `field_count`,
  * `field_weight`); callers built against ABI 4 keep working unchanged.
+ * 6: `TpRemeshOptions` grew (guide curves: `guide_points`, `guide_point_count`,
+ * `guide_curve_sizes`, `guide_count`, `guide_weight`); callers built against ABI 4 or 5
+ * keep working unchanged.
  */
-#define TP_ABI_VERSION 5
+#define TP_ABI_VERSION 6
 
 /**
  * Stage numbers passed to a progress callback.
@@ -482,6 +485,30 @@ typedef struct TpRemeshOptions {
    * Share of the field against the curvature field (or `direction`), 0 to 1; default 1.
    */
   double field_weight;
+  /**
+   * Guide curves the quad rows follow near them (ABI 6): the points of every polyline one
+   * after the other, `3 * guide_point_count` doubles (xyz, model units); NULL with
+   * `guide_count` 0 (default) for none. Read during `tp_remesh` only.
+   */
+  const double *guide_points;
+  /**
+   * Number of points at `guide_points`: the sum of `guide_curve_sizes`.
+   */
+  size_t guide_point_count;
+  /**
+   * Points per polyline, `guide_count` numbers, each at least 2: curve `k` is the
+   * `guide_curve_sizes[k]` points after those of the curves before it.
+   */
+  const uint32_t *guide_curve_sizes;
+  /**
+   * Number of guide curves; 0 (default) for none.
+   */
+  size_t guide_count;
+  /**
+   * Share of the guides on the curves against every other source, 0 to 1 (falling off to
+   * nothing 2 target edges away); default 1.
+   */
+  double guide_weight;
 } TpRemeshOptions;
 
 /**

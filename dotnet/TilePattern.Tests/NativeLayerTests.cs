@@ -173,7 +173,9 @@ namespace TilePattern.Tests
             AssertMirror(typeof(TpRemeshOptions), "TpRemeshOptions", n => n.StartsWith("direction_vector[") ? "direction_" + "xyz"[n[17] - '0'] : n);
             Assert.AreEqual(104, Marshal.SizeOf(typeof(TpPatternOptions)));
             Assert.AreEqual(96, Marshal.SizeOf(typeof(TpPatternSummary)));
-            Assert.AreEqual(96, Marshal.SizeOf(typeof(TpRemeshOptions)));
+            Assert.AreEqual(136, Marshal.SizeOf(typeof(TpRemeshOptions)));
+            // The ABI 5 size ends where the ABI 6 fields begin.
+            Assert.AreEqual(96, (int)Marshal.OffsetOf(typeof(TpRemeshOptions), "guide_points"));
             Assert.AreEqual(128, Marshal.SizeOf(typeof(TpTileOptions)));
             // The ABI 2 sizes end where the ABI 3 fields begin.
             Assert.AreEqual(64, (int)Marshal.OffsetOf(typeof(TpPatternOptions), "courses"));

@@ -59,7 +59,7 @@ namespace TilePattern
         public int status;
     }
 
-    /// <summary>Mirror of TpRemeshOptions (96 bytes on 64-bit targets; 72 before ABI 5). The C array
+    /// <summary>Mirror of TpRemeshOptions (136 bytes on 64-bit targets; 96 before ABI 6, 72 before ABI 5). The C array
     /// <c>double direction_vector[3]</c> is spelled as three doubles, which has the same
     /// layout and keeps the struct blittable.</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -77,6 +77,12 @@ namespace TilePattern
         public IntPtr field_vectors;
         public UIntPtr field_count;
         public double field_weight;
+        // Since ABI 6: guide curves.
+        public IntPtr guide_points;
+        public UIntPtr guide_point_count;
+        public IntPtr guide_curve_sizes;
+        public UIntPtr guide_count;
+        public double guide_weight;
     }
 
     /// <summary>Mirror of TpTileOptions (128 bytes; 88 before ABI 3); <c>double up[3]</c> is
@@ -132,7 +138,7 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 5;
+        internal const int TP_ABI_VERSION = 6;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const uint TP_STAGE_TILES = 3;

@@ -146,6 +146,7 @@ namespace TilePattern
             ShapeUp = d.shapeup != 0;
             TimeLimitSeconds = d.time_limit_seconds;
             FieldWeight = d.field_weight;
+            GuideWeight = d.guide_weight;
         }
 
         /// <summary>Quads whose edge is half a tile plus a joint: (length + joint) / 2.</summary>
@@ -209,6 +210,51 @@ namespace TilePattern
             return flat;
         }
 
+        /// <summary>Guide curves the quad rows follow near them (within 2 target edges, falling
+        /// off): polylines in model units, each an array of at least 2 xyz points
+        /// (<c>Guides[curve][point] = {x, y, z}</c>), on or near the surface; null (default)
+        /// for none. Curves with too few points, NaN or infinite coordinates, no length or
+        /// nowhere near the surface are refused with their index.</summary>
+        public double[][][] Guides { get; set; }
+
+        /// <summary>Share of <see cref="Guides"/> on the curves against every other source
+        /// (curvature, <see cref="Direction"/>, <see cref="Field"/>), from 0 to 1; default 1
+        /// (the guides alone on them).</summary>
+        public double GuideWeight { get; set; }
+
+        /// <summary><see cref="Guides"/> as 3 n doubles (every curve's points one after the
+        /// other) and the number of points of each curve, or nulls.</summary>
+        internal void FlatGuides(out double[] points, out uint[] sizes)
+        {
+            points = null;
+            sizes = null;
+            if (Guides == null || Guides.Length == 0)
+                return;
+            int total = 0;
+            for (int c = 0; c < Guides.Length; c++)
+            {
+                if (Guides[c] == null)
+                    throw new ArgumentException("Guides[" + c + "] is null; every curve is an array of xyz points", "Guides");
+                total += Guides[c].Length;
+            }
+            points = new double[3 * total];
+            sizes = new uint[Guides.Length];
+            int k = 0;
+            for (int c = 0; c < Guides.Length; c++)
+            {
+                sizes[c] = (uint)Guides[c].Length;
+                for (int i = 0; i < Guides[c].Length; i++, k++)
+                {
+                    double[] p = Guides[c][i];
+                    if (p == null || p.Length != 3)
+                        throw new ArgumentException("Guides[" + c + "][" + i + "] must be 3 numbers (x, y, z)", "Guides");
+                    points[3 * k] = p[0];
+                    points[3 * k + 1] = p[1];
+                    points[3 * k + 2] = p[2];
+                }
+            }
+        }
+
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal TpRemeshOptions ToNative()
         {
@@ -222,7 +268,9 @@ namespace TilePattern
             o.shapeup = ShapeUp ? 1 : 0;
             o.time_limit_seconds = TimeLimitSeconds;
             o.field_weight = FieldWeight;
-            // field_vectors and field_count are set by the caller around the pinned array.
+            o.guide_weight = GuideWeight;
+            // field_vectors, field_count and the guides' arrays and counts are set by the
+            // caller around the pinned arrays.
             return o;
         }
     }

@@ -92,15 +92,27 @@ namespace TilePattern
         {
             TpRemeshOptions native = options.ToNative();
             double[] field = options.FlatField();
+            double[] guidePoints;
+            uint[] guideSizes;
+            options.FlatGuides(out guidePoints, out guideSizes);
             var bridge = new ProgressBridge(progress, cancellationToken);
             bridge.ThrowIfCancelled();
             GCHandle pinned = field == null ? default(GCHandle) : GCHandle.Alloc(field, GCHandleType.Pinned);
+            GCHandle pinnedPoints = guidePoints == null ? default(GCHandle) : GCHandle.Alloc(guidePoints, GCHandleType.Pinned);
+            GCHandle pinnedSizes = guideSizes == null ? default(GCHandle) : GCHandle.Alloc(guideSizes, GCHandleType.Pinned);
             try
             {
                 if (field != null)
                 {
                     native.field_vectors = pinned.AddrOfPinnedObject();
                     native.field_count = (UIntPtr)(field.Length / 3);
+                }
+                if (guideSizes != null)
+                {
+                    native.guide_points = pinnedPoints.AddrOfPinnedObject();
+                    native.guide_point_count = (UIntPtr)(guidePoints.Length / 3);
+                    native.guide_curve_sizes = pinnedSizes.AddrOfPinnedObject();
+                    native.guide_count = (UIntPtr)guideSizes.Length;
                 }
                 using (MeshHandle input = surface.CreateHandle())
                 {
@@ -117,6 +129,10 @@ namespace TilePattern
             {
                 if (pinned.IsAllocated)
                     pinned.Free();
+                if (pinnedPoints.IsAllocated)
+                    pinnedPoints.Free();
+                if (pinnedSizes.IsAllocated)
+                    pinnedSizes.Free();
             }
         }
 

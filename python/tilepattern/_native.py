@@ -47,7 +47,7 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 5
+ABI_VERSION = 6
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
@@ -398,6 +398,11 @@ class TpRemeshOptions(Structure):
         ("field_vectors", POINTER(c_double)),
         ("field_count", c_size_t),
         ("field_weight", c_double),
+        ("guide_points", POINTER(c_double)),
+        ("guide_point_count", c_size_t),
+        ("guide_curve_sizes", POINTER(c_uint32)),
+        ("guide_count", c_size_t),
+        ("guide_weight", c_double),
     ]
 
 

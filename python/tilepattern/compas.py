@@ -106,8 +106,8 @@ def remesh(mesh, target_edge=0.145, **options):
     target_edge : float, optional
         Quad edge in model units: ``(L + joint) / 2`` for tiles of length ``L``.
     **options
-        ``direction``, ``angle``, ``shapeup``, ``time_limit``, ``progress``: see
-        :func:`tilepattern.remesh`.
+        ``direction``, ``angle``, ``shapeup``, ``time_limit``, ``progress``, ``field``,
+        ``field_weight``, ``guides``, ``guide_weight``: see :func:`tilepattern.remesh`.
 
     Returns
     -------

@@ -211,12 +211,15 @@ def remesh(
     progress: Optional[Progress] = None,
     field=None,
     field_weight: float = 1.0,
+    guides=None,
+    guide_weight: float = 1.0,
 ) -> Tuple[np.ndarray, np.ndarray]:
     """Quadrangulate a surface into near-square quads (stage 1).
 
     The quads follow the principal curvature (the paper's choice), a direction projected
     onto the surface, the curvature field rotated by an angle, or the designer's own field
-    (``field``, e.g. principal stress or thrust directions) blended with it.
+    (``field``, e.g. principal stress or thrust directions) blended with it; near guide
+    curves (``guides``) they follow the curves.
 
     Parameters
     ----------
@@ -246,6 +249,14 @@ def remesh(
     field_weight : float, optional
         Share of ``field`` against the curvature field (or ``direction`` / ``angle``),
         from 0 to 1 (default 1: the field alone).
+    guides : sequence of array_like (n, 3), optional
+        Guide curves the quad rows follow near them (within 2 target edges, falling off):
+        polylines in model units, each a numpy array or a sequence of at least 2 xyz points,
+        on or near the surface. Curves with too few points, NaN or infinite coordinates, no
+        length or nowhere near the surface are refused with their index.
+    guide_weight : float, optional
+        Share of ``guides`` on the curves against every other source (curvature,
+        ``direction``, ``field``), from 0 to 1 (default 1: the guides alone on them).
 
     Returns
     -------
@@ -305,9 +316,41 @@ def remesh(
         options.field_vectors = keep.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
         options.field_count = len(keep)
     options.field_weight = float(field_weight)
+    keep_guides = None
+    if guides is not None:
+        keep_guides = _guides_in(guides)
+        points, sizes = keep_guides
+        options.guide_points = points.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+        options.guide_point_count = len(points)
+        options.guide_curve_sizes = sizes.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32))
+        options.guide_count = len(sizes)
+    options.guide_weight = float(guide_weight)
     with mesh_handle(vertices, faces) as surface:
         with surface.remesh(options, progress) as quads:
             return mesh_arrays(quads)
+
+
+def _guides_in(guides) -> Tuple[np.ndarray, np.ndarray]:
+    """Guide polylines as one contiguous (n, 3) float64 array of all their points and the
+    uint32 point count of each curve."""
+    if isinstance(guides, np.ndarray) and guides.ndim == 2:
+        raise InvalidArgumentError(
+            nat.TP_INVALID_ARGUMENT, "guides must be a list of polylines (each an (n, 3) array); got one (n, 3) array: wrap it in a list"
+        )
+    curves = []
+    for k, curve in enumerate(guides):
+        try:
+            points = np.asarray(curve, dtype=np.float64)
+        except (TypeError, ValueError) as error:
+            raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "guide curve %d must be an (n, 3) array of numbers: %s" % (k, error))
+        if points.ndim != 2 or points.shape[1] != 3:
+            raise InvalidArgumentError(
+                nat.TP_INVALID_ARGUMENT, "guide curve %d must be an (n, 3) array of xyz points; got shape %r" % (k, points.shape)
+            )
+        curves.append(points)
+    sizes = np.ascontiguousarray([len(c) for c in curves], dtype=np.uint32)
+    points = np.ascontiguousarray(np.concatenate(curves) if curves else np.zeros((0, 3)), dtype=np.float64)
+    return points, sizes
 
 
 # ---------------------------------------------------------------------------------------

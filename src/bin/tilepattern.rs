@@ -12,6 +12,8 @@ use tilepattern::mesh::io::{Loaded, Weld};
 
 #[path = "tilepattern/field_file.rs"]
 mod field_file;
+#[path = "tilepattern/guide_file.rs"]
+mod guide_file;
 #[path = "tilepattern/progress_line.rs"]
 mod progress_line;
 use progress_line::ProgressLine;
@@ -166,6 +168,19 @@ struct FieldArgs {
         allow_negative_numbers = true
     )]
     field_weight: f64,
+    /// Guide curves the quad rows follow near them: polylines in the mesh's units, as text
+    /// (x y z per line, a blank line between curves) or JSON ([[[x,y,z], ...], ...]); each
+    /// pulls within 2 target edges of it.
+    #[arg(long, value_name = "FILE")]
+    guides: Option<PathBuf>,
+    /// Share of --guides on the curves against every other source, from 0 to 1.
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        requires = "guides",
+        allow_negative_numbers = true
+    )]
+    guide_weight: f64,
 }
 
 impl FieldArgs {
@@ -182,10 +197,16 @@ impl FieldArgs {
             .as_deref()
             .map(|path| field_file::read(path, surface, self.field_weight))
             .transpose()?;
+        let guides = self
+            .guides
+            .as_deref()
+            .map(|path| guide_file::read(path, self.guide_weight, surface, target_edge))
+            .transpose()?;
         Ok(RemeshOptions {
             target_edge,
             direction,
             user_field,
+            guides,
             shapeup: self.shapeup,
             ..RemeshOptions::default()
         })

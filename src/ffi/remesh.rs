@@ -4,11 +4,11 @@ use std::ffi::c_void;
 
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
 use super::{
-    TP_STAGE_REMESH, TpMesh, TpProgressCallback, borrow, hand_over, init_options,
+    TP_STAGE_REMESH, TpMesh, TpProgressCallback, borrow, hand_over, init_options, input,
     progress_reporter, read_options,
 };
 use crate::control::Control;
-use crate::remesh::{self, FieldDirection, RemeshError, RemeshOptions, UserField};
+use crate::remesh::{self, FieldDirection, GuideCurves, RemeshError, RemeshOptions, UserField};
 
 /// `direction`: follow the principal curvature (the paper's choice).
 pub const TP_DIRECTION_CURVATURE: i32 = 0;
@@ -48,6 +48,20 @@ pub struct TpRemeshOptions {
     pub field_count: usize,
     /// Share of the field against the curvature field (or `direction`), 0 to 1; default 1.
     pub field_weight: f64,
+    /// Guide curves the quad rows follow near them (ABI 6): the points of every polyline one
+    /// after the other, `3 * guide_point_count` doubles (xyz, model units); NULL with
+    /// `guide_count` 0 (default) for none. Read during `tp_remesh` only.
+    pub guide_points: *const f64,
+    /// Number of points at `guide_points`: the sum of `guide_curve_sizes`.
+    pub guide_point_count: usize,
+    /// Points per polyline, `guide_count` numbers, each at least 2: curve `k` is the
+    /// `guide_curve_sizes[k]` points after those of the curves before it.
+    pub guide_curve_sizes: *const u32,
+    /// Number of guide curves; 0 (default) for none.
+    pub guide_count: usize,
+    /// Share of the guides on the curves against every other source, 0 to 1 (falling off to
+    /// nothing 2 target edges away); default 1.
+    pub guide_weight: f64,
 }
 
 /// The default remesh options.
@@ -64,6 +78,11 @@ pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
         field_vectors: std::ptr::null(),
         field_count: 0,
         field_weight: 1.0,
+        guide_points: std::ptr::null(),
+        guide_point_count: 0,
+        guide_curve_sizes: std::ptr::null(),
+        guide_count: 0,
+        guide_weight: 1.0,
     }
 }
 
@@ -125,10 +144,13 @@ pub unsafe extern "C" fn tp_remesh(
         let time_limit = RemeshOptions::time_limit_from_secs(raw.time_limit_seconds)?;
         // SAFETY: the caller's promise on field_vectors.
         let user_field = unsafe { read_field(surface, &raw) }?;
+        // SAFETY: the caller's promise on guide_points and guide_curve_sizes.
+        let guides = unsafe { read_guides(&raw) }?;
         let options = RemeshOptions {
             target_edge: raw.target_edge,
             direction,
             user_field,
+            guides,
             shapeup: raw.shapeup != 0,
             time_limit,
             ..RemeshOptions::default()
@@ -183,4 +205,55 @@ unsafe fn read_field(
     let field = UserField::for_mesh(mesh, vectors, raw.field_weight)?;
     field.check(mesh)?;
     Ok(Some(field))
+}
+
+/// The guide curves of `raw`, checked on their own (the sizes against the point count before
+/// any point is read).
+///
+/// # Safety
+/// `raw.guide_curve_sizes` must be NULL or point to `raw.guide_count` readable `u32`s,
+/// `raw.guide_points` NULL or to `3 * raw.guide_point_count` readable doubles.
+unsafe fn read_guides(raw: &TpRemeshOptions) -> Result<Option<GuideCurves>, Failure> {
+    if raw.guide_count == 0 {
+        return Ok(None);
+    }
+    // SAFETY: the caller's promise on guide_curve_sizes.
+    let sizes = unsafe {
+        input(
+            raw.guide_curve_sizes,
+            raw.guide_count,
+            "options->guide_curve_sizes",
+        )
+    }?;
+    let total: u64 = sizes.iter().map(|&n| u64::from(n)).sum();
+    if total != raw.guide_point_count as u64 {
+        return Err(Failure::new(
+            TP_INVALID_ARGUMENT,
+            format!(
+                "options->guide_curve_sizes add up to {total} points but guide_point_count is {}; give the points of every curve, one curve after the other",
+                raw.guide_point_count
+            ),
+        ));
+    }
+    let flat = match raw.guide_point_count.checked_mul(3) {
+        // SAFETY: the caller promises 3 * guide_point_count doubles.
+        Some(n) => unsafe { input(raw.guide_points, n, "options->guide_points") }?,
+        None => {
+            return Err(Failure::new(
+                TP_INVALID_ARGUMENT,
+                "options->guide_point_count is too large",
+            ));
+        }
+    };
+    let mut points = flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]);
+    let curves = sizes
+        .iter()
+        .map(|&n| points.by_ref().take(n as usize).collect())
+        .collect();
+    let guides = GuideCurves {
+        curves,
+        weight: raw.guide_weight,
+    };
+    guides.check()?;
+    Ok(Some(guides))
 }

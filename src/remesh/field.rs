@@ -21,7 +21,10 @@
 //! `u_i` is the user cross at vertex `i` (the mean fourth power of the vectors there, per
 //! face vectors counted at their corners by area), `q_i` how clear it is ([`user_cross`]) and
 //! `w'_i` whether the other source has a direction there at all (`principal_defined`). Both terms are one quadratic term with target
-//! `(a u + b c) / (a + b)`, so the smoothing below is the same for every source.
+//! `(a u + b c) / (a + b)`, so the smoothing below is the same for every source. Guide curves
+//! ([`super::GuideCurves`]) are one more such term: at a vertex whose guide samples fall off
+//! to `f` (1 on a curve, 0 at its reach), with share `s_g`, the curve's tangent gets
+//! `g = W s_g f q_i` and every other term keeps `1 - s_g f` of its weight.
 
 use nalgebra::{Matrix5, Vector3, Vector5};
 
@@ -185,12 +188,14 @@ fn principal_defined(aniso: f64, mean: f64, extent: f64) -> f64 {
 const UMBILIC: f64 = 0.05;
 
 /// Solves the orientation field on `s`; returns one unit tangent per vertex (any of the four
-/// directions of its cross).
+/// directions of its cross). `user` is the designer's field (samples and share), `guides` the
+/// guide curves' samples (weighted by their fall-off) and share.
 /// Stops early (with a usable but less smooth field) once `budget` says so.
 pub(crate) fn solve(
     s: &Surface,
     options: &RemeshOptions,
     user: Option<&(Samples, f64)>,
+    guides: Option<&(Samples, f64)>,
     budget: &mut Budget,
 ) -> Vec<Vector3<f64>> {
     let n = s.len();
@@ -252,17 +257,26 @@ pub(crate) fn solve(
     if let Some((samples, share)) = user {
         for v in 0..n {
             let (z, clear) = user_cross(&frames[v], &s.normals[v], &samples[v]);
-            // Both sources held firmly, in proportion to the share: the minimiser of
-            // a |z - u|^2 + b |z - c|^2 is (a u + b c) / (a + b).
+            // Both sources held firmly, in proportion to the share.
             let a = USER_WEIGHT * share * clear;
             let b = USER_WEIGHT * (1.0 - share) * defined[v];
-            weight[v] = a + b;
-            if a + b > 0.0 {
-                target[v] = z
-                    .mul(rotation)
-                    .scale(a)
-                    .add(target[v].scale(b))
-                    .scale(1.0 / (a + b));
+            (target[v], weight[v]) = blend(z.mul(rotation), a, target[v], b);
+        }
+    }
+    if let Some((samples, share)) = guides {
+        for v in 0..n {
+            // Near a curve its share is `share` times the fall-off of its samples; the other
+            // sources keep the rest of their weight.
+            let near = samples[v]
+                .iter()
+                .fold(0.0f64, |m, &(_, w)| m.max(w))
+                .min(1.0);
+            if near > 0.0 {
+                let (z, clear) = user_cross(&frames[v], &s.normals[v], &samples[v]);
+                let g = share * near;
+                let a = GUIDE_WEIGHT * g * clear;
+                let b = weight[v] * (1.0 - g);
+                (target[v], weight[v]) = blend(z.mul(rotation), a, target[v], b);
             }
         }
     }
@@ -383,6 +397,16 @@ pub(crate) fn solve(
         .collect()
 }
 
+/// Two data terms `a |z - u|^2 + b |z - c|^2` as one, `(a + b) |z - (a u + b c) / (a + b)|^2`
+/// (up to a constant): the target and its weight. With no weight the target `c` is kept.
+fn blend(u: C, a: f64, c: C, b: f64) -> (C, f64) {
+    if a + b > 0.0 {
+        (u.scale(a).add(c.scale(b)).scale(1.0 / (a + b)), a + b)
+    } else {
+        (c, 0.0)
+    }
+}
+
 /// The cross a vertex's user samples ask for and how clearly, in `[0, 1]`: the weighted
 /// mean of their fourth powers (so opposite and perpendicular vectors agree), each counted by
 /// the square of its tangential part; its modulus is 1 only when all samples are tangent and
@@ -412,6 +436,11 @@ const VECTOR_WEIGHT: f64 = 4.0;
 /// energy of one edge: firm enough that the crosses follow the given directions, loose
 /// enough to smooth out noise over a ring or two of the input.
 const USER_WEIGHT: f64 = 1.0;
+
+/// Alignment weight per vertex of a guide curve on the curve, at full share: a curve touches
+/// a band of a few vertices only, so it is held firmer than the designer's field (which pulls
+/// everywhere), enough to turn the crosses in its band against a field at a fifth of its share.
+const GUIDE_WEIGHT: f64 = 8.0;
 
 /// Total weight of curvature alignment, in units of the smoothness energy of a field that
 /// turns once across the surface.
@@ -592,7 +621,13 @@ mod tests {
                 std::time::Instant::now(),
                 std::time::Duration::from_secs(60),
             );
-            let frames = solve(&s, &RemeshOptions::default(), Some(&samples), &mut budget);
+            let frames = solve(
+                &s,
+                &RemeshOptions::default(),
+                Some(&samples),
+                None,
+                &mut budget,
+            );
             // Away from the crown (where the meridians meet and no cross field can follow
             // them) the crosses are on the given directions.
             let (worst, mean) = deviation(&s, &frames, want, top, 0.5);
@@ -601,7 +636,7 @@ mod tests {
                 "turn {turn}: worst {worst:.2} mean {mean:.2}"
             );
             // Without the user field the umbilic dome's crosses go their own way.
-            let free = solve(&s, &RemeshOptions::default(), None, &mut budget);
+            let free = solve(&s, &RemeshOptions::default(), None, None, &mut budget);
             let (_, mean) = deviation(&s, &free, want, top, 0.5);
             assert!(mean > 10.0, "turn {turn}: mean {mean:.2} by chance");
         }
@@ -630,7 +665,7 @@ mod tests {
             std::time::Instant::now(),
             std::time::Duration::from_secs(60),
         );
-        let frames = solve(&s, &options, Some(&(user, share)), &mut budget);
+        let frames = solve(&s, &options, Some(&(user, share)), None, &mut budget);
         let mut sum = 0.0;
         for (v, o) in frames.iter().enumerate() {
             let o = match_rosy(&Vector3::y(), o, &s.normals[v]);

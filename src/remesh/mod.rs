@@ -45,6 +45,7 @@ mod extract;
 mod field;
 mod fit;
 mod flow;
+mod guides;
 mod linalg;
 mod metrics;
 mod position;
@@ -63,6 +64,7 @@ use thiserror::Error;
 use crate::control::Control;
 use crate::mesh::{MeshError, PolyMesh};
 
+pub use guides::GuideCurves;
 pub use metrics::{Metrics, metrics};
 pub use user_field::{FieldSite, UserField};
 
@@ -109,9 +111,13 @@ pub struct RemeshOptions {
     /// face), blended with `direction`'s field by its weight and smoothed with it; `None`
     /// (default) for `direction` alone.
     pub user_field: Option<UserField>,
+    /// Polylines the quad rows should follow near them (a ridge, a valley, a line for the
+    /// joints), pulled in the same field solve as `user_field`; `None` (default) for none.
+    pub guides: Option<GuideCurves>,
     /// Which boundary loops the quads follow (field pinned to the boundary tangents and a
     /// lattice line pinned onto the boundary, so no ragged strip is left along the edge).
-    /// `Auto` aligns no loop when `user_field` has a share ([`Self::effective_boundary`]).
+    /// `Auto` aligns no loop when `user_field` or `guides` have a share
+    /// ([`Self::effective_boundary`]).
     pub boundary: BoundaryAlignment,
     /// Run the shape-up step that pulls faces towards squares of side `t`.
     pub shapeup: bool,
@@ -133,6 +139,7 @@ impl Default for RemeshOptions {
             target_edge: 0.145,
             direction: FieldDirection::Curvature,
             user_field: None,
+            guides: None,
             boundary: BoundaryAlignment::Auto,
             shapeup: false,
             shapeup_tolerance: 0.1,
@@ -144,14 +151,16 @@ impl Default for RemeshOptions {
 
 impl RemeshOptions {
     /// The boundary alignment in effect: [`BoundaryAlignment::Auto`] aligns no loop when the
-    /// designer's field has a share (its vectors decide along the boundary too, where thrust
-    /// lines meet the supports at their own angle); an explicit choice is kept.
+    /// designer's field or guide curves have a share (its vectors decide along the boundary
+    /// too, where thrust lines meet the supports at their own angle; a guide drawn across a
+    /// vault at an angle to its edges would otherwise fight the edges' pinned crosses); an
+    /// explicit choice is kept.
     pub fn effective_boundary(&self) -> BoundaryAlignment {
-        match (&self.user_field, self.boundary) {
-            (Some(field), BoundaryAlignment::Auto) if field.weight > 0.0 => {
-                BoundaryAlignment::Never
-            }
-            (_, boundary) => boundary,
+        let field = self.user_field.as_ref().is_some_and(|f| f.weight > 0.0);
+        let guides = self.guides.as_ref().is_some_and(GuideCurves::active);
+        match self.boundary {
+            BoundaryAlignment::Auto if field || guides => BoundaryAlignment::Never,
+            boundary => boundary,
         }
     }
 
@@ -234,6 +243,53 @@ pub enum RemeshError {
     /// The user field's weight is outside `[0, 1]`.
     #[error("field weight {0} must be a number from 0 (curvature only) to 1 (user field only)")]
     BadFieldWeight(f64),
+    /// A guide curve has fewer than 2 points.
+    #[error(
+        "guide curve {curve} has {points} point(s); a guide is a polyline of at least 2 points"
+    )]
+    GuideTooShort {
+        /// Its index among the curves.
+        curve: usize,
+        /// Its number of points.
+        points: usize,
+    },
+    /// A guide curve's point has a NaN or infinite coordinate.
+    #[error(
+        "point {point} of guide curve {curve} is {value:?}; every coordinate must be a finite number (model units)"
+    )]
+    BadGuidePoint {
+        /// The curve's index.
+        curve: usize,
+        /// The point's index along the curve.
+        point: usize,
+        /// The point given.
+        value: [f64; 3],
+    },
+    /// A guide curve's points all coincide (or its length is not finite).
+    #[error(
+        "guide curve {curve} has no length (all its points coincide); give at least two distinct points"
+    )]
+    GuideZeroLength {
+        /// The curve's index.
+        curve: usize,
+    },
+    /// No part of a guide curve comes near the surface.
+    #[error(
+        "guide curve {curve} is nowhere near the surface: its closest point is {distance:.4} away, farther than its reach {reach:.4} (2 target edges); draw or project the curve onto the surface, in the mesh's units"
+    )]
+    GuideOffSurface {
+        /// The curve's index.
+        curve: usize,
+        /// The least distance of the curve to the surface.
+        distance: f64,
+        /// The distance within which a curve pulls (2 target edges).
+        reach: f64,
+    },
+    /// The guide curves' weight is outside `[0, 1]`.
+    #[error(
+        "guide weight {0} must be a number from 0 (guides ignored) to 1 (guides alone near them)"
+    )]
+    BadGuideWeight(f64),
     /// A rotation angle is not finite.
     #[error("field rotation angle {0} is not finite")]
     BadAngle(f64),
@@ -307,8 +363,19 @@ pub fn remesh_with(
         .user_field
         .as_ref()
         .map(|u| (u.samples(input, &surface_of, base.len()), u.weight));
+    let locator = surface::Locator::new(&base);
+    let guides = match &options.guides {
+        Some(g) if g.active() => Some((g.samples(&base, &locator, t)?, g.weight)),
+        _ => None,
+    };
     budget.stage(0.02, 0.15);
-    let frames = field::solve(&base, options, samples.as_ref(), &mut budget);
+    let frames = field::solve(
+        &base,
+        options,
+        samples.as_ref(),
+        guides.as_ref(),
+        &mut budget,
+    );
     budget.check()?;
     budget.stage(0.15, 0.2);
     let (work, mut work_frames) = refine::refine(&base, &frames, t);
@@ -329,7 +396,6 @@ pub fn remesh_with(
     if raw.faces.is_empty() {
         return Err(RemeshError::NothingExtracted(t));
     }
-    let locator = surface::Locator::new(&base);
     budget.stage(0.82, 0.97);
     let mut quads = cleanup::pure_quads(raw, &locator, t, &mut budget)?;
     if options.shapeup && budget.stopped().is_none() {
@@ -370,6 +436,9 @@ fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), Remesh
     }
     if let Some(field) = &options.user_field {
         field.check(input)?;
+    }
+    if let Some(guides) = &options.guides {
+        guides.check()?;
     }
     if options.shapeup
         && !(options.shapeup_tolerance.is_finite() && options.shapeup_tolerance > 0.0)

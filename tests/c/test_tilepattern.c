@@ -526,6 +526,69 @@ static void test_remesh_field(const TpMesh *surface, size_t vertices, size_t fac
   free(field);
 }
 
+/* Guide curves (ABI 6): two polylines at 30 degrees through the plate, validated with the
+   curve and point at fault; a caller built against ABI 5 keeps working. */
+static void test_remesh_guides(const TpMesh *surface) {
+  const double a = 30.0 * 3.14159265358979323846 / 180.0;
+  /* Curve 0: three points through the centre (1, 1); curve 1: two points near a corner. */
+  double points[5 * 3] = {
+      1.0 - 1.1 * cos(a), 1.0 - 1.1 * sin(a), 0.0, 1.0, 1.0, 0.0, 1.0 + 1.1 * cos(a), 1.0 + 1.1 * sin(a), 0.0,
+      0.1, 0.1, 0.0, 0.1 + 0.3 * cos(a), 0.1 + 0.3 * sin(a), 0.0,
+  };
+  uint32_t sizes[2] = {3, 2};
+  TpRemeshOptions options;
+  CHECK(tp_remesh_options_init(&options, sizeof options) == TP_OK);
+  CHECK(options.guide_points == NULL && options.guide_point_count == 0 && options.guide_curve_sizes == NULL &&
+        options.guide_count == 0 && options.guide_weight == 1.0);
+  options.target_edge = 0.2;
+  TpMesh *plain = NULL, *guided = NULL, *again = NULL;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &plain) == TP_OK);
+  options.guide_points = points;
+  options.guide_point_count = 5;
+  options.guide_curve_sizes = sizes;
+  options.guide_count = 2;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &guided) == TP_OK);
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &again) == TP_OK);
+  double on_plain = edge_alignment(plain, 30.0), on_guided = edge_alignment(guided, 30.0);
+  printf("remesh guides: edges on the 30 degree guides %.3f without, %.3f with them\n", on_plain, on_guided);
+  CHECK(on_guided > on_plain + 0.2);
+  CHECK(edge_alignment(again, 30.0) == on_guided);
+  tp_mesh_free(plain);
+  tp_mesh_free(guided);
+  tp_mesh_free(again);
+
+  TpMesh *none = NULL;
+  options.guide_point_count = 4;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &none) == TP_INVALID_ARGUMENT && none == NULL);
+  CHECK(last_error_contains("add up to 5 points") && last_error_contains("guide_point_count is 4"));
+  sizes[0] = 4;
+  sizes[1] = 1;
+  options.guide_point_count = 5;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &none) == TP_INVALID_ARGUMENT && last_error_contains("guide curve 1 has 1 point"));
+  sizes[0] = 3;
+  sizes[1] = 2;
+  points[3 * 1 + 2] = NAN;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &none) == TP_INVALID_ARGUMENT && last_error_contains("point 1 of guide curve 0"));
+  points[3 * 1 + 2] = 0.0;
+  points[3 * 3 + 2] = points[3 * 4 + 2] = 5.0;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &none) == TP_INVALID_ARGUMENT && last_error_contains("guide curve 1 is nowhere near"));
+  points[3 * 3 + 2] = points[3 * 4 + 2] = 0.0;
+  options.guide_weight = 1.5;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &none) == TP_INVALID_ARGUMENT && last_error_contains("guide weight"));
+  options.guide_weight = 1.0;
+  options.guide_points = NULL;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &none) == TP_NULL_POINTER && last_error_contains("guide_points"));
+  options.guide_points = points;
+  options.guide_curve_sizes = NULL;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &none) == TP_NULL_POINTER && last_error_contains("guide_curve_sizes"));
+  CHECK(none == NULL);
+  /* A caller built against ABI 5: whatever lies past its struct is ignored. */
+  options.struct_size = (uint32_t)offsetof(TpRemeshOptions, guide_points);
+  options.guide_count = 7;
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &none) == TP_OK && none != NULL);
+  tp_mesh_free(none);
+}
+
 static void test_remesh(void) {
   /* A flat 2 x 2 square split into 800 triangles, remeshed with quads of edge 0.2. */
   double *v;
@@ -559,6 +622,7 @@ static void test_remesh(void) {
   CHECK(tp_remesh(NULL, &options, NULL, NULL, &quads) == TP_NULL_POINTER);
   CHECK(tp_remesh(surface, &options, NULL, NULL, NULL) == TP_NULL_POINTER);
   test_remesh_field(surface, nv, 2 * nf);
+  test_remesh_guides(surface);
   test_remesh_progress(surface);
   tp_mesh_free(surface);
   free(v);

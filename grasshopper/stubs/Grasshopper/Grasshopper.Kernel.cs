@@ -100,6 +100,7 @@ namespace Grasshopper.Kernel
             public int AddIntegerParameter(string name, string nickname, string description, GH_ParamAccess access) { throw null; }
             public int AddIntegerParameter(string name, string nickname, string description, GH_ParamAccess access, int @default) { throw null; }
             public int AddVectorParameter(string name, string nickname, string description, GH_ParamAccess access) { throw null; }
+            public int AddCurveParameter(string name, string nickname, string description, GH_ParamAccess access) { throw null; }
             public int AddBooleanParameter(string name, string nickname, string description, GH_ParamAccess access, bool @default) { throw null; }
             public int AddGenericParameter(string name, string nickname, string description, GH_ParamAccess access) { throw null; }
         }

@@ -94,11 +94,14 @@ namespace Rhino.Geometry
     public class Curve : GeometryBase
     {
         internal Curve() { }
+        public PolylineCurve ToPolyline(double tolerance, double angleTolerance, double minimumLength, double maximumLength) { throw null; }
     }
 
     public class PolylineCurve : Curve
     {
         public PolylineCurve(IEnumerable<Point3d> points) { }
+        public int PointCount { get { throw null; } }
+        public Point3d Point(int index) { throw null; }
     }
 
     public class LineCurve : Curve
