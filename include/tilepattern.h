@@ -22,8 +22,10 @@
  * 4: `TpPatternOptions` grew (`gap`); callers built against ABI 3 keep working unchanged.
  * 5: `TpRemeshOptions` grew (the designer's field: `field_vectors`, `field_count`,
  * `field_weight`); callers built against ABI 4 keep working unchanged.
+ * 6: `TpPatternOptions` grew (zones, a bond per face: `zones`, `zone_count`); callers
+ * built against ABI 5 keep working unchanged.
  */
-#define TP_ABI_VERSION 5
+#define TP_ABI_VERSION 6
 
 /**
  * Stage numbers passed to a progress callback.
@@ -66,6 +68,11 @@
  * penalty per shifted, end-to-end and one-course-apart pair. Needs `courses` free.
  */
 #define TP_BOND_BASKET_WEAVE 4
+
+/**
+ * A zone (`TpPatternOptions::zones`) laid in the options' `bond`.
+ */
+#define TP_ZONE_DEFAULT -1
 
 /**
  * `method`: the fastest route to a proven optimum.
@@ -369,6 +376,18 @@ typedef struct TpPatternOptions {
    * when proven). Since ABI 4.
    */
   double gap;
+  /**
+   * Zones: `zone_count` bonds, one per face of the mesh in face order, each a `TP_BOND_*`
+   * or -1 for `bond`; every zone at `weight` (e.g. a band of `TP_BOND_HERRINGBONE` in a
+   * staggered vault). A herringbone or basket-weave zone needs `courses` free. NULL by
+   * default. Since ABI 6.
+   */
+  const int32_t *zones;
+  /**
+   * Number of zones: 0 (default) lays every face in `bond`; otherwise the mesh's face
+   * count. Since ABI 6.
+   */
+  size_t zone_count;
 } TpPatternOptions;
 
 /**

@@ -41,7 +41,9 @@ use status::{Failure, TpStatus::*};
 /// 4: `TpPatternOptions` grew (`gap`); callers built against ABI 3 keep working unchanged.
 /// 5: `TpRemeshOptions` grew (the designer's field: `field_vectors`, `field_count`,
 /// `field_weight`); callers built against ABI 4 keep working unchanged.
-pub const TP_ABI_VERSION: u32 = 5;
+/// 6: `TpPatternOptions` grew (zones, a bond per face: `zones`, `zone_count`); callers
+/// built against ABI 5 keep working unchanged.
+pub const TP_ABI_VERSION: u32 = 6;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;
