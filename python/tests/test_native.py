@@ -145,10 +145,11 @@ def test_the_loaded_library_has_the_struct_sizes_of_the_mirrors():
     ]:
         assert nat.native_struct_size(default) == ctypes.sizeof(struct), default
     assert nat.pattern_options().struct_size == ctypes.sizeof(nat.TpPatternOptions)
+    assert nat.pattern_options().zone_count == 0 and not nat.pattern_options().zones
     assert nat.remesh_options().time_limit_seconds == 60.0
     assert nat.remesh_options().field_weight == 1.0 and nat.remesh_options().field_count == 0
     assert nat.tile_options().length == 0.28
-    assert tp.abi_version() == tp.ABI_VERSION == 5
+    assert tp.abi_version() == tp.ABI_VERSION == 6
     assert re.match(r"\d+\.\d+", tp.version())
 
 

@@ -47,7 +47,7 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 5
+ABI_VERSION = 6
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
@@ -58,6 +58,8 @@ TP_BOND_STAGGERED = 1
 TP_BOND_RUNNING = 2
 TP_BOND_HERRINGBONE = 3
 TP_BOND_BASKET_WEAVE = 4
+#: A zone laid in the options' ``bond`` (``TpPatternOptions.zones``).
+TP_ZONE_DEFAULT = -1
 
 TP_METHOD_AUTO = 0
 TP_METHOD_MIP = 1
@@ -362,6 +364,9 @@ class TpPatternOptions(Structure):
         ("up", c_double * 3),
         # Since ABI 4.
         ("gap", c_double),
+        # Since ABI 6.
+        ("zones", POINTER(c_int32)),
+        ("zone_count", c_size_t),
     ]
 
 
