@@ -16,16 +16,17 @@ namespace TilePattern.Tests
         }
 
         [Test]
-        public void NullZonesGiveThePatternWithoutZones()
+        public void NullZonesGiveTheOptimumWithoutZones()
         {
             PolyMesh grid = TestMeshes.Grid(8, 8);
             Assert.IsNull(new PatternOptions().Zones);
             using (Pattern plain = TilePatternEngine.Match(grid, new PatternOptions { Courses = Courses.Free, TimeLimitSeconds = 10 }))
             using (Pattern zoned = TilePatternEngine.Match(grid, new PatternOptions { Courses = Courses.Free, TimeLimitSeconds = 10, Zones = new Bond?[64] }))
             {
-                CollectionAssert.AreEqual(plain.Pairs, zoned.Pairs);
+                // Both proven: the same optimum (the patterns may differ among equal optima).
+                Assert.AreEqual(SolveStatus.Optimal, plain.Status);
+                Assert.AreEqual(SolveStatus.Optimal, zoned.Status);
                 Assert.AreEqual(plain.Objective, zoned.Objective);
-                Assert.AreEqual(plain.Status, zoned.Status);
             }
         }
 

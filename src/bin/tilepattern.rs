@@ -1208,3 +1208,33 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
         t.report.boundary_tiles,
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn match_json_without_zones_is_the_pattern_json() {
+        let found =
+            pattern::solve(&mesh::generate::grid(3, 2), &PatternOptions::default()).unwrap();
+        let plain = serde_json::to_string_pretty(&found).unwrap();
+        let wrapped = MatchFile {
+            pattern: &found,
+            zones: None,
+        };
+        assert_eq!(serde_json::to_string_pretty(&wrapped).unwrap(), plain);
+        let zoned = MatchFile {
+            pattern: &found,
+            zones: Some(zones_file::counts(&[BondArg::Stack; 6])),
+        };
+        let text = serde_json::to_string_pretty(&zoned).unwrap();
+        assert!(
+            text.starts_with(plain.trim_end_matches(['}', '\n'])),
+            "{text}"
+        );
+        assert!(
+            text.ends_with(",\n  \"zones\": {\n    \"stack\": 6\n  }\n}"),
+            "{text}"
+        );
+    }
+}

@@ -948,7 +948,7 @@ static void test_bonds(void) {
 }
 
 /* Issue 20: zones, a bond per face (ABI 6). Zones all -1 lay every face in the options' bond:
-   the same pattern as no zones; a herringbone band reaches the solve (level courses refuse it,
+   the same optimum as no zones; a herringbone band reaches the solve (level courses refuse it,
    free courses give a valid pattern); counts, codes and NULL are checked; a caller built
    against ABI 5 (struct ends before `zones`) never has them read. */
 static void test_zones(void) {
@@ -961,15 +961,14 @@ static void test_zones(void) {
   options.time_limit_seconds = 10.0;
   TpPattern *plain = NULL, *zoned = NULL;
   TpPatternSummary a, b;
-  uint32_t pairs_a[64], pairs_b[64];
+  uint32_t pairs_b[64];
   CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &plain) == TP_OK);
   options.zones = zones;
   options.zone_count = 64;
   CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &zoned) == TP_OK);
   CHECK(tp_pattern_summary(plain, &a) == TP_OK && tp_pattern_summary(zoned, &b) == TP_OK);
-  CHECK(a.pairs == b.pairs && a.objective == b.objective && a.status == b.status);
-  CHECK(tp_pattern_copy_pairs(plain, pairs_a, 64) == TP_OK && tp_pattern_copy_pairs(zoned, pairs_b, 64) == TP_OK);
-  CHECK(memcmp(pairs_a, pairs_b, 2 * a.pairs * sizeof(uint32_t)) == 0);
+  /* Both proven: the same optimum (the patterns themselves may differ among equal optima). */
+  CHECK(a.status == TP_SOLVE_OPTIMAL && b.status == TP_SOLVE_OPTIMAL && a.objective == b.objective);
   tp_pattern_free(plain);
   tp_pattern_free(zoned);
   zoned = NULL;
@@ -1013,7 +1012,7 @@ static void test_zones(void) {
   old.time_limit_seconds = 10.0;
   old.zone_count = 3; /* beyond the old struct: never read, nor its pointer */
   CHECK(tp_pattern_solve(mesh, &old, NULL, NULL, &zoned) == TP_OK);
-  CHECK(tp_pattern_summary(zoned, &b) == TP_OK && b.pairs == a.pairs && b.objective == a.objective);
+  CHECK(tp_pattern_summary(zoned, &b) == TP_OK && b.status == TP_SOLVE_OPTIMAL && b.objective == a.objective);
   tp_pattern_free(zoned);
   tp_mesh_free(mesh);
 }
