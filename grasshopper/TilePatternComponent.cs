@@ -1,6 +1,7 @@
 // Stage 2: matches adjacent quads into tiles (the paper's programs on CBC).
 using System;
 using System.Collections.Generic;
+using System.Linq;
 using Grasshopper;
 using Grasshopper.Kernel;
 using Grasshopper.Kernel.Data;
@@ -35,9 +36,11 @@ namespace TilePattern.Gh
             // Appended inputs keep the indices above (saved definitions wire by index).
             pManager.AddIntegerParameter("Courses", "C", "1 = level: every tile along level courses (horizontal in the world's z), which the fit closes far better (default); 0 = free: tiles either way across any quad (the paper's model). For level courses remesh with quads of max((length + joint) / 2, width + joint) (Quad Remesh's Courses input)", GH_ParamAccess.item, (int)Courses.Level);
             pManager.AddNumberParameter("Gap", "Gp", "Optional: stop once (bound - objective) / bound is at most this relative gap, like a MIP solver's (0 = prove optimality or reach the time limit, default; 0.01 = within 1 %)", GH_ParamAccess.item, 0.0);
+            pManager.AddIntegerParameter("Zones", "Z", "Optional: a bond per face of the quad mesh, in face order (0 to 4 as Bond, -1 = the Bond input), e.g. a band of herringbone in a staggered vault; every zone at Weight. Empty: every face in Bond. A herringbone or basket-weave zone lays in free courses", GH_ParamAccess.list);
             pManager[4].Optional = true;
             pManager[5].Optional = true;
             pManager[7].Optional = true;
+            pManager[8].Optional = true;
             var bond = (Param_Integer)pManager[1];
             bond.AddNamedValue("Stack", (int)Bond.Stack);
             bond.AddNamedValue("Staggered", (int)Bond.Staggered);
@@ -68,6 +71,7 @@ namespace TilePattern.Gh
             double weight = 0.5, timeLimit = 10.0, gap = 0.0;
             var forced = new List<int>();
             var excluded = new List<int>();
+            var zones = new List<int>();
             if (!DA.GetData(0, ref mesh) || mesh == null)
                 return;
             DA.GetData(1, ref bond);
@@ -77,6 +81,7 @@ namespace TilePattern.Gh
             DA.GetDataList(5, excluded);
             DA.GetData(6, ref courses);
             DA.GetData(7, ref gap);
+            DA.GetDataList(8, zones);
             if (forced.Count % 2 != 0)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Forced pairs needs an even number of face indices (a0, b0, a1, b1, ...).");
@@ -92,13 +97,22 @@ namespace TilePattern.Gh
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
                 return;
             }
-            if ((bond == (int)Bond.Herringbone || bond == (int)Bond.BasketWeave) && courses == (int)Courses.Level)
+            for (int k = 0; k < zones.Count; k++)
+                if (zones[k] < -1 || zones[k] > 4)
+                {
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Zones item " + k + " is " + zones[k] + ": give -1 (the Bond input), 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), one per face.");
+                    return;
+                }
+            Func<int, bool> bothWays = b => b == (int)Bond.Herringbone || b == (int)Bond.BasketWeave;
+            if ((bothWays(bond) || zones.Any(bothWays)) && courses == (int)Courses.Level)
             {
                 // Both lay tiles both ways: level courses (the input's default) cannot hold them.
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Herringbone and basket weave lay tiles both ways: laid in free courses.");
                 courses = (int)Courses.Free;
             }
             var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit, Gap = gap, Courses = (Courses)courses };
+            if (zones.Count > 0)
+                options.Zones = zones.Select(z => z < 0 ? (Bond?)null : (Bond)z).ToArray();
             for (int k = 0; k < forced.Count; k += 2)
                 options.ForcedPairs.Add(new FacePair(forced[k], forced[k + 1]));
             foreach (int face in excluded)
@@ -106,7 +120,7 @@ namespace TilePattern.Gh
             PolyMesh quads = null;
             if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh)))
                 return;
-            var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded).Add(courses).Add(gap);
+            var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded).Add(courses).Add(gap).Add(zones);
             // Not disposed here: the pattern travels downstream; its SafeHandles free the native
             // memory (announced to the GC) once Grasshopper lets go of it.
             Pattern pattern = Solve(DA, key, (token, progress) => TilePatternEngine.Match(quads, options, progress, token));

@@ -23,8 +23,9 @@
  * 5: `TpRemeshOptions` grew (the designer's field: `field_vectors`, `field_count`,
  * `field_weight`); callers built against ABI 4 keep working unchanged.
  * 6: `TpRemeshOptions` grew (guide curves: `guide_points`, `guide_point_count`,
- * `guide_curve_sizes`, `guide_count`, `guide_weight`); callers built against ABI 4 or 5
- * keep working unchanged.
+ * `guide_curve_sizes`, `guide_count`, `guide_weight`) and `TpPatternOptions` grew (zones,
+ * a bond per face: `zones`, `zone_count`); callers built against ABI 4 or 5 keep working
+ * unchanged.
  */
 #define TP_ABI_VERSION 6
 
@@ -69,6 +70,11 @@
  * penalty per shifted, end-to-end and one-course-apart pair. Needs `courses` free.
  */
 #define TP_BOND_BASKET_WEAVE 4
+
+/**
+ * A zone (`TpPatternOptions::zones`) laid in the options' `bond`.
+ */
+#define TP_ZONE_DEFAULT -1
 
 /**
  * `method`: the fastest route to a proven optimum.
@@ -372,6 +378,18 @@ typedef struct TpPatternOptions {
    * when proven). Since ABI 4.
    */
   double gap;
+  /**
+   * Zones: `zone_count` bonds, one per face of the mesh in face order, each a `TP_BOND_*`
+   * or -1 for `bond`; every zone at `weight` (e.g. a band of `TP_BOND_HERRINGBONE` in a
+   * staggered vault). A herringbone or basket-weave zone needs `courses` free. NULL by
+   * default. Since ABI 6.
+   */
+  const int32_t *zones;
+  /**
+   * Number of zones: 0 (default) lays every face in `bond`; otherwise the mesh's face
+   * count. Since ABI 6.
+   */
+  size_t zone_count;
 } TpPatternOptions;
 
 /**

@@ -6,6 +6,7 @@ use std::time::Instant;
 use thiserror::Error;
 
 use crate::control::{Control, Figures};
+use crate::geom::SurfaceIndex;
 use crate::mesh::{MeshError, PolyMesh};
 use crate::pattern::{self, Pattern, PatternError, PatternOptions};
 use crate::remesh::{self, RemeshError, RemeshOptions, Remeshed};
@@ -108,8 +109,13 @@ impl Tiling {
 /// remesh stage as fractions `0..0.5` and the pattern stage as `0.5..1`, and can cancel
 /// either.
 ///
+/// Zones (`options.zones`) are given per face of `surface`, since the quads do not exist
+/// yet: each quad takes the zone of the surface face closest to its centroid
+/// ([`zones_on_quads`]).
+///
 /// # Errors
-/// The first stage error.
+/// The first stage error; zones not one per face of `surface` fail before the remesh
+/// ([`PatternError::ZoneCount`]).
 pub fn tile_surface(
     surface: &PolyMesh,
     remesh: &RemeshOptions,
@@ -119,6 +125,9 @@ pub fn tile_surface(
     control: &mut Control<'_>,
 ) -> Result<(Remeshed, Tiling), Error> {
     spec.validate()?;
+    if let Some(zones) = &options.zones {
+        check_zone_count(zones.len(), surface)?;
+    }
     // Before the long stages: a tile far too small for the surface fails at once.
     check_tile_scale(None, Some(surface), spec)?;
     // Progress: the remesh stage reports the first half, the pattern stage the second.
@@ -129,6 +138,18 @@ pub fn tile_surface(
             remesh,
             &mut Control::with_progress(&mut first_half),
         )?
+    };
+    // The surface's zones carried over to the quads.
+    let zoned;
+    let options = match &options.zones {
+        Some(zones) => {
+            zoned = PatternOptions {
+                zones: Some(zones_on_quads(surface, zones, &remeshed.quads)?),
+                ..options.clone()
+            };
+            &zoned
+        }
+        None => options,
     };
     let pattern = {
         // The pattern stage's figures (best, bound) go on to the caller's control.
@@ -156,6 +177,43 @@ pub fn tile_surface(
         &mut Control::with_progress(&mut last),
     )?;
     Ok((remeshed, tiling))
+}
+
+/// Zones of a quad mesh from zones of the surface it was remeshed from: each quad takes the
+/// zone of the face of `surface` closest to its centroid (ties go to the lower face), so a
+/// band of faces tagged on the designer's surface becomes a band of quads.
+///
+/// # Errors
+/// [`PatternError::ZoneCount`] when `zones` does not give one zone per face of `surface`.
+pub fn zones_on_quads<T: Copy>(
+    surface: &PolyMesh,
+    zones: &[T],
+    quads: &PolyMesh,
+) -> Result<Vec<T>, Error> {
+    check_zone_count(zones.len(), surface)?;
+    let index = SurfaceIndex::from_polymesh(surface);
+    let face_of = SurfaceIndex::polymesh_faces(surface);
+    Ok((0..quads.face_count())
+        .map(|q| {
+            let on = index
+                .closest(&quads.face_centroid(q).coords)
+                .expect("a PolyMesh has faces");
+            zones[face_of[on.triangle]]
+        })
+        .collect())
+}
+
+/// Zones must give one bond per face of `surface`.
+fn check_zone_count(given: usize, surface: &PolyMesh) -> Result<(), Error> {
+    if given == surface.face_count() {
+        Ok(())
+    } else {
+        Err(PatternError::ZoneCount {
+            given,
+            faces: surface.face_count(),
+        }
+        .into())
+    }
 }
 
 /// Matches `quads` into tiles and builds the boxes, cut to the boundary of `surface` (the
@@ -341,4 +399,82 @@ fn check_tile_scale(
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::generate;
+    use crate::pattern::Bond;
+
+    #[test]
+    fn quads_take_the_zone_of_the_surface_face_under_their_centroid() {
+        // A 12 x 12 triangle surface (two triangles per unit square) tagged by column: the
+        // band 4 <= x < 8 is zone 1, the rest 0; quads of 2 x 2 units over it, shifted
+        // up by 0.3 off the plane.
+        let surface = generate::triangulate_quads(&generate::grid(12, 12));
+        let zones: Vec<u8> = (0..surface.face_count())
+            .map(|t| {
+                let x = (t / 2) % 12;
+                u8::from((4..8).contains(&x))
+            })
+            .collect();
+        let coarse = generate::grid(6, 6);
+        let quads = PolyMesh::new(
+            coarse
+                .positions()
+                .iter()
+                .map(|p| nalgebra::Point3::new(2.0 * p.x, 2.0 * p.y, 0.3))
+                .collect(),
+            coarse.faces().to_vec(),
+        )
+        .unwrap();
+        let on_quads = zones_on_quads(&surface, &zones, &quads).unwrap();
+        let expected: Vec<u8> = (0..36)
+            .map(|q| u8::from((2..4).contains(&(q % 6))))
+            .collect();
+        assert_eq!(on_quads, expected);
+    }
+
+    #[test]
+    fn zones_not_one_per_surface_face_fail_before_the_remesh() {
+        let surface = generate::triangulate_quads(&generate::grid(4, 4));
+        let quads = generate::grid(2, 2);
+        let err = zones_on_quads(&surface, &[0_u8; 31], &quads).unwrap_err();
+        assert_eq!(
+            err,
+            Error::Pattern(PatternError::ZoneCount {
+                given: 31,
+                faces: 32
+            })
+        );
+        let options = PatternOptions {
+            zones: Some(vec![Bond::Stack; 16]),
+            ..PatternOptions::default()
+        };
+        let spec = TileSpec {
+            length: 0.28,
+            width: 0.14,
+            thickness: 0.015,
+            joint: 0.01,
+        };
+        // A target edge the remesher would refuse: the zones' error comes first.
+        let remesh = RemeshOptions {
+            target_edge: f64::NAN,
+            ..RemeshOptions::default()
+        };
+        let err = tile_surface(
+            &surface,
+            &remesh,
+            &options,
+            &spec,
+            &FinishOptions::for_spec(&spec),
+            &mut Control::none(),
+        )
+        .unwrap_err();
+        assert!(
+            err.to_string().contains("16 bonds for a mesh of 32 faces"),
+            "{err}"
+        );
+    }
 }

@@ -1371,6 +1371,11 @@ fn the_command_line_reports_bad_input() {
         r#"{"faces": 9, "pairs": [], "unpaired": [], "continuous_joints": 0, "shifted_pairs": 0, "objective": 0, "bound": 0, "gap": 0, "status": "optimal", "seconds": 0}"#,
     );
     let not_json = write("not.json", "pairs: 0 1");
+    let zone_typo = write("typo-zones.txt", "0 staggered\n1 herringbon\n");
+    let zone_range = write("range-zones.txt", "0-2 stack\n");
+    let zone_line = write("line-zones.txt", "0 stack staggered\n");
+    let zone_array = write("array-zones.json", "[\"stack\"]");
+    let zone_herringbone = write("herringbone-zones.txt", "1 herringbone\n");
     let pairs = out("pairs.json");
     let tiles = out("tiles.obj");
     let tile = ["--tile", "1900x950x100", "--units", "m"];
@@ -1444,6 +1449,58 @@ fn the_command_line_reports_bad_input() {
             args(&["match", &quads, "--weight", "heavy"]),
             2,
             &["--weight"],
+        ),
+        // Zones (issue 20).
+        (
+            args(&["match", &quads, "--zones", &zone_typo]),
+            1,
+            &["typo-zones.txt", "line 2", "'herringbon' is not a bond"],
+        ),
+        (
+            args(&["match", &quads, "--zones", &zone_range]),
+            1,
+            &["line 1", "face 2 is out of range", "2 faces"],
+        ),
+        (
+            args(&["match", &quads, "--zones", &zone_line]),
+            1,
+            &["line 1", "FACE BOND or FIRST-LAST BOND"],
+        ),
+        (
+            args(&["match", &quads, "--zones", &zone_array]),
+            1,
+            &["1 zones for a quad mesh of 2 faces"],
+        ),
+        (
+            args(&["match", &quads, "--zones", "/nonexistent/zones.txt"]),
+            1,
+            &["cannot read the zones file", "zones.txt"],
+        ),
+        (
+            args(&[
+                "match",
+                &quads,
+                "--zones",
+                &zone_herringbone,
+                "--courses",
+                "level",
+            ]),
+            1,
+            &["herringbone", "courses free"],
+        ),
+        (
+            args(&[
+                "match",
+                &quads,
+                "--pattern",
+                "stack",
+                "--weight",
+                "nan",
+                "--zones",
+                &zone_herringbone,
+            ]),
+            1,
+            &["zone of face 1", "bond weight NaN"],
         ),
         (
             args(&["match", &quads, "--time-limit=-1"]),

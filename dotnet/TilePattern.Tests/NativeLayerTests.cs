@@ -171,7 +171,7 @@ namespace TilePattern.Tests
             AssertMirror(typeof(TpPatternSummary), "TpPatternSummary", same);
             AssertMirror(typeof(TpTileOptions), "TpTileOptions", up);
             AssertMirror(typeof(TpRemeshOptions), "TpRemeshOptions", n => n.StartsWith("direction_vector[") ? "direction_" + "xyz"[n[17] - '0'] : n);
-            Assert.AreEqual(104, Marshal.SizeOf(typeof(TpPatternOptions)));
+            Assert.AreEqual(120, Marshal.SizeOf(typeof(TpPatternOptions)));
             Assert.AreEqual(96, Marshal.SizeOf(typeof(TpPatternSummary)));
             Assert.AreEqual(136, Marshal.SizeOf(typeof(TpRemeshOptions)));
             // The ABI 5 size ends where the ABI 6 fields begin.
@@ -181,6 +181,8 @@ namespace TilePattern.Tests
             Assert.AreEqual(64, (int)Marshal.OffsetOf(typeof(TpPatternOptions), "courses"));
             // The ABI 3 size ends where the ABI 4 field begins.
             Assert.AreEqual(96, (int)Marshal.OffsetOf(typeof(TpPatternOptions), "gap"));
+            // The ABI 5 size ends where the ABI 6 fields (zones) begin.
+            Assert.AreEqual(104, (int)Marshal.OffsetOf(typeof(TpPatternOptions), "zones"));
             Assert.AreEqual(88, (int)Marshal.OffsetOf(typeof(TpTileOptions), "fit"));
         }
 

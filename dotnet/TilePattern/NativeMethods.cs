@@ -16,8 +16,8 @@ namespace TilePattern
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     internal delegate int TpProgressCallback(IntPtr user, uint stage, double fraction);
 
-    /// <summary>Mirror of TpPatternOptions (104 bytes on 64-bit targets; 96 before ABI 4, 64
-    /// before ABI 3);
+    /// <summary>Mirror of TpPatternOptions (120 bytes on 64-bit targets; 104 before ABI 6, 96
+    /// before ABI 4, 64 before ABI 3);
     /// <c>double up[3]</c> is spelled as three doubles.</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct TpPatternOptions
@@ -39,6 +39,9 @@ namespace TilePattern
         public double up_z;
         // Since ABI 4.
         public double gap;
+        // Since ABI 6.
+        public IntPtr zones;                 // const int32_t*
+        public UIntPtr zone_count;           // size_t
     }
 
     /// <summary>Mirror of TpPatternSummary (96 bytes on 64-bit targets).</summary>
@@ -147,6 +150,7 @@ namespace TilePattern
         internal const int TP_BOND_RUNNING = 2;
         internal const int TP_BOND_HERRINGBONE = 3;
         internal const int TP_BOND_BASKET_WEAVE = 4;
+        internal const int TP_ZONE_DEFAULT = -1;
         internal const int TP_METHOD_AUTO = 0;
         internal const int TP_METHOD_MIP = 1;
         internal const int TP_FORMULATION_STRENGTHENED = 0;

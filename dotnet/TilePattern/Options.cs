@@ -331,6 +331,27 @@ namespace TilePattern
         /// <summary>Up direction of level courses, xyz; default (0, 0, 1).</summary>
         public double[] Up { get; set; }
 
+        /// <summary>Zones: a bond per face of the quad mesh, in face order (e.g. a band of
+        /// <see cref="TilePattern.Bond.Herringbone"/> in a staggered vault); a null item lays its
+        /// face in <see cref="Bond"/>, every zone at <see cref="Weight"/>. Null (default): every
+        /// face in <see cref="Bond"/>. Its length must be the mesh's face count; a herringbone or
+        /// basket-weave zone needs <see cref="TilePattern.Courses.Free"/>.</summary>
+        public Bond?[] Zones { get; set; }
+
+        /// <summary><see cref="Zones"/> as TP_BOND_* codes (TP_ZONE_DEFAULT, -1, for null
+        /// items), or null for none.</summary>
+        internal int[] ZoneCodes()
+        {
+            if (Zones == null)
+                return null;
+            if (Zones.Length == 0)
+                throw new ArgumentException("Zones must give one bond per face, or be null for none", "Zones");
+            var codes = new int[Zones.Length];
+            for (int k = 0; k < Zones.Length; k++)
+                codes[k] = Zones[k].HasValue ? (int)Zones[k].Value : NativeMethods.TP_ZONE_DEFAULT;
+            return codes;
+        }
+
         /// <summary>The native struct, its arrays flattened into <paramref name="forced"/> and
         /// <paramref name="excluded"/>; the caller pins them and fills in the pointers.</summary>
         [MethodImpl(MethodImplOptions.NoInlining)]

@@ -153,16 +153,23 @@ namespace TilePattern
         {
             uint[] forced, excluded;
             TpPatternOptions native = options.ToNative(out forced, out excluded);
+            int[] zones = options.ZoneCodes();
             var bridge = new ProgressBridge(progress, cancellationToken);
             bridge.ThrowIfCancelled();
             MeshHandle mesh = quads.CreateHandle();
             PatternHandle pattern = null;
             GCHandle forcedPin = GCHandle.Alloc(forced, GCHandleType.Pinned);
             GCHandle excludedPin = GCHandle.Alloc(excluded, GCHandleType.Pinned);
+            GCHandle zonesPin = zones == null ? default(GCHandle) : GCHandle.Alloc(zones, GCHandleType.Pinned);
             try
             {
                 native.forced_pairs = forced.Length == 0 ? IntPtr.Zero : forcedPin.AddrOfPinnedObject();
                 native.excluded_faces = excluded.Length == 0 ? IntPtr.Zero : excludedPin.AddrOfPinnedObject();
+                if (zones != null)
+                {
+                    native.zones = zonesPin.AddrOfPinnedObject();
+                    native.zone_count = (UIntPtr)zones.Length;
+                }
                 int status = NativeMethods.tp_pattern_solve(mesh, ref native, bridge.Callback, IntPtr.Zero, out pattern);
                 bridge.Finish(status);
                 return new Pattern(quads, mesh, pattern);
@@ -178,6 +185,8 @@ namespace TilePattern
             {
                 forcedPin.Free();
                 excludedPin.Free();
+                if (zonesPin.IsAllocated)
+                    zonesPin.Free();
             }
         }
 

@@ -109,3 +109,10 @@ def test_face_keys_are_translated():
     assert set(faces[faces >= 0].tolist()) <= set(keys)
     with pytest.raises(tp.InvalidArgumentError, match="no face 5"):
         tpc.match(mesh, excluded_faces=[removed])
+    # Zones by face key: a herringbone zone reaches the solve (level courses refuse it).
+    with pytest.raises(tp.InvalidArgumentError, match="courses free"):
+        tpc.match(mesh, zones={last: "herringbone"}, courses="level")
+    with pytest.raises(tp.InvalidArgumentError, match="zones: the mesh has no face 5"):
+        tpc.match(mesh, zones={removed: "stack"})
+    zoned = tpc.match(mesh, zones={k: "herringbone" for k in keys[:10]}, time_limit=2)
+    assert set(zoned.pairs.ravel().tolist()) | set(zoned.unpaired.tolist()) <= set(keys)

@@ -145,6 +145,7 @@ def test_the_loaded_library_has_the_struct_sizes_of_the_mirrors():
     ]:
         assert nat.native_struct_size(default) == ctypes.sizeof(struct), default
     assert nat.pattern_options().struct_size == ctypes.sizeof(nat.TpPatternOptions)
+    assert nat.pattern_options().zone_count == 0 and not nat.pattern_options().zones
     assert nat.remesh_options().time_limit_seconds == 60.0
     assert nat.remesh_options().field_weight == 1.0 and nat.remesh_options().field_count == 0
     assert nat.remesh_options().guide_weight == 1.0 and nat.remesh_options().guide_count == 0

@@ -1,4 +1,4 @@
-"""Low-level ctypes binding of ``include/tilepattern.h`` (ABI 3).
+"""Low-level ctypes binding of ``include/tilepattern.h`` (ABI 6).
 
 This module mirrors the C header one to one: the constants, the status codes (as
 exception classes), the option and summary structs, the progress callback type and the
@@ -58,6 +58,8 @@ TP_BOND_STAGGERED = 1
 TP_BOND_RUNNING = 2
 TP_BOND_HERRINGBONE = 3
 TP_BOND_BASKET_WEAVE = 4
+#: A zone laid in the options' ``bond`` (``TpPatternOptions.zones``).
+TP_ZONE_DEFAULT = -1
 
 TP_METHOD_AUTO = 0
 TP_METHOD_MIP = 1
@@ -362,6 +364,9 @@ class TpPatternOptions(Structure):
         ("up", c_double * 3),
         # Since ABI 4.
         ("gap", c_double),
+        # Since ABI 6.
+        ("zones", POINTER(c_int32)),
+        ("zone_count", c_size_t),
     ]
 
 

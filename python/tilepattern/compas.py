@@ -131,7 +131,21 @@ def remesh(mesh, target_edge=0.145, **options):
     return Mesh.from_vertices_and_faces(qv.tolist(), qf.tolist() if isinstance(qf, np.ndarray) else qf)
 
 
-def match(mesh, forced_pairs=None, excluded_faces=None, **options):
+def _zones(zones, keys):
+    """``zones`` of :func:`match` by face position: a dict {face key: bond} spread over the
+    faces (None for those it does not name); a sequence as given (in face order)."""
+    if not isinstance(zones, dict):
+        return zones
+    index = {int(k): i for i, k in enumerate(keys)}
+    spread = [None] * len(keys)
+    for key, bond in zones.items():
+        if int(key) not in index:
+            raise InvalidArgumentError(TP_INVALID_ARGUMENT, "zones: the mesh has no face %s" % (key,))
+        spread[index[int(key)]] = bond
+    return spread
+
+
+def match(mesh, forced_pairs=None, excluded_faces=None, zones=None, **options):
     """Match the faces of a COMPAS quad mesh into tiles.
 
     Parameters
@@ -142,6 +156,10 @@ def match(mesh, forced_pairs=None, excluded_faces=None, **options):
         Pairs of face keys that must form a tile.
     excluded_faces : list of int, optional
         Face keys that take part in no tile.
+    zones : dict or sequence, optional
+        A bond per face: a dict ``{face key: bond}`` (faces it does not name take ``bond``)
+        or one bond per face in ``mesh.faces()`` order; bonds as :func:`tilepattern.match`'s
+        ``zones`` take them (names, ``TP_BOND_*`` codes, ``None``).
     **options
         ``bond``, ``weight``, ``time_limit``, ``method``, ``formulation``, ``courses``
         (``"free"`` or ``"level"``), ``up``, ``progress``: see :func:`tilepattern.match`.
@@ -166,6 +184,7 @@ def match(mesh, forced_pairs=None, excluded_faces=None, **options):
         faces,
         forced_pairs=_positions(forced_pairs, keys, "forced_pairs"),
         excluded_faces=_positions(excluded_faces, keys, "excluded_faces"),
+        zones=_zones(zones, keys),
         **options,
     )
     if _keys_are_positions(keys):

@@ -521,6 +521,35 @@ def _index_array(values, what, shape_last=None):
     return np.asarray(a, dtype=np.uint32, order="C")
 
 
+def _zone_codes(zones):
+    """``zones`` of :func:`match` as ``TP_BOND_*`` codes (-1 for the options' bond), or None."""
+    if zones is None:
+        return None
+    if isinstance(zones, (str, bytes)):
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "zones must be one bond per face (a sequence), not the string %r" % (zones,))
+    items = np.asarray(zones, dtype=object) if not isinstance(zones, np.ndarray) else zones
+    if items.ndim != 1 or items.size == 0:
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "zones must be one bond per face (or None for none), got shape %s" % (items.shape,))
+    if items.dtype.kind in "iu":
+        if items.size and (items.min() < -(2**31) or items.max() >= 2**31):
+            raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "zones: a code is out of range; give TP_BOND_* codes or -1")
+        return np.ascontiguousarray(items, dtype=np.int32)
+    codes = np.empty(items.size, dtype=np.int32)
+    for face, zone in enumerate(items.tolist()):
+        if zone is None:
+            codes[face] = nat.TP_ZONE_DEFAULT
+        elif isinstance(zone, str) and zone in BONDS:
+            codes[face] = BONDS[zone]
+        elif isinstance(zone, (int, np.integer)) and not isinstance(zone, bool) and -(2**31) <= zone < 2**31:
+            codes[face] = int(zone)  # a TP_BOND_* code: the library checks it
+        else:
+            raise InvalidArgumentError(
+                nat.TP_INVALID_ARGUMENT,
+                "zones[%d] is %r: give a bond (%s), a TP_BOND_* code, or None for bond" % (face, zone, ", ".join(repr(c) for c in BONDS)),
+            )
+    return codes
+
+
 def match(
     vertices,
     faces,
@@ -535,6 +564,7 @@ def match(
     courses: str = "free",
     up: Sequence[float] = (0.0, 0.0, 1.0),
     gap: float = 0.0,
+    zones=None,
 ) -> Pattern:
     """Match adjacent quads into tiles with the paper's integer programs (stage 2).
 
@@ -582,6 +612,12 @@ def match(
         ``(bound - objective) / bound`` is at most this (from 0 to 1). Default 0: prove
         optimality or reach the time limit. A solve stopped by the gap has
         ``status="feasible"`` (or ``"optimal"`` when proven).
+    zones : sequence (F,) of str, int or None, optional
+        Zones: a bond per face, in face order (e.g. a band of ``"herringbone"`` in a
+        staggered vault): a ``bond`` name, a ``TP_BOND_*`` code, or ``None`` (or -1) for
+        ``bond``; every zone at ``weight``. A list or a numpy array (of integer codes, or of
+        objects). A herringbone or basket-weave zone needs ``courses="free"``. Default
+        ``None``: every face in ``bond``.
 
     Returns
     -------
@@ -611,6 +647,13 @@ def match(
     >>> pattern.excluded, [1, 2] in pattern.pairs.tolist()
     (1, True)
 
+    A herringbone band (the two middle rows) in a staggered field:
+
+    >>> zones = ["herringbone" if 4 <= face < 12 else None for face in range(16)]
+    >>> pattern = match(V, F, zones=zones, time_limit=5)
+    >>> len(pattern.pairs) > 0
+    True
+
     In level courses every tile runs along x here (faces ``f`` and ``f + 1``):
 
     >>> pattern = match(V, F, courses="level", up=(0, 1, 0), time_limit=5)
@@ -630,11 +673,14 @@ def match(
     if forced.size % 2:
         raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "forced_pairs must be pairs of face indices")
     excluded = _index_array(excluded_faces, "excluded_faces")
+    zone_codes = _zone_codes(zones)
     # The arrays stay referenced by these locals for the whole native call.
     options.forced_pairs = nat.as_pointer(forced, nat.c_uint32)
     options.forced_pair_count = forced.size // 2
     options.excluded_faces = nat.as_pointer(excluded, nat.c_uint32)
     options.excluded_face_count = excluded.size
+    options.zones = nat.as_pointer(zone_codes, nat.c_int32)
+    options.zone_count = 0 if zone_codes is None else zone_codes.size
     with mesh_handle(vertices, faces) as mesh:
         handle = mesh.solve(options, progress)
     try:

@@ -1,6 +1,7 @@
 //! `tilepattern`: the command line. It parses arguments, calls the library, writes files.
 //! Command names, flags and JSON fields are a contract that users' scripts rely on.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -16,6 +17,8 @@ mod field_file;
 mod guide_file;
 #[path = "tilepattern/progress_line.rs"]
 mod progress_line;
+#[path = "tilepattern/zones_file.rs"]
+mod zones_file;
 use progress_line::ProgressLine;
 use tilepattern::mesh::{self, MeshError, PolyMesh};
 use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, PatternOptions};
@@ -52,6 +55,11 @@ enum Command {
         /// Up direction x,y,z for level courses (`--courses level`).
         #[arg(long, value_parser = parse_vector, default_value = "0,0,1")]
         up: [f64; 3],
+        /// Zones: a bond per face of the quad mesh, from a file of `FACE BOND` or
+        /// `FIRST-LAST BOND` lines (or JSON, see the README); faces not listed take --pattern,
+        /// every zone --weight.
+        #[arg(long, value_name = "FILE")]
+        zones: Option<PathBuf>,
         /// Where to write the result JSON (stdout when omitted).
         #[arg(long)]
         json: Option<PathBuf>,
@@ -116,6 +124,12 @@ enum Command {
         field: FieldArgs,
         #[command(flatten)]
         pattern: PatternArgs,
+        /// Zones: a bond per face of the INPUT surface (each quad takes the zone of the input
+        /// face closest to its centroid), from a file of `FACE BOND` or `FIRST-LAST BOND`
+        /// lines (or JSON, see the README); faces not listed take --pattern, every zone
+        /// --weight. The quads' zones are written to zones.txt.
+        #[arg(long, value_name = "FILE")]
+        zones: Option<PathBuf>,
         /// Wall-clock limit of the remesh stage in seconds (`--time-limit` is the pattern
         /// stage's).
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
@@ -258,7 +272,7 @@ enum CoursesArg {
     Free,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, Debug, ValueEnum)]
 enum BondArg {
     Stack,
     Staggered,
@@ -350,12 +364,16 @@ fn run(cli: Cli) -> Result<()> {
             quads,
             pattern,
             up,
+            zones,
             json,
         } => {
             let loaded = read_mesh(&quads)?;
             print_warnings(weld_warning(&loaded).as_slice());
             let mesh = loaded.mesh;
-            let options = pattern.options(false, up)?;
+            let zones = zones
+                .map(|path| zones_file::read(&path, mesh.face_count(), "quad mesh"))
+                .transpose()?;
+            let options = pattern.options(false, up, zones.as_deref())?;
             let mut line = ProgressLine::on_terminal();
             let found = pattern::solve_with(
                 &mesh,
@@ -367,7 +385,13 @@ fn run(cli: Cli) -> Result<()> {
             line.finish();
             let found = found?;
             eprintln!("{}", pattern_summary(&found));
-            write_json(json.as_deref(), &found)
+            write_json(
+                json.as_deref(),
+                &MatchFile {
+                    pattern: &found,
+                    zones: zones.map(|z| zones_file::counts(&pattern.zone_bonds(&z))),
+                },
+            )
         }
         Command::Tiles {
             quads,
@@ -423,6 +447,7 @@ fn run(cli: Cli) -> Result<()> {
                         units: units.name(),
                         remesh: None,
                         report: &tiling.report,
+                        zones: None,
                     },
                 )
             })
@@ -452,15 +477,20 @@ fn run(cli: Cli) -> Result<()> {
             tile,
             field,
             pattern,
+            zones,
             remesh_time_limit,
             out,
         } => {
             let loaded = read_mesh(&input)?;
             let surface = &loaded.mesh;
+            let zones = zones
+                .map(|path| zones_file::read(&path, surface.face_count(), "input surface"))
+                .transpose()?;
             let (spec, units) = tile.spec(surface)?;
             eprintln!("{}", units.why);
             let finish = tile.finish(&spec, units.unit);
-            let options = pattern.options(true, tile.up)?;
+            // Zones per input face: the pipeline carries them over to the quads.
+            let options = pattern.options(true, tile.up, zones.as_deref())?;
             let edge = spec.quad_edge(options.courses != Courses::Free);
             let remesh = RemeshOptions {
                 time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?,
@@ -481,12 +511,19 @@ fn run(cli: Cli) -> Result<()> {
             let (remeshed, mut tiling) = found.map_err(|e| units.explain(e))?;
             tiling.report.warnings.extend(weld_warning(&loaded));
             let units = units.unit;
+            // The quads' zones, as the pipeline gave them to the pattern stage.
+            let quad_zones = zones
+                .map(|z| {
+                    pipeline::zones_on_quads(surface, &pattern.zone_bonds(&z), &remeshed.quads)
+                })
+                .transpose()?;
             write_outputs(
                 &out,
                 &remeshed.quads,
                 &tiling,
                 units,
                 Some(&remeshed.metrics),
+                quad_zones.as_deref(),
             )?;
             println!("{}", remesh_summary(&remeshed.metrics));
             println!("{}", tiling_summary(&tiling, units));
@@ -517,7 +554,7 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
         span,
         spec.target_edge() / 3.0,
     ));
-    let options = args.options(true, [0.0, 0.0, 1.0])?;
+    let options = args.options(true, [0.0, 0.0, 1.0], None)?;
     let remesh = RemeshOptions {
         target_edge: spec.quad_edge(options.courses != Courses::Free),
         ..RemeshOptions::default()
@@ -543,6 +580,7 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
         &tiling,
         Units::M,
         Some(&remeshed.metrics),
+        None,
     )?;
     println!(
         "demo: {span} m corner-supported shell, {} triangles",
@@ -559,16 +597,20 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
 }
 
 /// Writes quads.obj, tiles.obj, pattern.svg, report.json and the fabrication output into
-/// `out`.
+/// `out`, and zones.txt when the quads have zones.
 fn write_outputs(
     out: &Path,
     quads: &PolyMesh,
     tiling: &Tiling,
     units: Units,
     remesh: Option<&Metrics>,
+    zones: Option<&[BondArg]>,
 ) -> Result<()> {
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     mesh::obj::write(quads, &out.join("quads.obj"))?;
+    if let Some(zones) = zones {
+        write_text(&out.join("zones.txt"), &zones_file::to_text(zones))?;
+    }
     write_text(&out.join("tiles.obj"), &tiles::to_obj(&tiling.tiles))?;
     write_text(
         &out.join("pattern.svg"),
@@ -580,6 +622,7 @@ fn write_outputs(
             units: units.name(),
             remesh,
             report: &tiling.report,
+            zones: zones.map(zones_file::counts),
         },
     )?;
     write_fabrication(out, quads, tiling, units)
@@ -687,9 +730,26 @@ struct ReportFile<'a> {
     remesh: Option<&'a Metrics>,
     #[serde(flatten)]
     report: &'a Report,
+    /// After `run --zones`: quads per bond name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    zones: Option<BTreeMap<&'static str, usize>>,
+}
+
+/// `match`'s JSON: the pattern, and after `--zones` the faces per bond name.
+#[derive(Serialize)]
+struct MatchFile<'a> {
+    #[serde(flatten)]
+    pattern: &'a Pattern,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    zones: Option<BTreeMap<&'static str, usize>>,
 }
 
 impl BondArg {
+    /// Its `--pattern` name.
+    fn name(self) -> &'static str {
+        self.bond(pattern::DEFAULT_WEIGHT).name()
+    }
+
     fn bond(self, weight: f64) -> Bond {
         match self {
             BondArg::Stack => Bond::Stack,
@@ -702,16 +762,45 @@ impl BondArg {
 }
 
 impl PatternArgs {
+    /// Each face's bond from a zones file: its own, or `--pattern` where it lists none.
+    fn zone_bonds(&self, zones: &[Option<BondArg>]) -> Vec<BondArg> {
+        zones.iter().map(|z| z.unwrap_or(self.pattern)).collect()
+    }
+
     /// The options, with tiles in level courses (with respect to `up`) unless `--courses`
-    /// says otherwise, `level_by_default` is false or the bond lays tiles both ways.
-    fn options(&self, level_by_default: bool, up: [f64; 3]) -> Result<PatternOptions> {
+    /// says otherwise, `level_by_default` is false or a bond (`--pattern` or a zone's) lays
+    /// tiles both ways; with `zones` (per face, from [`zones_file`]) every zone at `--weight`.
+    fn options(
+        &self,
+        level_by_default: bool,
+        up: [f64; 3],
+        zones: Option<&[Option<BondArg>]>,
+    ) -> Result<PatternOptions> {
         let bond = self.pattern.bond(self.weight);
+        let zones: Option<Vec<Bond>> = zones.map(|z| {
+            self.zone_bonds(z)
+                .into_iter()
+                .map(|b| b.bond(self.weight))
+                .collect()
+        });
         // Bonds laid both ways need tiles free to lie either way.
+        let both_ways = std::iter::once(bond)
+            .chain(zones.iter().flatten().copied())
+            .find(|b| b.lays_both_ways());
         let level = self
             .courses
-            .map_or(level_by_default && !bond.lays_both_ways(), |c| {
+            .map_or(level_by_default && both_ways.is_none(), |c| {
                 c == CoursesArg::Level
             });
+        if let Some(b) = both_ways
+            && level_by_default
+            && self.courses.is_none()
+        {
+            eprintln!(
+                "note: {} lays tiles both ways: courses free (not the level courses of the default)",
+                b.name()
+            );
+        }
         let formulation = match self.formulation {
             FormulationArg::Paper => Formulation::Paper,
             FormulationArg::Strengthened => Formulation::Strengthened,
@@ -732,7 +821,7 @@ impl PatternArgs {
                 Courses::Free
             },
             gap: self.gap,
-            zones: None,
+            zones,
         })
     }
 }
@@ -1139,4 +1228,34 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
         t.report.half_tiles,
         t.report.boundary_tiles,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn match_json_without_zones_is_the_pattern_json() {
+        let found =
+            pattern::solve(&mesh::generate::grid(3, 2), &PatternOptions::default()).unwrap();
+        let plain = serde_json::to_string_pretty(&found).unwrap();
+        let wrapped = MatchFile {
+            pattern: &found,
+            zones: None,
+        };
+        assert_eq!(serde_json::to_string_pretty(&wrapped).unwrap(), plain);
+        let zoned = MatchFile {
+            pattern: &found,
+            zones: Some(zones_file::counts(&[BondArg::Stack; 6])),
+        };
+        let text = serde_json::to_string_pretty(&zoned).unwrap();
+        assert!(
+            text.starts_with(plain.trim_end_matches(['}', '\n'])),
+            "{text}"
+        );
+        assert!(
+            text.ends_with(",\n  \"zones\": {\n    \"stack\": 6\n  }\n}"),
+            "{text}"
+        );
+    }
 }

@@ -42,8 +42,9 @@ use status::{Failure, TpStatus::*};
 /// 5: `TpRemeshOptions` grew (the designer's field: `field_vectors`, `field_count`,
 /// `field_weight`); callers built against ABI 4 keep working unchanged.
 /// 6: `TpRemeshOptions` grew (guide curves: `guide_points`, `guide_point_count`,
-/// `guide_curve_sizes`, `guide_count`, `guide_weight`); callers built against ABI 4 or 5
-/// keep working unchanged.
+/// `guide_curve_sizes`, `guide_count`, `guide_weight`) and `TpPatternOptions` grew (zones,
+/// a bond per face: `zones`, `zone_count`); callers built against ABI 4 or 5 keep working
+/// unchanged.
 pub const TP_ABI_VERSION: u32 = 6;
 
 /// Stage numbers passed to a progress callback.

@@ -24,6 +24,8 @@ pub const TP_BOND_HERRINGBONE: i32 = 3;
 /// `bond`: basket weave (2 x 2 squares of parallel tiles, alternating); `weight` is the
 /// penalty per shifted, end-to-end and one-course-apart pair. Needs `courses` free.
 pub const TP_BOND_BASKET_WEAVE: i32 = 4;
+/// A zone (`TpPatternOptions::zones`) laid in the options' `bond`.
+pub const TP_ZONE_DEFAULT: i32 = -1;
 /// `method`: the fastest route to a proven optimum.
 pub const TP_METHOD_AUTO: i32 = 0;
 /// `method`: the paper's whole program on CBC.
@@ -85,6 +87,14 @@ pub struct TpPatternOptions {
     /// to 1. A solve stopped by the gap has status `TP_SOLVE_FEASIBLE` (`TP_SOLVE_OPTIMAL`
     /// when proven). Since ABI 4.
     pub gap: f64,
+    /// Zones: `zone_count` bonds, one per face of the mesh in face order, each a `TP_BOND_*`
+    /// or -1 for `bond`; every zone at `weight` (e.g. a band of `TP_BOND_HERRINGBONE` in a
+    /// staggered vault). A herringbone or basket-weave zone needs `courses` free. NULL by
+    /// default. Since ABI 6.
+    pub zones: *const i32,
+    /// Number of zones: 0 (default) lays every face in `bond`; otherwise the mesh's face
+    /// count. Since ABI 6.
+    pub zone_count: usize,
 }
 
 /// Tiles may lie either way across any quad (the paper's eqs. 1-3).
@@ -146,6 +156,8 @@ pub extern "C" fn tp_pattern_options_default() -> TpPatternOptions {
         courses: TP_COURSES_FREE,
         up: [0.0, 0.0, 1.0],
         gap: 0.0,
+        zones: std::ptr::null(),
+        zone_count: 0,
     }
 }
 
@@ -213,18 +225,8 @@ pub unsafe extern "C" fn tp_pattern_solve(
 /// Converts C options into the library's, checking every value.
 fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
     let invalid = |what: String| Failure::new(TP_INVALID_ARGUMENT, what);
-    let bond = match raw.bond {
-        TP_BOND_STACK => Bond::Stack,
-        TP_BOND_STAGGERED => Bond::Staggered { weight: raw.weight },
-        TP_BOND_RUNNING => Bond::RunningBond { weight: raw.weight },
-        TP_BOND_HERRINGBONE => Bond::Herringbone { weight: raw.weight },
-        TP_BOND_BASKET_WEAVE => Bond::BasketWeave { weight: raw.weight },
-        other => {
-            return Err(invalid(format!(
-                "bond {other} is not one of TP_BOND_STACK, TP_BOND_STAGGERED, TP_BOND_RUNNING, TP_BOND_HERRINGBONE, TP_BOND_BASKET_WEAVE"
-            )));
-        }
-    };
+    let bond = bond_of(raw.bond, raw.weight)
+        .ok_or_else(|| invalid(format!("bond {} is not one of {BOND_NAMES}", raw.bond)))?;
     let method = match raw.method {
         TP_METHOD_AUTO => Method::Auto,
         TP_METHOD_MIP => Method::Mip,
@@ -247,6 +249,7 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
     for (name, count) in [
         ("forced_pair_count", raw.forced_pair_count),
         ("excluded_face_count", raw.excluded_face_count),
+        ("zone_count", raw.zone_count),
     ] {
         if count > crate::mesh::MAX_FACES {
             return Err(invalid(format!(
@@ -257,7 +260,7 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
     }
     let pair_values = 2 * raw.forced_pair_count;
     // SAFETY: the arrays hold their stated counts by the caller's promise.
-    let (forced, excluded) = unsafe {
+    let (forced, excluded, zone_codes) = unsafe {
         (
             input(raw.forced_pairs, pair_values, "options->forced_pairs")?,
             input(
@@ -265,8 +268,27 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
                 raw.excluded_face_count,
                 "options->excluded_faces",
             )?,
+            input(raw.zones, raw.zone_count, "options->zones")?,
         )
     };
+    // No zones (count 0) lays every face in `bond`; the count is checked against the mesh
+    // by the pattern stage.
+    let zones = (!zone_codes.is_empty())
+        .then(|| {
+            zone_codes
+                .iter()
+                .enumerate()
+                .map(|(face, &code)| match code {
+                    TP_ZONE_DEFAULT => Ok(bond),
+                    _ => bond_of(code, raw.weight).ok_or_else(|| {
+                        invalid(format!(
+                            "options->zones[{face}] is {code}: give one of {BOND_NAMES}, or -1 for options->bond"
+                        ))
+                    }),
+                })
+                .collect::<Result<Vec<Bond>, Failure>>()
+        })
+        .transpose()?;
     Ok(PatternOptions {
         bond,
         time_limit: PatternOptions::time_limit_from_secs(raw.time_limit_seconds)?,
@@ -287,7 +309,23 @@ fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
             }
         },
         gap: raw.gap,
-        zones: None,
+        zones,
+    })
+}
+
+/// The `TP_BOND_*` names, for messages.
+const BOND_NAMES: &str =
+    "TP_BOND_STACK, TP_BOND_STAGGERED, TP_BOND_RUNNING, TP_BOND_HERRINGBONE, TP_BOND_BASKET_WEAVE";
+
+/// The bond of a `TP_BOND_*` code with `weight`, `None` for an unknown code.
+fn bond_of(code: i32, weight: f64) -> Option<Bond> {
+    Some(match code {
+        TP_BOND_STACK => Bond::Stack,
+        TP_BOND_STAGGERED => Bond::Staggered { weight },
+        TP_BOND_RUNNING => Bond::RunningBond { weight },
+        TP_BOND_HERRINGBONE => Bond::Herringbone { weight },
+        TP_BOND_BASKET_WEAVE => Bond::BasketWeave { weight },
+        _ => return None,
     })
 }
 

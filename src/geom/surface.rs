@@ -83,15 +83,18 @@ impl SurfaceIndex {
         }
     }
 
-    /// Indexes a polygon mesh, its faces fan-triangulated.
+    /// Indexes a polygon mesh, its faces fan-triangulated in face order
+    /// ([`SurfaceIndex::polymesh_faces`] maps the triangles back to the faces).
     pub fn from_polymesh(mesh: &PolyMesh) -> Self {
         let pos = mesh.positions().iter().map(|p| p.coords).collect();
-        let tris = mesh
-            .faces()
-            .iter()
-            .flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]]))
-            .collect();
+        let tris = fan(mesh).map(|(_, t)| t).collect();
         Self::new(pos, tris)
+    }
+
+    /// The face of `mesh` each triangle of [`SurfaceIndex::from_polymesh`]`(mesh)` lies on:
+    /// [`SurfacePoint::triangle`] of a closest point on it is an index into this.
+    pub fn polymesh_faces(mesh: &PolyMesh) -> Vec<usize> {
+        fan(mesh).map(|(f, _)| f).collect()
     }
 
     /// The point of the surface closest to `p` (ties go to the lower triangle), `None` for a
@@ -132,6 +135,14 @@ impl SurfaceIndex {
             on_boundary,
         })
     }
+}
+
+/// The fan triangles of `mesh`'s faces, in face order, each with its face.
+fn fan(mesh: &PolyMesh) -> impl Iterator<Item = (usize, [usize; 3])> + '_ {
+    mesh.faces()
+        .iter()
+        .enumerate()
+        .flat_map(|(i, f)| (1..f.len() - 1).map(move |k| (i, [f[0], f[k], f[k + 1]])))
 }
 
 #[cfg(test)]
@@ -204,5 +215,37 @@ mod tests {
                 .closest(&Vector3::zeros())
                 .is_none()
         );
+    }
+
+    #[test]
+    fn polymesh_faces_name_the_face_of_each_fan_triangle() {
+        // A triangle, a quad and a pentagon: 1 + 2 + 3 triangles.
+        let p = |x: f64, y: f64| nalgebra::Point3::new(x, y, 0.0);
+        let mesh = PolyMesh::new(
+            vec![
+                p(0.0, 0.0),
+                p(1.0, 0.0),
+                p(1.0, 1.0),
+                p(0.0, 1.0),
+                p(2.0, 0.0),
+                p(2.0, 1.0),
+                p(3.0, 0.5),
+                p(0.5, -1.0),
+            ],
+            vec![vec![0, 7, 1], vec![0, 1, 2, 3], vec![1, 4, 6, 5, 2]],
+        )
+        .unwrap();
+        assert_eq!(SurfaceIndex::polymesh_faces(&mesh), vec![0, 1, 1, 2, 2, 2]);
+        let index = SurfaceIndex::from_polymesh(&mesh);
+        let faces = SurfaceIndex::polymesh_faces(&mesh);
+        for (q, face) in [
+            ((0.5, -0.4), 0),
+            ((0.3, 0.8), 1),
+            ((2.6, 0.5), 2),
+            ((1.9, 0.9), 2),
+        ] {
+            let found = index.closest(&Vector3::new(q.0, q.1, 0.2)).unwrap();
+            assert_eq!(faces[found.triangle], face, "{q:?}");
+        }
     }
 }

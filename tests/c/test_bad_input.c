@@ -323,6 +323,40 @@ int main(void) {
     po.forced_pair_count = 1;
     row("forced pair across level courses", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, "two courses");
   }
+  {
+    /* Zones, a bond per face (ABI 6): the mesh has 2 faces. */
+    const int32_t one_zone[] = {TP_BOND_STACK}, bad_code[] = {TP_ZONE_DEFAULT, 9},
+                  herringbone[] = {TP_BOND_HERRINGBONE, TP_ZONE_DEFAULT};
+    tp_pattern_options_init(&po, sizeof po);
+    po.zones = one_zone;
+    po.zone_count = 1;
+    row("zones for 1 face of 2", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT,
+        "1 bonds for a mesh of 2 faces");
+    po.zones = bad_code;
+    po.zone_count = 2;
+    row("unknown zone code", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, "options->zones[1] is 9");
+    po.zones = NULL;
+    row("NULL zones, zone_count 2", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_NULL_POINTER, "zones");
+    po.zones = one_zone;
+    po.zone_count = SIZE_MAX;
+    row("zone_count SIZE_MAX", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT, "zone_count");
+    po.zones = herringbone;
+    po.zone_count = 2;
+    po.courses = TP_COURSES_LEVEL;
+    row("herringbone zone in level courses", tp_pattern_solve(quads, &po, NULL, NULL, &p), TP_INVALID_ARGUMENT,
+        "courses free");
+    po.bond = TP_BOND_STACK;
+    po.weight = NAN;
+    po.courses = TP_COURSES_FREE;
+    row("zone weight NaN (stack ignores it, a herringbone zone does not)", tp_pattern_solve(quads, &po, NULL, NULL, &p),
+        TP_INVALID_ARGUMENT, "zone of face 0");
+    po.zones = NULL;
+    po.zone_count = 0;
+    row("zone weight NaN without zones (graceful: stack has no weight)", tp_pattern_solve(quads, &po, NULL, NULL, &p),
+        TP_OK, NULL);
+    tp_pattern_free(p);
+    p = NULL;
+  }
   tp_pattern_options_init(&po, sizeof po);
   row("NULL mesh", tp_pattern_solve(NULL, &po, NULL, NULL, &p), TP_NULL_POINTER, "mesh");
   row("options_init size 0", tp_pattern_options_init(&po, 0), TP_INVALID_ARGUMENT, "size 0");

@@ -1011,6 +1011,76 @@ static void test_bonds(void) {
   tp_mesh_free(mesh);
 }
 
+/* Issue 20: zones, a bond per face (ABI 6). Zones all -1 lay every face in the options' bond:
+   the same optimum as no zones; a herringbone band reaches the solve (level courses refuse it,
+   free courses give a valid pattern); counts, codes and NULL are checked; a caller built
+   against ABI 5 (struct ends before `zones`) never has them read. */
+static void test_zones(void) {
+  TpMesh *mesh = grid_mesh(8, 8);
+  int32_t zones[64];
+  for (int f = 0; f < 64; f++) zones[f] = TP_ZONE_DEFAULT;
+  TpPatternOptions options;
+  CHECK(tp_pattern_options_init(&options, sizeof options) == TP_OK);
+  CHECK(options.zones == NULL && options.zone_count == 0);
+  options.time_limit_seconds = 10.0;
+  TpPattern *plain = NULL, *zoned = NULL;
+  TpPatternSummary a, b;
+  uint32_t pairs_b[64];
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &plain) == TP_OK);
+  options.zones = zones;
+  options.zone_count = 64;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &zoned) == TP_OK);
+  CHECK(tp_pattern_summary(plain, &a) == TP_OK && tp_pattern_summary(zoned, &b) == TP_OK);
+  /* Both proven: the same optimum (the patterns themselves may differ among equal optima). */
+  CHECK(a.status == TP_SOLVE_OPTIMAL && b.status == TP_SOLVE_OPTIMAL && a.objective == b.objective);
+  tp_pattern_free(plain);
+  tp_pattern_free(zoned);
+  zoned = NULL;
+
+  /* Rows 3 and 4 herringbone in a staggered field. */
+  for (int f = 24; f < 40; f++) zones[f] = TP_BOND_HERRINGBONE;
+  options.courses = TP_COURSES_LEVEL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &zoned) == TP_INVALID_ARGUMENT && zoned == NULL);
+  CHECK(last_error_contains("herringbone") && last_error_contains("courses free"));
+  options.courses = TP_COURSES_FREE;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &zoned) == TP_OK);
+  CHECK(tp_pattern_summary(zoned, &b) == TP_OK && b.faces == 64 && b.pairs > 0 && b.bound >= b.objective);
+  CHECK(tp_pattern_copy_pairs(zoned, pairs_b, 64) == TP_OK);
+  int adjacent = 1;
+  for (size_t k = 0; k < b.pairs; k++) {
+    uint32_t p = pairs_b[2 * k], q = pairs_b[2 * k + 1];
+    adjacent &= (q == p + 1 && p % 8 != 7) || q == p + 8;
+  }
+  CHECK(adjacent);
+  tp_pattern_free(zoned);
+  zoned = NULL;
+
+  /* Errors: one zone short, an unknown code (named with its index), NULL with a count. */
+  options.zone_count = 63;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &zoned) == TP_INVALID_ARGUMENT && zoned == NULL);
+  CHECK(last_error_contains("63 bonds for a mesh of 64 faces"));
+  options.zone_count = 64;
+  zones[17] = 5;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &zoned) == TP_INVALID_ARGUMENT && last_error_contains("zones[17] is 5"));
+  zones[17] = -2;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &zoned) == TP_INVALID_ARGUMENT && last_error_contains("zones[17] is -2"));
+  zones[17] = TP_ZONE_DEFAULT;
+  options.zones = NULL;
+  CHECK(tp_pattern_solve(mesh, &options, NULL, NULL, &zoned) == TP_NULL_POINTER && last_error_contains("zones"));
+
+  /* An ABI 5 caller: whatever lies past its struct (here a bad pointer and count) is ignored. */
+  TpPatternOptions old;
+  memset(&old, 0xAB, sizeof old);
+  CHECK(tp_pattern_options_init(&old, offsetof(TpPatternOptions, zones)) == TP_OK);
+  CHECK(old.struct_size == offsetof(TpPatternOptions, zones));
+  old.time_limit_seconds = 10.0;
+  old.zone_count = 3; /* beyond the old struct: never read, nor its pointer */
+  CHECK(tp_pattern_solve(mesh, &old, NULL, NULL, &zoned) == TP_OK);
+  CHECK(tp_pattern_summary(zoned, &b) == TP_OK && b.status == TP_SOLVE_OPTIMAL && b.objective == a.objective);
+  tp_pattern_free(zoned);
+  tp_mesh_free(mesh);
+}
+
 static void test_panic_boundary(void) {
 #if defined(TP_TEST_PANIC)
   CHECK(tp_test_panic() == TP_PANIC);
@@ -1035,6 +1105,7 @@ int main(void) {
   test_courses();
   test_gap();
   test_bonds();
+  test_zones();
   test_panic_boundary();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
