@@ -1,5 +1,6 @@
-// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 3: the fit
-// stage and level courses; 2 added boundary tiles and the tp_*_options_init functions), and
+// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 6: guide
+// curves and zones; 5 the designer's field, 4 the gap, 3 the fit stage and level courses; 2
+// added boundary tiles and the tp_*_options_init functions), and
 // mirrors of its structs. Nothing here is public: the public API is TilePatternEngine.
 //
 // C to C# type map: size_t -> UIntPtr, uint32_t -> uint, int32_t / TpStatus -> int,
