@@ -20,7 +20,7 @@ mod cuts;
 mod solve;
 
 pub(crate) use cuts::cut_to_room;
-pub use cuts::resolve_overlaps;
+pub use cuts::{resolve_overlaps, resolve_overlaps_nudging};
 
 use std::time::Instant;
 
