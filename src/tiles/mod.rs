@@ -358,7 +358,15 @@ pub fn finish(
     // What the fit could not make fit is cut (after the boundary cut, so that filler pieces
     // and cut outlines take part); a piece left too narrow is a sliver like any other.
     if let Some(fit) = &options.fit {
-        let cut = fit::resolve_overlaps(&mut kept, spec.joint, fit.overlap_tolerance);
+        // A tile tapped over instead of cut must stay whole on the surface.
+        let stays_whole =
+            |t: &Tile| matches!(boundary.clip(t, options.tolerance), clip::Clipped::Whole);
+        let cut = fit::resolve_overlaps_nudging(
+            &mut kept,
+            spec.joint,
+            fit.overlap_tolerance,
+            &stays_whole,
+        );
         let slivers: Vec<usize> = cut
             .into_iter()
             .filter(|&t| {

@@ -8,7 +8,8 @@
 //!   the other tile's side plane (at the bottom or the top, whichever is closer), minus the
 //!   joint;
 //!   an overlap (negative distance) counts `overlap_slope` times as much per unit, so the
-//!   stage would rather open a joint than press two tiles into each other;
+//!   stage would rather open a joint than press two tiles into each other; a gap wider
+//!   than the joint by more than `wide` costs only linearly beyond that ([`capped`]);
 //! - **bond**: for two full tiles side by side (a bed joint), the offset of their centres
 //!   along the joint, where it leaves the band the bond allows ([`BondBand`]);
 //! - **edge**: a tile that started over the surface may not move its origin more than a
@@ -43,6 +44,24 @@ pub(crate) struct Weights {
     pub anchor: f64,
     /// Weight per unit of a tile's origin moving beyond the surface's edge.
     pub edge: f64,
+    /// How much wider than the joint a gap may be before its cost grows only linearly
+    /// ([`capped`]); zero keeps every joint's cost quadratic.
+    pub wide: f64,
+}
+
+/// A joint residual `excess` (with its slope) past `wide`: beyond it the squared residual
+/// grows linearly, `2 wide excess - wide^2` (Huber's loss), so that a gap that is no joint
+/// any more (where courses part, at a singularity, beside a course that ends) pulls its tiles
+/// with a bounded force instead of one growing with the gap; quadratic it spreads the
+/// misfit it cannot close over the joints around it and presses tiles on its other side into
+/// overlaps, which are then cut. Overlaps (negative excess) keep their full, steep cost.
+fn capped(excess: f64, slope: f64, wide: f64) -> (f64, f64) {
+    if wide > 0.0 && excess > wide {
+        let r = (2.0 * wide * excess - wide * wide).sqrt();
+        (r, slope * wide / r)
+    } else {
+        (excess, slope)
+    }
 }
 
 /// The placement problem.
@@ -150,7 +169,8 @@ impl Problem<'_> {
                         (db, gpb, gqb)
                     };
                     let slope = if d < 0.0 { k } else { 1.0 };
-                    let excess = d - j + (k - 1.0) * d.min(0.0);
+                    let (excess, slope) =
+                        capped(d - j + (k - 1.0) * d.min(0.0), slope, self.weights.wide);
                     row(
                         Some(ci),
                         point_tile,
@@ -575,6 +595,8 @@ mod tests {
                 bond: 1.0,
                 anchor: 0.1,
                 edge: 4.0,
+                // Small enough that some of the jittered joints lie beyond it.
+                wide: 0.02,
             },
             beyond_start: &[],
             surface: &surface,
