@@ -114,8 +114,9 @@ impl Tiling {
 /// ([`zones_on_quads`]).
 ///
 /// # Errors
-/// The first stage error; zones not one per face of `surface` fail before the remesh
-/// ([`PatternError::ZoneCount`]).
+/// The first stage error; pattern options that are bad whatever the mesh
+/// ([`PatternOptions::check`]) and zones not one per face of `surface`
+/// ([`PatternError::ZoneCount`]) fail before the remesh.
 pub fn tile_surface(
     surface: &PolyMesh,
     remesh: &RemeshOptions,
@@ -125,6 +126,7 @@ pub fn tile_surface(
     control: &mut Control<'_>,
 ) -> Result<(Remeshed, Tiling), Error> {
     spec.validate()?;
+    options.check()?;
     if let Some(zones) = &options.zones {
         check_zone_count(zones.len(), surface)?;
     }
@@ -476,5 +478,67 @@ mod tests {
             err.to_string().contains("16 bonds for a mesh of 32 faces"),
             "{err}"
         );
+    }
+    #[test]
+    fn pattern_options_bad_whatever_the_mesh_fail_before_the_remesh() {
+        let surface = generate::triangulate_quads(&generate::grid(4, 4));
+        let spec = TileSpec {
+            length: 0.28,
+            width: 0.14,
+            thickness: 0.015,
+            joint: 0.01,
+        };
+        // A target edge the remesher would refuse: the pattern options' error comes first.
+        let remesh = RemeshOptions {
+            target_edge: f64::NAN,
+            ..RemeshOptions::default()
+        };
+        let level = crate::pattern::Courses::Level {
+            up: [0.0, 0.0, 1.0],
+        };
+        let mut zones = vec![Bond::Staggered { weight: 0.5 }; 32];
+        zones[7] = Bond::Herringbone { weight: 0.5 };
+        let mut bad_zone = vec![Bond::Stack; 32];
+        bad_zone[5] = Bond::RunningBond { weight: -1.0 };
+        for (options, want) in [
+            (
+                PatternOptions {
+                    zones: Some(zones),
+                    courses: level,
+                    ..PatternOptions::default()
+                },
+                PatternError::BondAcrossCourses {
+                    bond: "herringbone",
+                },
+            ),
+            (
+                PatternOptions {
+                    zones: Some(bad_zone),
+                    ..PatternOptions::default()
+                },
+                PatternError::InvalidZone {
+                    face: 5,
+                    reason: PatternError::InvalidWeight { weight: -1.0 }.to_string(),
+                },
+            ),
+            (
+                PatternOptions {
+                    gap: 2.0,
+                    ..PatternOptions::default()
+                },
+                PatternError::InvalidGap { gap: 2.0 },
+            ),
+        ] {
+            let err = tile_surface(
+                &surface,
+                &remesh,
+                &options,
+                &spec,
+                &FinishOptions::for_spec(&spec),
+                &mut Control::none(),
+            )
+            .unwrap_err();
+            assert_eq!(err, Error::Pattern(want));
+        }
     }
 }

@@ -267,6 +267,34 @@ impl Default for PatternOptions {
 }
 
 impl PatternOptions {
+    /// Checks what does not depend on the mesh, so that a pipeline can refuse bad options
+    /// before its remesh: the weights (of the bond and of every zone), the gap, and bonds
+    /// that lay tiles both ways (in any zone) with level courses. [`solve`] checks this too,
+    /// and that the zones give one bond per face.
+    ///
+    /// # Errors
+    /// [`PatternError::InvalidWeight`], [`PatternError::WeightTooLarge`],
+    /// [`PatternError::InvalidZone`] (the first face at fault), [`PatternError::InvalidGap`]
+    /// or [`PatternError::BondAcrossCourses`].
+    pub fn check(&self) -> Result<(), PatternError> {
+        validate_weights(self.bond)?;
+        for (face, &bond) in self.zones.iter().flatten().enumerate() {
+            validate_weights(bond).map_err(|error| PatternError::InvalidZone {
+                face,
+                reason: error.to_string(),
+            })?;
+        }
+        if !(0.0..=1.0).contains(&self.gap) {
+            return Err(PatternError::InvalidGap { gap: self.gap });
+        }
+        if let Some(bond) = self.bonds().find(|b| b.lays_both_ways())
+            && self.courses != Courses::Free
+        {
+            return Err(PatternError::BondAcrossCourses { bond: bond.name() });
+        }
+        Ok(())
+    }
+
     /// Every bond the options lay: [`PatternOptions::bond`], or the zones' bonds (in face
     /// order, repeated).
     pub fn bonds(&self) -> impl Iterator<Item = Bond> + '_ {
@@ -382,10 +410,14 @@ pub fn solve_with(
     control: &mut Control<'_>,
 ) -> Result<Pattern, PatternError> {
     let started = Instant::now();
-    validate_weights(options.bond)?;
-    validate_zones(options, mesh.face_count())?;
-    if !(0.0..=1.0).contains(&options.gap) {
-        return Err(PatternError::InvalidGap { gap: options.gap });
+    options.check()?;
+    if let Some(zones) = &options.zones
+        && zones.len() != mesh.face_count()
+    {
+        return Err(PatternError::ZoneCount {
+            given: zones.len(),
+            faces: mesh.face_count(),
+        });
     }
     let mut excluded = vec![false; mesh.face_count()];
     for &f in &options.excluded_faces {
@@ -395,11 +427,6 @@ pub fn solve_with(
         })? = true;
     }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
-    if let Some(bond) = options.bonds().find(|b| b.lays_both_ways())
-        && options.courses != Courses::Free
-    {
-        return Err(PatternError::BondAcrossCourses { bond: bond.name() });
-    }
     let middle = match options.courses {
         Courses::Free => None,
         Courses::Level { up } => Some(courses::middle_edges(mesh, &topology, up)?),
@@ -493,26 +520,6 @@ struct Found {
     bound: Bound,
     /// A solver stopped on the time limit (CBC stops a little before the caller's deadline).
     timed_out: bool,
-}
-
-/// Checks the zones: one bond per face, each with a valid weight.
-fn validate_zones(options: &PatternOptions, faces: usize) -> Result<(), PatternError> {
-    let Some(zones) = &options.zones else {
-        return Ok(());
-    };
-    if zones.len() != faces {
-        return Err(PatternError::ZoneCount {
-            given: zones.len(),
-            faces,
-        });
-    }
-    for (face, &bond) in zones.iter().enumerate() {
-        validate_weights(bond).map_err(|error| PatternError::InvalidZone {
-            face,
-            reason: error.to_string(),
-        })?;
-    }
-    Ok(())
 }
 
 fn validate_weights(bond: Bond) -> Result<(), PatternError> {
