@@ -575,26 +575,37 @@ fn filler_neighbours(tiles: &[Tile]) -> Vec<[usize; 2]> {
     links
 }
 
+/// The corners of a box of `size` on `frame` ([`Tile::corners`]' order).
+fn box_corners(frame: &Frame, size: [f64; 3]) -> [[f64; 3]; 8] {
+    let [l, w, t] = size;
+    let corner = |sx: f64, sy: f64, z: f64| -> [f64; 3] {
+        let p: Point3<f64> =
+            frame.origin + frame.x * (sx * l / 2.0) + frame.y * (sy * w / 2.0) + frame.z * z;
+        [p.x, p.y, p.z]
+    };
+    let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    let mut corners = [[0.0; 3]; 8];
+    for (k, (sx, sy)) in square.iter().enumerate() {
+        corners[k] = corner(*sx, *sy, 0.0);
+        corners[k + 4] = corner(*sx, *sy, t);
+    }
+    corners
+}
+
 impl Tile {
+    /// Places the tile on `frame`, its box corners with it (its outline, in the frame, stays).
+    pub(crate) fn move_to(&mut self, frame: Frame) {
+        self.corners = box_corners(&frame, self.size);
+        self.frame = frame;
+    }
+
     fn new(kind: TileKind, faces: Vec<usize>, frame: Frame, size: [f64; 3]) -> Self {
-        let [l, w, t] = size;
-        let corner = |sx: f64, sy: f64, z: f64| -> [f64; 3] {
-            let p: Point3<f64> =
-                frame.origin + frame.x * (sx * l / 2.0) + frame.y * (sy * w / 2.0) + frame.z * z;
-            [p.x, p.y, p.z]
-        };
-        let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-        let mut corners = [[0.0; 3]; 8];
-        for (k, (sx, sy)) in square.iter().enumerate() {
-            corners[k] = corner(*sx, *sy, 0.0);
-            corners[k + 4] = corner(*sx, *sy, t);
-        }
         Self {
             kind,
             faces,
+            corners: box_corners(&frame, size),
             frame,
             size,
-            corners,
             cut: None,
             label: String::new(),
             step: 0,

@@ -136,7 +136,10 @@ fn tap(
         return None;
     }
     let mut moved = tile.clone();
-    moved.frame.origin += along * (distance / along.norm_squared());
+    moved.move_to(crate::tiles::Frame {
+        origin: tile.frame.origin + along * (distance / along.norm_squared()),
+        ..tile.frame
+    });
     let corners = outline::world_corners(&moved);
     let clear = grid.near(&moved.frame.origin, reach).into_iter().all(|c| {
         if c == t {
@@ -316,6 +319,13 @@ mod tests {
             "{}",
             gap(&tiles, 0, 1)
         );
+        // The tapped tile's box corners moved with it.
+        for t in &tiles {
+            let placed = tile(t.frame.origin.x, t.frame.origin.y, 0.0, t.faces.clone());
+            for (a, b) in t.corners.iter().zip(&placed.corners) {
+                assert!((0..3).all(|k| (a[k] - b[k]).abs() < 1e-12), "{a:?} {b:?}");
+            }
+        }
         // Not where the moved tile would leave the surface, nor with plain resolve_overlaps.
         for nudging in [true, false] {
             let mut tiles = pair();
