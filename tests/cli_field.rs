@@ -4,39 +4,9 @@
 
 mod common;
 
-use common::{s, scratch, tilepattern};
+use common::{plate_obj, s, scratch, tilepattern};
 use nalgebra::Vector3;
 use tilepattern::mesh::{PolyMesh, obj};
-
-/// A flat 2 x 2 plate of `n` x `n` squares, each split into two triangles: (n + 1)^2
-/// vertices, 2 n^2 faces.
-fn plate_obj(n: usize) -> String {
-    let mut text = String::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            text += &format!(
-                "v {} {} 0\n",
-                2.0 * i as f64 / n as f64,
-                2.0 * j as f64 / n as f64
-            );
-        }
-    }
-    let v = |i: usize, j: usize| i + (n + 1) * j + 1;
-    for j in 0..n {
-        for i in 0..n {
-            text += &format!(
-                "f {} {} {}\nf {} {} {}\n",
-                v(i, j),
-                v(i + 1, j),
-                v(i + 1, j + 1),
-                v(i, j),
-                v(i + 1, j + 1),
-                v(i, j + 1)
-            );
-        }
-    }
-    text
-}
 
 /// Share of interior edges of a flat quad mesh within 10 degrees of `d` or its perpendicular.
 fn aligned(quads: &PolyMesh, d: Vector3<f64>) -> f64 {

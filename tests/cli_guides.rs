@@ -3,28 +3,9 @@
 
 mod common;
 
-use common::{s, scratch, tilepattern};
+use common::{plate_obj, s, scratch, tilepattern};
 use nalgebra::Vector3;
 use tilepattern::mesh::{PolyMesh, obj};
-
-/// A flat 2 x 2 plate of `n` x `n` squares, each split into two triangles.
-fn plate_obj(n: usize) -> String {
-    let mut text = String::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (2.0 * i as f64 / n as f64, 2.0 * j as f64 / n as f64);
-            text += &format!("v {x} {y} 0\n");
-        }
-    }
-    let v = |i: usize, j: usize| i + (n + 1) * j + 1;
-    for j in 0..n {
-        for i in 0..n {
-            let (a, b, c, d) = (v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
-            text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
-        }
-    }
-    text
-}
 
 /// Share of the edges of a flat quad mesh with their midpoint within `within` of the line
 /// through (1, 1) along `d` that lie within 10 degrees of `d` or its perpendicular.

@@ -253,3 +253,23 @@ pub fn overlapping_tiles(
     found.dedup_by_key(|f| (f.0, f.1));
     found
 }
+
+/// OBJ text of a flat 2 x 2 plate of `n` x `n` squares, each split into two triangles:
+/// (n + 1)^2 vertices, 2 n^2 faces.
+pub fn plate_obj(n: usize) -> String {
+    let mut text = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (2.0 * i as f64 / n as f64, 2.0 * j as f64 / n as f64);
+            text += &format!("v {x} {y} 0\n");
+        }
+    }
+    let v = |i: usize, j: usize| i + (n + 1) * j + 1;
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
+            text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+        }
+    }
+    text
+}
