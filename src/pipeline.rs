@@ -128,7 +128,7 @@ pub fn tile_surface(
     spec.validate()?;
     options.check()?;
     if let Some(zones) = &options.zones {
-        check_zone_count(zones.len(), surface)?;
+        pattern::check_zone_count(zones.len(), surface.face_count())?;
     }
     // Before the long stages: a tile far too small for the surface fails at once.
     check_tile_scale(None, Some(surface), spec)?;
@@ -192,7 +192,7 @@ pub fn zones_on_quads<T: Copy>(
     zones: &[T],
     quads: &PolyMesh,
 ) -> Result<Vec<T>, Error> {
-    check_zone_count(zones.len(), surface)?;
+    pattern::check_zone_count(zones.len(), surface.face_count())?;
     let index = SurfaceIndex::from_polymesh(surface);
     let face_of = SurfaceIndex::polymesh_faces(surface);
     Ok((0..quads.face_count())
@@ -203,19 +203,6 @@ pub fn zones_on_quads<T: Copy>(
             zones[face_of[on.triangle]]
         })
         .collect())
-}
-
-/// Zones must give one bond per face of `surface`.
-fn check_zone_count(given: usize, surface: &PolyMesh) -> Result<(), Error> {
-    if given == surface.face_count() {
-        Ok(())
-    } else {
-        Err(PatternError::ZoneCount {
-            given,
-            faces: surface.face_count(),
-        }
-        .into())
-    }
 }
 
 /// Matches `quads` into tiles and builds the boxes, cut to the boundary of `surface` (the
@@ -409,6 +396,24 @@ mod tests {
     use crate::mesh::generate;
     use crate::pattern::Bond;
 
+    /// The 280 x 140 x 15 mm tile with a 10 mm joint, in metres.
+    fn spec() -> TileSpec {
+        TileSpec {
+            length: 0.28,
+            width: 0.14,
+            thickness: 0.015,
+            joint: 0.01,
+        }
+    }
+
+    /// A target edge the remesher would refuse: what fails before it fails first.
+    fn refused_remesh() -> RemeshOptions {
+        RemeshOptions {
+            target_edge: f64::NAN,
+            ..RemeshOptions::default()
+        }
+    }
+
     #[test]
     fn quads_take_the_zone_of_the_surface_face_under_their_centroid() {
         // A 12 x 12 triangle surface (two triangles per unit square) tagged by column: the
@@ -454,17 +459,7 @@ mod tests {
             zones: Some(vec![Bond::Stack; 16]),
             ..PatternOptions::default()
         };
-        let spec = TileSpec {
-            length: 0.28,
-            width: 0.14,
-            thickness: 0.015,
-            joint: 0.01,
-        };
-        // A target edge the remesher would refuse: the zones' error comes first.
-        let remesh = RemeshOptions {
-            target_edge: f64::NAN,
-            ..RemeshOptions::default()
-        };
+        let (spec, remesh) = (spec(), refused_remesh());
         let err = tile_surface(
             &surface,
             &remesh,
@@ -482,17 +477,7 @@ mod tests {
     #[test]
     fn pattern_options_bad_whatever_the_mesh_fail_before_the_remesh() {
         let surface = generate::triangulate_quads(&generate::grid(4, 4));
-        let spec = TileSpec {
-            length: 0.28,
-            width: 0.14,
-            thickness: 0.015,
-            joint: 0.01,
-        };
-        // A target edge the remesher would refuse: the pattern options' error comes first.
-        let remesh = RemeshOptions {
-            target_edge: f64::NAN,
-            ..RemeshOptions::default()
-        };
+        let (spec, remesh) = (spec(), refused_remesh());
         let level = crate::pattern::Courses::Level {
             up: [0.0, 0.0, 1.0],
         };

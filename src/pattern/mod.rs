@@ -411,13 +411,8 @@ pub fn solve_with(
 ) -> Result<Pattern, PatternError> {
     let started = Instant::now();
     options.check()?;
-    if let Some(zones) = &options.zones
-        && zones.len() != mesh.face_count()
-    {
-        return Err(PatternError::ZoneCount {
-            given: zones.len(),
-            faces: mesh.face_count(),
-        });
+    if let Some(zones) = &options.zones {
+        check_zone_count(zones.len(), mesh.face_count())?;
     }
     let mut excluded = vec![false; mesh.face_count()];
     for &f in &options.excluded_faces {
@@ -520,6 +515,19 @@ struct Found {
     bound: Bound,
     /// A solver stopped on the time limit (CBC stops a little before the caller's deadline).
     timed_out: bool,
+}
+
+/// Zones give one bond per face of a mesh of `faces` faces (the quads to match, or in a
+/// pipeline the surface they are remeshed from).
+///
+/// # Errors
+/// [`PatternError::ZoneCount`] otherwise.
+pub fn check_zone_count(given: usize, faces: usize) -> Result<(), PatternError> {
+    if given == faces {
+        Ok(())
+    } else {
+        Err(PatternError::ZoneCount { given, faces })
+    }
 }
 
 fn validate_weights(bond: Bond) -> Result<(), PatternError> {
