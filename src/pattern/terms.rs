@@ -31,8 +31,9 @@ pub(crate) struct Terms<'g> {
 enum Weights {
     /// Every pair adds the same (one bond).
     Uniform(f64),
-    /// A weight per pair (zones), none zero.
-    PerPair(Vec<f64>),
+    /// A weight per pair (zones), none zero, and the distinct weights among them (a few:
+    /// each bond's in quarters), which the bounds ask about on every patch.
+    PerPair(Vec<f64>, Vec<f64>),
 }
 
 #[derive(Debug, Clone)]
@@ -102,9 +103,12 @@ impl<'g> Terms<'g> {
                 weights.push(weight);
             }
         }
+        let mut distinct = weights.clone();
+        distinct.sort_by(f64::total_cmp);
+        distinct.dedup();
         Terms {
             pairs: Cow::Owned(pairs),
-            weights: Weights::PerPair(weights),
+            weights: Weights::PerPair(weights, distinct),
             joints: Joints::Map(joint_pair.iter().map(|&k| term_of[k]).collect()),
         }
     }
@@ -119,7 +123,7 @@ impl<'g> Terms<'g> {
     pub fn weight(&self, i: usize) -> f64 {
         match &self.weights {
             Weights::Uniform(weight) => *weight,
-            Weights::PerPair(weights) => weights[i],
+            Weights::PerPair(weights, _) => weights[i],
         }
     }
 
@@ -135,19 +139,17 @@ impl<'g> Terms<'g> {
     pub fn is_empty(&self) -> bool {
         match &self.weights {
             Weights::Uniform(weight) => *weight == 0.0 || self.pairs.is_empty(),
-            Weights::PerPair(weights) => weights.is_empty(),
+            Weights::PerPair(weights, _) => weights.is_empty(),
         }
     }
 
     /// The one weight of every scored pair, if they share one (zero when none is scored):
     /// then objectives take the values [`super::bound::round_down`] knows.
     pub fn common_weight(&self) -> Option<f64> {
-        match &self.weights {
-            Weights::Uniform(weight) => Some(*weight),
-            Weights::PerPair(weights) => match weights.first() {
-                None => Some(0.0),
-                Some(&first) => weights.iter().all(|&w| w == first).then_some(first),
-            },
+        match self.distinct() {
+            [] => Some(0.0),
+            [one] => Some(*one),
+            _ => None,
         }
     }
 
@@ -155,15 +157,24 @@ impl<'g> Terms<'g> {
     /// every weight and `step` are whole multiples: then every objective is one too.
     pub fn quantum(&self, step: f64) -> Option<f64> {
         let whole = |x: f64, q: f64| ((x / q).round() * q - x).abs() <= 1e-12 * x.abs().max(1.0);
-        let smallest = self.iter().map(|(_, _, w)| w.abs()).fold(step, f64::min);
+        let distinct = self.distinct();
+        let smallest = distinct.iter().map(|w| w.abs()).fold(step, f64::min);
         (1..=64)
             .map(|n| smallest / n as f64)
-            .find(|&q| whole(step, q) && self.iter().all(|(_, _, w)| whole(w, q)))
+            .find(|&q| whole(step, q) && distinct.iter().all(|&w| whole(w, q)))
     }
 
     /// The largest reward of one pair (zero when no pair is a reward).
     pub fn largest_reward(&self) -> f64 {
-        self.iter().map(|(_, _, w)| w).fold(0.0, f64::max)
+        self.distinct().iter().copied().fold(0.0, f64::max)
+    }
+
+    /// The distinct weights of the scored pairs (one bond: its weight).
+    fn distinct(&self) -> &[f64] {
+        match &self.weights {
+            Weights::Uniform(weight) => std::slice::from_ref(weight),
+            Weights::PerPair(_, distinct) => distinct,
+        }
     }
 
     /// The index among [`Terms::pairs`] of continuous joint `joint` of the graph, when it is
