@@ -90,15 +90,12 @@ pub(crate) fn middle_edges(
                 let head = i % 2 == pf;
                 let j = corner(g, e);
                 let want = if head { j % 2 } else { 1 - j % 2 };
-                match parity[g] {
-                    None => {
-                        parity[g] = Some(want);
-                        region.push(g);
-                        queue.push_back(g);
-                    }
-                    // Labels that meet themselves swapped (around a hole, on a surface
-                    // without boundary) leave the edge in neither class: see the end.
-                    Some(_) => {}
+                // Labels that meet themselves swapped (around a hole, on a surface without
+                // boundary) leave the edge in neither class: see the end.
+                if parity[g].is_none() {
+                    parity[g] = Some(want);
+                    region.push(g);
+                    queue.push_back(g);
                 }
             }
         }
