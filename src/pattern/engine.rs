@@ -40,6 +40,9 @@ const FIRST_ANNEAL_SHARE: f64 = 0.5;
 const ANNEAL_SHARE: f64 = 0.3;
 /// Share of the time left that annealing takes in courses before CBC gets the whole program.
 const COURSES_ANNEAL_SHARE: f64 = 0.1;
+/// Share of the time left that CBC may take in courses; the rest is for the usual route
+/// should it not finish.
+const COURSES_CBC_SHARE: f64 = 0.6;
 /// See [`expected_courses_seconds`].
 const COURSES_SECONDS_AT_3000_FACES: f64 = 3.0;
 /// See [`expected_courses_seconds`].
@@ -173,23 +176,33 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     /// spread as halves over the whole course (on the shared dome's 6342 quads in level
     /// courses the engine ended at 3125 against a bound of 3166 after 60 s; CBC proved 3127
     /// in 3.5 s, and 17013 on a 34,324-quad dome in 48 s where the engine ended 0.7 % off).
-    /// A short annealing first gives a pattern to keep should CBC not beat it in time. Runs
-    /// only when CBC is expected to finish ([`expected_courses_seconds`]); whether it ran.
+    /// A short annealing first gives a pattern to keep should CBC not beat it in time. CBC
+    /// gets [`COURSES_CBC_SHARE`] of the time left, and only when it is expected to finish
+    /// in it ([`expected_courses_seconds`]); if it does not, the usual route takes over.
+    /// Whether the search is over.
     fn courses_route(&mut self) -> Result<bool, PatternError> {
         let in_courses = (0..self.graph.face_count()).all(|f| self.graph.face_tiles(f).len() <= 2);
-        if !in_courses || self.terms.is_empty() || self.done() {
+        let expected = expected_courses_seconds(self.program_faces());
+        let after_annealing = self.left().mul_f64(1.0 - COURSES_ANNEAL_SHARE);
+        if !in_courses
+            || self.terms.is_empty()
+            || self.done()
+            || expected > after_annealing.mul_f64(COURSES_CBC_SHARE).as_secs_f64()
+        {
             return Ok(false);
         }
         self.anneal(COURSES_ANNEAL_SHARE, anneal::LAST_TEMPERATURE, 1)?;
         if self.done() {
             return Ok(true);
         }
-        if expected_courses_seconds(self.program_faces()) > self.left().as_secs_f64() {
+        let budget = self.left().mul_f64(COURSES_CBC_SHARE);
+        let (cbc_bound, cbc_timed_out) = self.whole_program(budget)?;
+        self.tighten(cbc_bound, BoundSource::WholeProgram);
+        if cbc_timed_out && !self.done() {
+            // Slower than expected: the usual rounds get the time left, from the better of
+            // the two patterns, with CBC's bound.
             return Ok(false);
         }
-        let (cbc_bound, cbc_timed_out) = self.whole_program(self.left())?;
-        self.tighten(cbc_bound, BoundSource::WholeProgram);
-        self.timed_out = cbc_timed_out;
         Ok(true)
     }
 
