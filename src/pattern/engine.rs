@@ -480,9 +480,12 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
 }
 
 /// About how long CBC takes to prove the whole program in courses over `faces` program
-/// faces ([`Engine::program_faces`]); measured here (2 cores, 2026-12-02, level courses,
-/// 150 mm quads): 1252 quads 0.13 s, 2419: 0.28 s, 3127: 2.5 s, 3798: 0.34 s, 6342: 3.5 s,
-/// 6885: 2.0 s, 34,324: 48 s; this is above all of them.
+/// faces ([`Engine::program_faces`], about half the quads in courses). Measured here (2
+/// cores, 2026-12-02, level courses, 150 mm quads): 1252 quads 0.13 s, 2419: 0.28 s, 3127
+/// (a sphere's): 2.5 s, 3798: 0.34 s, 6342: 3.5 s, 6885: 2.0 s, 34,324: 48 s. This rough fit
+/// is within about a factor of two of each (1.1, 3.3, 3.8 and 41 s expected for the 3127,
+/// 6342, 6885 and 34,324 quads); CBC gets more than it expects ([`COURSES_CBC_SHARE`] of the
+/// time left once it fits) and hands over to the rounds should it not finish.
 fn expected_courses_seconds(faces: usize) -> f64 {
     COURSES_SECONDS_AT_3000_FACES * (faces as f64 / 3000.0).powf(COURSES_TIME_EXPONENT)
 }
