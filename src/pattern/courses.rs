@@ -359,6 +359,37 @@ mod tests {
         assert!((129..=132).contains(&count), "{count} head edges allowed");
     }
 
+    /// A surface without boundary: the eight corners of a cube (three quads each) pair up
+    /// with each other, one edge apart.
+    #[test]
+    fn the_odd_corners_of_a_closed_cube_pair_up() {
+        let points: Vec<nalgebra::Point3<f64>> = (0..8)
+            .map(|k| {
+                let bit = |i: usize| f64::from(u8::from(k & (1 << i) != 0));
+                nalgebra::Point3::new(bit(0), bit(1), bit(2))
+            })
+            .collect();
+        let faces = vec![
+            vec![0, 2, 3, 1],
+            vec![4, 5, 7, 6],
+            vec![0, 1, 5, 4],
+            vec![2, 6, 7, 3],
+            vec![0, 4, 6, 2],
+            vec![1, 3, 7, 5],
+        ];
+        let mesh = PolyMesh::new(points, faces).unwrap();
+        let topology = Topology::new(&mesh).unwrap();
+        let seam = seams(&mesh, &topology);
+        assert_eq!(seam.iter().filter(|&&s| s).count(), 4);
+        let mut ends: Vec<usize> = (0..seam.len())
+            .filter(|&e| seam[e])
+            .flat_map(|e| topology.edges()[e].vertices)
+            .collect();
+        ends.sort_unstable();
+        assert_eq!(ends, (0..8).collect::<Vec<_>>());
+        assert!(middle_edges(&mesh, &topology, [0.0, 0.0, 1.0]).is_ok());
+    }
+
     #[test]
     fn a_bad_up_is_refused() {
         let mesh = generate::grid(2, 2);
