@@ -406,12 +406,23 @@ mod tests {
         }
     }
 
-    /// A target edge the remesher would refuse: what fails before it fails first.
-    fn refused_remesh() -> RemeshOptions {
-        RemeshOptions {
+    /// The error of [`tile_surface`] on `surface` with `options`, given a target edge the
+    /// remesher would refuse: what fails before the remesh fails first.
+    fn error_before_the_remesh(surface: &PolyMesh, options: &PatternOptions) -> Error {
+        let remesh = RemeshOptions {
             target_edge: f64::NAN,
             ..RemeshOptions::default()
-        }
+        };
+        let spec = spec();
+        tile_surface(
+            surface,
+            &remesh,
+            options,
+            &spec,
+            &FinishOptions::for_spec(&spec),
+            &mut Control::none(),
+        )
+        .unwrap_err()
     }
 
     #[test]
@@ -459,25 +470,16 @@ mod tests {
             zones: Some(vec![Bond::Stack; 16]),
             ..PatternOptions::default()
         };
-        let (spec, remesh) = (spec(), refused_remesh());
-        let err = tile_surface(
-            &surface,
-            &remesh,
-            &options,
-            &spec,
-            &FinishOptions::for_spec(&spec),
-            &mut Control::none(),
-        )
-        .unwrap_err();
+        let err = error_before_the_remesh(&surface, &options);
         assert!(
             err.to_string().contains("16 bonds for a mesh of 32 faces"),
             "{err}"
         );
     }
+
     #[test]
     fn pattern_options_bad_whatever_the_mesh_fail_before_the_remesh() {
         let surface = generate::triangulate_quads(&generate::grid(4, 4));
-        let (spec, remesh) = (spec(), refused_remesh());
         let level = crate::pattern::Courses::Level {
             up: [0.0, 0.0, 1.0],
         };
@@ -514,15 +516,7 @@ mod tests {
                 PatternError::InvalidGap { gap: 2.0 },
             ),
         ] {
-            let err = tile_surface(
-                &surface,
-                &remesh,
-                &options,
-                &spec,
-                &FinishOptions::for_spec(&spec),
-                &mut Control::none(),
-            )
-            .unwrap_err();
+            let err = error_before_the_remesh(&surface, &options);
             assert_eq!(err, Error::Pattern(want));
         }
     }

@@ -19,7 +19,7 @@ mod surface;
 
 pub use bvh::Bvh;
 pub use grid::HashGrid;
-pub use surface::SurfaceIndex;
+pub use surface::{SurfaceIndex, fan};
 
 /// Deterministic pseudo-random numbers in [0, 1) for tests (a 64-bit linear congruential
 /// generator, the top 53 bits).

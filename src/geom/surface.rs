@@ -137,8 +137,10 @@ impl SurfaceIndex {
     }
 }
 
-/// The fan triangles of `mesh`'s faces, in face order, each with its face.
-fn fan(mesh: &PolyMesh) -> impl Iterator<Item = (usize, [usize; 3])> + '_ {
+/// The fan triangles of `mesh`'s faces, in face order, each with its face: the one
+/// triangulation of polygon faces that every index over a [`PolyMesh`] uses, so that a
+/// triangle index means the same everywhere.
+pub fn fan(mesh: &PolyMesh) -> impl Iterator<Item = (usize, [usize; 3])> + '_ {
     mesh.faces()
         .iter()
         .enumerate()

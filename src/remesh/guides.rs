@@ -184,13 +184,15 @@ fn lie(points: &[Vector3<f64>], locator: &Locator, t: f64) -> Lie {
     let reach = REACH * t;
     let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     let step = (0.5 * t).max(length / 100_000.0);
-    let mut nearest = f64::INFINITY;
+    // Each point is probed once: a segment starts where the last one's probes ended.
+    let mut last = points
+        .first()
+        .map_or(f64::INFINITY, |p| locator.distance(p));
+    let mut nearest = last;
     let mut off = 0.0;
     for w in points.windows(2) {
         let d = w[1] - w[0];
         let pieces = (d.norm() / step).ceil().max(1.0) as usize;
-        let mut last = locator.distance(&w[0]);
-        nearest = nearest.min(last);
         for k in 1..=pieces {
             let here = locator.distance(&(w[0] + d * (k as f64 / pieces as f64)));
             nearest = nearest.min(here);

@@ -4,7 +4,7 @@
 use nalgebra::Vector3;
 
 use super::Surface;
-use crate::geom::{Bvh, closest};
+use crate::geom::{Bvh, closest, fan};
 use crate::mesh::PolyMesh;
 
 /// Closest points on the input surface and on its boundary curves.
@@ -84,10 +84,7 @@ impl Locator {
     pub fn from_polymesh(mesh: &PolyMesh) -> Self {
         let surface = Surface::build(
             mesh.positions().iter().map(|p| p.coords).collect(),
-            mesh.faces()
-                .iter()
-                .flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]]))
-                .collect(),
+            fan(mesh).map(|(_, triangle)| triangle).collect(),
             None,
         );
         Self::new(&surface)
