@@ -81,7 +81,15 @@ pub fn separation_of(
     b: &Tile,
     outline_b: &[Point3<f64>],
 ) -> Separation {
-    let mut n = a.frame.z + b.frame.z;
+    // The mean plane of the two, whichever way each tile's thickness axis points (two tiles
+    // laid on opposite faces of a folded or overlapping stretch of surface have opposite
+    // axes: their plain sum would be a direction along the tiles, not across them).
+    let facing = if a.frame.z.dot(&b.frame.z) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    let mut n = a.frame.z + b.frame.z * facing;
     if n.norm() < 1e-9 {
         n = a.frame.z;
     }
@@ -157,6 +165,32 @@ mod tests {
         // Symmetric.
         let b = tile_at(0.2, 0.13, 0.1, 0.02);
         assert!((separation(&a, &b).gap - separation(&b, &a).gap).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tiles_facing_opposite_ways_are_measured_in_their_plane() {
+        // Two tiles on one plane, one turned upside down (laid on the other face of a fold)
+        // and slightly tilted, overlapping by 200 mm along their length: the sum of their
+        // thickness axes runs along the tiles, and an outline projected across it would be a
+        // sliver that misses the overlap.
+        let a = tile_at(0.0, 0.0, 0.0, 0.0);
+        let b = tile_at(0.08, 0.0, 0.0, 0.01);
+        let f = b.frame;
+        let flipped = Tile::new(
+            TileKind::Full,
+            vec![],
+            Frame {
+                origin: f.origin,
+                x: f.x,
+                y: -f.y,
+                z: -f.z,
+            },
+            b.size,
+        );
+        for (p, q) in [(&a, &flipped), (&flipped, &a)] {
+            let gap = separation(p, q).gap;
+            assert!(gap < -0.1, "{gap}");
+        }
     }
 
     #[test]
