@@ -296,6 +296,10 @@ enum TpWarning
    * The joints' p95 deviation from the nominal joint is more than half the joint.
    */
   TP_WARNING_WIDE_JOINTS = 11,
+  /**
+   * The surface folds back on itself (neighbouring faces turned by more than 120 degrees).
+   */
+  TP_WARNING_FOLDED_SURFACE = 12,
 };
 #ifndef __cplusplus
 typedef int32_t TpWarning;

@@ -455,6 +455,8 @@ namespace TilePattern
         FitCuts = 10,
         /// <summary>The joints' p95 deviation from the nominal joint is more than half the joint.</summary>
         WideJoints = 11,
+        /// <summary>The surface folds back on itself (neighbouring faces turned by more than 120 degrees).</summary>
+        FoldedSurface = 12,
     }
 
     /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>

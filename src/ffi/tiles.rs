@@ -641,6 +641,8 @@ pub enum TpWarning {
     TP_WARNING_FIT_CUTS = 10,
     /// The joints' p95 deviation from the nominal joint is more than half the joint.
     TP_WARNING_WIDE_JOINTS = 11,
+    /// The surface folds back on itself (neighbouring faces turned by more than 120 degrees).
+    TP_WARNING_FOLDED_SURFACE = 12,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -658,6 +660,7 @@ impl From<WarningCode> for TpWarning {
             WarningCode::VerticesWelded => TP_WARNING_VERTICES_WELDED,
             WarningCode::FitCuts => TP_WARNING_FIT_CUTS,
             WarningCode::WideJoints => TP_WARNING_WIDE_JOINTS,
+            WarningCode::FoldedSurface => TP_WARNING_FOLDED_SURFACE,
         }
     }
 }

@@ -40,6 +40,9 @@ pub enum WarningCode {
     /// The joints stray far from the nominal joint: their p95 deviation is more than
     /// [`MAX_P95_DEVIATION_SHARE`] of the joint.
     WideJoints = 11,
+    /// The surface folds back on itself: neighbouring faces turn by more than
+    /// [`FOLD_ANGLE`] (a crumpled or overlapping stretch of the input mesh).
+    FoldedSurface = 12,
 }
 
 /// One warning.
@@ -60,6 +63,11 @@ impl Warning {
         }
     }
 }
+
+/// Angle (radians) between the normals of two faces sharing an edge beyond which the
+/// surface folds back on itself: 120 degrees, where a crease (a box's edge turns by 90) has
+/// become a fold no shell is built with.
+pub const FOLD_ANGLE: f64 = 2.0 * std::f64::consts::FRAC_PI_3;
 
 /// Share of the tiles the fit stage may cut before the tiling is flagged (issue 16's limit:
 /// cutting is what the method minimises).
@@ -187,6 +195,7 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>) -> Vec<Warning> {
             ),
         ));
     }
+    out.extend(folds(surface, &topology));
     if let Some(up) = up.try_normalize(0.0) {
         let (mut signed, mut projected, mut area) = (0.0, 0.0, 0.0);
         for f in 0..surface.face_count() {
@@ -203,6 +212,43 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>) -> Vec<Warning> {
         }
     }
     out
+}
+
+/// Edges where the surface folds back on itself ([`FOLD_ANGLE`]), with the sharpest one's
+/// place: quads and tiles there fold over each other, and the fit cuts them.
+fn folds(surface: &PolyMesh, topology: &Topology) -> Option<Warning> {
+    let normals: Vec<Option<Vector3<f64>>> = (0..surface.face_count())
+        .map(|f| surface.face_area_vector(f).try_normalize(0.0))
+        .collect();
+    let limit = FOLD_ANGLE.cos();
+    let mut count = 0usize;
+    let mut sharpest: Option<(f64, usize)> = None;
+    for e in topology.edges() {
+        let [f, g] = e.faces[..] else { continue };
+        let (Some(a), Some(b)) = (normals[f], normals[g]) else {
+            continue;
+        };
+        let turn = a.dot(&b);
+        if turn < limit {
+            count += 1;
+            if sharpest.is_none_or(|(worst, _)| turn < worst) {
+                sharpest = Some((turn, f));
+            }
+        }
+    }
+    let (turn, face) = sharpest?;
+    let at = surface.face_centroid(face);
+    Some(Warning::new(
+        WarningCode::FoldedSurface,
+        format!(
+            "the surface folds back on itself at {count} edges (neighbouring faces turned by more than {:.0} degrees; the sharpest, {:.0} degrees, at face {face} near ({:.3}, {:.3}, {:.3})): quads and tiles there fold over each other and are cut or left out; smooth or rebuild the mesh there",
+            FOLD_ANGLE.to_degrees(),
+            turn.clamp(-1.0, 1.0).acos().to_degrees(),
+            at.x,
+            at.y,
+            at.z
+        ),
+    ))
 }
 
 /// The half-tile model: a tile over two quads of side `(length + joint) / 2` that are also
@@ -334,5 +380,49 @@ mod tests {
             .collect();
         assert_eq!(codes, vec![WarningCode::NormalsDown]);
         assert!(curvature(&grid, &TILE).is_none());
+    }
+
+    /// A strip of three unit quads along x whose last quad is turned back over the middle
+    /// one by `angle` (radians, 0 = flat) about their shared edge.
+    fn strip_turned_by(angle: f64) -> PolyMesh {
+        let back = nalgebra::Point3::new(2.0 + angle.cos(), 0.0, angle.sin());
+        let mut positions = Vec::new();
+        for y in [0.0, 1.0] {
+            for p in [
+                nalgebra::Point3::new(0.0, 0.0, 0.0),
+                nalgebra::Point3::new(1.0, 0.0, 0.0),
+                nalgebra::Point3::new(2.0, 0.0, 0.0),
+                back,
+            ] {
+                positions.push(p + Vector3::y() * y);
+            }
+        }
+        let faces = (0..3).map(|i| vec![i, i + 1, i + 5, i + 4]).collect();
+        PolyMesh::new(positions, faces).unwrap()
+    }
+
+    #[test]
+    fn a_surface_folded_back_on_itself_is_flagged_and_a_crease_is_not() {
+        let codes = |mesh: &PolyMesh| -> Vec<WarningCode> {
+            surface_checks(mesh, &Vector3::z())
+                .iter()
+                .map(|w| w.code)
+                .collect()
+        };
+        // Turned by 90 degrees (a box's edge) and by 115: creases, not folds.
+        assert!(codes(&strip_turned_by(std::f64::consts::FRAC_PI_2)).is_empty());
+        assert!(codes(&strip_turned_by(115f64.to_radians())).is_empty());
+        let folded = surface_checks(&strip_turned_by(160f64.to_radians()), &Vector3::z());
+        let fold = folded
+            .iter()
+            .find(|w| w.code == WarningCode::FoldedSurface)
+            .expect("a fold of 160 degrees");
+        assert!(
+            fold.message.contains("at 1 edges") && fold.message.contains("160 degrees"),
+            "{}",
+            fold.message
+        );
+        // A closed box has creases only.
+        assert!(!codes(&generate::closed_box(1.0, 3)).contains(&WarningCode::FoldedSurface));
     }
 }
