@@ -357,8 +357,10 @@ fn tiles_on_a_hypar_with_an_opening_stay_on_the_surface_and_cover_it() {
     );
     // Kept outlines lie on the surface, up to the flat tile's departure from the hypar.
     check_fabrication(&surface, &tiling, 0.002);
-    // Tiles with their joints cover the surface but for the slivers left out at the opening.
-    assert!(cutting.coverage >= 0.98, "coverage {}", cutting.coverage);
+    // Tiles with their joints cover the surface but for the slivers left out at the opening
+    // and the wide ends of wedge-shaped joints (0.978 here since a narrow joint costs the fit
+    // twice a wide one, 0.980 before).
+    assert!(cutting.coverage >= 0.975, "coverage {}", cutting.coverage);
     assert_no_overlaps(&surface, &tiling, 0.01);
 }
 
@@ -418,10 +420,11 @@ fn tiles_on_a_ragged_quad_mesh_are_cut_to_the_surface() {
         check_fabrication(&surface, &tiling, 0.002);
         // Filler pieces close the strip between the staircase and the surface's edge (without
         // them the tiles cover 0.87 of it); what is left are slivers and corners where the
-        // continued lattice meets the edge at an angle.
+        // continued lattice meets the edge at an angle, and the wide ends of wedge-shaped
+        // joints (0.969 since a narrow joint costs the fit twice a wide one, 0.984 before).
         let cutting = tiling.report.cutting.as_ref().unwrap();
         assert!(cutting.filler_tiles > 20, "{}", cutting.filler_tiles);
-        assert!(cutting.coverage >= 0.97, "coverage {}", cutting.coverage);
+        assert!(cutting.coverage >= 0.965, "coverage {}", cutting.coverage);
         assert_no_overlaps(&surface, &tiling, 0.01);
     }
 }

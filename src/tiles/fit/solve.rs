@@ -36,8 +36,12 @@ pub(crate) struct BondBand {
 /// The weights of the residuals.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Weights {
-    /// Slope of the joint residual where the tiles overlap, relative to 1 where they do not.
+    /// Slope of the joint residual where the tiles overlap, relative to 1 where the joint
+    /// is wider than the nominal one.
     pub overlap_slope: f64,
+    /// Slope of the joint residual where the joint is open but narrower than the nominal
+    /// one ([`Problem::joint_residual`]).
+    pub narrow_slope: f64,
     /// Weight of the bond residual.
     pub bond: f64,
     /// Weight of the anchor residuals.
@@ -133,6 +137,34 @@ fn side_line(
 }
 
 impl Problem<'_> {
+    /// The residual of one joint measure `d` (a corner's distance to the other tile's side)
+    /// and its slope: `d - joint` where the joint is wider than the nominal one, with the
+    /// slope `narrow_slope` where it is narrower and `overlap_slope` where the tiles overlap
+    /// (continuous, piecewise linear), then [`capped`] where it is far too wide.
+    ///
+    /// A narrower joint costs more than a wider one because the mortar fills a wide joint but
+    /// cannot be pressed below the joint, and because of the joints' shape: two tiles turned
+    /// against each other in the surface's plane (where a course bends, around a
+    /// singularity) leave a wedge-shaped joint, `delta` wider at one end than at the other.
+    /// With equal slopes the least-squares placement centres the wedge on the joint and its
+    /// narrow end, which is what the outline measure (and the mason) sees, lies `delta / 2`
+    /// under it; with slope `s` on the narrow side it lies `delta / (1 + s^2)` under it.
+    fn joint_residual(&self, d: f64) -> (f64, f64) {
+        let (j, k, s) = (
+            self.joint,
+            self.weights.overlap_slope,
+            self.weights.narrow_slope,
+        );
+        let (raw, slope) = if d >= j {
+            (d - j, 1.0)
+        } else if d >= 0.0 {
+            (s * (d - j), s)
+        } else {
+            (k * d - s * j, k)
+        };
+        capped(raw, slope, self.weights.wide)
+    }
+
     /// Calls `row(tile_a, grad_a, tile_b, grad_b, value)` for every residual at `frames`
     /// (`tile_b` is `usize::MAX` for a residual of one tile), contact residuals first, in
     /// contact order, with the contact's index.
@@ -142,8 +174,6 @@ impl Problem<'_> {
         beyond: &[Vector3<f64>],
         mut row: impl FnMut(Option<usize>, usize, Grad, usize, Grad, f64),
     ) {
-        let j = self.joint;
-        let k = self.weights.overlap_slope;
         for (ci, c) in self.contacts.iter().enumerate() {
             let [a, b] = c.tiles;
             let (fa, fb) = (&frames[a], &frames[b]);
@@ -168,9 +198,7 @@ impl Problem<'_> {
                     } else {
                         (db, gpb, gqb)
                     };
-                    let slope = if d < 0.0 { k } else { 1.0 };
-                    let (excess, slope) =
-                        capped(d - j + (k - 1.0) * d.min(0.0), slope, self.weights.wide);
+                    let (excess, slope) = self.joint_residual(d);
                     row(
                         Some(ci),
                         point_tile,
@@ -592,6 +620,7 @@ mod tests {
             joint: 0.1,
             weights: Weights {
                 overlap_slope: 4.0,
+                narrow_slope: 2.0,
                 bond: 1.0,
                 anchor: 0.1,
                 edge: 4.0,
