@@ -39,7 +39,12 @@ rust-test:
 	$(CARGO) test --release
 
 # The C tests link the cdylib built with the test-panic feature (tp_test_panic), after checking
-# that it needs no shared COIN-OR library (static-check).
+# that it needs no shared COIN-OR library (static-check). Valgrind runs one thread at a time;
+# --fair-sched=yes hands its lock round in turn, so that the caller's thread still polls
+# (progress, cancel) every 20 ms while CBC computes on the solver thread: without it the
+# poller could wait out a whole CBC solve and the cancel test found the solve finished.
+VALGRIND := valgrind --fair-sched=yes --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
+	--suppressions=tests/c/valgrind.supp
 c-test:
 	$(CARGO) build --release --lib --features test-panic
 	scripts/check-static.sh $(LIB_DIR)/libtilepattern.so
@@ -47,13 +52,11 @@ c-test:
 	$(CC) -std=c11 $(C_FLAGS) tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_c
 	$(CXX) -std=c++17 $(C_FLAGS) -x c++ tests/c/test_tilepattern.c $(C_LINK) -o target/c/test_cpp
 	RUST_BACKTRACE=0 target/c/test_cpp
-	RUST_BACKTRACE=0 TP_TEST_TIME_SCALE=50 valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
-		--show-leak-kinds=definite,indirect,possible --suppressions=tests/c/valgrind.supp target/c/test_c
+	RUST_BACKTRACE=0 TP_TEST_TIME_SCALE=50 $(VALGRIND) --show-leak-kinds=definite,indirect,possible target/c/test_c
 	$(CC) -std=c11 $(C_FLAGS) tests/c/test_bad_input.c $(C_LINK) -o target/c/test_bad_input
 	$(CXX) -std=c++17 $(C_FLAGS) -x c++ tests/c/test_bad_input.c $(C_LINK) -o target/c/test_bad_input_cpp
 	RUST_BACKTRACE=0 target/c/test_bad_input_cpp
-	RUST_BACKTRACE=0 valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
-		--suppressions=tests/c/valgrind.supp target/c/test_bad_input
+	RUST_BACKTRACE=0 $(VALGRIND) --quiet target/c/test_bad_input
 
 # The C tests under AddressSanitizer (leaks included): the library built with
 # -Zsanitizer=address in target/asan (a nightly flag: RUSTC_BOOTSTRAP=1 lets the stable
