@@ -18,7 +18,7 @@ Examples
 >>> boxes = tpc.tiles(surface, pattern, length=1.2, width=0.6, thickness=0.05, joint=0.04)
 >>> report = tpc.report(boxes)
 >>> len(boxes), report["full_tiles"], report["cutting"]["filler_tiles"]
-(44, 32, 12)
+(38, 32, 6)
 >>> boxes[0].name, round(boxes[0].xsize, 2)
 ('F', 1.2)
 
