@@ -238,10 +238,11 @@ fn folds(surface: &PolyMesh, topology: &Topology) -> Option<Warning> {
     }
     let (turn, face) = sharpest?;
     let at = surface.face_centroid(face);
+    let edges = if count == 1 { "edge" } else { "edges" };
     Some(Warning::new(
         WarningCode::FoldedSurface,
         format!(
-            "the surface folds back on itself at {count} edges (neighbouring faces turned by more than {:.0} degrees; the sharpest, {:.0} degrees, at face {face} near ({:.3}, {:.3}, {:.3})): quads and tiles there fold over each other and are cut or left out; smooth or rebuild the mesh there",
+            "the surface folds back on itself at {count} {edges} (neighbouring faces turned by more than {:.0} degrees; the sharpest, {:.0} degrees, at face {face} near ({:.3}, {:.3}, {:.3})): quads and tiles there fold over each other and are cut or left out; smooth or rebuild the mesh there",
             FOLD_ANGLE.to_degrees(),
             turn.clamp(-1.0, 1.0).acos().to_degrees(),
             at.x,
@@ -418,7 +419,7 @@ mod tests {
             .find(|w| w.code == WarningCode::FoldedSurface)
             .expect("a fold of 160 degrees");
         assert!(
-            fold.message.contains("at 1 edges") && fold.message.contains("160 degrees"),
+            fold.message.contains("at 1 edge (") && fold.message.contains("160 degrees"),
             "{}",
             fold.message
         );

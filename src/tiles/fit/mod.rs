@@ -39,12 +39,13 @@ use self::solve::{BondBand, Problem, Weights};
 /// squared: the mortar fills a wider joint, and a wedge-shaped joint then keeps its narrow
 /// end a fifth of the wedge under the joint instead of half of it; measured with
 /// `fit_losses` and on shells not tuned on, README *Fit stage*: the tubemesh's p95
-/// deviation 7.8 -> 5.3 mm, the dome's 2.6 -> 1.3, a squashed vault's 8.9 -> 6.6, at 1.5 or
-/// 3 instead of 2 the p95 is higher everywhere but on the hypar); a bond band as much as a joint; a tile's overhang beyond the
-/// surface's edge a quarter (where the quads' outer row is narrower than a course, that
-/// course overhangs rather than squeezing every joint inside: measured on the shared vault,
-/// weight 4 keeps 0.4 % more tiles on the surface with p95 joint deviations of 7 mm instead
-/// of 2.6 mm); the anchor a thousandth, so that it only settles what the joints leave free.
+/// deviation 7.8 -> 5.3 mm, the dome's 2.6 -> 1.3, a squashed vault's 8.9 -> 6.6; at 1.5 or
+/// 3 instead of 2 the p95 is higher everywhere but on the hypar); a bond band as much as a
+/// joint; a tile's overhang beyond the surface's edge a quarter (where the quads' outer row
+/// is narrower than a course, that course overhangs rather than squeezing every joint
+/// inside: measured on the shared vault, weight 4 keeps 0.4 % more tiles on the surface
+/// with p95 joint deviations of 7 mm instead of 2.6 mm); the anchor a thousandth, so that
+/// it only settles what the joints leave free.
 /// `wide` is set per tile spec ([`wide_gap`]).
 const WEIGHTS: Weights = Weights {
     overlap_slope: 4.0,
