@@ -363,21 +363,7 @@ mod tests {
     /// with each other, one edge apart.
     #[test]
     fn the_odd_corners_of_a_closed_cube_pair_up() {
-        let points: Vec<nalgebra::Point3<f64>> = (0..8)
-            .map(|k| {
-                let bit = |i: usize| f64::from(u8::from(k & (1 << i) != 0));
-                nalgebra::Point3::new(bit(0), bit(1), bit(2))
-            })
-            .collect();
-        let faces = vec![
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-        ];
-        let mesh = PolyMesh::new(points, faces).unwrap();
+        let mesh = generate::closed_box(1.0, 1);
         let topology = Topology::new(&mesh).unwrap();
         let seam = seams(&mesh, &topology);
         assert_eq!(seam.iter().filter(|&&s| s).count(), 4);

@@ -217,9 +217,7 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>) -> Vec<Warning> {
 /// Edges where the surface folds back on itself ([`FOLD_ANGLE`]), with the sharpest one's
 /// place: quads and tiles there fold over each other, and the fit cuts them.
 fn folds(surface: &PolyMesh, topology: &Topology) -> Option<Warning> {
-    let normals: Vec<Option<Vector3<f64>>> = (0..surface.face_count())
-        .map(|f| surface.face_area_vector(f).try_normalize(0.0))
-        .collect();
+    let normals = unit_normals(surface);
     let limit = FOLD_ANGLE.cos();
     let mut count = 0usize;
     let mut sharpest: Option<(f64, usize)> = None;
@@ -252,6 +250,13 @@ fn folds(surface: &PolyMesh, topology: &Topology) -> Option<Warning> {
     ))
 }
 
+/// Every face's unit normal (`None` for a face of no area).
+fn unit_normals(mesh: &PolyMesh) -> Vec<Option<Vector3<f64>>> {
+    (0..mesh.face_count())
+        .map(|f| mesh.face_area_vector(f).try_normalize(0.0))
+        .collect()
+}
+
 /// The half-tile model: a tile over two quads of side `(length + joint) / 2` that are also
 /// `width + joint` wide, so `length = 2 x width + joint`.
 pub fn tile_shape(spec: &TileSpec) -> Option<Warning> {
@@ -280,9 +285,7 @@ pub fn tile_shape(spec: &TileSpec) -> Option<Warning> {
 /// The surface's turning over one tile length, from the angles between neighbouring quads.
 pub fn curvature(quads: &PolyMesh, spec: &TileSpec) -> Option<Warning> {
     let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
-    let normals: Vec<Option<Vector3<f64>>> = (0..quads.face_count())
-        .map(|f| quads.face_area_vector(f).try_normalize(0.0))
-        .collect();
+    let normals = unit_normals(quads);
     let mut curvatures: Vec<f64> = topology
         .edges()
         .iter()
