@@ -3,7 +3,9 @@
 //! `TP_QUAD_SCALE`, default 1; 280 x 140 x 15 mm tiles, 10 mm joint; the pattern stage
 //! limited to `TP_BENCH_PATTERN_LIMIT` seconds, default 5), then:
 //! - the tiles of the pattern the fit loses (`finish` drops them after the fit, not without
-//!   it): how many, and how far the fit moved them along and across their course (medians);
+//!   it): how many, how many of them the boundary already cut without the fit (a tile of
+//!   the outer course overhanging the edge, pushed further out), and how far the fit moved
+//!   them along and across their course (medians);
 //! - the quads' extent across their tile (mean and 10th percentile; a course needs W + joint);
 //! - the joints after the fit: p95 `|gap - joint|`, and of those beyond it, the share within
 //!   three quad edges of an irregular interior vertex of the quad mesh (against the share of
@@ -63,9 +65,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let limit = env("TP_BENCH_PATTERN_LIMIT", 5.0);
     let scale = env("TP_QUAD_SCALE", 1.0);
     println!(
-        "| surface | quads | irregular | tiles | lost by the fit (off / sliver) | lost: median move along / across mm | quad extent across: mean / p10 mm | p95 dev. mm | fit cuts | beyond p95: near irregular (all joints) | beyond p95: too wide | beyond p95: by a cut tile |"
+        "| surface | quads | irregular | tiles | lost by the fit (off / sliver) | lost: cut to the boundary without the fit | lost: median move along / across mm | quad extent across: mean / p10 mm | p95 dev. mm | fit cuts | beyond p95: near irregular (all joints) | beyond p95: too wide | beyond p95: by a cut tile |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for input in inputs {
         let (name, surface) = if input == "demo" {
             (
@@ -153,6 +155,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             })
             .unzip();
 
+        // Of those, the ones the boundary cut already where the section 3.5 placement put
+        // them: outer-course tiles overhanging the edge that the fit pushed further out.
+        let boundary = tiles::SurfaceBoundary::new(&surface, SPEC.length.max(SPEC.width));
+        let overhanging = lost
+            .iter()
+            .filter_map(|d| tile_of.get(&key(&d.faces)))
+            .filter(|&&i| {
+                matches!(
+                    boundary.clip(&boxes[i], finish.tolerance),
+                    tiles::clip::Clipped::Cut(_)
+                )
+            })
+            .count();
+
         // Each quad's extent across the tile on it.
         let mut extents: Vec<f64> = boxes
             .iter()
@@ -202,7 +218,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let share = |n: usize, of: usize| 100.0 * n as f64 / of.max(1) as f64;
         let fit_cuts = placed.iter().filter(|t| t.kind == TileKind::FitCut).count();
         println!(
-            "| {name} | {} | {} | {} | {} ({} / {slivers}) | {:.0} / {:.0} | {mean_extent:.1} / {:.1} | {:.1} | {fit_cuts} | {:.0} % ({:.0} %) | {:.0} % | {:.0} % |",
+            "| {name} | {} | {} | {} | {} ({} / {slivers}) | {overhanging} | {:.0} / {:.0} | {mean_extent:.1} / {:.1} | {:.1} | {fit_cuts} | {:.0} % ({:.0} %) | {:.0} % | {:.0} % |",
             quads.face_count(),
             irregular.len(),
             boxes.len(),

@@ -517,9 +517,10 @@ pub(crate) fn place(
     (Frame::from_normal(point.into(), z, along), beyond)
 }
 
-/// `step` held within a trust region: a tile moves at most a quarter of its width and turns
-/// at most a twentieth of a radian per step, where the linearisation still holds; a longer
-/// step is shortened along its own direction.
+/// `step` held within a trust region: a tile moves at most its width and turns at most
+/// [`MAX_TURN`] per step, where the linearisation still roughly holds; a longer step is
+/// shortened along its own direction. (A quarter of the width made little difference on the
+/// 3 m spherical cap, where tiles move furthest: p95 28.4 -> 26.5 mm, cuts 52 -> 55.)
 fn clamped(step: &Vector3<f64>, size: &[f64; 3]) -> Vector3<f64> {
     let reach = size[1];
     let scale = (reach / step.xy().norm().max(1e-300))
