@@ -184,7 +184,10 @@ mod tests {
             "1 s of wall-clock time took {took:.3} s"
         );
 
-        // A cancel from the caller's callback ends the barrier within 0.2 s.
+        // A cancel from the caller's callback ends the barrier within moments: one barrier
+        // iteration (some 60 ms alone) and the poll. 0.5 s, not less: the other tests of this
+        // binary share the two cores, and a clean-clone CI run with a build beside it took
+        // 0.28 s (a barrier left running would take the 60 s limit).
         let started = Instant::now();
         let mut asked: Option<Instant> = None;
         let mut cancel_after_a_second = |_: f64| {
@@ -207,7 +210,7 @@ mod tests {
         assert!(matches!(outcome, Err(PatternError::Cancelled)));
         let after = returned - asked.unwrap();
         assert!(
-            after < Duration::from_millis(200),
+            after < Duration::from_millis(500),
             "returned {after:?} after the cancel"
         );
     }
