@@ -358,9 +358,10 @@ fn tiles_on_a_hypar_with_an_opening_stay_on_the_surface_and_cover_it() {
     // Kept outlines lie on the surface, up to the flat tile's departure from the hypar.
     check_fabrication(&surface, &tiling, 0.002);
     // Tiles with their joints cover the surface but for the slivers left out at the opening
-    // and the wide ends of wedge-shaped joints (0.978 here since a narrow joint costs the fit
-    // twice a wide one, 0.980 before).
-    assert!(cutting.coverage >= 0.975, "coverage {}", cutting.coverage);
+    // and the wide ends of wedge-shaped joints: 0.973 here measured at samples 1/2 of the
+    // smallest tile side apart (0.978 by the face centroids of this 0.05-0.1 triangle mesh,
+    // which saw fewer of the wedges).
+    assert!(cutting.coverage >= 0.97, "coverage {}", cutting.coverage);
     assert_no_overlaps(&surface, &tiling, 0.01);
 }
 

@@ -599,7 +599,7 @@ impl Tile {
         self.frame = frame;
     }
 
-    fn new(kind: TileKind, faces: Vec<usize>, frame: Frame, size: [f64; 3]) -> Self {
+    pub(crate) fn new(kind: TileKind, faces: Vec<usize>, frame: Frame, size: [f64; 3]) -> Self {
         Self {
             kind,
             faces,
