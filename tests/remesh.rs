@@ -258,6 +258,46 @@ fn hypar_patch_becomes_regular_quads() {
     );
 }
 
+/// Hyperbolic paraboloid z = 0.24 (x - 2.5)(y - 2.5) over a 5 x 5 square with `n x n` quads
+/// split along one diagonal, as a coarse render mesh has them (issue 19's real inputs).
+fn hypar_5m(n: usize) -> PolyMesh {
+    let at = |i: usize, j: usize| j * (n + 1) + i;
+    let mut positions = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (5.0 * i as f64 / n as f64, 5.0 * j as f64 / n as f64);
+            positions.push(Point3::new(x, y, 0.24 * (x - 2.5) * (y - 2.5)));
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            faces.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            faces.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    PolyMesh::new(positions, faces).expect("generated surface is valid")
+}
+
+#[test]
+fn a_coarse_input_is_remeshed_as_its_fine_twin() {
+    // Faces of four quads (625 mm) against faces of half a quad: the field is solved at the
+    // lattice's resolution from the coarse vertices' curvature, so the coarse mesh comes
+    // close to the fine one's clean grid (0 irregular vertices, 98 % of edges within 20 %).
+    // Solved on the 81 coarse vertices alone, the field gave 4 irregular vertices and 96 %
+    // here, 10 in the middle of the same shell under `tilepattern run` (level courses),
+    // where tiles then left a p95 joint deviation of 6.5 mm against 1.4 on the fine twin.
+    let fine = remesh(&hypar_5m(64), &options(0.145)).expect("remesh fine");
+    let coarse = remesh(&hypar_5m(8), &options(0.145)).expect("remesh coarse");
+    check("fine hypar", &fine.metrics, 0);
+    check("coarse hypar", &coarse.metrics, 2);
+    assert!(
+        coarse.metrics.edges_within_20pct >= fine.metrics.edges_within_20pct - 0.01,
+        "{} of edges within 20 %",
+        coarse.metrics.edges_within_20pct
+    );
+}
+
 #[test]
 fn spherical_cap_is_covered() {
     let result = remesh(&cap(), &options(0.15)).expect("remesh");

@@ -101,6 +101,32 @@ pub(crate) fn match_rosy(
     best
 }
 
+/// The principal curvature at a vertex.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Principal {
+    /// A principal direction (unit tangent; the other is perpendicular).
+    pub dir: Vector3<f64>,
+    /// `|k1 - k2|`.
+    pub aniso: f64,
+    /// `|k1 + k2| / 2`.
+    pub mean: f64,
+}
+
+/// The principal curvature at every vertex of `s` ([`curvature`]; `None` where too few
+/// neighbours fix it).
+pub(crate) fn principal_curvatures(s: &Surface) -> Vec<Option<Principal>> {
+    let frames = reference_frames(s);
+    let mut mark = vec![usize::MAX; s.len()];
+    (0..s.len())
+        .map(|v| {
+            let (angle, aniso, mean) = curvature(s, &frames, v, &mut mark)?;
+            let (e, n) = (frames[v], s.normals[v]);
+            let dir = e * angle.cos() + n.cross(&e) * angle.sin();
+            Some(Principal { dir, aniso, mean })
+        })
+        .collect()
+}
+
 /// Principal curvature direction (angle in the vertex frame) and anisotropy `|k1 - k2|`,
 /// from a least-squares quadric `h = A x^2 + B xy + C y^2 + D x + E y` over the 2-ring.
 fn curvature(
@@ -189,11 +215,14 @@ const UMBILIC: f64 = 0.05;
 
 /// Solves the orientation field on `s`; returns one unit tangent per vertex (any of the four
 /// directions of its cross). `user` is the designer's field (samples and share), `guides` the
-/// guide curves' samples (weighted by their fall-off) and share.
+/// guide curves' samples (weighted by their fall-off) and share; `principal` the principal
+/// curvatures per vertex when they are not to be read from `s` itself (a subdivided coarse
+/// input, [`super::refine::subdivide_coarse`]).
 /// Stops early (with a usable but less smooth field) once `budget` says so.
 pub(crate) fn solve(
     s: &Surface,
     options: &RemeshOptions,
+    principal: Option<&[Option<Principal>]>,
     user: Option<&(Samples, f64)>,
     guides: Option<&(Samples, f64)>,
     budget: &mut Budget,
@@ -228,11 +257,19 @@ pub(crate) fn solve(
     };
     let strength = match options.direction {
         FieldDirection::Curvature | FieldDirection::Angle(_) => {
-            let mut mark = vec![usize::MAX; n];
-            for v in 0..n {
-                if let Some((angle, aniso, mean)) = curvature(s, &frames, v, &mut mark) {
-                    clarity[v] = alignment_weight(aniso, mean, diagonal);
-                    defined[v] = principal_defined(aniso, mean, diagonal);
+            let own;
+            let principal = match principal {
+                Some(p) => p,
+                None => {
+                    own = principal_curvatures(s);
+                    &own
+                }
+            };
+            for (v, p) in principal.iter().enumerate() {
+                if let Some(p) = p {
+                    let angle = angle_in(&frames[v], &s.normals[v], &p.dir);
+                    clarity[v] = alignment_weight(p.aniso, p.mean, diagonal);
+                    defined[v] = principal_defined(p.aniso, p.mean, diagonal);
                     target[v] = C::from_angle(4.0 * angle).mul(rotation);
                 }
             }
@@ -624,6 +661,7 @@ mod tests {
             let frames = solve(
                 &s,
                 &RemeshOptions::default(),
+                None,
                 Some(&samples),
                 None,
                 &mut budget,
@@ -636,7 +674,7 @@ mod tests {
                 "turn {turn}: worst {worst:.2} mean {mean:.2}"
             );
             // Without the user field the umbilic dome's crosses go their own way.
-            let free = solve(&s, &RemeshOptions::default(), None, None, &mut budget);
+            let free = solve(&s, &RemeshOptions::default(), None, None, None, &mut budget);
             let (_, mean) = deviation(&s, &free, want, top, 0.5);
             assert!(mean > 10.0, "turn {turn}: mean {mean:.2} by chance");
         }
@@ -665,7 +703,7 @@ mod tests {
             std::time::Instant::now(),
             std::time::Duration::from_secs(60),
         );
-        let frames = solve(&s, &options, Some(&(user, share)), None, &mut budget);
+        let frames = solve(&s, &options, None, Some(&(user, share)), None, &mut budget);
         let mut sum = 0.0;
         for (v, o) in frames.iter().enumerate() {
             let o = match_rosy(&Vector3::y(), o, &s.normals[v]);

@@ -369,16 +369,32 @@ pub fn remesh_with(
         _ => None,
     };
     budget.stage(0.02, 0.15);
+    // A coarse input (faces of several quads) gets its field solved at the lattice's
+    // resolution, from the coarse vertices' data.
+    let coarse = refine::subdivide_coarse(&base, t).map(|mut sub| {
+        sub.surface.set_boundary_scale(t * 0.5);
+        sub
+    });
+    let (field_surface, principal, samples, guides) = match &coarse {
+        Some(sub) => (
+            &sub.surface,
+            Some(sub.spread_principal(&field::principal_curvatures(&base))),
+            samples.map(|(s, w)| (sub.spread(&s), w)),
+            guides.map(|(s, w)| (sub.spread(&s), w)),
+        ),
+        None => (&base, None, samples, guides),
+    };
     let frames = field::solve(
-        &base,
+        field_surface,
         options,
+        principal.as_deref(),
         samples.as_ref(),
         guides.as_ref(),
         &mut budget,
     );
     budget.check()?;
     budget.stage(0.15, 0.2);
-    let (work, mut work_frames) = refine::refine(&base, &frames, t);
+    let (work, mut work_frames) = refine::refine(field_surface, &frames, t);
     let rotation = match options.direction {
         FieldDirection::Angle(deg) => deg,
         _ => 0.0,

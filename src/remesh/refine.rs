@@ -4,8 +4,9 @@
 
 use nalgebra::Vector3;
 
-use super::field::match_rosy;
+use super::field::{Principal, match_rosy};
 use super::surface::{Surface, any_tangent};
+use super::user_field::Samples;
 
 /// The midpoint of edge `a`-`b` of `surface` with its normal and cross frame (`frames[a]`
 /// averaged with `frames[b]` turned to match it), for refining the working surface.
@@ -56,6 +57,100 @@ pub(crate) fn refine(
     }
     surface.set_boundary_scale(t * 0.5);
     (surface, frames)
+}
+
+/// A coarse input midpoint-subdivided for the orientation field: the fine surface and, per
+/// fine vertex, the coarse vertices it lies between with their weights (linear
+/// interpolation along the coarse triangles; an original vertex is itself with weight 1).
+pub(crate) struct Subdivision {
+    /// The subdivided surface (the same flat triangles as the coarse one).
+    pub surface: Surface,
+    /// Per fine vertex, coarse vertices and weights summing to 1.
+    pub parents: Vec<Vec<(usize, f64)>>,
+}
+
+impl Subdivision {
+    /// Per-vertex data of the coarse surface (a designer's vectors, guide samples) carried to
+    /// the fine vertices, each sample's weight times its parent's.
+    pub fn spread(&self, coarse: &Samples) -> Samples {
+        self.parents
+            .iter()
+            .map(|parents| {
+                parents
+                    .iter()
+                    .flat_map(|&(c, w)| coarse[c].iter().map(move |&(d, sw)| (d, sw * w)))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The coarse surface's principal curvatures interpolated onto the fine vertices: the
+    /// parents' directions matched as crosses to the first one and averaged by weight,
+    /// anisotropy and mean curvature averaged (a vertex none of whose parents has a
+    /// curvature has none).
+    pub fn spread_principal(&self, coarse: &[Option<Principal>]) -> Vec<Option<Principal>> {
+        self.parents
+            .iter()
+            .enumerate()
+            .map(|(v, parents)| {
+                let n = self.surface.normals[v];
+                let known: Vec<(Principal, f64)> = parents
+                    .iter()
+                    .filter_map(|&(c, w)| coarse[c].map(|p| (p, w)))
+                    .collect();
+                let (first, _) = *known.first()?;
+                let total: f64 = known.iter().map(|&(_, w)| w).sum();
+                let mut dir = Vector3::zeros();
+                let (mut aniso, mut mean) = (0.0, 0.0);
+                for &(p, w) in &known {
+                    dir += match_rosy(&first.dir, &p.dir, &n) * w;
+                    aniso += p.aniso * w / total;
+                    mean += p.mean * w / total;
+                }
+                let dir = (dir - n * n.dot(&dir))
+                    .try_normalize(1e-300)
+                    .unwrap_or_else(|| any_tangent(&n));
+                Some(Principal { dir, aniso, mean })
+            })
+            .collect()
+    }
+}
+
+/// Midpoint-subdivides a coarse `base` (flat: the surface does not move) until its mean edge
+/// is at most `t`, so that the orientation field is solved at about the lattice's resolution
+/// whatever the input's (a coarse render mesh of a smooth shell, faces of several tiles);
+/// `None` when `base` is already that fine. The field's data (curvature, a designer's
+/// vectors, guides) stay those of the coarse vertices, interpolated ([`Subdivision`]): the
+/// coarse vertices are where the input samples its shape, midpoints on flat faces would read
+/// the facets as curvature.
+pub(crate) fn subdivide_coarse(base: &Surface, t: f64) -> Option<Subdivision> {
+    let limit = 3_000_000usize;
+    let mut fine: Option<Subdivision> = None;
+    loop {
+        let current = fine.as_ref().map_or(base, |f| &f.surface);
+        if current.mean_edge <= t || current.tris.len() * 4 > limit {
+            break;
+        }
+        let mut parents = fine.as_ref().map_or_else(
+            || (0..base.len()).map(|v| vec![(v, 1.0)]).collect(),
+            |f| f.parents.clone(),
+        );
+        // `split_edges` appends the midpoints in edge order.
+        for &[a, b] in &current.edges {
+            let mut mid: Vec<(usize, f64)> = Vec::with_capacity(4);
+            for &(c, w) in parents[a].iter().chain(&parents[b]) {
+                match mid.iter_mut().find(|(d, _)| *d == c) {
+                    Some((_, m)) => *m += w / 2.0,
+                    None => mid.push((c, w / 2.0)),
+                }
+            }
+            parents.push(mid);
+        }
+        let frames = vec![Vector3::zeros(); current.len()];
+        let surface = split_edges(current, &frames, |_| true).0;
+        fine = Some(Subdivision { surface, parents });
+    }
+    fine
 }
 
 /// Splits the edges `e` of `surface` for which `split(e)` holds at their midpoints (see
@@ -159,6 +254,45 @@ mod tests {
             .iter()
             .map(|&[a, b, c]| s.edge_vec(a, b).cross(&s.edge_vec(a, c)).norm() / 2.0)
             .sum()
+    }
+
+    #[test]
+    fn a_coarse_surface_is_subdivided_with_its_parents() {
+        // 2 x 2 cells of 1 on a saddle: mean edge over 1, subdivided twice for t = 0.3.
+        let at = |i: usize, j: usize| j * 3 + i;
+        let pos: Vec<Vector3<f64>> = (0..3)
+            .flat_map(|j| (0..3).map(move |i| (i as f64, j as f64)))
+            .map(|(x, y)| Vector3::new(x, y, 0.2 * (x - 1.0) * (y - 1.0)))
+            .collect();
+        let mut tris = Vec::new();
+        for j in 0..2 {
+            for i in 0..2 {
+                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let coarse = Surface::build(pos, tris, None);
+        assert!(subdivide_coarse(&coarse, 2.0).is_none());
+        let sub = subdivide_coarse(&coarse, 0.3).unwrap();
+        assert!(sub.surface.mean_edge <= 0.3);
+        assert_eq!(sub.surface.tris.len(), coarse.tris.len() * 16);
+        for (v, parents) in sub.parents.iter().enumerate() {
+            // Weights sum to 1, at most a triangle's corners, and place the vertex.
+            let total: f64 = parents.iter().map(|&(_, w)| w).sum();
+            assert!((total - 1.0).abs() < 1e-12 && parents.len() <= 3);
+            let p: Vector3<f64> = parents.iter().map(|&(c, w)| coarse.pos[c] * w).sum();
+            assert!((p - sub.surface.pos[v]).norm() < 1e-12);
+        }
+        // Data of the coarse vertices is spread by weight.
+        let samples: Samples = (0..coarse.len())
+            .map(|v| vec![(Vector3::x(), v as f64)])
+            .collect();
+        let spread = sub.spread(&samples);
+        for (v, parents) in sub.parents.iter().enumerate() {
+            let want: f64 = parents.iter().map(|&(c, w)| c as f64 * w).sum();
+            let got: f64 = spread[v].iter().map(|&(_, w)| w).sum();
+            assert!((want - got).abs() < 1e-12);
+        }
     }
 
     #[test]
