@@ -20,7 +20,7 @@ use crate::tiles::Tile;
 
 /// Samples across the smallest tile side: the sampling triangles' longest edges are at most
 /// that side over this (70 mm for a 280 x 140 mm tile), finer than any gap worth seeing.
-pub const SAMPLES_PER_TILE_SIDE: f64 = 2.0;
+const SAMPLES_PER_TILE_SIDE: f64 = 2.0;
 
 /// Share of `surface`'s area covered by `tiles` with their joints, in `[0, 1]`.
 pub fn covered_share(surface: &PolyMesh, tiles: &[Tile], joint: f64) -> f64 {
