@@ -367,6 +367,12 @@ pub fn finish(
             fit.overlap_tolerance,
             &stays_whole,
         );
+        // A closer the fit left room enough for stays whole: no cut to fit.
+        for (t, tile) in kept.iter_mut().enumerate() {
+            if tile.fit_cut && !cut.contains(&t) {
+                tile.fit_cut = false;
+            }
+        }
         let slivers: Vec<usize> = cut
             .into_iter()
             .filter(|&t| {

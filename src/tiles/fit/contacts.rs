@@ -156,13 +156,14 @@ pub(crate) fn contacts(mesh: &PolyMesh, topology: &Topology, tiles: &[Tile]) -> 
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::mesh::generate;
     use crate::pattern::Pattern;
     use crate::tiles::{TileSpec, build};
 
-    fn pattern(faces: usize, pairs: Vec<[usize; 2]>, unpaired: Vec<usize>) -> Pattern {
+    /// A pattern of `pairs` and `unpaired` faces on a mesh of `faces` faces.
+    pub(crate) fn pattern(faces: usize, pairs: Vec<[usize; 2]>, unpaired: Vec<usize>) -> Pattern {
         Pattern {
             faces,
             pairs,

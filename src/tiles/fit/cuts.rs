@@ -96,12 +96,12 @@ pub fn resolve_overlaps_nudging(
     cut
 }
 
-/// The order in which tiles are cut: a filler piece (0), a tile already cut (1), a half tile
-/// (2), a full tile (3).
+/// The order in which tiles are cut: a filler piece (0), a tile already cut or a closer (1),
+/// a half tile (2), a full tile (3).
 fn rank(t: &Tile) -> u8 {
     match (
         t.faces.is_empty(),
-        t.cut.is_some(),
+        t.cut.is_some() || t.fit_cut,
         t.kind == TileKind::Half,
     ) {
         (true, _, _) => 0,

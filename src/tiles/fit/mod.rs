@@ -11,10 +11,13 @@
 //!
 //! Each tile keeps its origin on the surface (the closest point) and its thickness axis
 //! along the surface's normal there, and may slide and turn in its tangent plane
-//! ([`solve`]). What cannot be made to fit is not left overlapping: after the tiles are cut
-//! to the boundary, [`resolve_overlaps`] cuts the rest (rarely: the method's aim is to cut
+//! ([`solve`]). Where that first placement leaves a course overlapping or torn, the course
+//! loses a closer per tile of surplus and the rest is placed again ([`closers`]). What cannot
+//! be made to fit is not left overlapping: after the tiles are cut to the boundary,
+//! [`resolve_overlaps`] cuts the rest, closers first (rarely: the method's aim is to cut
 //! little).
 
+mod closers;
 pub(crate) mod contacts;
 mod cuts;
 mod solve;
@@ -146,7 +149,7 @@ pub enum FitStatus {
 pub struct FitSummary {
     /// How it ended.
     pub status: FitStatus,
-    /// Levenberg-Marquardt steps taken.
+    /// Levenberg-Marquardt steps taken (of both placements when closers were taken out).
     pub iterations: usize,
     /// Sum of squared joint, bond and anchor residuals (model units squared) before and
     /// after.
@@ -188,39 +191,77 @@ pub fn fit(
         }
     }
     let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
-    let found = contacts::contacts(quads, &topology, &tiles);
+    let all = contacts::contacts(quads, &topology, &tiles);
     let index = SurfaceIndex::from_polymesh(surface.unwrap_or(quads));
     let (anchors, beyond_start): (Vec<_>, Vec<_>) = tiles
         .iter()
         .map(|t| solve::place(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z))
         .unzip();
     let sizes: Vec<[f64; 3]> = tiles.iter().map(|t| t.size).collect();
-    let bands: Vec<Option<BondBand>> = found
-        .iter()
-        .map(|c| bond_band(c, &tiles, &anchors, spec, options))
-        .collect();
-    let problem = Problem {
-        sizes: &sizes,
-        contacts: &found,
-        bands: &bands,
-        anchors: &anchors,
-        beyond_start: &beyond_start,
-        joint: spec.joint,
-        weights: Weights {
-            wide: wide_gap(spec),
-            ..WEIGHTS
-        },
-        surface: &index,
+    let weights = Weights {
+        wide: wide_gap(spec),
+        ..WEIGHTS
     };
-    let mut frames = anchors.clone();
     let mut timed_out = false;
-    let outcome = problem.solve(&mut frames, options.max_iterations, &mut |fraction| {
-        if started.elapsed().as_secs_f64() > options.time_limit {
-            timed_out = true;
-            return false;
+    // One placement from the anchors with the joints of `found`, reporting progress from
+    // `from` to `to`.
+    let mut place = |found: &[contacts::Contact], from: f64, to: f64| {
+        let bands: Vec<Option<BondBand>> = found
+            .iter()
+            .map(|c| bond_band(c, &tiles, &anchors, spec, options))
+            .collect();
+        let problem = Problem {
+            sizes: &sizes,
+            contacts: found,
+            bands: &bands,
+            anchors: &anchors,
+            beyond_start: &beyond_start,
+            joint: spec.joint,
+            weights,
+            surface: &index,
+        };
+        let mut frames = anchors.clone();
+        let outcome = problem.solve(&mut frames, options.max_iterations, &mut |fraction| {
+            if started.elapsed().as_secs_f64() > options.time_limit {
+                timed_out = true;
+                return false;
+            }
+            control.keep_going(from + (to - from) * fraction)
+        });
+        (frames, outcome)
+    };
+    let (mut frames, first) = place(&all, 0.0, 0.6);
+    let mut outcome = first;
+    // Courses the first placement could not fit lose their closers and the rest is placed
+    // again; not begun when the first took half the time limit (the second would not finish).
+    let late = started.elapsed().as_secs_f64() > options.time_limit / 2.0;
+    let mut out = if first.stopped || late {
+        Vec::new()
+    } else {
+        let tear = spec.joint + 2.0 * wide_gap(spec);
+        let failing = closers::failing(&tiles, &frames, &all, options.overlap_tolerance, tear);
+        closers::closers(&tiles, &all, spec, &failing)
+    };
+    if !out.is_empty() {
+        let found: Vec<contacts::Contact> = all
+            .iter()
+            .filter(|c| c.tiles.iter().all(|t| out.binary_search(t).is_err()))
+            .copied()
+            .collect();
+        let (again, second) = place(&found, 0.6, 1.0);
+        if second.stopped {
+            // Cut short (time limit, cancel): the first placement, whole, is the better one.
+            out.clear();
+            outcome.stopped = true;
+        } else {
+            frames = again;
+            outcome = solve::Progress {
+                iterations: first.iterations + second.iterations,
+                start: first.start,
+                ..second
+            };
         }
-        control.keep_going(fraction)
-    });
+    }
     let status = match (outcome.stopped, timed_out, outcome.converged) {
         (true, true, _) => FitStatus::TimeLimit,
         (true, false, _) => FitStatus::Cancelled,
@@ -235,7 +276,12 @@ pub fn fit(
     let placed: Vec<Tile> = tiles
         .into_iter()
         .zip(frames)
-        .map(|(t, frame)| Tile::new(t.kind, t.faces, frame, t.size))
+        .enumerate()
+        .map(|(i, (t, frame))| {
+            let mut tile = Tile::new(t.kind, t.faces, frame, t.size);
+            tile.fit_cut = out.binary_search(&i).is_ok();
+            tile
+        })
         .collect();
     let summary = FitSummary {
         status,
