@@ -1,5 +1,6 @@
-//! Closers: tiles taken out of over-full courses before the fit, as a mason leaves out a
-//! tile of a course that will not fit and cuts a closer to the gap that remains.
+//! Closers: tiles taken out of the over-full courses the fit's first placement could not fit,
+//! before its second, as a mason leaves out a tile of a course that will not fit and cuts a
+//! closer to the gap that remains.
 //!
 //! Where the quads along a course are shorter than the tile (the paper's Figure 3: quads near
 //! singularities and in curved regions are not the half tile's size), the section 3.5
