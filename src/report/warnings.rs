@@ -73,9 +73,7 @@ pub const FOLD_ANGLE: f64 = 2.0 * std::f64::consts::FRAC_PI_3;
 /// cutting is what the method minimises).
 pub const MAX_FIT_CUT_SHARE: f64 = 0.01;
 
-/// p95 of |gap - joint| as a share of the joint above which the joints are flagged (5 mm on
-/// a 10 mm joint).
-pub const MAX_P95_DEVIATION_SHARE: f64 = 0.5;
+pub use crate::tiles::fit::MAX_P95_DEVIATION_SHARE;
 
 /// Coverage below which a tiling is flagged.
 pub const MIN_COVERAGE: f64 = 0.95;

@@ -17,26 +17,57 @@ use super::contacts::{Contact, Side};
 use crate::tiles::outline;
 use crate::tiles::{Frame, Tile, TileSpec};
 
-/// Per tile, whether the placement `frames` leaves it overlapping a neighbour of `contacts`
-/// by more than `tolerance` or parted from one by more than `tear`.
+/// Per contact, the gap the placement `frames` leaves between its tiles (negative: how deep
+/// they overlap), measured as the report measures joints ([`outline::separation`]).
+pub(crate) fn gaps(tiles: &[Tile], frames: &[Frame], contacts: &[Contact]) -> Vec<f64> {
+    contacts
+        .iter()
+        .map(|c| {
+            let [a, b] = c
+                .tiles
+                .map(|t| Tile::new(tiles[t].kind, Vec::new(), frames[t], tiles[t].size));
+            outline::separation(&a, &b).gap
+        })
+        .collect()
+}
+
+/// Per tile, whether `gaps` (per contact, [`gaps`]) leave it overlapping a neighbour by more
+/// than `tolerance` or parted from one by more than `tear`.
 pub(crate) fn failing(
-    tiles: &[Tile],
-    frames: &[Frame],
+    tiles: usize,
     contacts: &[Contact],
+    gaps: &[f64],
     tolerance: f64,
     tear: f64,
 ) -> Vec<bool> {
-    let mut out = vec![false; tiles.len()];
-    for c in contacts {
-        let [a, b] = c
-            .tiles
-            .map(|t| Tile::new(tiles[t].kind, Vec::new(), frames[t], tiles[t].size));
-        let gap = outline::separation(&a, &b).gap;
+    let mut out = vec![false; tiles];
+    for (c, &gap) in contacts.iter().zip(gaps) {
         if gap < -tolerance || gap > tear {
             c.tiles.iter().for_each(|&t| out[t] = true);
         }
     }
     out
+}
+
+/// The 95th percentile of `|gap - joint|` over `gaps` as the cuts to fit leave them: an
+/// overlap deeper than `tolerance` is cut back to a joint ([`super::resolve_overlaps`]), so
+/// it counts as one (0 when there are no gaps).
+pub(crate) fn p95_deviation_after_cuts(gaps: &[f64], joint: f64, tolerance: f64) -> f64 {
+    let mut d: Vec<f64> = gaps
+        .iter()
+        .map(|&g| {
+            if g < -tolerance {
+                0.0
+            } else {
+                (g - joint).abs()
+            }
+        })
+        .collect();
+    if d.is_empty() {
+        return 0.0;
+    }
+    d.sort_by(f64::total_cmp);
+    d[(d.len() * 95).div_ceil(100) - 1]
 }
 
 /// Tiles to take out of the fit, in increasing order. Each course (a chain of full tiles end
@@ -176,5 +207,20 @@ mod tests {
             closers(&tiles, &found, &SPEC, &vec![true; tiles.len()]).len(),
             3
         );
+    }
+
+    #[test]
+    fn overlaps_count_as_the_joints_their_cuts_leave() {
+        // 20 gaps: 18 on the joint, one 7 mm too wide, one overlapping by 40 mm.
+        let mut gaps = vec![0.01; 18];
+        gaps.push(0.017);
+        gaps.push(-0.04);
+        // The p95 of 20 values is the 19th smallest: the overlap, cut back to a joint,
+        // counts as 0, so the 7 mm is the largest and the 19th is 0.
+        assert_eq!(p95_deviation_after_cuts(&gaps, 0.01, 0.001), 0.0);
+        // Within the tolerance the overlap is left and counts as 50 mm.
+        let d = p95_deviation_after_cuts(&gaps, 0.01, 0.05);
+        assert!((d - 0.007).abs() < 1e-12, "{d}");
+        assert_eq!(p95_deviation_after_cuts(&[], 0.01, 0.001), 0.0);
     }
 }

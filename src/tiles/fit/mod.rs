@@ -59,6 +59,11 @@ const WEIGHTS: Weights = Weights {
     wide: 0.0,
 };
 
+/// p95 of |gap - joint| as a share of the joint above which the joints are flagged (5 mm on
+/// a 10 mm joint; the report's `wide_joints` warning), and above which the fit's first
+/// placement is tried again with closers taken out ([`closers`]).
+pub const MAX_P95_DEVIATION_SHARE: f64 = 0.5;
+
 /// How much wider than the joint a gap may be before its cost grows only linearly: the joint
 /// itself (a gap of twice the joint is where courses part rather than a joint to close), a
 /// tenth of the tile's width without a joint. Measured on the shared surfaces and on
@@ -235,11 +240,23 @@ pub fn fit(
     // Courses the first placement could not fit lose their closers and the rest is placed
     // again; not begun when the first took half the time limit (the second would not finish).
     let late = started.elapsed().as_secs_f64() > options.time_limit / 2.0;
-    let mut out = if first.stopped || late {
+    let first_gaps = closers::gaps(&tiles, &frames, &all);
+    // Closers only where the joints would be flagged: elsewhere the fit copes (and a large
+    // shell's second placement would double its time).
+    let flagged =
+        closers::p95_deviation_after_cuts(&first_gaps, spec.joint, options.overlap_tolerance)
+            > MAX_P95_DEVIATION_SHARE * spec.joint;
+    let mut out = if first.stopped || late || !flagged {
         Vec::new()
     } else {
         let tear = spec.joint + 2.0 * wide_gap(spec);
-        let failing = closers::failing(&tiles, &frames, &all, options.overlap_tolerance, tear);
+        let failing = closers::failing(
+            tiles.len(),
+            &all,
+            &first_gaps,
+            options.overlap_tolerance,
+            tear,
+        );
         closers::closers(&tiles, &all, spec, &failing)
     };
     if !out.is_empty() {
@@ -249,10 +266,23 @@ pub fn fit(
             .copied()
             .collect();
         let (again, second) = place(&found, 0.6, 1.0);
+        // Kept only when its joints, as the cuts to fit will leave them (closers at their
+        // place and cut where they overlap), are no further from the joint than the first
+        // placement's: closers where a course is torn by singularities rather than
+        // over-full only add cuts.
+        let better = || {
+            let deviation = |gaps: &[f64]| {
+                closers::p95_deviation_after_cuts(gaps, spec.joint, options.overlap_tolerance)
+            };
+            deviation(&closers::gaps(&tiles, &again, &all)) <= deviation(&first_gaps)
+        };
         if second.stopped {
             // Cut short (time limit, cancel): the first placement, whole, is the better one.
             out.clear();
             outcome.stopped = true;
+        } else if !better() {
+            out.clear();
+            outcome.iterations += second.iterations;
         } else {
             frames = again;
             outcome = solve::Progress {
