@@ -7,7 +7,8 @@
 //!   about one cell's size (tiles, a surface's faces and boundary edges);
 //! - [`closest`]: closest points on segments and triangles;
 //! - [`SurfaceIndex`]: closest point and smooth normal on a polygon mesh;
-//! - [`polygon`]: points and polygons in a plane (areas, convex clipping, separation).
+//! - [`polygon`]: points and polygons in a plane (areas, convex clipping, separation);
+//! - [`sample`]: area samples of a surface.
 //!
 //! Nothing here knows of tiles, quads or patterns: stages build on it, never the reverse.
 
@@ -15,6 +16,7 @@ mod bvh;
 pub mod closest;
 mod grid;
 pub mod polygon;
+pub mod sample;
 mod surface;
 
 pub use bvh::Bvh;

@@ -61,7 +61,8 @@ pub struct JointSummary {
 }
 
 /// Every joint of `tiles` placed on `mesh`, in index order: pairs of tiles whose faces share
-/// a mesh edge, pairs of any tiles (filler pieces too) that overlap, and pairs that come
+/// a mesh edge (unless parted by more than three joints with a third tile between them, over
+/// the middle of their origins), pairs of any tiles (filler pieces too) that overlap, and pairs that come
 /// within three joints of each other (with `joint` 0: three hundredths of the widest tile)
 /// along a stretch of at least a quarter of the narrower one's width (tiles that only meet
 /// at a corner share no joint).
@@ -91,11 +92,15 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
     };
     let gap = |a: usize, b: usize| separation(a, b).gap;
     let mut found: Vec<Joint> = Vec::with_capacity(meeting.len());
-    if reach > 0.0 {
-        let grid = HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
+    let grid =
+        (reach > 0.0).then(|| HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin])));
+    if let Some(grid) = &grid {
         for a in 0..tiles.len() {
             for b in grid.near(&tiles[a].frame.origin, reach) {
-                if b > a && !meeting.contains(&[a, b]) {
+                if b > a
+                    && !meeting.contains(&[a, b])
+                    && outline::may_touch(&tiles[a], &tiles[b], near)
+                {
                     let s = separation(a, b);
                     if s.gap < 0.0 || (s.gap < near && s.shares_joint(&tiles[a], &tiles[b])) {
                         found.push(Joint {
@@ -107,9 +112,20 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
             }
         }
     }
-    found.extend(meeting.iter().map(|&[a, b]| Joint {
-        tiles: [a, b],
-        gap: gap(a, b),
+    // Tiles on neighbouring faces parted by a tear share no joint when a piece filling the
+    // tear ([`crate::tiles`]' tear fill) lies between them, over the middle of their origins:
+    // their joints are with that piece, found above.
+    let parted = |a: usize, b: usize| {
+        let middle = nalgebra::center(&tiles[a].frame.origin, &tiles[b].frame.origin);
+        grid.as_ref().is_some_and(|grid| {
+            grid.near(&middle, reach)
+                .into_iter()
+                .any(|c| c != a && c != b && outline::covers(&tiles[c], &middle, 0.0))
+        })
+    };
+    found.extend(meeting.iter().filter_map(|&[a, b]| {
+        let gap = gap(a, b);
+        (gap < near || !parted(a, b)).then_some(Joint { tiles: [a, b], gap })
     }));
     found.sort_by_key(|j| j.tiles);
     found
@@ -153,4 +169,44 @@ fn percentile(sorted: &[f64], p: usize) -> f64 {
         .get((sorted.len() * p).div_ceil(100).saturating_sub(1))
         .copied()
         .unwrap_or(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::generate;
+    use crate::tiles::{Frame, TileKind};
+    use nalgebra::Vector3;
+
+    fn tile(x: f64, size: [f64; 3], faces: Vec<usize>) -> Tile {
+        let frame = Frame::from_normal(Point3::new(x, 0.25, 0.0), Vector3::z(), &Vector3::x());
+        Tile::new(TileKind::Half, faces, frame, size)
+    }
+
+    #[test]
+    fn tiles_parted_by_a_piece_share_no_joint() {
+        // Two quads of 500 mm, a 140 mm tile on each: 360 mm apart.
+        let grid = generate::grid(2, 1);
+        let mesh = PolyMesh::new(
+            grid.positions().iter().map(|p| p * 0.5).collect(),
+            grid.faces().to_vec(),
+        )
+        .unwrap();
+        let size = [0.14, 0.14, 0.015];
+        let mut tiles = vec![tile(0.25, size, vec![0]), tile(0.75, size, vec![1])];
+        let found = joints(&mesh, &tiles, 0.01);
+        assert_eq!(found.len(), 1);
+        assert!((found[0].gap - 0.36).abs() < 1e-9, "{:?}", found);
+        // A piece of 340 mm between them, a joint from each: two joints of 10 mm.
+        tiles.push(tile(0.5, [0.34, 0.14, 0.015], vec![]));
+        let found = joints(&mesh, &tiles, 0.01);
+        assert_eq!(
+            found.iter().map(|j| j.tiles).collect::<Vec<_>>(),
+            [[0, 2], [1, 2]]
+        );
+        assert!(
+            found.iter().all(|j| (j.gap - 0.01).abs() < 1e-9),
+            "{found:?}"
+        );
+    }
 }

@@ -23,6 +23,7 @@ mod frame;
 pub mod outline;
 pub mod sequence;
 pub mod solid;
+mod tears;
 
 pub use clip::{Cut, SurfaceBoundary};
 pub use cutlist::CutGroup;
@@ -412,13 +413,26 @@ pub fn finish(
             kept.retain(|_| *keeps.next().expect("one flag per tile"));
         }
     }
+    // Tears the fit left wide enough for a piece are filled like the strip along the edge.
+    let mut tears = 0;
+    if options.fit.is_some() {
+        tears = tears::Tears {
+            surface: reference,
+            boundary: &boundary,
+            blank: [spec.length, spec.width, spec.thickness],
+            joint: spec.joint,
+            min_width: options.min_kept_width,
+            tolerance: options.tolerance,
+        }
+        .fill(&mut kept);
+    }
     let mut links: Vec<[usize; 2]> = parents
         .iter()
         .enumerate()
         .filter_map(|(i, p)| Some([kept_index[i]?, kept_index[(*p)?]?]))
         .collect();
     links.extend(filler_neighbours(&kept));
-    let fillers = kept_index[fillers_from..].iter().flatten().count();
+    let fillers = kept_index[fillers_from..].iter().flatten().count() + tears;
     let cut_list = cutlist::cut_list(&mut kept, options.tolerance);
     let sequence = sequence::laying_order(quads, &mut kept, &links, &options.sequence);
     (

@@ -46,6 +46,36 @@ pub fn world_corners(tile: &Tile) -> Vec<Point3<f64>> {
         .collect()
 }
 
+/// Whether the surface point `p` lies under `tile`'s kept face grown by `margin`: seen in the
+/// tile's frame, within the face's rectangle grown by `margin`, inside the kept loops of a
+/// cut tile (or within `margin` of them), and not further from the tile's plane than half
+/// the tile's width (the surface a tile stands for, not one behind it).
+pub fn covers(tile: &Tile, p: &Point3<f64>, margin: f64) -> bool {
+    let local = tile.frame.to_local(p);
+    let (hx, hy) = (tile.size[0] / 2.0, tile.size[1] / 2.0);
+    if local.x.abs() > hx + margin || local.y.abs() > hy + margin || local.z.abs() > hy {
+        return false;
+    }
+    let q = [local.x, local.y];
+    tile.cut.as_ref().is_none_or(|cut| {
+        polygon::winding(&cut.loops, q) != 0
+            || cut.loops.iter().any(|l| {
+                (0..l.len())
+                    .any(|i| polygon::point_segment(q, l[i], l[(i + 1) % l.len()]).0 <= margin)
+            })
+    })
+}
+
+/// Whether tiles `a` and `b` can come within `within` of each other at all: their origins
+/// are no further apart than their half diagonals, thicknesses and `within` together. Their
+/// separation ([`separation`]) is measured in a mean plane, and on a strongly curved surface
+/// two tiles on different folds can overlap there though their solids are far apart; only
+/// pairs that may touch are neighbours.
+pub fn may_touch(a: &Tile, b: &Tile, within: f64) -> bool {
+    let reach = |t: &Tile| t.size[0].hypot(t.size[1]) / 2.0 + t.size[2];
+    (a.frame.origin - b.frame.origin).norm() <= reach(a) + reach(b) + within
+}
+
 /// How two tiles meet.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Separation {

@@ -1,0 +1,272 @@
+//! Filling the tears the fit leaves: pieces cut to the holes between fitted tiles.
+//!
+//! Where courses converge (a dome's crown, around singularities) rigid tiles cannot follow
+//! the quads, and the fit (paper section 4.3's "optimisation step") parts them rather than
+//! let them overlap: a tear, a gap of several joints or more. A mason closes it with pieces
+//! cut to the room left. So does this step, after the tiles and the boundary's filler pieces
+//! are placed: the surface is sampled as the report's coverage samples it, and at each
+//! sample no tile covers, a tile blank is laid on the surface, centred on the uncovered
+//! samples around it and turned as the nearest tile (or across it, whichever keeps more),
+//! cut to the surface's boundary and to the room its neighbours leave, a joint from each
+//! ([`super::fit::cut_to_room`]). A piece narrower than the narrowest kept width is not
+//! laid: that gap is mortar. The pieces are listed with the filler pieces (label B, no
+//! faces) and cut like them.
+
+use nalgebra::{Point3, Vector3};
+
+use super::clip::{Clipped, SurfaceBoundary};
+use super::outline::{self, covers};
+use super::{Frame, Tile, TileKind};
+use crate::geom::{HashGrid, sample};
+use crate::mesh::PolyMesh;
+
+/// What the tear fill needs to know of the tiles and the surface.
+pub(crate) struct Tears<'a> {
+    /// The input surface, sampled.
+    pub surface: &'a PolyMesh,
+    /// Its boundary, to cut pieces to and to lay them onto the surface.
+    pub boundary: &'a SurfaceBoundary,
+    /// The blank a piece is cut from (a full tile's size).
+    pub blank: [f64; 3],
+    /// The mortar joint.
+    pub joint: f64,
+    /// Pieces narrower than this are not laid.
+    pub min_width: f64,
+    /// How far the boundary may enter a piece before it is cut ([`SurfaceBoundary::clip`]).
+    pub tolerance: f64,
+}
+
+impl Tears<'_> {
+    /// Appends to `tiles` the pieces that fill the holes between them; returns how many.
+    pub(crate) fn fill(&self, tiles: &mut Vec<Tile>) -> usize {
+        let before = tiles.len();
+        let mut outlines: Vec<Vec<Point3<f64>>> =
+            tiles.iter().map(outline::world_corners).collect();
+        let Some(half_diagonal) = tiles
+            .iter()
+            .map(|t| t.size[0].hypot(t.size[1]) / 2.0)
+            .chain([self.blank[0].hypot(self.blank[1]) / 2.0])
+            .reduce(f64::max)
+        else {
+            return 0;
+        };
+        // Tiles that may cover a point, and those that may touch a piece.
+        let reach = half_diagonal + self.joint;
+        let touching = 2.0 * half_diagonal + self.joint;
+        let mut placed = HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
+        let margin = self.joint / 2.0;
+        let covered = |tiles: &[Tile], placed: &HashGrid, q: &Point3<f64>| {
+            placed
+                .near(q, reach)
+                .into_iter()
+                .any(|t| covers(&tiles[t], q, margin))
+        };
+        // The samples no tile covers, with their face's normal.
+        let spacing = self.blank[1] / sample::SAMPLES_PER_TILE_SIDE;
+        let normals: Vec<Vector3<f64>> = (0..self.surface.face_count())
+            .map(|f| {
+                self.surface
+                    .face_area_vector(f)
+                    .try_normalize(0.0)
+                    .unwrap_or_else(Vector3::z)
+            })
+            .collect();
+        let mut open: Vec<(Point3<f64>, Vector3<f64>, f64)> = Vec::new();
+        sample::faces(
+            self.surface.positions(),
+            self.surface.faces(),
+            spacing,
+            |f, q, area| {
+                if !covered(tiles, &placed, &q) {
+                    open.push((q, normals[f], area));
+                }
+            },
+        );
+        let holes = HashGrid::of_points(self.blank[1], open.iter().map(|s| [s.0]));
+        for &(q, normal, _) in &open {
+            if covered(tiles, &placed, &q) {
+                continue;
+            }
+            // The nearest tile sets the piece's turn and which way is up.
+            let near = placed.near(&q, reach);
+            let Some(&nearest) = near.iter().min_by(|&&a, &&b| {
+                let d = |t: usize| (tiles[t].frame.origin - q).norm_squared();
+                d(a).total_cmp(&d(b)).then(a.cmp(&b))
+            }) else {
+                continue;
+            };
+            let up = if normal.dot(&tiles[nearest].frame.z) < 0.0 {
+                -normal
+            } else {
+                normal
+            };
+            // Centred on the hole around the sample, as far as a piece's half width reaches.
+            let (mut sum, mut weight) = (Vector3::zeros(), 0.0);
+            for s in holes.near(&q, self.blank[1] / 2.0) {
+                let (p, _, area) = open[s];
+                if (p - q).norm() <= self.blank[1] / 2.0 && !covered(tiles, &placed, &p) {
+                    sum += p.coords * area;
+                    weight += area;
+                }
+            }
+            let centre = if weight > 0.0 {
+                Point3::from(sum / weight)
+            } else {
+                q
+            };
+            let centre = self.boundary.closest(&centre, self.blank[1]).unwrap_or(q);
+            let near = placed.near(&centre, touching);
+            let turns = [tiles[nearest].frame.x, tiles[nearest].frame.y];
+            let best = turns
+                .iter()
+                .filter_map(|along| {
+                    let frame = Frame::from_normal(centre, up, along);
+                    self.piece(frame, tiles, &outlines, &near, &q)
+                })
+                .map(|piece| {
+                    let area = piece
+                        .cut
+                        .as_ref()
+                        .map_or(piece.size[0] * piece.size[1], |c| c.area());
+                    (piece, area)
+                })
+                .reduce(|a, b| if b.1 > a.1 { b } else { a });
+            if let Some((piece, _)) = best {
+                placed.insert(tiles.len(), &piece.frame.origin, &piece.frame.origin);
+                outlines.push(outline::world_corners(&piece));
+                tiles.push(piece);
+            }
+        }
+        tiles.len() - before
+    }
+
+    /// The piece on `frame` cut to the surface and to the room the tiles `near` leave, if it
+    /// is wide enough, overlaps none of them and still covers the sample `q` it is laid for.
+    fn piece(
+        &self,
+        frame: Frame,
+        tiles: &[Tile],
+        outlines: &[Vec<Point3<f64>>],
+        near: &[usize],
+        q: &Point3<f64>,
+    ) -> Option<Tile> {
+        let mut piece = Tile::new(TileKind::Full, Vec::new(), frame, self.blank);
+        match self.boundary.clip(&piece, self.tolerance) {
+            Clipped::Outside => return None,
+            Clipped::Whole => {}
+            Clipped::Cut(cut) => piece.cut = Some(cut),
+        }
+        if !super::fit::cut_to_room(&mut piece, tiles, outlines, near, self.joint) {
+            return None;
+        }
+        if let Some(cut) = &piece.cut {
+            if cut.kept_width() < self.min_width {
+                return None;
+            }
+            piece.kind = TileKind::Boundary;
+        }
+        // On a strongly curved surface a straight cut in the piece's plane may leave it
+        // overlapping a neighbour turned away from it: such a piece is not laid.
+        let own = outline::world_corners(&piece);
+        let clear = near.iter().all(|&t| {
+            !outline::may_touch(&tiles[t], &piece, 0.0)
+                || outline::separation_of(&tiles[t], &outlines[t], &piece, &own).gap >= 0.0
+        });
+        (clear && covers(&piece, q, 0.0)).then_some(piece)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::sample;
+
+    /// A flat rectangle `w` x `h` at z = 0, as two triangles.
+    fn rectangle(w: f64, h: f64) -> PolyMesh {
+        let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
+        PolyMesh::new(
+            vec![p(0.0, 0.0), p(w, 0.0), p(w, h), p(0.0, h)],
+            vec![vec![0, 1, 2], vec![0, 2, 3]],
+        )
+        .unwrap()
+    }
+
+    /// Two rows of four 280 x 140 tiles with 10 mm joints, along the bottom and the top of a
+    /// rectangle of height `h`.
+    fn rows(h: f64) -> Vec<Tile> {
+        let tile = |x: f64, y: f64| {
+            let frame = Frame::from_normal(Point3::new(x, y, 0.0), Vector3::z(), &Vector3::x());
+            Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
+        };
+        (0..4)
+            .flat_map(|i| {
+                let x = 0.14 + 0.29 * i as f64;
+                [tile(x, 0.07), tile(x, h - 0.07)]
+            })
+            .collect()
+    }
+
+    fn fill(surface: &PolyMesh, tiles: &mut Vec<Tile>) -> usize {
+        let boundary = SurfaceBoundary::new(surface, 0.28);
+        Tears {
+            surface,
+            boundary: &boundary,
+            blank: [0.28, 0.14, 0.015],
+            joint: 0.01,
+            min_width: 0.028,
+            tolerance: 0.001,
+        }
+        .fill(tiles)
+    }
+
+    /// Share of the rectangle's area between the rows that some tile covers.
+    fn between_covered(surface: &PolyMesh, tiles: &[Tile], h: f64) -> f64 {
+        let (mut covered, mut total) = (0.0, 0.0);
+        sample::faces(surface.positions(), surface.faces(), 0.02, |_, q, a| {
+            if q.y > 0.15 && q.y < h - 0.15 && q.x < 1.15 {
+                total += a;
+                if tiles.iter().any(|t| covers(t, &q, 0.005)) {
+                    covered += a;
+                }
+            }
+        });
+        covered / total
+    }
+
+    #[test]
+    fn a_tear_is_filled_with_pieces_a_joint_from_the_tiles() {
+        // Rows 320 mm apart: two courses of pieces (140 + 140 + three joints fit 310 mm).
+        let h = 0.6;
+        let surface = rectangle(1.16, h);
+        let mut tiles = rows(h);
+        assert!(between_covered(&surface, &tiles, h) < 0.01);
+        let added = fill(&surface, &mut tiles);
+        assert!(added >= 8, "{added}");
+        let share = between_covered(&surface, &tiles, h);
+        assert!(share > 0.85, "{share}");
+        // No piece overlaps anything, each leaves a joint where it runs along another (not
+        // where they only meet at a corner), and none is narrower than the narrowest kept
+        // width.
+        for (i, a) in tiles.iter().enumerate() {
+            for b in &tiles[i + 1..] {
+                let s = outline::separation(a, b);
+                assert!(s.gap > 0.0, "{}", s.gap);
+                assert!(!s.shares_joint(a, b) || s.gap > 0.01 - 1e-6, "{}", s.gap);
+            }
+            assert!(a.cut.as_ref().is_none_or(|c| c.kept_width() >= 0.028));
+        }
+        // The same input gives the same pieces.
+        let mut again = rows(h);
+        fill(&surface, &mut again);
+        assert_eq!(again, tiles);
+    }
+
+    #[test]
+    fn a_gap_too_narrow_for_a_piece_is_left_to_the_mortar() {
+        // 40 mm between the rows: a piece would keep 20 mm between its joints.
+        let h = 0.32;
+        let surface = rectangle(1.16, h);
+        let mut tiles = rows(h);
+        assert_eq!(fill(&surface, &mut tiles), 0);
+    }
+}
