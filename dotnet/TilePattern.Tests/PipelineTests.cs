@@ -67,6 +67,7 @@ namespace TilePattern.Tests
                 Assert.AreEqual(tiling.Tiles.Length - report.Cutting.FillerTiles, report.FullTiles + report.HalfTiles,
                     "full and half count the tiles on the quads by blank; filler pieces are counted apart");
                 Assert.AreEqual(report.Cutting.FillerTiles, tiling.Tiles.Count(t => t.Faces.Length == 0));
+                Assert.That(report.Cutting.TearPieces, Is.InRange(0, report.Cutting.FillerTiles));
                 Assert.IsNotNull(report.Fit, "the fit runs by default");
                 Assert.IsNotNull(report.Joints.BeforeFit);
                 Assert.AreEqual(tiling.BoundaryCount, report.BoundaryTiles);

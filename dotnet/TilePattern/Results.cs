@@ -415,8 +415,12 @@ namespace TilePattern
     {
         public int BoundaryTiles { get; internal set; }
         /// <summary>Filler pieces on no quad, where the quad mesh (or a course the fit left
-        /// short) ends before the surface's edge.</summary>
+        /// short) ends before the surface's edge, and in the holes the fit left.</summary>
         public int FillerTiles { get; internal set; }
+        /// <summary>Of <see cref="FillerTiles"/>, the pieces filling holes the fit left (where
+        /// courses converge or part, and along the edge where the edge's filler pieces did not
+        /// reach).</summary>
+        public int TearPieces { get; internal set; }
         /// <summary>Tiles entirely off the surface (dropped).</summary>
         public int OutsideTiles { get; internal set; }
         /// <summary>Pieces too narrow to keep (dropped): cut to the boundary, or by the fit.</summary>
@@ -586,6 +590,7 @@ namespace TilePattern
                 {
                     BoundaryTiles = JsonAccess.Integer(cutting, "boundary_tiles"),
                     FillerTiles = JsonAccess.Integer(cutting, "filler_tiles"),
+                    TearPieces = JsonAccess.Integer(cutting, "tear_pieces"),
                     OutsideTiles = JsonAccess.Integer(cutting, "outside_tiles"),
                     Slivers = slivers == null ? 0 : slivers.Count,
                     BoundaryShapes = JsonAccess.Integer(cutting, "boundary_shapes"),

@@ -261,3 +261,7 @@ def test_tiles_of_a_fit_cut_read_like_boundary_tiles():
     assert any(entry["kind"] == "fit_cut" and entry["label"].startswith("C") for entry in placed.cutlist)
     # No two tiles overlap by more than the tolerance (a twentieth of the joint).
     assert report["joints"]["max_overlap"] <= 0.01 / 20 + 1e-12
+    # The holes the fit leaves are filled with pieces on no face, counted among the fillers.
+    cutting = report["cutting"]
+    assert 0 < cutting["tear_pieces"] <= cutting["filler_tiles"]
+    assert cutting["filler_tiles"] == int(np.sum(np.all(placed.faces == -1, axis=1)))

@@ -82,8 +82,13 @@ pub struct CuttingSummary {
     /// Tiles cut to the boundary.
     pub boundary_tiles: usize,
     /// Filler pieces (half blanks) laid beyond the quad mesh's boundary, where it falls short
-    /// of the surface's edge; most of them are cut.
+    /// of the surface's edge, and the pieces filling the fit's tears (`tear_pieces`); most
+    /// of them are cut.
     pub filler_tiles: usize,
+    /// Of `filler_tiles`, the pieces (tile blanks, most of them cut) that fill the holes the
+    /// fit left where courses converge or part, and along the edge where the edge's filler
+    /// pieces did not reach.
+    pub tear_pieces: usize,
     /// Tiles dropped because no part of them lies on the surface.
     pub outside_tiles: usize,
     /// Pieces too thin to cut or lay, left out: the gap they leave is filled with mortar or a
@@ -171,6 +176,7 @@ impl Report {
         self.cutting = Some(CuttingSummary {
             boundary_tiles: self.boundary_tiles,
             filler_tiles: finished.fillers,
+            tear_pieces: finished.tear_pieces,
             outside_tiles: finished
                 .dropped
                 .iter()

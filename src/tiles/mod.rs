@@ -241,8 +241,11 @@ pub struct DroppedTile {
 pub struct Finished {
     /// Tiles left out: off the surface, or slivers.
     pub dropped: Vec<DroppedTile>,
-    /// Filler pieces placed beyond the quad mesh's boundary (tiles with no faces).
+    /// Filler pieces placed beyond the quad mesh's boundary and in the fit's tears (tiles
+    /// with no faces).
     pub fillers: usize,
+    /// Of `fillers`, the pieces filling holes the fit left (`tears.rs`).
+    pub tear_pieces: usize,
     /// Cut shapes with counts.
     pub cut_list: Vec<CutGroup>,
     /// Summary of the laying order.
@@ -440,6 +443,7 @@ pub fn finish(
         Finished {
             dropped,
             fillers,
+            tear_pieces: tears,
             cut_list,
             sequence,
         },
