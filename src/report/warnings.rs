@@ -142,10 +142,18 @@ pub fn check(
         }
         let dropped = c.outside_tiles + c.slivers.len();
         if dropped > 0 {
+            // After the fit, holes wide enough for a piece are filled with pieces cut to the
+            // room left (the tear fill); without it, or where a piece would be a sliver, by
+            // hand.
+            let filled = if report.fit.is_some() {
+                "holes wide enough for a piece are filled with pieces cut to the room left (cutting.tear_pieces), narrower ones with mortar or by hand"
+            } else {
+                "the gaps they leave are filled by hand"
+            };
             out.push(Warning::new(
                 WarningCode::TilesDropped,
                 format!(
-                    "{dropped} tiles were left out ({} off the surface, {} slivers narrower than the smallest kept width): the gaps they leave are filled by hand (report: cutting.slivers)",
+                    "{dropped} tiles were left out ({} off the surface, {} slivers narrower than the smallest kept width): {filled} (report: cutting.slivers)",
                     c.outside_tiles,
                     c.slivers.len()
                 ),
