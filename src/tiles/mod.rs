@@ -417,9 +417,8 @@ pub fn finish(
         }
     }
     // Tears the fit left wide enough for a piece are filled like the strip along the edge.
-    let mut tears = 0;
-    if options.fit.is_some() {
-        tears = tears::Tears {
+    let tears = if options.fit.is_some() {
+        tears::Tears {
             surface: reference,
             boundary: &boundary,
             blank: [spec.length, spec.width, spec.thickness],
@@ -427,8 +426,10 @@ pub fn finish(
             min_width: options.min_kept_width,
             tolerance: options.tolerance,
         }
-        .fill(&mut kept);
-    }
+        .fill(&mut kept)
+    } else {
+        0
+    };
     let mut links: Vec<[usize; 2]> = parents
         .iter()
         .enumerate()

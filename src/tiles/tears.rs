@@ -123,15 +123,8 @@ impl Tears<'_> {
                     let frame = Frame::from_normal(centre, up, along);
                     self.piece(frame, tiles, &outlines, &near, &q)
                 })
-                .map(|piece| {
-                    let area = piece
-                        .cut
-                        .as_ref()
-                        .map_or(piece.size[0] * piece.size[1], |c| c.area());
-                    (piece, area)
-                })
-                .reduce(|a, b| if b.1 > a.1 { b } else { a });
-            if let Some((piece, _)) = best {
+                .reduce(|a, b| if b.kept_area() > a.kept_area() { b } else { a });
+            if let Some(piece) = best {
                 placed.insert(tiles.len(), &piece.frame.origin, &piece.frame.origin);
                 outlines.push(outline::world_corners(&piece));
                 tiles.push(piece);
