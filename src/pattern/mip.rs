@@ -146,6 +146,22 @@ mod tests {
         started.elapsed().as_secs_f64()
     }
 
+    /// Whether a 12 x 12 grid is proven about as fast as `before` (in seconds) once more. Other
+    /// tests of this process solve with CBC at the same time and may hold its lock for a
+    /// while, so it is given five tries: a solve stopped earlier and still holding the lock
+    /// would fail all of them.
+    fn at_full_speed(before: f64) -> Result<(), String> {
+        let mut tries = Vec::new();
+        for _ in 0..5 {
+            let after = small();
+            if after < 2.0 * before + 0.25 {
+                return Ok(());
+            }
+            tries.push(format!("{after:.3}"));
+        }
+        Err(format!("{} s, {before:.3} s before", tries.join(", ")))
+    }
+
     #[test]
     fn a_cancel_or_the_deadline_inside_cbc_stops_it_and_leaves_it_free() {
         let before = small();
@@ -168,11 +184,7 @@ mod tests {
             after_cancel < Duration::from_millis(200),
             "returned {after_cancel:?} after the cancel"
         );
-        let after = small();
-        assert!(
-            after < 2.0 * before + 0.25,
-            "{after:.3} s, {before:.3} s before"
-        );
+        at_full_speed(before).unwrap();
 
         // The deadline, inside the root linear program, stops CBC the same way.
         let started = Instant::now();
@@ -182,10 +194,6 @@ mod tests {
             outcome.timed_out && outcome.chosen.is_none() && took < 1.5,
             "{took:.3} s"
         );
-        let after = small();
-        assert!(
-            after < 2.0 * before + 0.25,
-            "{after:.3} s, {before:.3} s before"
-        );
+        at_full_speed(before).unwrap();
     }
 }
