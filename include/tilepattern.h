@@ -300,6 +300,11 @@ enum TpWarning
    * The surface folds back on itself (neighbouring faces turned by more than 120 degrees).
    */
   TP_WARNING_FOLDED_SURFACE = 12,
+  /**
+   * Reading the file turned faces over to agree with their neighbours (the command line;
+   * a host's meshes are taken as given).
+   */
+  TP_WARNING_NORMALS_UNIFIED = 13,
 };
 #ifndef __cplusplus
 typedef int32_t TpWarning;

@@ -291,6 +291,116 @@ fn welding_joins_a_soup_and_can_be_turned_off() {
     );
 }
 
+/// `mesh` as OBJ text with every third face turned over (its corners after the first reversed).
+fn with_every_third_face_turned(mesh: &PolyMesh) -> String {
+    let faces: Vec<Vec<usize>> = mesh
+        .faces()
+        .iter()
+        .enumerate()
+        .map(|(f, face)| {
+            let mut face = face.clone();
+            if f % 3 == 2 {
+                face[1..].reverse();
+            }
+            face
+        })
+        .collect();
+    let mut text = String::new();
+    for p in mesh.positions() {
+        writeln!(text, "v {} {} {}", p.x, p.y, p.z).unwrap();
+    }
+    for face in &faces {
+        let corners: Vec<String> = face.iter().map(|v| (v + 1).to_string()).collect();
+        writeln!(text, "f {}", corners.join(" ")).unwrap();
+    }
+    text
+}
+
+#[test]
+fn faces_the_wrong_way_round_are_turned_and_said() {
+    // Before: "orientations disagree; unify the face normals", exit 1.
+    let mesh = shell(2.0, 1.0);
+    let text = with_every_third_face_turned(&mesh);
+    let loaded = io::parse(text.as_bytes(), Some("obj"), Weld::default()).unwrap();
+    let minority = (0..mesh.face_count()).filter(|f| f % 3 == 2).count();
+    assert_eq!(loaded.turned_faces, minority);
+    assert_eq!(loaded.mesh.faces(), mesh.faces());
+    // The command line tiles it as it tiles the mesh as drawn, and says what it turned.
+    let (turned, report, turned_dir) = run(
+        "turned",
+        "turned.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--units", "m"],
+    );
+    assert!(turned.status.success(), "{}", stderr(&turned));
+    assert!(
+        stderr(&turned).contains("warning [normals_unified]"),
+        "{}",
+        stderr(&turned)
+    );
+    assert!(codes(&report.unwrap()).contains(&"normals_unified".to_owned()));
+    let (drawn, _, drawn_dir) = run(
+        "drawn",
+        "drawn.obj",
+        obj::to_string(&mesh).as_bytes(),
+        &["--tile", "280x140x15", "--units", "m"],
+    );
+    assert!(drawn.status.success(), "{}", stderr(&drawn));
+    assert_eq!(
+        std::fs::read(turned_dir.join("out/tiles.obj")).unwrap(),
+        std::fs::read(drawn_dir.join("out/tiles.obj")).unwrap()
+    );
+}
+
+#[test]
+fn a_one_sided_surface_is_refused_with_the_reason() {
+    // A Moebius strip: 48 quads round a 2 m circle, 0.6 m wide, with a half twist.
+    let (n, m) = (48, 3);
+    let mut text = String::new();
+    for i in 0..n {
+        let u = std::f64::consts::TAU * i as f64 / n as f64;
+        for j in 0..=m {
+            let v = -0.3 + 0.6 * j as f64 / m as f64;
+            let r = 2.0 + v * (u / 2.0).cos();
+            writeln!(
+                text,
+                "v {} {} {}",
+                r * u.cos(),
+                r * u.sin(),
+                v * (u / 2.0).sin()
+            )
+            .unwrap();
+        }
+    }
+    let vertex = |i: usize, j: usize| {
+        if i == n {
+            m - j + 1
+        } else {
+            i * (m + 1) + j + 1
+        }
+    };
+    for i in 0..n {
+        for j in 0..m {
+            let (a, b, c, d) = (
+                vertex(i, j),
+                vertex(i, j + 1),
+                vertex(i + 1, j + 1),
+                vertex(i + 1, j),
+            );
+            writeln!(text, "f {a} {d} {c} {b}").unwrap();
+        }
+    }
+    let (out, report, _) = run(
+        "moebius",
+        "moebius.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--units", "m"],
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(report.is_none());
+    assert!(stderr(&out).contains("one-sided"), "{}", stderr(&out));
+}
+
 /// Runs `tilepattern run` on `mesh` written as `file`, with the extra arguments; returns the
 /// output, the report and the output folder.
 fn run(

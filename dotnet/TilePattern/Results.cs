@@ -461,6 +461,8 @@ namespace TilePattern
         WideJoints = 11,
         /// <summary>The surface folds back on itself (neighbouring faces turned by more than 120 degrees).</summary>
         FoldedSurface = 12,
+        /// <summary>Reading a file turned faces over to agree with their neighbours.</summary>
+        NormalsUnified = 13,
     }
 
     /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>

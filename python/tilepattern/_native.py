@@ -103,6 +103,7 @@ TP_WARNING_VERTICES_WELDED = 9
 TP_WARNING_FIT_CUTS = 10
 TP_WARNING_WIDE_JOINTS = 11
 TP_WARNING_FOLDED_SURFACE = 12
+TP_WARNING_NORMALS_UNIFIED = 13
 
 #: Warning code -> its name in report.json, for every code of ``enum TpWarning``.
 WARNING_NAMES = {
@@ -118,6 +119,7 @@ WARNING_NAMES = {
     TP_WARNING_FIT_CUTS: "fit_cuts",
     TP_WARNING_WIDE_JOINTS: "wide_joints",
     TP_WARNING_FOLDED_SURFACE: "folded_surface",
+    TP_WARNING_NORMALS_UNIFIED: "normals_unified",
 }
 
 MAX_VERTICES = 4_000_000

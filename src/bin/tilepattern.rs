@@ -368,7 +368,7 @@ fn run(cli: Cli) -> Result<()> {
             json,
         } => {
             let loaded = read_mesh(&quads)?;
-            print_warnings(weld_warning(&loaded).as_slice());
+            print_warnings(&reading_warnings(&loaded));
             let mesh = loaded.mesh;
             let zones = zones
                 .map(|path| zones_file::read(&path, mesh.face_count(), "quad mesh"))
@@ -408,7 +408,7 @@ fn run(cli: Cli) -> Result<()> {
             let surface = surface.map(|path| read_mesh(&path)).transpose()?;
             let mut welds: Vec<Warning> = std::iter::once(&loaded)
                 .chain(surface.as_ref())
-                .filter_map(weld_warning)
+                .flat_map(reading_warnings)
                 .collect();
             let mesh = loaded.mesh;
             let surface = surface.map(|s| s.mesh);
@@ -461,7 +461,7 @@ fn run(cli: Cli) -> Result<()> {
             time_limit,
         } => {
             let loaded = read_mesh(&input)?;
-            print_warnings(weld_warning(&loaded).as_slice());
+            print_warnings(&reading_warnings(&loaded));
             let surface = loaded.mesh;
             let options = RemeshOptions {
                 time_limit: RemeshOptions::time_limit_from_secs(time_limit)?,
@@ -509,7 +509,7 @@ fn run(cli: Cli) -> Result<()> {
             );
             line.finish();
             let (remeshed, mut tiling) = found.map_err(|e| units.explain(e))?;
-            tiling.report.warnings.extend(weld_warning(&loaded));
+            tiling.report.warnings.extend(reading_warnings(&loaded));
             let units = units.unit;
             // The quads' zones, as the pipeline gave them to the pattern stage.
             let quad_zones = zones
@@ -1099,6 +1099,22 @@ fn parse_weld(text: &str) -> Result<Weld, String> {
             "'{text}' is no weld tolerance; give a fraction of the mesh's diagonal between 0 and 0.01 (default 1e-6), or off"
         )),
     }
+}
+
+/// What reading `loaded` changed: welded vertices, faces turned over.
+fn reading_warnings(loaded: &Loaded) -> Vec<Warning> {
+    let turned = (loaded.turned_faces > 0).then(|| {
+        Warning::new(
+            WarningCode::NormalsUnified,
+            format!(
+                "the {} file's faces did not all face the same side: {} of {} faces were turned over to agree with their neighbours (each piece keeps the side most of its faces face); tiles are laid on that side, so unify the normals in the model (Rhino: UnifyMeshNormals, then Flip if needed) to choose it yourself",
+                loaded.format.name(),
+                loaded.turned_faces,
+                loaded.mesh.faces().len()
+            ),
+        )
+    });
+    weld_warning(loaded).into_iter().chain(turned).collect()
 }
 
 /// The warning that reading `loaded` welded its vertices, if it did.

@@ -643,6 +643,9 @@ pub enum TpWarning {
     TP_WARNING_WIDE_JOINTS = 11,
     /// The surface folds back on itself (neighbouring faces turned by more than 120 degrees).
     TP_WARNING_FOLDED_SURFACE = 12,
+    /// Reading the file turned faces over to agree with their neighbours (the command line;
+    /// a host's meshes are taken as given).
+    TP_WARNING_NORMALS_UNIFIED = 13,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -661,6 +664,7 @@ impl From<WarningCode> for TpWarning {
             WarningCode::FitCuts => TP_WARNING_FIT_CUTS,
             WarningCode::WideJoints => TP_WARNING_WIDE_JOINTS,
             WarningCode::FoldedSurface => TP_WARNING_FOLDED_SURFACE,
+            WarningCode::NormalsUnified => TP_WARNING_NORMALS_UNIFIED,
         }
     }
 }

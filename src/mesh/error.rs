@@ -93,6 +93,17 @@ pub enum MeshError {
         /// The two faces.
         faces: [usize; 2],
     },
+    /// The surface is one-sided (a Möbius strip): no choice of sides makes every pair of
+    /// neighbouring faces agree.
+    #[error(
+        "the surface is one-sided, like a Moebius strip: going round from face {} to face {} turns it over, so no side can be the top the tiles lie on; cut the surface open across its twist and tile the parts",
+        .faces[0],
+        .faces[1]
+    )]
+    NonOrientable {
+        /// Two neighbouring faces that cannot agree once the others are turned to match.
+        faces: [usize; 2],
+    },
     /// The mesh is larger than one call may take.
     #[error(
         "the mesh has {count} {what}; one call takes at most {limit}: split the shell into parts"

@@ -9,6 +9,7 @@ mod error;
 pub mod generate;
 pub mod io;
 pub mod obj;
+pub mod orient;
 mod topology;
 pub mod weld;
 
@@ -149,7 +150,12 @@ impl PolyMesh {
             seen.insert(key, face);
         }
         let mesh = Self { positions, faces };
-        Topology::new(&mesh)?.check_orientation(&mesh)?;
+        let topology = Topology::new(&mesh)?;
+        if let Err(disagree) = topology.check_orientation(&mesh) {
+            // Say so when no turning of faces can help.
+            let mut faces = mesh.faces.clone();
+            return Err(orient::orient(&mut faces).err().unwrap_or(disagree));
+        }
         Ok(mesh)
     }
 

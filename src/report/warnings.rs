@@ -43,6 +43,9 @@ pub enum WarningCode {
     /// The surface folds back on itself: neighbouring faces turn by more than
     /// [`FOLD_ANGLE`] (a crumpled or overlapping stretch of the input mesh).
     FoldedSurface = 12,
+    /// Reading the file turned faces over to agree with their neighbours (see
+    /// [`crate::mesh::orient`]).
+    NormalsUnified = 13,
 }
 
 /// One warning.

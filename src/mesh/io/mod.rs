@@ -1,7 +1,8 @@
 //! Reading the mesh formats designers export: OBJ, STL (ASCII and binary), PLY (ASCII and
 //! binary) and OFF, told apart by their content first (a PLY or OFF header, a binary STL's
 //! size) and by the file's extension otherwise; then vertices at the same place are welded
-//! (see [`super::weld`]) and the mesh validated by [`PolyMesh::new`].
+//! (see [`super::weld`]), faces the wrong way round turned to agree with their neighbours
+//! (see [`super::orient`]) and the mesh validated by [`PolyMesh::new`].
 //!
 //! Every front end that reads files goes through [`read`]: today that is the command line
 //! only (the C ABI, C#, Python and Grasshopper take meshes as arrays from their host).
@@ -16,7 +17,7 @@ use nalgebra::Point3;
 use serde::Serialize;
 
 use super::weld::{self, DEFAULT_RELATIVE_TOLERANCE, WeldSummary};
-use super::{MeshError, PolyMesh, obj};
+use super::{MeshError, PolyMesh, obj, orient};
 
 /// Positions and faces as a file gives them, before welding and validation.
 pub type Raw = (Vec<Point3<f64>>, Vec<Vec<usize>>);
@@ -78,6 +79,9 @@ pub struct Loaded {
     pub format: Format,
     /// What welding did.
     pub weld: WeldSummary,
+    /// Faces turned over to agree with their neighbours (each piece keeps the side most of
+    /// its faces face; see [`orient::orient`]).
+    pub turned_faces: usize,
 }
 
 /// Reads, welds and validates a mesh file of any supported format.
@@ -111,7 +115,8 @@ pub fn read(path: &Path, weld: Weld) -> Result<Loaded, MeshError> {
 ///
 /// # Errors
 /// [`MeshError::Format`] naming the format when the bytes cannot be read as it (or as any
-/// format), [`MeshError::TooLarge`], then any validation error of [`PolyMesh::new`].
+/// format), [`MeshError::TooLarge`], [`MeshError::NonOrientable`] for a one-sided surface,
+/// then any validation error of [`PolyMesh::new`].
 pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded, MeshError> {
     let format = detect(bytes, extension)?;
     let (positions, faces) = match format {
@@ -134,11 +139,14 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
         }
         _ => (positions, faces, WeldSummary::OFF),
     };
+    let mut faces = faces;
+    let turned_faces = orient::orient(&mut faces)?;
     let mesh = PolyMesh::new(positions, faces)?;
     Ok(Loaded {
         mesh,
         format,
         weld: summary,
+        turned_faces,
     })
 }
 
