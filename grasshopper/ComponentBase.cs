@@ -27,6 +27,16 @@ namespace TilePattern.Gh
             AddRuntimeMessage(level, message.Text);
         }
 
+        /// <summary>Says, as the command line's warning normals_unified does, that faces of an input
+        /// mesh were turned to agree with their neighbours (on a copy).</summary>
+        protected void WarnTurned(int turnedFaces, string input)
+        {
+            if (turnedFaces > 0)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning,
+                    "[normals_unified] " + turnedFaces + " faces of the " + input + " mesh did not face the same side as their neighbours and were turned over (on a copy); " +
+                    "tiles are laid on the side the normals point to, so unify the normals in Rhino (UnifyMeshNormals, then Flip if needed) to choose it yourself.");
+        }
+
         /// <summary>Runs a step on the UI thread, turning a failure into a runtime message.</summary>
         protected bool Run(Action step)
         {

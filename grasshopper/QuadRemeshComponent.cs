@@ -153,8 +153,10 @@ namespace TilePattern.Gh
                 options.GuideWeight = guideWeight;
             }
             PolyMesh surface = null;
-            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh)))
+            int turned = 0;
+            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned)))
                 return;
+            WarnTurned(turned, "surface");
             var key = new InputKey().Add(surface).Add(options.TargetEdge).Add(shapeUp).Add((int)options.Direction)
                 .Add(options.AngleDegrees).Add(hasDirection ? direction.X : 0).Add(hasDirection ? direction.Y : 0).Add(hasDirection ? direction.Z : 0);
             // The field in the key too, so a changed field solves again.

@@ -10,11 +10,20 @@ namespace TilePattern.Gh
     internal static class RhinoConvert
     {
         /// <summary>A Rhino mesh as a PolyMesh: vertices in order, each face as a triangle or a
-        /// quad (n-gons are taken as their triangles/quads; the library accepts both).</summary>
-        public static PolyMesh ToPolyMesh(Mesh mesh)
+        /// quad (n-gons are taken as their triangles/quads; the library accepts both). Faces
+        /// wound against their neighbours are turned on a copy (Rhino's UnifyNormals, as the
+        /// command line turns a file's); <paramref name="turnedFaces"/> says how many, and the
+        /// caller's mesh is never changed.</summary>
+        public static PolyMesh ToPolyMesh(Mesh mesh, out int turnedFaces)
         {
             if (mesh == null)
                 throw new ArgumentNullException("mesh");
+            turnedFaces = mesh.UnifyNormals(true);
+            if (turnedFaces > 0)
+            {
+                mesh = mesh.DuplicateMesh();
+                turnedFaces = mesh.UnifyNormals();
+            }
             var xyz = new double[3 * mesh.Vertices.Count];
             for (int i = 0; i < mesh.Vertices.Count; i++)
             {

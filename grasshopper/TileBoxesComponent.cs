@@ -99,12 +99,15 @@ namespace TilePattern.Gh
             double tolerance = Tolerance();
 
             PolyMesh quads = null, surface = null;
+            int turnedQuads = 0, turnedSurface = 0;
             if (!Run(() =>
             {
-                quads = hasQuads ? RhinoConvert.ToPolyMesh(quadsMesh) : null;
-                surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh) : null;
+                quads = hasQuads ? RhinoConvert.ToPolyMesh(quadsMesh, out turnedQuads) : null;
+                surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh, out turnedSurface) : null;
             }))
                 return;
+            WarnTurned(turnedQuads, "quad");
+            WarnTurned(turnedSurface, "surface");
             // UnitsPerMm from the document's units: the report's shares of joints within 2 and 5 mm.
             var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm };
             // The pattern by identity and by content (identity hashes alone may collide).

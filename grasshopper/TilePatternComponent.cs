@@ -118,8 +118,10 @@ namespace TilePattern.Gh
             foreach (int face in excluded)
                 options.ExcludedFaces.Add(face);
             PolyMesh quads = null;
-            if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh)))
+            int turned = 0;
+            if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh, out turned)))
                 return;
+            WarnTurned(turned, "quad");
             var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded).Add(courses).Add(gap).Add(zones);
             // Not disposed here: the pattern travels downstream; its SafeHandles free the native
             // memory (announced to the GC) once Grasshopper lets go of it.

@@ -25,6 +25,9 @@ namespace Rhino.Geometry
         public Rhino.Geometry.Collections.MeshFaceList Faces { get { throw null; } }
         public Rhino.Geometry.Collections.MeshVertexNormalList Normals { get { throw null; } }
         public bool Compact() { throw null; }
+        public Mesh DuplicateMesh() { throw null; }
+        public int UnifyNormals() { throw null; }
+        public int UnifyNormals(bool countOnly) { throw null; }
     }
 
     public struct MeshFace
