@@ -10,7 +10,7 @@
 //! allows it) removes both defects, and the following least-squares solve spreads the
 //! small stretch this costs over the surrounding quads.
 
-use std::collections::VecDeque;
+use std::collections::{BTreeMap, VecDeque};
 
 use nalgebra::Matrix2;
 
@@ -32,6 +32,17 @@ impl Rot {
     fn inv(self) -> Rot {
         Rot((4 - self.0 % 4) % 4)
     }
+    fn apply_f(self, v: [f64; 2]) -> [f64; 2] {
+        match self.0 % 4 {
+            0 => v,
+            1 => [-v[1], v[0]],
+            2 => [-v[0], -v[1]],
+            _ => [v[1], -v[0]],
+        }
+    }
+    fn then(self, o: Rot) -> Rot {
+        Rot((self.0 + o.0) % 4)
+    }
 }
 
 /// Rounds a frame transfer matrix to the nearest quarter turn.
@@ -49,6 +60,13 @@ pub(crate) struct Jumps<'a> {
 }
 
 const NONE: usize = usize::MAX;
+
+/// Largest dislocation content (in Burgers vectors, whole lattice steps) a patch may ask for
+/// and still have its lone dislocations walked out ([`Jumps::unwanted`]). Measured on the
+/// guide test of `tests/guides.rs` (a guide at 30 degrees to the designer's field): its
+/// patches ask for about 2-3.5 and their dislocations must stay; those the integration leaves
+/// on an evenly triangulated vault sit in patches asking for 0.05-0.25.
+const CALM: f64 = 0.5;
 
 impl<'a> Jumps<'a> {
     /// Prepares curl bookkeeping for `s` with per-edge frame transfers `transfer`.
@@ -143,21 +161,72 @@ impl<'a> Jumps<'a> {
         self.frame_map(tri[0], x).inv().apply(wanted)
     }
 
+    /// True when the dislocation at triangle `start` is one the lattice is better without.
+    /// Over the triangles within `radius` steps of it, `B` (the sum of `density`) is what the
+    /// surface and the field ask for and `D` (the sum of the integer curls) what the lattice
+    /// has. The dislocation, of Burgers vector `b`, is unwanted when the patch asks for less
+    /// than [`CALM`] and taking `b` out brings `D` nearer to `B` (`|D - b - B| < |D - B|`).
+    /// One left over from the first lattice sits in a calm patch; the dislocations a bend or a
+    /// turn of the designer's field needs sit where `B` is a Burgers vector or more.
+    fn unwanted(&self, m: &[[i64; 2]], start: usize, density: &[[f64; 2]], radius: usize) -> bool {
+        let b = self.curl(m, start);
+        let mut seen: BTreeMap<usize, Rot> = BTreeMap::from([(start, Rot(0))]);
+        let mut queue = VecDeque::from([(start, 0)]);
+        let (mut d, mut want) = ([0i64; 2], [0f64; 2]);
+        while let Some((t, level)) = queue.pop_front() {
+            let to_start = seen[&t];
+            let c = to_start.apply(self.curl(m, t));
+            let w = to_start.apply_f(density[t]);
+            for k in 0..2 {
+                d[k] += c[k];
+                want[k] += w[k];
+            }
+            if level == radius {
+                continue;
+            }
+            for &e in &self.tri_edges[t] {
+                let other = if self.edge_tris[e][0] == t {
+                    self.edge_tris[e][1]
+                } else {
+                    self.edge_tris[e][0]
+                };
+                if other == NONE || self.is_cone(other) || seen.contains_key(&other) {
+                    continue;
+                }
+                // Frames of the two first vertices, through a vertex both triangles share.
+                let shared = self.s.edges[e][0];
+                let (f1, f2) = (self.s.tris[t][0], self.s.tris[other][0]);
+                let map = self.frame_map(f1, shared).then(self.frame_map(shared, f2));
+                seen.insert(other, to_start.then(map));
+                queue.push_back((other, level + 1));
+            }
+        }
+        let off = |x: [f64; 2]| x[0] * x[0] + x[1] * x[1];
+        let with = [d[0] as f64 - want[0], d[1] as f64 - want[1]];
+        let without = [with[0] - b[0] as f64, with[1] - b[1] as f64];
+        d == b && off(want) < CALM * CALM && off(without) < off(with)
+    }
+
     /// Moves curls onto opposite curls along dual paths of at most `depth` triangles, or out
-    /// through the boundary within `exit_depth` triangles. `pinned_normal[v]` says the boundary vertex `v` has its
-    /// lattice line pinned along the boundary (then only tangential steps may leave there).
-    /// Returns how many defects were removed.
+    /// through the boundary within `exit_depth` triangles. With `far = Some((far_depth,
+    /// density, radius))`, a curl with neither within reach leaves through the boundary within
+    /// `far_depth` triangles too, if [`Self::unwanted`] says so. `pinned_normal[v]` says the
+    /// boundary vertex `v` has its lattice line pinned along the boundary (then only
+    /// tangential steps may leave there). Returns how many defects were removed.
     /// `keep_going` is asked now and then; `false` stops with the defects left so far.
     pub fn cancel(
         &self,
         m: &mut [[i64; 2]],
         depth: usize,
         exit_depth: usize,
+        far: Option<(usize, &[[f64; 2]], usize)>,
         pinned_normal: &[bool],
         keep_going: &mut dyn FnMut() -> bool,
     ) -> usize {
         let nt = self.s.tris.len();
         let cone: Vec<bool> = (0..nt).map(|t| self.is_cone(t)).collect();
+        let far_depth = far.map_or(0, |f| f.0);
+        let reach = depth.max(exit_depth).max(far_depth);
         let mut removed = 0;
         let mut level = vec![usize::MAX; nt];
         let mut parent = vec![(NONE, NONE); nt];
@@ -175,6 +244,8 @@ impl<'a> Jumps<'a> {
             parent[start] = (NONE, NONE);
             let mut queue = VecDeque::from([start]);
             let mut done = false;
+            // Asked once, when the search first goes beyond `exit_depth`.
+            let mut may_leave_far: Option<bool> = None;
             while let Some(t) = queue.pop_front() {
                 if done {
                     break;
@@ -190,22 +261,28 @@ impl<'a> Jumps<'a> {
                         // dislocation is usually one the geometry needs (the inside of a
                         // bend has fewer rows than the outside), and removing it would
                         // stretch every quad in between.
-                        if level[t] <= exit_depth
-                            && self.try_path(m, start, t, &parent, Some(e), pinned_normal)
-                        {
+                        let within = level[t] <= exit_depth
+                            || (level[t] <= far_depth
+                                && *may_leave_far.get_or_insert_with(|| {
+                                    far.is_some_and(|(_, density, radius)| {
+                                        self.unwanted(m, start, density, radius)
+                                    })
+                                }));
+                        if within && self.try_path(m, start, t, &parent, Some(e), pinned_normal) {
                             removed += 1;
                             done = true;
                             break;
                         }
                         continue;
                     }
-                    if cone[other] || stamp[other] == start || level[t] + 1 > depth {
+                    if cone[other] || stamp[other] == start || level[t] + 1 > reach {
                         continue;
                     }
                     stamp[other] = start;
                     level[other] = level[t] + 1;
                     parent[other] = (t, e);
-                    if self.curl(m, other) != [0, 0]
+                    if level[other] <= depth
+                        && self.curl(m, other) != [0, 0]
                         && self.try_path(m, start, other, &parent, None, pinned_normal)
                     {
                         removed += 2;
@@ -277,4 +354,73 @@ fn edge_id(s: &Surface, a: usize, b: usize) -> usize {
     let list = &s.adj[a];
     let k = list.partition_point(|&(v, _)| v < b);
     list[k].1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    /// A flat `n` x `n` grid of unit cells, two triangles each, with one frame everywhere and
+    /// the lattice steps of a perfect unit lattice (no curl anywhere).
+    fn grid(n: usize) -> (Surface, Vec<Matrix2<f64>>, Vec<[i64; 2]>) {
+        let at = |i: usize, j: usize| j * (n + 1) + i;
+        let pos: Vec<Vector3<f64>> = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| Vector3::new(i as f64, j as f64, 0.0)))
+            .collect();
+        let mut tris = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let s = Surface::build(pos, tris, None);
+        let transfer = vec![Matrix2::identity(); s.edges.len()];
+        let m = s
+            .edges
+            .iter()
+            .map(|&[a, b]| {
+                let d = s.pos[b] - s.pos[a];
+                [d.x.round() as i64, d.y.round() as i64]
+            })
+            .collect();
+        (s, transfer, m)
+    }
+
+    /// Gives the triangle on boundary edge `[a, b]` a dislocation, and returns the triangle.
+    fn dislocate(s: &Surface, jumps: &Jumps, m: &mut [[i64; 2]], a: usize, b: usize) -> usize {
+        let e = edge_id(s, a, b);
+        m[e][0] += 1;
+        let t = jumps.edge_tris[e][0];
+        assert_ne!(jumps.curl(m, t), [0, 0]);
+        t
+    }
+
+    #[test]
+    fn a_lone_dislocation_in_a_calm_patch_is_unwanted_and_a_wanted_or_crowded_one_is_not() {
+        let (s, transfer, mut m) = grid(8);
+        let jumps = Jumps::new(&s, &transfer);
+        let nt = s.tris.len();
+        assert!((0..nt).all(|t| jumps.curl(&m, t) == [0, 0]));
+        // Bottom edge of the fourth cell: vertices 3 and 4 of the first row.
+        let start = dislocate(&s, &jumps, &mut m, 3, 4);
+        let b = jumps.curl(&m, start);
+        let calm = vec![[0.0; 2]; nt];
+        assert!(jumps.unwanted(&m, start, &calm, 3));
+        // The surface asks for this Burgers vector here: it stays.
+        let mut asked = calm.clone();
+        asked[start] = [b[0] as f64, b[1] as f64];
+        assert!(!jumps.unwanted(&m, start, &asked, 3));
+        // A second one of the same sign next to it: a row end the shape is making, it stays.
+        let next = dislocate(&s, &jumps, &mut m, 4, 5);
+        assert_eq!(jumps.curl(&m, next), b);
+        assert!(!jumps.unwanted(&m, start, &calm, 3));
+        // Beyond the patch's radius the neighbour no longer counts.
+        let (s, transfer, mut m) = grid(8);
+        let jumps = Jumps::new(&s, &transfer);
+        let start = dislocate(&s, &jumps, &mut m, 0, 1);
+        dislocate(&s, &jumps, &mut m, 7, 8);
+        assert!(jumps.unwanted(&m, start, &calm, 3));
+    }
 }

@@ -51,6 +51,21 @@ const LAST_ITERATIONS: usize = 300;
 /// bend needs its extra rows), so the pair is kept as irregular vertices.
 const CANCEL_REACH: f64 = 5.0;
 
+/// Farthest (in quad lengths `t`) an unwanted lone dislocation is walked out through the
+/// boundary while the boundary is still free (the rounds before [`PIN_FROM`]).
+///
+/// The first lattice comes from integrating along a breadth-first tree, and on an evenly
+/// triangulated shell (a remeshed or scanned surface, an STL) it holds dislocations several
+/// metres inside the boundary that a structured triangulation of the same shell never gets,
+/// and that no later round moves: the least-squares solve relaxes around them. Each would
+/// become a pair of irregular vertices. Those the surface and the field do not ask for
+/// ([`JUDGE_RADIUS`]) leave while the boundary is free, which costs the lattice little.
+const FREE_EXIT_REACH: f64 = 15.0;
+
+/// Radius (in quad lengths) of the patch over which a dislocation's Burgers vector is
+/// weighed against the dislocation density the surface and field ask for.
+const JUDGE_RADIUS: f64 = 2.0;
+
 /// Distance between the centroids of two triangles sharing an edge, per unit of mean edge
 /// length (equilateral triangles: 1 / sqrt 3).
 const TRIANGLE_STEP: f64 = 0.577;
@@ -140,8 +155,17 @@ pub(crate) fn solve(
     // rows along its rim).
     let mut uncancelled: Option<Vec<[i64; 2]>> = None;
     let mut cancelling = true;
+    // Before the boundary is pinned, unwanted lone dislocations leave through it from
+    // farther in.
+    let density = burgers_density(s, &delta, &transfer, t);
+    let free = (
+        (FREE_EXIT_REACH / CANCEL_REACH * depth as f64).ceil() as usize,
+        density.as_slice(),
+        (JUDGE_RADIUS / CANCEL_REACH * depth as f64).ceil() as usize,
+    );
     let cancel = |m: &mut Vec<[i64; 2]>,
                   cancelling: bool,
+                  far: Option<(usize, &[[f64; 2]], usize)>,
                   pinned_normal: &[bool],
                   budget: &mut Budget|
      -> Option<Vec<[i64; 2]>> {
@@ -149,7 +173,9 @@ pub(crate) fn solve(
             return None;
         }
         let before = m.clone();
-        flow.cancel(m, depth, depth, pinned_normal, &mut || budget.poll(0.0));
+        flow.cancel(m, depth, depth, far, pinned_normal, &mut || {
+            budget.poll(0.0)
+        });
         Some(before)
     };
     for round in 0..ROUNDS {
@@ -169,7 +195,7 @@ pub(crate) fn solve(
                 }
             }
             m = jumps(&u);
-            uncancelled = cancel(&mut m, cancelling, &pinned_normal, budget);
+            uncancelled = cancel(&mut m, cancelling, None, &pinned_normal, budget);
         }
         let last = round + 1 == ROUNDS;
         let iterations = if last { LAST_ITERATIONS } else { ITERATIONS };
@@ -195,7 +221,8 @@ pub(crate) fn solve(
             }
         }
         m = jumps(&u);
-        uncancelled = cancel(&mut m, cancelling, &pinned_normal, budget);
+        let far = (round + 1 < PIN_FROM).then_some(free);
+        uncancelled = cancel(&mut m, cancelling, far, &pinned_normal, budget);
     }
     let origin = (0..n).map(|v| s.pos[v] + basis[v] * read(&u, v)).collect();
     Lattice {
@@ -368,4 +395,111 @@ fn integrate(s: &Surface, basis: &[Matrix3x2<f64>], t: f64) -> Vec<f64> {
         }
     }
     u
+}
+
+/// Per triangle, the sum of the lattice steps the surface and the field ask for around it
+/// (the edge vectors at full length, carried into the frame of the triangle's first vertex
+/// by the frame transfers), in quad lengths: the continuous dislocation density the integer
+/// curls should add up to over a patch. It is zero on a developable surface with a parallel
+/// field, and grows with Gaussian curvature and with the field's turning (a bend, a guide
+/// at an angle to the designer's field).
+fn burgers_density(
+    s: &Surface,
+    delta: &[Vector2<f64>],
+    transfer: &[Matrix2<f64>],
+    t: f64,
+) -> Vec<[f64; 2]> {
+    let edge_of = |a: usize, b: usize| -> usize {
+        let (x, y) = (a.min(b), a.max(b));
+        let list = &s.adj[x];
+        list[list.partition_point(|&(v, _)| v < y)].1
+    };
+    // Step from x to y, in x's frame.
+    let step = |x: usize, y: usize| -> Vector2<f64> {
+        let e = edge_of(x, y);
+        if x < y {
+            delta[e]
+        } else {
+            -(transfer[e].transpose() * delta[e])
+        }
+    };
+    // Carries vectors in y's frame into x's by the whole quarter turns between the frames,
+    // as the integer steps are carried: the frames' small turns are what the density is.
+    let carry = |x: usize, y: usize| -> Matrix2<f64> {
+        let e = edge_of(x, y);
+        let m = transfer[e];
+        let turns = ((m[(1, 0)] - m[(0, 1)]).atan2(m[(0, 0)] + m[(1, 1)])
+            / std::f64::consts::FRAC_PI_2)
+            .round();
+        let angle = turns * std::f64::consts::FRAC_PI_2;
+        let r = Matrix2::new(
+            angle.cos().round(),
+            -angle.sin().round(),
+            angle.sin().round(),
+            angle.cos().round(),
+        );
+        if x < y { r } else { r.transpose() }
+    };
+    s.tris
+        .iter()
+        .map(|&[a, b, c]| {
+            let sum = step(a, b) + carry(a, b) * step(b, c) + carry(a, c) * step(c, a);
+            [sum.x / t, sum.y / t]
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The Burgers density summed over a flat 2 x 2 patch of spacing 0.1, with crosses turned
+    /// by `turn * x` radians at `x`, in quad lengths of 0.1.
+    fn patch_density(turn: f64) -> [f64; 2] {
+        let (n, h, t) = (20, 0.1, 0.1);
+        let at = |i: usize, j: usize| j * (n + 1) + i;
+        let pos: Vec<Vector3<f64>> = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| Vector3::new(i as f64 * h, j as f64 * h, 0.0)))
+            .collect();
+        let mut tris = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let s = Surface::build(pos, tris, None);
+        let frames: Vec<Vector3<f64>> = s
+            .pos
+            .iter()
+            .map(|p| Vector3::new((turn * p.x).cos(), (turn * p.x).sin(), 0.0))
+            .collect();
+        let basis = bases(&s, &frames);
+        let transfer: Vec<Matrix2<f64>> = s
+            .edges
+            .iter()
+            .map(|&[a, b]| basis[a].transpose() * basis[b])
+            .collect();
+        let delta: Vec<Vector2<f64>> = s
+            .edges
+            .iter()
+            .map(|&[a, b]| basis[a].transpose() * s.edge_vec(a, b))
+            .collect();
+        burgers_density(&s, &delta, &transfer, t)
+            .iter()
+            .fold([0.0; 2], |acc, d| [acc[0] + d[0], acc[1] + d[1]])
+    }
+
+    #[test]
+    fn the_density_is_nil_for_parallel_crosses_and_grows_with_their_turning() {
+        let still = patch_density(0.0);
+        assert!(still[0].hypot(still[1]) < 1e-9, "{still:?}");
+        let slow = patch_density(0.05);
+        let fast = patch_density(0.1);
+        let (slow, fast) = (slow[0].hypot(slow[1]), fast[0].hypot(fast[1]));
+        // Crosses turning by 0.1 rad per metre over 2 m: rows of 0.1 m gain a few tenths of
+        // a row across the patch.
+        assert!(slow > 0.05, "{slow}");
+        assert!((fast / slow - 2.0).abs() < 0.1, "{slow} {fast}");
+    }
 }
