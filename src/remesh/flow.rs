@@ -51,6 +51,13 @@ fn quarter_turns(t: &Matrix2<f64>) -> Rot {
     Rot(((angle / std::f64::consts::FRAC_PI_2).round() as i64).rem_euclid(4) as u8)
 }
 
+/// The whole quarter turn nearest to a frame transfer matrix, as a rotation matrix: how the
+/// integer lattice steps are carried between two frames.
+pub(crate) fn quarter_turn_matrix(t: &Matrix2<f64>) -> Matrix2<f64> {
+    let [c, s] = quarter_turns(t).apply([1, 0]).map(|x| x as f64);
+    Matrix2::new(c, -s, s, c)
+}
+
 /// Lattice jumps with the connectivity to reason about their curls.
 pub(crate) struct Jumps<'a> {
     s: &'a Surface,
@@ -395,6 +402,20 @@ mod tests {
         let t = jumps.edge_tris[e][0];
         assert_ne!(jumps.curl(m, t), [0, 0]);
         t
+    }
+
+    #[test]
+    fn transfers_round_to_the_nearest_quarter_turn() {
+        let turn = |deg: f64| {
+            let a = deg.to_radians();
+            Matrix2::new(a.cos(), -a.sin(), a.sin(), a.cos())
+        };
+        for (deg, want) in [(10.0, 0.0), (80.0, 90.0), (-100.0, -90.0), (170.0, 180.0)] {
+            assert!(
+                (quarter_turn_matrix(&turn(deg)) - turn(want)).norm() < 1e-12,
+                "{deg}"
+            );
+        }
     }
 
     #[test]

@@ -18,7 +18,7 @@
 use nalgebra::{Matrix2, Matrix3x2, Vector2, Vector3};
 
 use super::budget::Budget;
-use super::flow::Jumps;
+use super::flow::{self, Jumps};
 use super::linalg::conjugate_gradient;
 use super::surface::Surface;
 
@@ -426,18 +426,7 @@ fn burgers_density(
     // Carries vectors in y's frame into x's by the whole quarter turns between the frames,
     // as the integer steps are carried: the frames' small turns are what the density is.
     let carry = |x: usize, y: usize| -> Matrix2<f64> {
-        let e = edge_of(x, y);
-        let m = transfer[e];
-        let turns = ((m[(1, 0)] - m[(0, 1)]).atan2(m[(0, 0)] + m[(1, 1)])
-            / std::f64::consts::FRAC_PI_2)
-            .round();
-        let angle = turns * std::f64::consts::FRAC_PI_2;
-        let r = Matrix2::new(
-            angle.cos().round(),
-            -angle.sin().round(),
-            angle.sin().round(),
-            angle.cos().round(),
-        );
+        let r = flow::quarter_turn_matrix(&transfer[edge_of(x, y)]);
         if x < y { r } else { r.transpose() }
     };
     s.tris
