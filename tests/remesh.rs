@@ -356,6 +356,56 @@ fn a_bend_gets_rows_that_end_inside_rather_than_stretched_quads() {
     );
 }
 
+/// A pillow vault (10 x 7, rise 2.5) triangulated without rows: a 70 x 70 grid whose inner
+/// vertices are jittered by up to 0.35 of a cell and whose cells are split along a random
+/// diagonal, as an STL export, a scan or a remesher gives.
+fn jittered_pillow_vault() -> PolyMesh {
+    let n = 70;
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut unit = move || {
+        // xorshift64*: a fixed sequence in [0, 1).
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut positions = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (mut u, mut v) = (i as f64 / n as f64, j as f64 / n as f64);
+            if 0 < i && i < n && 0 < j && j < n {
+                u += (unit() - 0.5) * 0.7 / n as f64;
+                v += (unit() - 0.5) * 0.7 / n as f64;
+            }
+            let z = 2.5 * (PI * u).sin() * (PI * v).sin();
+            positions.push(Point3::new(10.0 * u, 7.0 * v, z));
+        }
+    }
+    let id = |i: usize, j: usize| j * (n + 1) + i;
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if unit() < 0.5 {
+                faces.extend([vec![a, b, c], vec![a, c, d]]);
+            } else {
+                faces.extend([vec![a, b, d], vec![b, c, d]]);
+            }
+        }
+    }
+    PolyMesh::new(positions, faces).expect("generated surface is valid")
+}
+
+#[test]
+fn a_triangulation_without_rows_keeps_few_row_ends() {
+    // The first lattice of an unstructured triangulation holds dislocations the shape does
+    // not need; those in calm patches leave through the boundary before it is pinned
+    // (measured: 55 irregular vertices, 96 % of edges within 20 %; 76 and 95 % when none
+    // leave). The same vault triangulated in rows gets 4.
+    let result = remesh(&jittered_pillow_vault(), &options(0.145)).expect("remesh");
+    check("jittered pillow vault", &result.metrics, 62);
+}
+
 #[test]
 fn barrel_vault_follows_curvature() {
     let result = remesh(&vault(), &options(0.15)).expect("remesh");
