@@ -86,7 +86,7 @@ impl<'a> Jumps<'a> {
             .enumerate()
             .map(|(ti, tri)| {
                 [0, 1, 2].map(|k| {
-                    let e = edge_id(s, tri[k], tri[(k + 1) % 3]);
+                    let e = s.edge(tri[k], tri[(k + 1) % 3]);
                     let slot = if edge_tris[e][0] == NONE { 0 } else { 1 };
                     edge_tris[e][slot] = ti;
                     e
@@ -106,7 +106,7 @@ impl<'a> Jumps<'a> {
         if a == b {
             return Rot(0);
         }
-        let e = edge_id(self.s, a, b);
+        let e = self.s.edge(a, b);
         if a < b {
             self.turns[e]
         } else {
@@ -121,6 +121,12 @@ impl<'a> Jumps<'a> {
         } else {
             self.turns[e].inv()
         }
+    }
+
+    /// The triangle across edge `e` from triangle `t`, or [`NONE`] on the boundary.
+    fn across(&self, t: usize, e: usize) -> usize {
+        let [first, second] = self.edge_tris[e];
+        if first == t { second } else { first }
     }
 
     /// Lattice step from `x` to `y` (the ends of edge `e`), in `x`'s frame.
@@ -192,11 +198,7 @@ impl<'a> Jumps<'a> {
                 continue;
             }
             for &e in &self.tri_edges[t] {
-                let other = if self.edge_tris[e][0] == t {
-                    self.edge_tris[e][1]
-                } else {
-                    self.edge_tris[e][0]
-                };
+                let other = self.across(t, e);
                 if other == NONE || self.is_cone(other) || seen.contains_key(&other) {
                     continue;
                 }
@@ -258,11 +260,7 @@ impl<'a> Jumps<'a> {
                     break;
                 }
                 for &e in &self.tri_edges[t] {
-                    let other = if self.edge_tris[e][0] == t {
-                        self.edge_tris[e][1]
-                    } else {
-                        self.edge_tris[e][0]
-                    };
+                    let other = self.across(t, e);
                     if other == NONE {
                         // Boundary exit, only near the boundary: far from it a lone
                         // dislocation is usually one the geometry needs (the inside of a
@@ -356,33 +354,16 @@ impl<'a> Jumps<'a> {
     }
 }
 
-/// The edge id joining `a` and `b` (which must be adjacent).
-fn edge_id(s: &Surface, a: usize, b: usize) -> usize {
-    let list = &s.adj[a];
-    let k = list.partition_point(|&(v, _)| v < b);
-    list[k].1
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::remesh::surface::samples::sheet;
     use nalgebra::Vector3;
 
     /// A flat `n` x `n` grid of unit cells, two triangles each, with one frame everywhere and
     /// the lattice steps of a perfect unit lattice (no curl anywhere).
     fn grid(n: usize) -> (Surface, Vec<Matrix2<f64>>, Vec<[i64; 2]>) {
-        let at = |i: usize, j: usize| j * (n + 1) + i;
-        let pos: Vec<Vector3<f64>> = (0..=n)
-            .flat_map(|j| (0..=n).map(move |i| Vector3::new(i as f64, j as f64, 0.0)))
-            .collect();
-        let mut tris = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-            }
-        }
-        let s = Surface::build(pos, tris, None);
+        let s = sheet(n, 1.0, (0..0, 0..0), |_, _| 0.0);
         let transfer = vec![Matrix2::identity(); s.edges.len()];
         let m = s
             .edges
@@ -396,10 +377,18 @@ mod tests {
     }
 
     /// Gives the triangle on boundary edge `[a, b]` a dislocation, and returns the triangle.
-    fn dislocate(s: &Surface, jumps: &Jumps, m: &mut [[i64; 2]], a: usize, b: usize) -> usize {
-        let e = edge_id(s, a, b);
+    /// Gives the triangle on the bottom boundary edge from `x` to `x + 1` a dislocation, and
+    /// returns the triangle.
+    fn dislocate(s: &Surface, jumps: &Jumps, m: &mut [[i64; 2]], x: usize) -> usize {
+        let at = |x: usize| {
+            (0..s.len())
+                .find(|&v| s.pos[v] == Vector3::new(x as f64, 0.0, 0.0))
+                .expect("a vertex on the bottom edge")
+        };
+        let e = s.edge(at(x), at(x + 1));
         m[e][0] += 1;
-        let t = jumps.edge_tris[e][0];
+        let [t, other] = jumps.edge_tris[e];
+        assert_eq!(other, NONE, "a boundary edge");
         assert_ne!(jumps.curl(m, t), [0, 0]);
         t
     }
@@ -424,8 +413,8 @@ mod tests {
         let jumps = Jumps::new(&s, &transfer);
         let nt = s.tris.len();
         assert!((0..nt).all(|t| jumps.curl(&m, t) == [0, 0]));
-        // Bottom edge of the fourth cell: vertices 3 and 4 of the first row.
-        let start = dislocate(&s, &jumps, &mut m, 3, 4);
+        // The bottom edge of the fourth cell.
+        let start = dislocate(&s, &jumps, &mut m, 3);
         let b = jumps.curl(&m, start);
         let calm = vec![[0.0; 2]; nt];
         assert!(jumps.unwanted(&m, start, &calm, 3));
@@ -434,14 +423,14 @@ mod tests {
         asked[start] = [b[0] as f64, b[1] as f64];
         assert!(!jumps.unwanted(&m, start, &asked, 3));
         // A second one of the same sign next to it: a row end the shape is making, it stays.
-        let next = dislocate(&s, &jumps, &mut m, 4, 5);
+        let next = dislocate(&s, &jumps, &mut m, 4);
         assert_eq!(jumps.curl(&m, next), b);
         assert!(!jumps.unwanted(&m, start, &calm, 3));
         // Beyond the patch's radius the neighbour no longer counts.
         let (s, transfer, mut m) = grid(8);
         let jumps = Jumps::new(&s, &transfer);
-        let start = dislocate(&s, &jumps, &mut m, 0, 1);
-        dislocate(&s, &jumps, &mut m, 7, 8);
+        let start = dislocate(&s, &jumps, &mut m, 0);
+        dislocate(&s, &jumps, &mut m, 7);
         assert!(jumps.unwanted(&m, start, &calm, 3));
     }
 }

@@ -77,6 +77,23 @@ fn bases(s: &Surface, frames: &[Vector3<f64>]) -> Vec<Matrix3x2<f64>> {
         .collect()
 }
 
+/// Per edge `[a, b]`: the transfer of `b`'s frame coordinates into `a`'s, and the edge
+/// vector in `a`'s tangent frame at full length (projection alone would shorten edges on
+/// curved surfaces and shrink the lattice).
+fn edge_frames(s: &Surface, basis: &[Matrix3x2<f64>]) -> (Vec<Matrix2<f64>>, Vec<Vector2<f64>>) {
+    s.edges
+        .iter()
+        .map(|&[a, b]| {
+            let d = s.edge_vec(a, b);
+            let p = basis[a].transpose() * d;
+            (
+                basis[a].transpose() * basis[b],
+                p.try_normalize(1e-300).map_or(p, |dir| dir * d.norm()),
+            )
+        })
+        .unzip()
+}
+
 /// Solves the lattice of spacing `t` for the cross field `frames` on `s`.
 /// Stops early (with an unfinished lattice the caller must discard) once `budget` says so.
 pub(crate) fn solve(
@@ -88,22 +105,7 @@ pub(crate) fn solve(
 ) -> Lattice {
     let n = s.len();
     let basis = bases(s, frames);
-    let transfer: Vec<Matrix2<f64>> = s
-        .edges
-        .iter()
-        .map(|&[a, b]| basis[a].transpose() * basis[b])
-        .collect();
-    // Edge vectors in the first end point's tangent frame, at full length (projection alone
-    // would shorten edges on curved surfaces and shrink the lattice).
-    let delta: Vec<Vector2<f64>> = s
-        .edges
-        .iter()
-        .map(|&[a, b]| {
-            let d = s.edge_vec(a, b);
-            let p = basis[a].transpose() * d;
-            p.try_normalize(1e-300).map_or(p, |dir| dir * d.norm())
-        })
-        .collect();
+    let (transfer, delta) = edge_frames(s, &basis);
 
     let mut pinned = vec![0u8; n];
     let mut fixed = vec![false; 2 * n];
@@ -342,17 +344,12 @@ impl System<'_> {
 /// shears and stretches. Cotangent weights make it the surface's.
 fn edge_weights(s: &Surface) -> Vec<f64> {
     let mut weight = vec![0.0; s.edges.len()];
-    let edge_of = |a: usize, b: usize| -> usize {
-        let list = &s.adj[a];
-        let k = list.partition_point(|&(v, _)| v < b);
-        list[k].1
-    };
     for &[a, b, c] in &s.tris {
         for (p, q, r) in [(a, b, c), (b, c, a), (c, a, b)] {
             let (u, v) = (s.pos[p] - s.pos[r], s.pos[q] - s.pos[r]);
             let cross = u.cross(&v).norm();
             if cross > 1e-300 {
-                weight[edge_of(p, q)] += 0.5 * u.dot(&v) / cross;
+                weight[s.edge(p, q)] += 0.5 * u.dot(&v) / cross;
             }
         }
     }
@@ -409,14 +406,9 @@ fn burgers_density(
     transfer: &[Matrix2<f64>],
     t: f64,
 ) -> Vec<[f64; 2]> {
-    let edge_of = |a: usize, b: usize| -> usize {
-        let (x, y) = (a.min(b), a.max(b));
-        let list = &s.adj[x];
-        list[list.partition_point(|&(v, _)| v < y)].1
-    };
     // Step from x to y, in x's frame.
     let step = |x: usize, y: usize| -> Vector2<f64> {
-        let e = edge_of(x, y);
+        let e = s.edge(x, y);
         if x < y {
             delta[e]
         } else {
@@ -426,7 +418,7 @@ fn burgers_density(
     // Carries vectors in y's frame into x's by the whole quarter turns between the frames,
     // as the integer steps are carried: the frames' small turns are what the density is.
     let carry = |x: usize, y: usize| -> Matrix2<f64> {
-        let r = flow::quarter_turn_matrix(&transfer[edge_of(x, y)]);
+        let r = flow::quarter_turn_matrix(&transfer[s.edge(x, y)]);
         if x < y { r } else { r.transpose() }
     };
     s.tris
@@ -441,40 +433,19 @@ fn burgers_density(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::remesh::surface::samples::sheet;
 
     /// The Burgers density summed over a flat 2 x 2 patch of spacing 0.1, with crosses turned
     /// by `turn * x` radians at `x`, in quad lengths of 0.1.
     fn patch_density(turn: f64) -> [f64; 2] {
-        let (n, h, t) = (20, 0.1, 0.1);
-        let at = |i: usize, j: usize| j * (n + 1) + i;
-        let pos: Vec<Vector3<f64>> = (0..=n)
-            .flat_map(|j| (0..=n).map(move |i| Vector3::new(i as f64 * h, j as f64 * h, 0.0)))
-            .collect();
-        let mut tris = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-            }
-        }
-        let s = Surface::build(pos, tris, None);
+        let s = sheet(20, 0.1, (0..0, 0..0), |_, _| 0.0);
         let frames: Vec<Vector3<f64>> = s
             .pos
             .iter()
             .map(|p| Vector3::new((turn * p.x).cos(), (turn * p.x).sin(), 0.0))
             .collect();
-        let basis = bases(&s, &frames);
-        let transfer: Vec<Matrix2<f64>> = s
-            .edges
-            .iter()
-            .map(|&[a, b]| basis[a].transpose() * basis[b])
-            .collect();
-        let delta: Vec<Vector2<f64>> = s
-            .edges
-            .iter()
-            .map(|&[a, b]| basis[a].transpose() * s.edge_vec(a, b))
-            .collect();
-        burgers_density(&s, &delta, &transfer, t)
+        let (transfer, delta) = edge_frames(&s, &bases(&s, &frames));
+        burgers_density(&s, &delta, &transfer, 0.1)
             .iter()
             .fold([0.0; 2], |acc, d| [acc[0] + d[0], acc[1] + d[1]])
     }

@@ -176,11 +176,7 @@ fn split_edges(
         normals.push(n);
         fine_frames.push(o);
     }
-    let mid_of = |a: usize, b: usize| -> usize {
-        let list = &surface.adj[a];
-        let k = list.partition_point(|&(v, _)| v < b);
-        mid[list[k].1]
-    };
+    let mid_of = |a: usize, b: usize| -> usize { mid[surface.edge(a, b)] };
     let mut tris = Vec::with_capacity(surface.tris.len() * 4);
     for &tri in &surface.tris {
         let m = [0, 1, 2].map(|k| mid_of(tri[k], tri[(k + 1) % 3]));

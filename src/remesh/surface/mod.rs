@@ -195,6 +195,12 @@ impl Surface {
         self.pos.len()
     }
 
+    /// The index of the edge joining `a` and `b` (which must be adjacent), in either order.
+    pub fn edge(&self, a: usize, b: usize) -> usize {
+        let list = &self.adj[a];
+        list[list.partition_point(|&(v, _)| v < b)].1
+    }
+
     /// The 3D edge vector from `a` to `b`.
     pub fn edge_vec(&self, a: usize, b: usize) -> Vector3<f64> {
         self.pos[b] - self.pos[a]
