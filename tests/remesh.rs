@@ -399,11 +399,12 @@ fn jittered_pillow_vault() -> PolyMesh {
 #[test]
 fn a_triangulation_without_rows_keeps_few_row_ends() {
     // The first lattice of an unstructured triangulation holds dislocations the shape does
-    // not need; those in calm patches leave through the boundary before it is pinned
-    // (measured: 55 irregular vertices, 96 % of edges within 20 %; 76 and 95 % when none
-    // leave). The same vault triangulated in rows gets 4.
+    // not need. Integrated at the surface's conformal scale it holds fewer, in pairs that
+    // cancel, and those left in calm patches leave through the boundary before it is pinned
+    // (measured: 23 irregular vertices, 97 % of edges within 20 %; 55 and 96 % integrated at
+    // one spacing; 76 and 95 % when none leave either). The same vault in rows gets 4.
     let result = remesh(&jittered_pillow_vault(), &options(0.145)).expect("remesh");
-    check("jittered pillow vault", &result.metrics, 62);
+    check("jittered pillow vault", &result.metrics, 35);
 }
 
 #[test]

@@ -150,6 +150,14 @@ impl<'a> Jumps<'a> {
             != 0
     }
 
+    /// Number of dislocations of the jumps `m`: triangles that are not cones of the field and
+    /// around which the lattice steps do not close.
+    pub(crate) fn dislocations(&self, m: &[[i64; 2]]) -> usize {
+        (0..self.s.tris.len())
+            .filter(|&t| !self.is_cone(t) && self.curl(m, t) != [0, 0])
+            .count()
+    }
+
     /// Sum of lattice steps around triangle `t`, in the frame of its first vertex.
     fn curl(&self, m: &[[i64; 2]], t: usize) -> [i64; 2] {
         let [a, b, c] = self.s.tris[t];

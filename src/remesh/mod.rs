@@ -51,6 +51,7 @@ mod metrics;
 mod position;
 mod quadmesh;
 mod refine;
+mod scale;
 mod shapeup;
 mod surface;
 mod user_field;
