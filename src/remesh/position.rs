@@ -191,6 +191,7 @@ pub(crate) fn solve(
     };
     // The first lattice: integrated at one spacing, or at the scale the surface asks for,
     // whichever keeps fewer dislocations after a first round (see `integrate`).
+    let mut first = 0;
     let phi = scale::solve(s, &delta, &transfer, t, SCALE_LIMIT, &mut |_| {
         budget.poll(0.0)
     });
@@ -205,28 +206,27 @@ pub(crate) fn solve(
             at_scale[2 * v] *= p.exp();
             at_scale[2 * v + 1] *= p.exp();
         }
-        // Round 0 of the loop below, as a probe.
-        let left_after_first_round = |start: &[f64], budget: &mut Budget| -> usize {
-            let mut u = start.to_vec();
+        // Round 0 of the loop below, run on both; the loop goes on from the one kept.
+        let first_round = |start: Vec<f64>, budget: &mut Budget| {
+            let mut u = start;
             let m = jumps(&u);
             system.solve(&active, &m, &mut u, ITERATIONS, &mut |_| budget.poll(0.0));
             for x in u.iter_mut() {
                 *x -= t * (*x / t).round();
             }
             let mut m = jumps(&u);
-            cancel(&mut m, true, Some(free), &pinned_normal, budget);
-            flow.dislocations(&m)
+            let before = cancel(&mut m, true, Some(free), &pinned_normal, budget);
+            (flow.dislocations(&m), u, m, before)
         };
-        let plain = left_after_first_round(&u, budget);
-        let at = left_after_first_round(&at_scale, budget);
+        let plain = first_round(u, budget);
+        let at = first_round(at_scale, budget);
         // One spacing keeps quads of one size, which rigid tiles need (see `integrate`), so
         // the scale must take away at least a fifth of the dislocations.
-        if 5 * at < 4 * plain {
-            u = at_scale;
-            m = jumps(&u);
-        }
+        let kept = if 5 * at.0 < 4 * plain.0 { at } else { plain };
+        (_, u, m, uncancelled) = kept;
+        first = 1;
     }
-    for round in 0..ROUNDS {
+    for round in first..ROUNDS {
         let share = |within: f64| (round as f64 + within) / ROUNDS as f64;
         if !budget.poll(share(0.0)) {
             break;
