@@ -421,8 +421,10 @@ mod tests {
         let jumps = Jumps::new(&s, &transfer);
         let nt = s.tris.len();
         assert!((0..nt).all(|t| jumps.curl(&m, t) == [0, 0]));
+        assert_eq!(jumps.dislocations(&m), 0);
         // The bottom edge of the fourth cell.
         let start = dislocate(&s, &jumps, &mut m, 3);
+        assert_eq!(jumps.dislocations(&m), 1);
         let b = jumps.curl(&m, start);
         let calm = vec![[0.0; 2]; nt];
         assert!(jumps.unwanted(&m, start, &calm, 3));
