@@ -70,12 +70,12 @@ namespace TilePattern.Tests
             return PolyMesh.FromFaces(v.ToArray(), faces);
         }
 
-        /// <summary>A strongly curved wave of 2 x 1.6 (metres) as triangles, z = 0.6 sin(2x)
+        /// <summary>A strongly curved wave of 2 x 1.6 (metres) as triangles, z = 0.8 sin(2x)
         /// sin(3y): tiles of 280 x 140 mm on quads of 145 mm cannot all be fitted to it, so the
         /// fit stage cuts some.</summary>
         public static PolyMesh Wave()
         {
-            PolyMesh quads = Grid(40, 32, 0.05, (x, y) => 0.6 * Math.Sin(2 * x) * Math.Sin(3 * y));
+            PolyMesh quads = Grid(40, 32, 0.05, (x, y) => 0.8 * Math.Sin(2 * x) * Math.Sin(3 * y));
             var faces = new List<int[]>();
             for (int f = 0; f < quads.FaceCount; f++)
             {
