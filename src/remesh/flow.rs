@@ -21,7 +21,7 @@ use super::surface::Surface;
 struct Rot(u8);
 
 impl Rot {
-    fn apply(self, v: [i64; 2]) -> [i64; 2] {
+    fn apply<T: Copy + std::ops::Neg<Output = T>>(self, v: [T; 2]) -> [T; 2] {
         match self.0 % 4 {
             0 => v,
             1 => [-v[1], v[0]],
@@ -31,14 +31,6 @@ impl Rot {
     }
     fn inv(self) -> Rot {
         Rot((4 - self.0 % 4) % 4)
-    }
-    fn apply_f(self, v: [f64; 2]) -> [f64; 2] {
-        match self.0 % 4 {
-            0 => v,
-            1 => [-v[1], v[0]],
-            2 => [-v[0], -v[1]],
-            _ => [v[1], -v[0]],
-        }
     }
     fn then(self, o: Rot) -> Rot {
         Rot((self.0 + o.0) % 4)
@@ -54,7 +46,7 @@ fn quarter_turns(t: &Matrix2<f64>) -> Rot {
 /// The whole quarter turn nearest to a frame transfer matrix, as a rotation matrix: how the
 /// integer lattice steps are carried between two frames.
 pub(crate) fn quarter_turn_matrix(t: &Matrix2<f64>) -> Matrix2<f64> {
-    let [c, s] = quarter_turns(t).apply([1, 0]).map(|x| x as f64);
+    let [c, s] = quarter_turns(t).apply([1.0, 0.0]);
     Matrix2::new(c, -s, s, c)
 }
 
@@ -140,7 +132,7 @@ impl<'a> Jumps<'a> {
     }
 
     /// True when the cross field turns around triangle `t` (a field singularity).
-    fn is_cone(&self, t: usize) -> bool {
+    pub(crate) fn is_cone(&self, t: usize) -> bool {
         let [a, b, c] = self.s.tris[t];
         let [eab, ebc, eca] = self.tri_edges[t];
         (self.frame_map_on(a, b, eab).0
@@ -197,7 +189,7 @@ impl<'a> Jumps<'a> {
         while let Some((t, level)) = queue.pop_front() {
             let to_start = seen[&t];
             let c = to_start.apply(self.curl(m, t));
-            let w = to_start.apply_f(density[t]);
+            let w = to_start.apply(density[t]);
             for k in 0..2 {
                 d[k] += c[k];
                 want[k] += w[k];
@@ -384,7 +376,6 @@ mod tests {
         (s, transfer, m)
     }
 
-    /// Gives the triangle on boundary edge `[a, b]` a dislocation, and returns the triangle.
     /// Gives the triangle on the bottom boundary edge from `x` to `x + 1` a dislocation, and
     /// returns the triangle.
     fn dislocate(s: &Surface, jumps: &Jumps, m: &mut [[i64; 2]], x: usize) -> usize {

@@ -138,6 +138,12 @@ pub(crate) fn solve(
             })
             .collect()
     };
+    // Offsets back into their lattice cells (held components to zero) before jumps are read.
+    let into_cells = |u: &mut [f64], active: &[bool]| {
+        for (x, &held) in u.iter_mut().zip(active) {
+            *x = if held { 0.0 } else { *x - t * (*x / t).round() };
+        }
+    };
     let flow = Jumps::new(s, &transfer);
     let mut u = integrate(s, &delta, &transfer, t);
     let mut m = jumps(&u);
@@ -192,7 +198,7 @@ pub(crate) fn solve(
     // The first lattice: integrated at one spacing, or at the scale the surface asks for,
     // whichever keeps fewer dislocations after a first round (see `integrate`).
     let mut first = 0;
-    let phi = scale::solve(s, &delta, &transfer, t, SCALE_LIMIT, &mut |_| {
+    let phi = scale::solve(s, &delta, &transfer, &flow, t, SCALE_LIMIT, &mut |_| {
         budget.poll(0.0)
     });
     if phi.iter().any(|&p| p != 0.0) {
@@ -211,9 +217,7 @@ pub(crate) fn solve(
             let mut u = start;
             let m = jumps(&u);
             system.solve(&active, &m, &mut u, ITERATIONS, &mut |_| budget.poll(0.0));
-            for x in u.iter_mut() {
-                *x -= t * (*x / t).round();
-            }
+            into_cells(&mut u, &active);
             let mut m = jumps(&u);
             let before = cancel(&mut m, true, Some(free), &pinned_normal, budget);
             (flow.dislocations(&m), u, m, before)
@@ -261,13 +265,7 @@ pub(crate) fn solve(
         if last {
             break;
         }
-        for k in 0..u.len() {
-            if active[k] {
-                u[k] = 0.0;
-            } else {
-                u[k] -= t * (u[k] / t).round();
-            }
-        }
+        into_cells(&mut u, &active);
         m = jumps(&u);
         let far = (round + 1 < PIN_FROM).then_some(free);
         uncancelled = cancel(&mut m, cancelling, far, &pinned_normal, budget);
@@ -476,12 +474,11 @@ fn burgers_density(
     transfer: &[Matrix2<f64>],
     t: f64,
 ) -> Vec<[f64; 2]> {
-    let step = |x: usize, y: usize| scale::step(s, delta, transfer, x, y);
-    let carry = |x: usize, y: usize| scale::carry(s, transfer, x, y);
     s.tris
         .iter()
-        .map(|&[a, b, c]| {
-            let sum = step(a, b) + carry(a, b) * step(b, c) + carry(a, c) * step(c, a);
+        .map(|&tri| {
+            let [ab, bc, ca] = scale::steps_around(s, delta, transfer, tri);
+            let sum = ab + bc + ca;
             [sum.x / t, sum.y / t]
         })
         .collect()

@@ -29,7 +29,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use super::flow;
+use super::flow::{self, Jumps};
 use super::linalg::conjugate_gradient;
 use super::surface::Surface;
 
@@ -67,38 +67,37 @@ pub(crate) fn step(
 
 /// Carries vectors in `y`'s frame into `x`'s by the whole quarter turns between the frames,
 /// as the integer steps are carried.
-pub(crate) fn carry(s: &Surface, transfer: &[Matrix2<f64>], x: usize, y: usize) -> Matrix2<f64> {
+fn carry(s: &Surface, transfer: &[Matrix2<f64>], x: usize, y: usize) -> Matrix2<f64> {
     let r = flow::quarter_turn_matrix(&transfer[s.edge(x, y)]);
     if x < y { r } else { r.transpose() }
 }
 
-/// The three steps around triangle `[a, b, c]` carried into `a`'s frame, `a -> b`, `b -> c`,
-/// `c -> a`, or `None` when the quarter turns around it do not cancel (a cone of the field).
-fn carried_steps(
+/// The three steps around triangle `[a, b, c]` carried into `a`'s frame by whole quarter
+/// turns, `a -> b`, `b -> c`, `c -> a`: their sum is the lattice's misclosure there (the
+/// Burgers density of [`super::position`]), which the quarter turns alone make meaningless
+/// around a cone of the field.
+pub(crate) fn steps_around(
     s: &Surface,
     delta: &[Vector2<f64>],
     transfer: &[Matrix2<f64>],
     [a, b, c]: [usize; 3],
-) -> Option<[Vector2<f64>; 3]> {
-    let (ab, ac) = (carry(s, transfer, a, b), carry(s, transfer, a, c));
-    let around = ab * carry(s, transfer, b, c) * carry(s, transfer, c, a);
-    if (around - Matrix2::identity()).abs().max() > 0.5 {
-        return None;
-    }
-    Some([
+) -> [Vector2<f64>; 3] {
+    [
         step(s, delta, transfer, a, b),
-        ab * step(s, delta, transfer, b, c),
-        ac * step(s, delta, transfer, c, a),
-    ])
+        carry(s, transfer, a, b) * step(s, delta, transfer, b, c),
+        carry(s, transfer, a, c) * step(s, delta, transfer, c, a),
+    ]
 }
 
 /// Solves the log-scale per vertex of `s` for the edge vectors `delta` and frame transfers
-/// `transfer` (see [`super::position`]), limited to `[-limit, limit]` as described in the
+/// `transfer` (see [`super::position`]), leaving out the triangles `cones` says are cones of
+/// the field, limited to `[-limit, limit]` as described in the
 /// module's documentation. A `limit` of zero gives zero everywhere.
 pub(crate) fn solve(
     s: &Surface,
     delta: &[Vector2<f64>],
     transfer: &[Matrix2<f64>],
+    cones: &Jumps,
     t: f64,
     limit: f64,
     keep_going: &mut dyn FnMut(usize) -> bool,
@@ -119,7 +118,8 @@ pub(crate) fn solve(
     let rows: Vec<Row> = s
         .tris
         .iter()
-        .filter_map(|&tri| {
+        .enumerate()
+        .filter_map(|(ti, &tri)| {
             let [a, b, c] = tri;
             let twice = (s.pos[b] - s.pos[a]).cross(&(s.pos[c] - s.pos[a])).norm();
             for v in tri {
@@ -128,7 +128,10 @@ pub(crate) fn solve(
             if twice <= 1e-300 {
                 return None;
             }
-            let [ab, bc, ca] = carried_steps(s, delta, transfer, tri)?;
+            if cones.is_cone(ti) {
+                return None;
+            }
+            let [ab, bc, ca] = steps_around(s, delta, transfer, tri);
             // exp(-phi) on an edge is linearised as 1 - (phi_x + phi_y) / 2, about the
             // triangle's steps closed by spreading their sum evenly: then the coefficients
             // sum to zero and a constant scale, which closes nothing, changes nothing (with
@@ -202,8 +205,15 @@ mod tests {
     use crate::remesh::position::{bases, edge_frames};
     use crate::remesh::surface::samples::sheet;
 
-    fn never_stop(_: usize) -> bool {
-        true
+    /// The scale of `s` for quads of 0.1, limited to `limit`, solved to the end.
+    fn scale_of(
+        s: &Surface,
+        delta: &[Vector2<f64>],
+        transfer: &[Matrix2<f64>],
+        limit: f64,
+    ) -> Vec<f64> {
+        let cones = Jumps::new(s, transfer);
+        solve(s, delta, transfer, &cones, 0.1, limit, &mut |_| true)
     }
 
     /// Sum of |closure| over the non-cone triangles with edge vectors scaled by `phi`.
@@ -219,10 +229,15 @@ mod tests {
             .zip(delta)
             .map(|(&[a, b], d)| d * (-(phi[a] + phi[b]) / 2.0).exp())
             .collect();
+        let cones = Jumps::new(s, transfer);
         s.tris
             .iter()
-            .filter_map(|&tri| carried_steps(s, &scaled, transfer, tri))
-            .map(|[x, y, z]| (x + y + z).norm())
+            .enumerate()
+            .filter(|&(ti, _)| !cones.is_cone(ti))
+            .map(|(_, &tri)| {
+                let [x, y, z] = steps_around(s, &scaled, transfer, tri);
+                (x + y + z).norm()
+            })
             .sum()
     }
 
@@ -231,7 +246,7 @@ mod tests {
         let s = sheet(12, 0.1, (0..0, 0..0), |_, _| 0.0);
         let frames = vec![Vector3::x(); s.len()];
         let (transfer, delta) = edge_frames(&s, &bases(&s, &frames));
-        let phi = solve(&s, &delta, &transfer, 0.1, 0.2, &mut never_stop);
+        let phi = scale_of(&s, &delta, &transfer, 0.2);
         assert!(phi.iter().all(|p| p.abs() < 1e-9), "{phi:?}");
     }
 
@@ -246,13 +261,13 @@ mod tests {
             .map(|p| Vector3::new((0.1 * p.x).cos(), (0.1 * p.x).sin(), 0.0))
             .collect();
         let (transfer, delta) = edge_frames(&s, &bases(&s, &frames));
-        let phi = solve(&s, &delta, &transfer, 0.1, 0.5, &mut never_stop);
+        let phi = scale_of(&s, &delta, &transfer, 0.5);
         let before = misclosure(&s, &delta, &transfer, &vec![0.0; s.len()]);
         let after = misclosure(&s, &delta, &transfer, &phi);
         // (The dead zone leaves a thin band around phi = 0 unscaled.)
         assert!(after < 0.2 * before, "{before} -> {after}");
         // Limited, the same field keeps every vertex within the limit.
-        let limited = solve(&s, &delta, &transfer, 0.1, 0.01, &mut never_stop);
+        let limited = scale_of(&s, &delta, &transfer, 0.01);
         assert!(limited.iter().all(|p| p.abs() <= 0.01 + 1e-12));
         assert!(limited.iter().any(|p| p.abs() > 0.005));
     }
