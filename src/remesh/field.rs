@@ -104,68 +104,108 @@ pub(crate) fn match_rosy(
 /// The principal curvature at a vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Principal {
-    /// A principal direction (unit tangent; the other is perpendicular).
+    /// A principal direction (unit tangent; the other is perpendicular), read at the
+    /// tile's scale.
     pub dir: Vector3<f64>,
+    /// The same read over the 2-ring alone: where the surface is umbilic at the tile's scale
+    /// the field's whisper term is summed with it (see [`solve`]).
+    pub local_dir: Vector3<f64>,
     /// `|k1 - k2|`.
     pub aniso: f64,
     /// `|k1 + k2| / 2`.
     pub mean: f64,
 }
 
-/// The principal curvature at every vertex of `s` ([`curvature`]; `None` where too few
-/// neighbours fix it).
-pub(crate) fn principal_curvatures(s: &Surface) -> Vec<Option<Principal>> {
+/// The principal curvature at every vertex of `s`, read over a disc of radius `reach`
+/// ([`curvature`]; `None` where too few neighbours fix it).
+pub(crate) fn principal_curvatures(s: &Surface, reach: f64) -> Vec<Option<Principal>> {
     let frames = reference_frames(s);
     let mut mark = vec![usize::MAX; s.len()];
     (0..s.len())
         .map(|v| {
-            let (angle, aniso, mean) = curvature(s, &frames, v, &mut mark)?;
+            let (angle, aniso, mean) = curvature(s, &frames, v, reach, true, 2 * v, &mut mark)?;
+            let (local, _, _) = curvature(s, &frames, v, 0.0, false, 2 * v + 1, &mut mark)?;
             let (e, n) = (frames[v], s.normals[v]);
-            let dir = e * angle.cos() + n.cross(&e) * angle.sin();
-            Some(Principal { dir, aniso, mean })
+            let along = |angle: f64| e * angle.cos() + n.cross(&e) * angle.sin();
+            Some(Principal {
+                dir: along(angle),
+                local_dir: along(local),
+                aniso,
+                mean,
+            })
         })
         .collect()
 }
 
+/// How far around a vertex its curvature is read, in target quad edges: a tile spans two
+/// quads, so the courses should follow the surface's bending over a tile, not over its
+/// triangles. A mesh faceted coarser than its triangles (a sphere meshed in
+/// latitude-longitude rows and then remeshed evenly, an STL of a NURBS surface) bends at its
+/// facets' creases, and a fit over the triangles' 2-ring reads those creases as principal
+/// directions: on such a hemisphere (facets of 196 mm, triangles of 98 mm) 29 % of the
+/// vertices read as anisotropic and the field turned into rings along the rim (83 irregular
+/// vertices instead of 16 on the same hemisphere meshed in rows); read over two quad edges,
+/// none does.
+pub(crate) const CURVATURE_REACH: f64 = 3.0;
+
 /// Principal curvature direction (angle in the vertex frame) and anisotropy `|k1 - k2|`,
-/// from a least-squares quadric `h = A x^2 + B xy + C y^2 + D x + E y` over the 2-ring.
+/// from a least-squares quadric `h = A x^2 + B xy + C y^2 + D x + E y` over the vertices
+/// reached from `v` by edges within `reach` of it, and at least its 2-ring; `weighted`, by
+/// `(1 - (d / r)^2)^2` (`r` a little beyond the farthest of them, so that the fit changes
+/// smoothly from vertex to vertex). `mark` is scratch space, one entry per vertex, where the
+/// vertices reached are marked with `stamp` (a value no other call uses).
 fn curvature(
     s: &Surface,
     frames: &[Vector3<f64>],
     v: usize,
+    reach: f64,
+    weighted: bool,
+    stamp: usize,
     mark: &mut [usize],
 ) -> Option<(f64, f64, f64)> {
     let n = s.normals[v];
     let e = frames[v];
     let b = n.cross(&e);
-    let mut ring: Vec<usize> = Vec::new();
-    mark[v] = v;
-    for &(w, _) in &s.adj[v] {
-        if mark[w] != v {
-            mark[w] = v;
-            ring.push(w);
-        }
-    }
-    let first = ring.len();
-    for k in 0..first {
-        for &(w, _) in &s.adj[ring[k]] {
-            if mark[w] != v {
-                mark[w] = v;
-                ring.push(w);
+    let mut near: Vec<usize> = Vec::new();
+    mark[v] = stamp;
+    let mut rings = 0;
+    let mut front = vec![v];
+    let mut next = Vec::new();
+    while !front.is_empty() {
+        rings += 1;
+        for &u in &front {
+            for &(w, _) in &s.adj[u] {
+                if mark[w] != stamp && (rings <= 2 || (s.pos[w] - s.pos[v]).norm() < reach) {
+                    mark[w] = stamp;
+                    near.push(w);
+                    next.push(w);
+                }
             }
         }
+        std::mem::swap(&mut front, &mut next);
+        next.clear();
     }
-    if ring.len() < 5 {
+    if near.len() < 5 {
         return None;
     }
+    let farthest = near
+        .iter()
+        .map(|&w| (s.pos[w] - s.pos[v]).norm())
+        .fold(0.0, f64::max);
+    let r2 = (1.25 * farthest).powi(2);
     let mut m = Matrix5::zeros();
     let mut rhs = Vector5::zeros();
-    for &w in &ring {
+    for &w in &near {
         let d = s.edge_vec(v, w);
+        let weight = if weighted {
+            (1.0 - d.norm_squared() / r2).powi(2)
+        } else {
+            1.0
+        };
         let (x, y, h) = (d.dot(&e), d.dot(&b), d.dot(&n));
         let row = Vector5::new(x * x, x * y, y * y, x, y);
-        m += row * row.transpose();
-        rhs += row * h;
+        m += row * row.transpose() * weight;
+        rhs += row * (h * weight);
     }
     let sol = m.lu().solve(&rhs)?;
     let (p, q, r) = (2.0 * sol[0], sol[1], 2.0 * sol[2]);
@@ -261,14 +301,22 @@ pub(crate) fn solve(
             let principal = match principal {
                 Some(p) => p,
                 None => {
-                    own = principal_curvatures(s);
+                    own = principal_curvatures(s, CURVATURE_REACH * options.target_edge);
                     &own
                 }
             };
             for (v, p) in principal.iter().enumerate() {
                 if let Some(p) = p {
-                    let angle = angle_in(&frames[v], &s.normals[v], &p.dir);
                     clarity[v] = alignment_weight(p.aniso, p.mean, diagonal);
+                    // Where the surface is umbilic at the tile's scale the direction only
+                    // meets the whisper below; the 2-ring's is kept there (see
+                    // [`CURVATURE_REACH`]).
+                    let dir = if clarity[v] > 0.0 {
+                        &p.dir
+                    } else {
+                        &p.local_dir
+                    };
+                    let angle = angle_in(&frames[v], &s.normals[v], dir);
                     defined[v] = principal_defined(p.aniso, p.mean, diagonal);
                     target[v] = C::from_angle(4.0 * angle).mul(rotation);
                 }

@@ -379,7 +379,10 @@ pub fn remesh_with(
     let (field_surface, principal, samples, guides) = match &coarse {
         Some(sub) => (
             &sub.surface,
-            Some(sub.spread_principal(&field::principal_curvatures(&base))),
+            Some(sub.spread_principal(&field::principal_curvatures(
+                &base,
+                field::CURVATURE_REACH * t,
+            ))),
             samples.map(|(s, w)| (sub.spread(&s), w)),
             guides.map(|(s, w)| (sub.spread(&s), w)),
         ),

@@ -101,16 +101,25 @@ impl Subdivision {
                 let (first, _) = *known.first()?;
                 let total: f64 = known.iter().map(|&(_, w)| w).sum();
                 let mut dir = Vector3::zeros();
+                let mut local_dir = Vector3::zeros();
                 let (mut aniso, mut mean) = (0.0, 0.0);
                 for &(p, w) in &known {
                     dir += match_rosy(&first.dir, &p.dir, &n) * w;
+                    local_dir += match_rosy(&first.local_dir, &p.local_dir, &n) * w;
                     aniso += p.aniso * w / total;
                     mean += p.mean * w / total;
                 }
-                let dir = (dir - n * n.dot(&dir))
-                    .try_normalize(1e-300)
-                    .unwrap_or_else(|| any_tangent(&n));
-                Some(Principal { dir, aniso, mean })
+                let tangent = |d: Vector3<f64>| {
+                    (d - n * n.dot(&d))
+                        .try_normalize(1e-300)
+                        .unwrap_or_else(|| any_tangent(&n))
+                };
+                Some(Principal {
+                    dir: tangent(dir),
+                    local_dir: tangent(local_dir),
+                    aniso,
+                    mean,
+                })
             })
             .collect()
     }
