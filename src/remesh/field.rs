@@ -144,8 +144,9 @@ pub(crate) fn principal_curvatures(s: &Surface, reach: f64) -> Vec<Option<Princi
 /// facets' creases, and a fit over the triangles' 2-ring reads those creases as principal
 /// directions: on such a hemisphere (facets of 196 mm, triangles of 98 mm) 29 % of the
 /// vertices read as anisotropic and the field turned into rings along the rim (83 irregular
-/// vertices instead of 16 on the same hemisphere meshed in rows); read over two quad edges,
-/// none does.
+/// vertices instead of 16 on the same hemisphere meshed in rows); read over three quad
+/// edges, none does (two leave rings near the rim, four gain nothing: README, *Curvature
+/// read at the tile's scale*).
 pub(crate) const CURVATURE_REACH: f64 = 3.0;
 
 /// Principal curvature direction (angle in the vertex frame) and anisotropy `|k1 - k2|`,
