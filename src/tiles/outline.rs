@@ -151,8 +151,21 @@ pub fn separation_of(
             })
     };
     let ((a0, a1), (b0, b1)) = (span(&pa), span(&pb));
+    // Where the surface bends through a right angle within a tile or two (a crest tighter
+    // than a tile), the mean plane of two tiles on its flanks runs across the line between
+    // them, and their projections overlap though their solids are apart. Solids whose
+    // bounding balls (about each origin, through its farthest corner) are apart do not
+    // overlap: their separation is at least the room between the balls.
+    let radius = |t: &Tile, corners: &[Point3<f64>]| {
+        corners
+            .iter()
+            .map(|p| (p - t.frame.origin).norm())
+            .fold(0.0, f64::max)
+    };
+    let room =
+        (a.frame.origin - b.frame.origin).norm() - radius(a, outline_a) - radius(b, outline_b);
     Separation {
-        gap,
+        gap: if gap < 0.0 && room > 0.0 { room } else { gap },
         axis: e1 * axis[0] + e2 * axis[1],
         along: a1.min(b1) - a0.max(b0),
     }
@@ -174,6 +187,48 @@ mod tests {
             z,
         };
         Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
+    }
+
+    #[test]
+    fn tiles_on_the_flanks_of_a_sharp_crest_do_not_overlap_in_projection() {
+        // Two tiles of a wave whose crest is tighter than a tile (radius 140 mm), their
+        // thickness axes 92 degrees apart and their origins 355 mm apart: farther than their
+        // solids reach (313 mm), but the mean plane of two nearly opposed axes runs across
+        // the line between them, and projected onto it the two overlapped by 104 mm.
+        let frame = |o: [f64; 3], x: [f64; 3], y: [f64; 3]| {
+            let (x, y) = (Vector3::from(x), Vector3::from(y));
+            Frame {
+                origin: Point3::from(o),
+                x,
+                y,
+                z: x.cross(&y),
+            }
+        };
+        let a = Tile::new(
+            TileKind::Full,
+            vec![],
+            frame(
+                [1.0032, 0.6913, 0.6343],
+                [0.54357, 0.40369, -0.73591],
+                [-0.74985, 0.62752, -0.20964],
+            ),
+            [0.28, 0.14, 0.015],
+        );
+        let b = Tile::new(
+            TileKind::Full,
+            vec![],
+            frame(
+                [0.9403, 0.3416, 0.6494],
+                [0.96476, 0.26312, 0.00194],
+                [-0.16044, 0.58238, 0.79693],
+            ),
+            [0.28, 0.14, 0.015],
+        );
+        let apart = (a.frame.origin - b.frame.origin).norm();
+        let s = separation(&a, &b);
+        assert!(s.gap > 0.0, "{s:?}");
+        // Never more than the solids' true distance, which their origins bound.
+        assert!(s.gap <= apart, "{s:?}");
     }
 
     #[test]
