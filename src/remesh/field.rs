@@ -30,7 +30,7 @@ use nalgebra::{Matrix5, Vector3, Vector5};
 
 use super::budget::Budget;
 use super::linalg::conjugate_gradient;
-use super::surface::{Surface, any_tangent};
+use super::surface::{Surface, any_tangent, in_tangent_plane};
 use super::user_field::Samples;
 use super::{FieldDirection, RemeshOptions};
 
@@ -157,9 +157,7 @@ pub(crate) fn principal_curvatures(s: &Surface, reach: f64) -> Vec<Option<Princi
         principal.push(reading.map(|((dir, aniso, mean), (local, _, _))| {
             let nv = s.normals[v];
             Principal {
-                dir: (dir - nv * nv.dot(&dir))
-                    .try_normalize(1e-300)
-                    .unwrap_or_else(|| any_tangent(&nv)),
+                dir: in_tangent_plane(&dir, &nv),
                 local_dir: along(v, local),
                 aniso,
                 mean,

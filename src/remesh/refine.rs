@@ -5,7 +5,7 @@
 use nalgebra::Vector3;
 
 use super::field::{Principal, match_rosy};
-use super::surface::{Surface, any_tangent};
+use super::surface::{Surface, in_tangent_plane};
 use super::user_field::Samples;
 
 /// The midpoint of edge `a`-`b` of `surface` with its normal and cross frame (`frames[a]`
@@ -20,9 +20,7 @@ fn edge_midpoint(
         .try_normalize(1e-300)
         .unwrap_or(surface.normals[a]);
     let o = frames[a] + match_rosy(&frames[a], &frames[b], &surface.normals[b]);
-    let o = (o - n * n.dot(&o))
-        .try_normalize(1e-300)
-        .unwrap_or_else(|| any_tangent(&n));
+    let o = in_tangent_plane(&o, &n);
     ((surface.pos[a] + surface.pos[b]) * 0.5, n, o)
 }
 
@@ -109,14 +107,9 @@ impl Subdivision {
                     aniso += p.aniso * w / total;
                     mean += p.mean * w / total;
                 }
-                let tangent = |d: Vector3<f64>| {
-                    (d - n * n.dot(&d))
-                        .try_normalize(1e-300)
-                        .unwrap_or_else(|| any_tangent(&n))
-                };
                 Some(Principal {
-                    dir: tangent(dir),
-                    local_dir: tangent(local_dir),
+                    dir: in_tangent_plane(&dir, &n),
+                    local_dir: in_tangent_plane(&local_dir, &n),
                     aniso,
                     mean,
                 })
@@ -228,7 +221,7 @@ const LONG_EDGE: f64 = 0.75;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::remesh::surface::Locator;
+    use crate::remesh::surface::{Locator, any_tangent};
 
     /// A fine patch of 20 x 20 cells of 0.05 on a saddle, with a fan of slivers over 2 units
     /// to one far point along its right edge: the mean edge is short, the slivers' are long.

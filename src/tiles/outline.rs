@@ -162,10 +162,15 @@ pub fn separation_of(
             .map(|p| (p - t.frame.origin).norm())
             .fold(0.0, f64::max)
     };
-    let room =
-        (a.frame.origin - b.frame.origin).norm() - radius(a, outline_a) - radius(b, outline_b);
+    let gap = if gap < 0.0 {
+        let room =
+            (a.frame.origin - b.frame.origin).norm() - radius(a, outline_a) - radius(b, outline_b);
+        if room > 0.0 { room } else { gap }
+    } else {
+        gap
+    };
     Separation {
-        gap: if gap < 0.0 && room > 0.0 { room } else { gap },
+        gap,
         axis: e1 * axis[0] + e2 * axis[1],
         along: a1.min(b1) - a0.max(b0),
     }

@@ -207,6 +207,14 @@ impl Surface {
     }
 }
 
+/// `d` laid into the tangent plane of the unit normal `n` and made a unit vector; some
+/// tangent ([`any_tangent`]) where `d` has no part in that plane.
+pub(crate) fn in_tangent_plane(d: &Vector3<f64>, n: &Vector3<f64>) -> Vector3<f64> {
+    (d - n * n.dot(d))
+        .try_normalize(1e-300)
+        .unwrap_or_else(|| any_tangent(n))
+}
+
 /// Some unit vector orthogonal to `n`.
 pub(crate) fn any_tangent(n: &Vector3<f64>) -> Vector3<f64> {
     let axis = if n.x.abs() < 0.9 {
