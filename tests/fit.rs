@@ -399,3 +399,23 @@ fn the_tears_of_a_dome_are_filled_with_pieces_cut_to_the_room_left() {
     assert!(cutting.coverage >= 0.96, "{}", cutting.coverage);
     assert!(report.joints.max_overlap <= 0.001);
 }
+
+#[test]
+fn joints_that_cannot_close_gather_into_tears() {
+    // On the cap's converging courses not every joint can close. A joint's cost that grows
+    // only with the logarithm past two and a half joints gathers what cannot close into a
+    // few tears, which take pieces, and closes the joints beside them; with Huber's loss
+    // (linear past two joints) the misfit spread: 53 % of the joints within 2 mm of the
+    // nominal one, 82 % within 5 mm, coverage 0.968; gathered 65 %, 86 %, 0.975.
+    let tiling = greedy_cap_tiling();
+    let joints = &tiling.report.joints;
+    assert!(joints.within_2mm >= 0.6, "{}", joints.within_2mm);
+    assert!(joints.within_5mm >= 0.84, "{}", joints.within_5mm);
+    let cutting = tiling
+        .report
+        .cutting
+        .as_ref()
+        .expect("run cuts to the surface");
+    assert!(cutting.coverage >= 0.972, "{}", cutting.coverage);
+    assert!(joints.max_overlap <= 0.001);
+}

@@ -9,7 +9,8 @@
 //!   joint;
 //!   an overlap (negative distance) counts `overlap_slope` times as much per unit, so the
 //!   stage would rather open a joint than press two tiles into each other; a gap wider
-//!   than the joint by more than `wide` costs only linearly beyond that ([`capped`]);
+//!   than the joint by more than `wide` costs only linearly beyond that, and by more than
+//!   `tear` only logarithmically ([`capped`]);
 //! - **bond**: for two full tiles side by side (a bed joint), the offset of their centres
 //!   along the joint, where it leaves the band the bond allows ([`BondBand`]);
 //! - **edge**: a tile that started over the surface may not move its origin more than a
@@ -51,20 +52,39 @@ pub(crate) struct Weights {
     /// How much wider than the joint a gap may be before its cost grows only linearly
     /// ([`capped`]); zero keeps every joint's cost quadratic.
     pub wide: f64,
+    /// How much wider than the joint a gap may be before its cost grows only
+    /// logarithmically, a tear rather than a joint ([`capped`]); at least `wide`, infinite
+    /// to keep Huber's loss beyond `wide`.
+    pub tear: f64,
 }
 
-/// A joint residual `excess` (with its slope) past `wide`: beyond it the squared residual
-/// grows linearly, `2 wide excess - wide^2` (Huber's loss), so that a gap that is no joint
-/// any more (where courses part, at a singularity, beside a course that ends) pulls its tiles
-/// with a bounded force instead of one growing with the gap; quadratic it spreads the
-/// misfit it cannot close over the joints around it and presses tiles on its other side into
-/// overlaps, which are then cut. Overlaps (negative excess) keep their full, steep cost.
-fn capped(excess: f64, slope: f64, wide: f64) -> (f64, f64) {
-    if wide > 0.0 && excess > wide {
-        let r = (2.0 * wide * excess - wide * wide).sqrt();
-        (r, slope * wide / r)
+/// A joint residual `excess` (with its slope) past `wide` and `tear`, as the square root of
+/// a loss `rho` with `rho(e) = e^2` up to `wide`:
+/// - beyond `wide` the loss grows linearly, `2 wide e - wide^2` (Huber's loss), so that a
+///   gap that is no joint any more (where courses part, at a singularity, beside a course
+///   that ends) pulls its tiles with a bounded force instead of one growing with the gap;
+///   quadratic it spreads the misfit it cannot close over the joints around it and presses
+///   tiles on its other side into overlaps, which are then cut;
+/// - beyond `tear` it grows with the logarithm, `rho(tear) + 2 wide tear ln(e / tear)`
+///   (value and slope continuous), so that two gaps cost more than one as wide as both:
+///   where a course's joints cannot all close (quads wider than the tiles where courses
+///   fan out or converge, around singularities), the misfit gathers into a few tears, which
+///   the finishing fills with pieces cut to the room ([`crate::tiles`]' tear fill), and the
+///   joints beside them close, instead of every joint opening a little. A mason does the
+///   same: joints at the nominal width, the leftover in one cut piece.
+///
+/// Overlaps (negative excess) keep their full, steep cost.
+fn capped(excess: f64, slope: f64, wide: f64, tear: f64) -> (f64, f64) {
+    if wide <= 0.0 || excess <= wide {
+        return (excess, slope);
+    }
+    let huber = |e: f64| 2.0 * wide * e - wide * wide;
+    if excess > tear {
+        let r = (huber(tear) + 2.0 * wide * tear * (excess / tear).ln()).sqrt();
+        (r, slope * wide * tear / (excess * r))
     } else {
-        (excess, slope)
+        let r = huber(excess).sqrt();
+        (r, slope * wide / r)
     }
 }
 
@@ -162,7 +182,7 @@ impl Problem<'_> {
         } else {
             (k * d - s * j, k)
         };
-        capped(raw, slope, self.weights.wide)
+        capped(raw, slope, self.weights.wide, self.weights.tear)
     }
 
     /// Calls `row(tile_a, grad_a, tile_b, grad_b, value)` for every residual at `frames`
@@ -595,6 +615,37 @@ mod tests {
     }
 
     #[test]
+    fn a_joint_cost_gathers_what_cannot_close_into_tears() {
+        let (wide, tear) = (0.01, 0.015);
+        let rho = |e: f64| capped(e, 1.0, wide, tear).0.powi(2);
+        // Quadratic, then Huber's, then the logarithm, each slope continuous with the last.
+        for e in [-0.004, 0.003, 0.008, 0.012, 0.02, 0.05, 0.2] {
+            let (r, slope) = capped(e, 1.0, wide, tear);
+            let h = 1e-7;
+            let numeric =
+                (capped(e + h, 1.0, wide, tear).0 - capped(e - h, 1.0, wide, tear).0) / (2.0 * h);
+            assert!(
+                (numeric - slope).abs() < 1e-5 * (1.0 + slope.abs()),
+                "at {e}"
+            );
+            assert!(r.is_finite());
+        }
+        for at in [wide, tear] {
+            assert!((rho(at + 1e-12) - rho(at - 1e-12)).abs() < 1e-12);
+        }
+        assert_eq!(rho(0.008), 0.008 * 0.008);
+        // With Huber's loss alone two gaps of 20 mm excess cost less than one of 40 mm: the
+        // misfit spreads; past `tear` one tear of 40 mm costs less than two gaps of 20: the
+        // misfit gathers.
+        let huber = |e: f64| capped(e, 1.0, wide, f64::INFINITY).0.powi(2);
+        assert!(2.0 * huber(0.02) < huber(0.04));
+        assert!(rho(0.04) < 2.0 * rho(0.02));
+        // A slope past `tear` still pulls the tear's tiles together, weaker the wider.
+        assert!(capped(0.05, 1.0, wide, tear).1 > capped(0.2, 1.0, wide, tear).1);
+        assert!(capped(0.2, 1.0, wide, tear).1 > 0.0);
+    }
+
+    #[test]
     fn gradient_matches_finite_differences() {
         let (sizes, found, frames, surface) = setup();
         let bands: Vec<Option<BondBand>> = found
@@ -625,8 +676,9 @@ mod tests {
                 bond: 1.0,
                 anchor: 0.1,
                 edge: 4.0,
-                // Small enough that some of the jittered joints lie beyond it.
+                // Small enough that some of the jittered joints lie beyond them.
                 wide: 0.02,
+                tear: 0.03,
             },
             beyond_start: &[],
             surface: &surface,
