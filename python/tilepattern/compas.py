@@ -18,12 +18,13 @@ Examples
 >>> boxes = tpc.tiles(surface, pattern, length=1.2, width=0.6, thickness=0.05, joint=0.04)
 >>> report = tpc.report(boxes)
 >>> len(boxes), report["full_tiles"], report["cutting"]["filler_tiles"]
-(38, 32, 6)
+(44, 32, 12)
 >>> boxes[0].name, round(boxes[0].xsize, 2)
 ('F', 1.2)
 
 The fit stage moved the tiles so that the joints come close to the 0.04 joint (filler pieces
-close the courses it left short of the edge); ``fit=False`` keeps the paper's placement:
+close the courses it left short of the edge and the tears where joints could not close);
+``fit=False`` keeps the paper's placement:
 
 >>> report["fit"]["status"], report["joints"]["p95_deviation"] < report["joints"]["before_fit"]["p95_deviation"]
 ('converged', True)
