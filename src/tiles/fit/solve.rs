@@ -78,6 +78,8 @@ fn capped(excess: f64, slope: f64, wide: f64, tear: f64) -> (f64, f64) {
     if wide <= 0.0 || excess <= wide {
         return (excess, slope);
     }
+    // Below `wide` the logarithm's branch would not meet Huber's (nor stay real).
+    let tear = tear.max(wide);
     let huber = |e: f64| 2.0 * wide * e - wide * wide;
     if excess > tear {
         let r = (huber(tear) + 2.0 * wide * tear * (excess / tear).ln()).sqrt();
@@ -632,6 +634,21 @@ mod tests {
         }
         for at in [wide, tear] {
             assert!((rho(at + 1e-12) - rho(at - 1e-12)).abs() < 1e-12);
+            // The slope of the loss, 2 r dr/de, is the same on either side.
+            let loss_slope = |e: f64| {
+                let (r, dr) = capped(e, 1.0, wide, tear);
+                2.0 * r * dr
+            };
+            let (below, above) = (loss_slope(at - 1e-9), loss_slope(at + 1e-9));
+            assert!(
+                (below - above).abs() < 1e-6 * below.abs(),
+                "at {at}: {below} {above}"
+            );
+        }
+        // A `tear` under `wide` is taken as `wide`: no jump, no root of a negative number.
+        for e in [0.011, 0.02, 0.5] {
+            assert_eq!(capped(e, 1.0, wide, 0.002), capped(e, 1.0, wide, wide));
+            assert!(capped(e, 1.0, wide, 0.002).0.is_finite());
         }
         assert_eq!(rho(0.008), 0.008 * 0.008);
         // With Huber's loss alone two gaps of 20 mm excess cost less than one of 40 mm: the
