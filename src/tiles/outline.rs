@@ -72,8 +72,14 @@ pub fn covers(tile: &Tile, p: &Point3<f64>, margin: f64) -> bool {
 /// two tiles on different folds can overlap there though their solids are far apart; only
 /// pairs that may touch are neighbours.
 pub fn may_touch(a: &Tile, b: &Tile, within: f64) -> bool {
+    room_between_balls(a, b) <= within
+}
+
+/// The distance between two tiles' bounding balls (about each origin, its half diagonal and
+/// thickness): a lower bound on the distance between their solids where positive.
+fn room_between_balls(a: &Tile, b: &Tile) -> f64 {
     let reach = |t: &Tile| t.size[0].hypot(t.size[1]) / 2.0 + t.size[2];
-    (a.frame.origin - b.frame.origin).norm() <= reach(a) + reach(b) + within
+    (a.frame.origin - b.frame.origin).norm() - reach(a) - reach(b)
 }
 
 /// How two tiles meet.
@@ -154,17 +160,10 @@ pub fn separation_of(
     // Where the surface bends through a right angle within a tile or two (a crest tighter
     // than a tile), the mean plane of two tiles on its flanks runs across the line between
     // them, and their projections overlap though their solids are apart. Solids whose
-    // bounding balls (about each origin, through its farthest corner) are apart do not
+    // bounding balls ([`room_between_balls`]) are apart do not
     // overlap: their separation is at least the room between the balls.
-    let radius = |t: &Tile, corners: &[Point3<f64>]| {
-        corners
-            .iter()
-            .map(|p| (p - t.frame.origin).norm())
-            .fold(0.0, f64::max)
-    };
     let gap = if gap < 0.0 {
-        let room =
-            (a.frame.origin - b.frame.origin).norm() - radius(a, outline_a) - radius(b, outline_b);
+        let room = room_between_balls(a, b);
         if room > 0.0 { room } else { gap }
     } else {
         gap

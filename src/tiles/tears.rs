@@ -261,10 +261,12 @@ mod tests {
     }
 
     /// Two rows of four 280 x 140 tiles with 10 mm joints, along the bottom and the top of a
-    /// rectangle of height `h`.
-    fn rows(h: f64) -> Vec<Tile> {
-        let tile = |x: f64, y: f64| {
-            let frame = Frame::from_normal(Point3::new(x, y, 0.0), Vector3::z(), &Vector3::x());
+    /// sheet of height `h`, each tangent to it: `at(x, s)` gives the sheet's point and normal
+    /// at `x` along it and `s` across.
+    fn rows_along(h: f64, at: impl Fn(f64, f64) -> (Point3<f64>, Vector3<f64>)) -> Vec<Tile> {
+        let tile = |x: f64, s: f64| {
+            let (origin, normal) = at(x, s);
+            let frame = Frame::from_normal(origin, normal, &Vector3::x());
             Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
         };
         (0..4)
@@ -273,6 +275,11 @@ mod tests {
                 [tile(x, 0.07), tile(x, h - 0.07)]
             })
             .collect()
+    }
+
+    /// [`rows_along`] a flat rectangle of height `h`.
+    fn rows(h: f64) -> Vec<Tile> {
+        rows_along(h, |x, y| (Point3::new(x, y, 0.0), Vector3::z()))
     }
 
     /// The point at `x` and arc length `s` across a `w` x `h` sheet bent over a cylinder of
@@ -285,40 +292,19 @@ mod tests {
         )
     }
 
-    /// That sheet as 2 x 24 x 30 triangles.
+    /// That sheet as a 24 x 30 grid ([`crate::mesh::generate::grid`]) bent onto it and split
+    /// into triangles.
     fn bent(w: f64, h: f64, r: f64) -> PolyMesh {
-        let (nu, nv) = (24, 30);
-        let mut positions = Vec::new();
-        for j in 0..=nv {
-            for i in 0..=nu {
-                let x = w * i as f64 / nu as f64;
-                positions.push(on_bent(x, h * j as f64 / nv as f64, h, r).0);
-            }
-        }
-        let mut faces = Vec::new();
-        for j in 0..nv {
-            for i in 0..nu {
-                let a = j * (nu + 1) + i;
-                faces.push(vec![a, a + 1, a + nu + 2]);
-                faces.push(vec![a, a + nu + 2, a + nu + 1]);
-            }
-        }
-        PolyMesh::new(positions, faces).unwrap()
-    }
-
-    /// [`rows`] laid on the bent sheet, tangent to it.
-    fn rows_on(h: f64, r: f64) -> Vec<Tile> {
-        let tile = |x: f64, s: f64| {
-            let (origin, normal) = on_bent(x, s, h, r);
-            let frame = Frame::from_normal(origin, normal, &Vector3::x());
-            Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
-        };
-        (0..4)
-            .flat_map(|i| {
-                let x = 0.14 + 0.29 * i as f64;
-                [tile(x, 0.07), tile(x, h - 0.07)]
-            })
-            .collect()
+        use crate::mesh::generate;
+        let (nu, nv) = (24.0, 30.0);
+        let flat = generate::grid(24, 30);
+        let positions = flat
+            .positions()
+            .iter()
+            .map(|p| on_bent(w * p.x / nu, h * p.y / nv, h, r).0)
+            .collect();
+        let sheet = PolyMesh::new(positions, flat.faces().to_vec()).unwrap();
+        generate::triangulate_quads(&sheet)
     }
 
     fn fill(surface: &PolyMesh, tiles: &mut Vec<Tile>) -> usize {
@@ -390,7 +376,7 @@ mod tests {
         // curvature does not draw its cells into each other (a cylinder of radius 1 m
         // across the rows).
         let curved = bent(1.16, h, 1.0);
-        let mut on_curve = rows_on(h, 1.0);
+        let mut on_curve = rows_along(h, |x, s| on_bent(x, s, h, 1.0));
         fill(&curved, &mut on_curve);
         let whole = on_curve[8..].iter().filter(|t| t.cut.is_none()).count();
         assert!(
