@@ -152,6 +152,9 @@ pub fn ffi_pipeline(data: &[u8]) {
             tile.width = tile_length / 2.0;
             tile.thickness = 0.05;
             tile.joint = 0.02;
+            // Short, as the pattern's: a tile far smaller than the faces asks the fit's tear
+            // fill for a piece per tile of the faces' area.
+            tile.fit_time_limit_seconds = 1.0;
             let mut tiles = ptr::null_mut();
             let status = tp_tiles_build(mesh, pattern, &tile, &mut tiles);
             assert_ne!(status, TpStatus::TP_PANIC, "tp_tiles_build");

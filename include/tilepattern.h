@@ -589,7 +589,9 @@ typedef struct TpTileOptions {
   int32_t fit;
   /**
    * Wall-clock limit of the fit stage in seconds; default 10. When it passes the best
-   * placement so far is kept (the report's `fit.status` says `time_limit`). Since ABI 3.
+   * placement so far is kept (the report's `fit.status` says `time_limit`). The same limit
+   * holds again for filling the fit's tears with pieces; when it passes, the pieces laid so
+   * far are kept and `fit.status` says `time_limit`. Since ABI 3.
    */
   double fit_time_limit_seconds;
   /**

@@ -11,7 +11,9 @@ use crate::mesh::{MeshError, PolyMesh};
 use crate::pattern::{self, Pattern, PatternError, PatternOptions};
 use crate::remesh::{self, RemeshError, RemeshOptions, Remeshed};
 use crate::report::{self, Joint, JointSummary, Report};
-use crate::tiles::{self, CutGroup, DroppedTile, FinishOptions, Tile, TileError, TileSpec};
+use crate::tiles::{
+    self, CutGroup, DroppedTile, FinishOptions, FitStatus, Tile, TileError, TileSpec,
+};
 
 /// Any stage's error.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -290,10 +292,25 @@ pub fn tiles_for_pattern_with(
         }
         None => (boxes, None),
     };
-    let (tiles, finished) = tiles::finish(quads, surface, boxes, spec, finish);
+    // The fill of the fit's tears honours the fit's time limit (a clock of its own, so that
+    // a fit stopped by the limit still has its tears filled) and the caller's cancel.
+    let fill_started = Instant::now();
+    let fill_limit = finish.fit.map_or(f64::INFINITY, |f| f.time_limit);
+    let mut fill_timed_out = false;
+    let (tiles, finished) = tiles::finish_with(quads, surface, boxes, spec, finish, &mut || {
+        fill_timed_out = fill_started.elapsed().as_secs_f64() > fill_limit;
+        !fill_timed_out && control.keep_going(1.0)
+    });
     let joints = report::gaps::joints(quads, &tiles, spec.joint);
     let mut report = Report::measured(quads, &pattern, &tiles, &joints, spec, mm);
-    if let Some((before, summary, seconds)) = fitted {
+    if let Some((before, mut summary, seconds)) = fitted {
+        if finished.tear_fill_stopped {
+            summary.status = if fill_timed_out {
+                FitStatus::TimeLimit
+            } else {
+                FitStatus::Cancelled
+            };
+        }
         report.joints.before_fit = Some(Box::new(before));
         report.fit = Some(summary);
         report.seconds.fit = seconds;

@@ -286,6 +286,63 @@ fn a_cancelled_or_timed_out_fit_keeps_the_placement_so_far() {
     );
 }
 
+/// Two quads of 30 m carrying one tile of 1.9 m: the fit's tear fill is asked to cover the
+/// rest of the 60 x 30 m with pieces (as a tile in the wrong units would ask).
+fn one_tile_on_large_quads() -> (PolyMesh, tilepattern::pattern::Pattern, TileSpec) {
+    let grid = generate::grid(2, 1);
+    let quads = PolyMesh::new(
+        grid.positions().iter().map(|p| p * 30.0).collect(),
+        grid.faces().to_vec(),
+    )
+    .unwrap();
+    let spec = TileSpec {
+        length: 1.9,
+        width: 0.95,
+        thickness: 0.1,
+        joint: 0.1,
+    };
+    let options = PatternOptions {
+        bond: Bond::Stack,
+        ..PatternOptions::default()
+    };
+    let pattern = tilepattern::pattern::solve(&quads, &options).unwrap();
+    (quads, pattern, spec)
+}
+
+#[test]
+fn the_fill_of_the_tears_stops_on_cancel() {
+    let (quads, pattern, spec) = one_tile_on_large_quads();
+    let finish = FinishOptions::for_spec(&spec);
+    let whole = pipeline::tiles_for_pattern(&quads, None, pattern.clone(), &spec, &finish).unwrap();
+    let pieces = whole.report.cutting.as_ref().unwrap().tear_pieces;
+    assert!(pieces >= 20, "{pieces} pieces fill the quads");
+    assert_ne!(whole.report.fit.unwrap().status, FitStatus::Cancelled);
+    // Cancelled once the fit has reported its end (1), i.e. in the fill.
+    let mut ends = 0;
+    let mut stop = |fraction: f64| {
+        if fraction >= 1.0 {
+            ends += 1;
+        }
+        ends < 2
+    };
+    let cancelled = pipeline::tiles_for_pattern_with(
+        &quads,
+        None,
+        pattern,
+        &spec,
+        &finish,
+        &mut Control::with_progress(&mut stop),
+    )
+    .unwrap();
+    assert_eq!(cancelled.report.fit.unwrap().status, FitStatus::Cancelled);
+    assert!(
+        cancelled.report.cutting.as_ref().unwrap().tear_pieces < pieces,
+        "{} of {pieces} pieces laid after the cancel",
+        cancelled.report.cutting.as_ref().unwrap().tear_pieces
+    );
+    assert_eq!(ends, 2, "no progress reported after the cancel");
+}
+
 #[test]
 fn bad_fit_options_and_foreign_patterns_are_refused() {
     let quads = generate::grid(4, 2);

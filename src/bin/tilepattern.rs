@@ -325,7 +325,7 @@ struct TileArgs {
     #[arg(long)]
     no_fit: bool,
     /// Wall-clock limit of the fit stage in seconds; when it passes, the best placement so far
-    /// is kept.
+    /// is kept (and again for filling the fit's tears with pieces: those laid so far are kept).
     #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
     fit_time_limit: f64,
     /// Overlaps the fit leaves (millimetres); deeper ones are cut (default: a twentieth of

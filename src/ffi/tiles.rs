@@ -58,7 +58,9 @@ pub struct TpTileOptions {
     /// 3.5). Since ABI 3.
     pub fit: i32,
     /// Wall-clock limit of the fit stage in seconds; default 10. When it passes the best
-    /// placement so far is kept (the report's `fit.status` says `time_limit`). Since ABI 3.
+    /// placement so far is kept (the report's `fit.status` says `time_limit`). The same limit
+    /// holds again for filling the fit's tears with pieces; when it passes, the pieces laid so
+    /// far are kept and `fit.status` says `time_limit`. Since ABI 3.
     pub fit_time_limit_seconds: f64,
     /// Overlaps the fit stage leaves; deeper ones are cut. Negative (default): a twentieth of
     /// the joint. Since ABI 3.

@@ -246,6 +246,9 @@ pub struct Finished {
     pub fillers: usize,
     /// Of `fillers`, the pieces filling holes the fit left (`tears.rs`).
     pub tear_pieces: usize,
+    /// Whether the fill of those holes was stopped (by [`finish_with`]'s `keep_going`)
+    /// before every hole was tried.
+    pub tear_fill_stopped: bool,
     /// Cut shapes with counts.
     pub cut_list: Vec<CutGroup>,
     /// Summary of the laying order.
@@ -262,6 +265,22 @@ pub fn finish(
     tiles: Vec<Tile>,
     spec: &TileSpec,
     options: &FinishOptions,
+) -> (Vec<Tile>, Finished) {
+    finish_with(quads, surface, tiles, spec, options, &mut || true)
+}
+
+/// [`finish`], asking `keep_going` now and then while it fills the fit's tears, the one step
+/// whose work grows with the surface's area in tiles rather than with the tiles laid (a
+/// surface far larger than its pattern's tiles asks for a piece per tile of its area);
+/// `false` stops that fill with the pieces laid so far ([`Finished::tear_fill_stopped`]),
+/// and the rest (cut list, laying order) is done as usual.
+pub fn finish_with(
+    quads: &PolyMesh,
+    surface: Option<&PolyMesh>,
+    tiles: Vec<Tile>,
+    spec: &TileSpec,
+    options: &FinishOptions,
+    keep_going: &mut dyn FnMut() -> bool,
 ) -> (Vec<Tile>, Finished) {
     let reference = surface.unwrap_or(quads);
     let boundary = SurfaceBoundary::new(reference, spec.length.max(spec.width));
@@ -426,9 +445,12 @@ pub fn finish(
             min_width: options.min_kept_width,
             tolerance: options.tolerance,
         }
-        .fill(&mut kept)
+        .fill(&mut kept, keep_going)
     } else {
-        0
+        tears::Filled {
+            pieces: 0,
+            stopped: false,
+        }
     };
     let mut links: Vec<[usize; 2]> = parents
         .iter()
@@ -436,7 +458,7 @@ pub fn finish(
         .filter_map(|(i, p)| Some([kept_index[i]?, kept_index[(*p)?]?]))
         .collect();
     links.extend(filler_neighbours(&kept));
-    let fillers = kept_index[fillers_from..].iter().flatten().count() + tears;
+    let fillers = kept_index[fillers_from..].iter().flatten().count() + tears.pieces;
     let cut_list = cutlist::cut_list(&mut kept, options.tolerance);
     let sequence = sequence::laying_order(quads, &mut kept, &links, &options.sequence);
     (
@@ -444,7 +466,8 @@ pub fn finish(
         Finished {
             dropped,
             fillers,
-            tear_pieces: tears,
+            tear_pieces: tears.pieces,
+            tear_fill_stopped: tears.stopped,
             cut_list,
             sequence,
         },

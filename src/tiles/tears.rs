@@ -50,19 +50,46 @@ pub(crate) struct Tears<'a> {
     pub tolerance: f64,
 }
 
+/// Uncovered samples tried between two calls of the fill's `keep_going`.
+const POLL_EVERY: usize = 64;
+
+/// What [`Tears::fill`] laid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Filled {
+    /// Pieces appended to the tiles.
+    pub pieces: usize,
+    /// Whether `keep_going` stopped the fill before every uncovered sample was tried.
+    pub stopped: bool,
+}
+
 impl Tears<'_> {
-    /// Appends to `tiles` the pieces that fill the holes between them; returns how many.
-    pub(crate) fn fill(&self, tiles: &mut Vec<Tile>) -> usize {
+    /// Appends to `tiles` the pieces that fill the holes between them. `keep_going` is asked
+    /// every [`POLL_EVERY`] uncovered samples; `false` stops the fill with the pieces laid so
+    /// far (a surface far larger than its tiles, e.g. a tile in the wrong units, can ask for
+    /// tens of thousands of pieces).
+    pub(crate) fn fill(
+        &self,
+        tiles: &mut Vec<Tile>,
+        keep_going: &mut dyn FnMut() -> bool,
+    ) -> Filled {
         let before = tiles.len();
+        let laid = |tiles: &Vec<Tile>, stopped| Filled {
+            pieces: tiles.len() - before,
+            stopped,
+        };
         let mut outlines: Vec<Vec<Point3<f64>>> =
             tiles.iter().map(outline::world_corners).collect();
+        // Every piece continues a tile near it: with none there is nothing to continue.
+        if tiles.is_empty() {
+            return laid(tiles, false);
+        }
         let Some(half_diagonal) = tiles
             .iter()
             .map(|t| t.size[0].hypot(t.size[1]) / 2.0)
             .chain([self.blank[0].hypot(self.blank[1]) / 2.0])
             .reduce(f64::max)
         else {
-            return 0;
+            return laid(tiles, false);
         };
         // Tiles that may cover a point, and those that may touch a piece.
         let reach = half_diagonal + self.joint;
@@ -97,9 +124,20 @@ impl Tears<'_> {
             },
         );
         let holes = HashGrid::of_points(self.blank[1], open.iter().map(|s| [s.0]));
-        for &(q, normal, _) in &open {
-            if covered(tiles, &placed, &q) {
+        // Samples found covered: tiles are only added, so a covered sample stays covered and
+        // need not be asked again (on a surface where the tiles leave wide holes, each
+        // sample is otherwise asked once for every sample within half a width of it).
+        let mut done = vec![false; open.len()];
+        let mut tried = 0;
+        for i in 0..open.len() {
+            let (q, normal, _) = open[i];
+            if done[i] || covered(tiles, &placed, &q) {
+                done[i] = true;
                 continue;
+            }
+            tried += 1;
+            if tried % POLL_EVERY == 0 && !keep_going() {
+                return laid(tiles, true);
             }
             // The nearest tile sets the piece's turn and which way is up.
             let near = placed.near(&q, reach);
@@ -118,7 +156,12 @@ impl Tears<'_> {
             let (mut sum, mut weight) = (Vector3::zeros(), 0.0);
             for s in holes.near(&q, self.blank[1] / 2.0) {
                 let (p, _, area) = open[s];
-                if (p - q).norm() <= self.blank[1] / 2.0 && !covered(tiles, &placed, &p) {
+                if done[s] || (p - q).norm() > self.blank[1] / 2.0 {
+                    continue;
+                }
+                if covered(tiles, &placed, &p) {
+                    done[s] = true;
+                } else {
                     sum += p.coords * area;
                     weight += area;
                 }
@@ -130,22 +173,35 @@ impl Tears<'_> {
             };
             let centre = self.boundary.closest(&centre, self.blank[1]).unwrap_or(q);
             let from = tiles[nearest].frame;
-            let best = [from.x, from.y]
+            // The candidate keeping most area, the first of equals; a whole piece keeps all
+            // a piece can, so the candidates after it are not cut.
+            let mut best: Option<Tile> = None;
+            for frame in [from.x, from.y]
                 .iter()
                 .map(|along| Frame::from_normal(centre, up, along))
                 .chain(self.course_cells(&from, &q, &up))
-                .filter_map(|frame| {
-                    let near = placed.near(&frame.origin, touching);
-                    self.piece(frame, tiles, &outlines, &near, &q)
-                })
-                .reduce(|a, b| if b.kept_area() > a.kept_area() { b } else { a });
+            {
+                let near = placed.near(&frame.origin, touching);
+                let Some(piece) = self.piece(frame, tiles, &outlines, &near, &q) else {
+                    continue;
+                };
+                if best
+                    .as_ref()
+                    .is_none_or(|b| piece.kept_area() > b.kept_area())
+                {
+                    best = Some(piece);
+                }
+                if best.as_ref().is_some_and(|b| b.cut.is_none()) {
+                    break;
+                }
+            }
             if let Some(piece) = best {
                 placed.insert(tiles.len(), &piece.frame.origin, &piece.frame.origin);
                 outlines.push(outline::world_corners(&piece));
                 tiles.push(piece);
             }
         }
-        tiles.len() - before
+        laid(tiles, false)
     }
 
     /// Frames for a piece continuing the course of the tile on `from` to the sample `q`: the
@@ -317,7 +373,8 @@ mod tests {
             min_width: 0.028,
             tolerance: 0.001,
         }
-        .fill(tiles)
+        .fill(tiles, &mut || true)
+        .pieces
     }
 
     /// Share of the rectangle's area between the rows that some tile covers.

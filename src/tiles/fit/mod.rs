@@ -100,7 +100,8 @@ pub struct FitOptions {
     /// Model units.
     pub overlap_tolerance: f64,
     /// Wall-clock seconds for the placement; when they run out the best placement so far is
-    /// kept and the status says so.
+    /// kept and the status says so. The pipeline gives the fill of the fit's tears the same
+    /// limit again ([`crate::tiles::finish_with`]).
     pub time_limit: f64,
     /// Most Levenberg-Marquardt steps.
     pub max_iterations: usize,
