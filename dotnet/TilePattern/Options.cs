@@ -454,7 +454,8 @@ namespace TilePattern
         public bool Fit { get; set; }
 
         /// <summary>Wall-clock limit of the fit in seconds (default 10); when it passes the best
-        /// placement so far is kept (<see cref="FitStatus.TimeLimit"/>).</summary>
+        /// placement so far is kept (<see cref="FitStatus.TimeLimit"/>). The same limit holds
+        /// again for filling the fit's tears with pieces (those laid so far are kept).</summary>
         public double FitTimeLimitSeconds { get; set; }
 
         /// <summary>Overlaps the fit may leave; deeper ones are cut. Negative (default): a

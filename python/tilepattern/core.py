@@ -893,7 +893,8 @@ def tiles(
         report has no ``fit`` entry.
     fit_time_limit : float, optional
         Wall-clock seconds of the fit (default 10); when they pass, the best placement so
-        far is kept and ``report["fit"]["status"]`` is ``"time_limit"``.
+        far is kept and ``report["fit"]["status"]`` is ``"time_limit"``. The same limit
+        holds again for filling the fit's tears with pieces (those laid so far are kept).
     overlap_tolerance : float, optional
         Overlaps the fit may leave; deeper ones are cut (default a twentieth of the joint).
     bond_tolerance : float, optional
