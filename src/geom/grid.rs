@@ -4,13 +4,17 @@
 
 use std::collections::HashMap;
 
+use foldhash::fast::FixedState;
+
 use nalgebra::{Point3, Vector3};
 
-/// Items (by index) in a sparse grid of cells of one size.
+/// Items (by index) in a sparse grid of cells of one size. Cell keys are hashed with a
+/// fixed seed (foldhash's fast hasher): the grid is asked for cells by the million in the
+/// tile stage, and no result depends on the order of its cells (queries sort what they find).
 #[derive(Debug, Clone)]
 pub struct HashGrid {
     cell: f64,
-    cells: HashMap<[i64; 3], Vec<u32>>,
+    cells: HashMap<[i64; 3], Vec<u32>, FixedState>,
 }
 
 impl HashGrid {
@@ -22,7 +26,7 @@ impl HashGrid {
             } else {
                 1.0
             },
-            cells: HashMap::new(),
+            cells: HashMap::default(),
         }
     }
 
