@@ -310,9 +310,9 @@ fn one_tile_on_large_quads() -> (PolyMesh, tilepattern::pattern::Pattern, TileSp
 }
 
 #[test]
-fn the_fill_of_the_tears_stops_on_cancel() {
+fn the_fill_of_the_tears_stops_on_cancel_and_at_the_time_limit() {
     let (quads, pattern, spec) = one_tile_on_large_quads();
-    let finish = FinishOptions::for_spec(&spec);
+    let mut finish = FinishOptions::for_spec(&spec);
     let whole = pipeline::tiles_for_pattern(&quads, None, pattern.clone(), &spec, &finish).unwrap();
     let pieces = whole.report.cutting.as_ref().unwrap().tear_pieces;
     assert!(pieces >= 20, "{pieces} pieces fill the quads");
@@ -328,7 +328,7 @@ fn the_fill_of_the_tears_stops_on_cancel() {
     let cancelled = pipeline::tiles_for_pattern_with(
         &quads,
         None,
-        pattern,
+        pattern.clone(),
         &spec,
         &finish,
         &mut Control::with_progress(&mut stop),
@@ -341,6 +341,12 @@ fn the_fill_of_the_tears_stops_on_cancel() {
         cancelled.report.cutting.as_ref().unwrap().tear_pieces
     );
     assert_eq!(ends, 2, "no progress reported after the cancel");
+    // No time at all: the fill stops at its first look at the clock.
+    finish.fit.as_mut().unwrap().time_limit = 0.0;
+    let hurried = pipeline::tiles_for_pattern(&quads, None, pattern, &spec, &finish).unwrap();
+    assert_eq!(hurried.report.fit.unwrap().status, FitStatus::TimeLimit);
+    let laid = hurried.report.cutting.as_ref().unwrap().tear_pieces;
+    assert!(laid < pieces, "{laid} of {pieces} pieces laid with no time");
 }
 
 #[test]
