@@ -77,20 +77,16 @@ impl Tears<'_> {
             pieces: tiles.len() - before,
             stopped,
         };
-        let mut outlines: Vec<Vec<Point3<f64>>> =
-            tiles.iter().map(outline::world_corners).collect();
         // Every piece continues a tile near it: with none there is nothing to continue.
         if tiles.is_empty() {
             return laid(tiles, false);
         }
-        let Some(half_diagonal) = tiles
+        let mut outlines: Vec<Vec<Point3<f64>>> =
+            tiles.iter().map(outline::world_corners).collect();
+        let half_diagonal = tiles
             .iter()
             .map(|t| t.size[0].hypot(t.size[1]) / 2.0)
-            .chain([self.blank[0].hypot(self.blank[1]) / 2.0])
-            .reduce(f64::max)
-        else {
-            return laid(tiles, false);
-        };
+            .fold(self.blank[0].hypot(self.blank[1]) / 2.0, f64::max);
         // Tiles that may cover a point, and those that may touch a piece.
         let reach = half_diagonal + self.joint;
         let touching = 2.0 * half_diagonal + self.joint;
