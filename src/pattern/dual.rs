@@ -130,6 +130,13 @@ impl DualGraph {
         &self.face_tiles[f]
     }
 
+    /// Every face pairs one way only (at most two candidate tiles, one on either side):
+    /// the graph of a mesh in level courses (`--courses level`), whose faces pair only along
+    /// their course, so that the program's matching part is a set of paths.
+    pub fn in_courses(&self) -> bool {
+        self.face_tiles.iter().all(|tiles| tiles.len() <= 2)
+    }
+
     /// Pairs of candidate tiles that would form a continuous joint (the paper's y, eq. 2):
     /// their middle edges are opposite edges at an interior valence-4 vertex, so the tiles lie
     /// side by side, aligned, with their end joints on one line.

@@ -38,8 +38,6 @@ const LINEAR_SHARE: f64 = 0.9;
 /// later ones.
 const FIRST_ANNEAL_SHARE: f64 = 0.5;
 const ANNEAL_SHARE: f64 = 0.3;
-/// Share of the time left that annealing takes in courses before CBC gets the whole program.
-const COURSES_ANNEAL_SHARE: f64 = 0.1;
 /// Share of the time left that CBC may take in courses; the rest is for the usual route
 /// should it not finish.
 const COURSES_CBC_SHARE: f64 = 0.6;
@@ -176,26 +174,23 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
     /// spread as halves over the whole course (on the shared dome's 6342 quads in level
     /// courses the engine ended at 3125 against a bound of 3166 after 60 s; CBC proved 3127
     /// in 3.5 s, and 17013 on a 34,324-quad dome in 48 s where the engine ended 0.7 % off).
-    /// A short annealing first gives a pattern to keep should CBC not beat it in time. CBC
-    /// gets [`COURSES_CBC_SHARE`] of the time left, and only when it is expected to finish
-    /// in it ([`expected_courses_seconds`]); if it does not, the usual route takes over.
+    /// CBC gets [`COURSES_CBC_SHARE`] of the time left, and only when it is expected to
+    /// finish in it ([`expected_courses_seconds`]); if it does not, the usual route takes
+    /// over from the better of the start and CBC's pattern, with CBC's bound. (Until
+    /// 2026-12-04 a short annealing ran first, to have a pattern should CBC not finish; the
+    /// usual route anneals anyway, and with Clp's presolve off in courses (`mip`) CBC proves
+    /// the 20 m cap in 5 s, so the 5 s of annealing before it were most of the stage.)
     /// Whether the search is over.
     fn courses_route(&mut self) -> Result<bool, PatternError> {
-        let in_courses = (0..self.graph.face_count()).all(|f| self.graph.face_tiles(f).len() <= 2);
         let expected = expected_courses_seconds(self.program_faces());
-        let after_annealing = self.left().mul_f64(1.0 - COURSES_ANNEAL_SHARE);
-        if !in_courses
+        let budget = self.left().mul_f64(COURSES_CBC_SHARE);
+        if !self.graph.in_courses()
             || self.terms.is_empty()
             || self.done()
-            || expected > after_annealing.mul_f64(COURSES_CBC_SHARE).as_secs_f64()
+            || expected > budget.as_secs_f64()
         {
             return Ok(false);
         }
-        self.anneal(COURSES_ANNEAL_SHARE, anneal::LAST_TEMPERATURE, 1)?;
-        if self.done() {
-            return Ok(true);
-        }
-        let budget = self.left().mul_f64(COURSES_CBC_SHARE);
         let (cbc_bound, cbc_timed_out) = self.whole_program(budget)?;
         self.tighten(cbc_bound, BoundSource::WholeProgram);
         if cbc_timed_out && !self.done() {

@@ -40,6 +40,22 @@ pub(super) fn expected_linear_seconds(faces: usize) -> f64 {
 
 /// Solves the bond's program over the free tiles of `restriction`, stopping at the time
 /// limit or once CBC's relative gap is at most `gap` (0: prove optimality).
+/// Clp's presolve for the root of a program over `graph`: off in level courses, on
+/// otherwise. In courses the root relaxation is nearly or wholly integral and presolve
+/// removes little but costs most of the solve (`match --courses level --method mip`,
+/// 2026-12-04, on and off: the 20 m cap's 34,330 faces 21 s and 5.4 s, the same optimum
+/// 17014; the 51 programs of the benchmark set 28.2 s and 21.5 s in all, each the same
+/// optimum). Over free programs (either way across every quad) it made no consistent
+/// difference on the same 51 meshes at 20 s each (752 s and 737 s in all; as many
+/// programs proven faster with it as without), so CBC's default stays.
+fn presolve_for(graph: &DualGraph) -> cbc::Presolve {
+    if graph.in_courses() {
+        cbc::Presolve::Off
+    } else {
+        cbc::Presolve::On
+    }
+}
+
 #[expect(
     clippy::too_many_arguments,
     reason = "the program's inputs, its limits and its control"
@@ -64,12 +80,13 @@ pub(super) fn solve(
         });
     }
     let seconds = time_limit.as_secs_f64() * CBC_SHARE_OF_LIMIT;
+    let presolve = presolve_for(graph);
 
     // CBC runs on a worker thread, so that progress callbacks stay on the caller's thread;
     // the caller's cancel and deadline reach it through its stop handlers, which end it
     // within milliseconds wherever it is (in Clp's root linear program too).
     let worker = move |stop: Stop| {
-        cbc::solve(program.model(), seconds, gap, &stop).map(|solved| {
+        cbc::solve(program.model(), seconds, gap, presolve, &stop).map(|solved| {
             let chosen = solved.values.map(|values| program.chosen(&values));
             (chosen, solved.bound, solved.ending)
         })
@@ -109,6 +126,44 @@ mod tests {
 
     use super::*;
     use crate::mesh::{Topology, generate};
+
+    #[test]
+    fn programs_in_courses_skip_clps_presolve_and_reach_the_same_optimum() {
+        let mesh = generate::corner_supported_shell(3.0, 0.4);
+        let topology = Topology::new(&mesh).unwrap();
+        let free_graph = DualGraph::new(&mesh, &topology, &[]);
+        assert!(!free_graph.in_courses());
+        assert_eq!(presolve_for(&free_graph), cbc::Presolve::On);
+        let middle =
+            crate::pattern::courses::middle_edges(&mesh, &topology, [0.0, 0.0, 1.0]).unwrap();
+        let graph = DualGraph::restricted(&mesh, &topology, &[], Some(&middle));
+        assert!(graph.in_courses());
+        assert_eq!(presolve_for(&graph), cbc::Presolve::Off);
+        let all = vec![true; graph.tiles().len()];
+        let none = vec![false; graph.tiles().len()];
+        let restriction = Restriction {
+            free: &all,
+            fixed: &none,
+            patch: None,
+        };
+        let terms = Terms::uniform(&graph, crate::pattern::Bond::Staggered { weight: 0.5 });
+        let program = Program::new(&graph, &terms, Formulation::Strengthened, &restriction);
+        let optimum = |presolve| {
+            let solved = cbc::solve(program.model(), 60.0, 0.0, presolve, &Stop::new()).unwrap();
+            assert_eq!(solved.ending, Ending::Finished, "{presolve:?}");
+            let values = solved.values.unwrap();
+            let objective: f64 = values
+                .iter()
+                .zip(&program.model().objective)
+                .map(|(x, c)| x * c)
+                .sum();
+            (objective, solved.bound)
+        };
+        let (with, without) = (optimum(cbc::Presolve::On), optimum(cbc::Presolve::Off));
+        assert!(with.0 > 0.0);
+        assert!((with.0 - without.0).abs() < 1e-6, "{with:?} {without:?}");
+        assert!((with.1 - without.1).abs() < 1e-6, "{with:?} {without:?}");
+    }
 
     /// The whole program of an `n` x `n` grid, staggered, on CBC for at most `limit`.
     fn whole(
