@@ -39,6 +39,7 @@ pub mod control;
 pub mod ffi;
 pub(crate) mod geom;
 pub mod mesh;
+pub(crate) mod parallel;
 pub mod pattern;
 pub mod pipeline;
 pub mod remesh;

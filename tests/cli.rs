@@ -278,7 +278,11 @@ fn match_stops_at_the_gap_it_is_given() {
 
 /// A triangulated saddle z = (x^2 - y^2) / 4 over [-1, 1]^2, as OBJ text.
 fn saddle_obj() -> String {
-    let n = 24;
+    saddle_obj_of(24)
+}
+
+/// [`saddle_obj`] on an `n` x `n` grid.
+fn saddle_obj_of(n: usize) -> String {
     let mut text = String::new();
     for j in 0..=n {
         for i in 0..=n {
@@ -304,6 +308,34 @@ fn saddle_obj() -> String {
         }
     }
     text
+}
+
+#[test]
+fn remesh_gives_the_same_quads_on_one_thread_and_on_several() {
+    // Quads of 30 mm on a 2 m saddle: the working surface has over 100,000 edges, so the
+    // conjugate gradients split their loops into parts (`parallel`), which must not change
+    // a bit of the result whatever the number of threads.
+    let dir = scratch("threads");
+    let surface = dir.join("saddle.obj");
+    std::fs::write(&surface, saddle_obj_of(48)).unwrap();
+    let quads = |threads: &str| {
+        let quads = dir.join(format!("quads-{threads}.obj"));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_tilepattern"))
+            .env("TILEPATTERN_THREADS", threads)
+            .args(["remesh", s(&surface), "--edge", "0.03", "-o", s(&quads)])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        std::fs::read(&quads).unwrap()
+    };
+    let one = quads("1");
+    assert!(one.len() > 100_000, "{} bytes", one.len());
+    assert!(one == quads("2"));
+    assert!(one == quads("3"));
 }
 
 #[test]

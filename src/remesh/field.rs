@@ -33,6 +33,7 @@ use super::linalg::conjugate_gradient;
 use super::surface::{Surface, any_tangent, in_tangent_plane};
 use super::user_field::Samples;
 use super::{FieldDirection, RemeshOptions};
+use crate::parallel::Scatter;
 
 /// Complex number as (re, im); the field needs only a few operations.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -482,12 +483,14 @@ pub(crate) fn solve(
             x[2 * v + 1] = target[v].1;
         }
     }
+    let scatter = Scatter::default();
     let linear = Operator {
         s,
         transport: &transport,
         weight: &weight,
         fixed: &fixed,
         shift: 0.0,
+        scatter: &scatter,
     };
     conjugate_gradient(
         |x: &[f64], out: &mut [f64]| linear.apply(x, out),
@@ -600,6 +603,8 @@ struct Operator<'a> {
     weight: &'a [f64],
     fixed: &'a [bool],
     shift: f64,
+    /// Where the edges' terms are summed, part by part.
+    scatter: &'a Scatter,
 }
 
 impl Operator<'_> {
@@ -610,25 +615,27 @@ impl Operator<'_> {
             out[2 * v] = d * x[2 * v];
             out[2 * v + 1] = d * x[2 * v + 1];
         }
-        for (e, &[a, b]) in self.s.edges.iter().enumerate() {
-            let r = self.transport[e];
-            let za = if self.fixed[a] {
-                C(0.0, 0.0)
-            } else {
-                C(x[2 * a], x[2 * a + 1])
-            };
-            let zb = if self.fixed[b] {
-                C(0.0, 0.0)
-            } else {
-                C(x[2 * b], x[2 * b + 1])
-            };
-            let ra = za.add(r.mul(zb).scale(-1.0));
-            let rb = zb.add(r.conj().mul(za).scale(-1.0));
-            out[2 * a] += ra.0;
-            out[2 * a + 1] += ra.1;
-            out[2 * b] += rb.0;
-            out[2 * b + 1] += rb.1;
-        }
+        let (edges, transport, fixed) = (&self.s.edges, self.transport, self.fixed);
+        self.scatter.add(edges.len(), out, |range, out| {
+            for (&[a, b], &r) in edges[range.clone()].iter().zip(&transport[range]) {
+                let za = if fixed[a] {
+                    C(0.0, 0.0)
+                } else {
+                    C(x[2 * a], x[2 * a + 1])
+                };
+                let zb = if fixed[b] {
+                    C(0.0, 0.0)
+                } else {
+                    C(x[2 * b], x[2 * b + 1])
+                };
+                let ra = za.add(r.mul(zb).scale(-1.0));
+                let rb = zb.add(r.conj().mul(za).scale(-1.0));
+                out[2 * a] += ra.0;
+                out[2 * a + 1] += ra.1;
+                out[2 * b] += rb.0;
+                out[2 * b + 1] += rb.1;
+            }
+        });
         for v in 0..n {
             if self.fixed[v] {
                 out[2 * v] = x[2 * v];

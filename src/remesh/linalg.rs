@@ -1,6 +1,10 @@
 //! Matrix-free conjugate gradients, the one sparse solver both fields need: their energies
 //! are sums of squared per-edge residuals, so the operator is applied edge by edge and no
-//! matrix is ever assembled (and the summation order, hence the result, is fixed).
+//! matrix is ever assembled (and the summation order, hence the result, is fixed). Large
+//! systems have their vector updates and dot products split into parts
+//! ([`crate::parallel`]), summed in a fixed order: the same result on any number of cores.
+
+use crate::parallel;
 
 /// Solves `A x = b` for a symmetric positive (semi-)definite `A` given as `apply(x, out)`,
 /// starting from `x`, for at most `iterations` steps or until the residual drops by `tol`.
@@ -18,35 +22,39 @@ pub(crate) fn conjugate_gradient(
     apply(x, &mut ax);
     let mut r: Vec<f64> = b.iter().zip(&ax).map(|(b, a)| b - a).collect();
     let mut p = r.clone();
-    let mut rr = dot(&r, &r);
-    let b_norm = dot(b, b).sqrt().max(1e-300);
+    let mut rr = parallel::dot(&r, &r);
+    let b_norm = parallel::dot(b, b).sqrt().max(1e-300);
     let mut ap = vec![0.0; n];
     for k in 0..iterations {
         if rr.sqrt() <= tol * b_norm || (k % POLL_EVERY == 0 && !keep_going(k)) {
             break;
         }
         apply(&p, &mut ap);
-        let pap = dot(&p, &ap);
+        let pap = parallel::dot(&p, &ap);
         if pap <= 0.0 || !pap.is_finite() {
             break;
         }
         let alpha = rr / pap;
-        for i in 0..n {
-            x[i] += alpha * p[i];
-            r[i] -= alpha * ap[i];
-        }
-        let rr_new = dot(&r, &r);
+        let (p_now, ap_now) = (&p, &ap);
+        let rr_new = parallel::chunks_mut2(x, &mut r, |range, x, r| {
+            let (p, ap) = (&p_now[range.clone()], &ap_now[range]);
+            for i in 0..x.len() {
+                x[i] += alpha * p[i];
+                r[i] -= alpha * ap[i];
+            }
+            r.iter().map(|r| r * r).sum()
+        });
         let beta = rr_new / rr;
         rr = rr_new;
-        for i in 0..n {
-            p[i] = r[i] + beta * p[i];
-        }
+        let r_now = &r;
+        parallel::chunks_mut(&mut p, |range, p| {
+            for (p, r) in p.iter_mut().zip(&r_now[range]) {
+                *p = r + beta * *p;
+            }
+            0.0
+        });
     }
 }
 
 /// Steps between two polls of `keep_going`.
 const POLL_EVERY: usize = 8;
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}

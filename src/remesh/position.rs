@@ -22,6 +22,7 @@ use super::flow::Jumps;
 use super::linalg::conjugate_gradient;
 use super::scale;
 use super::surface::Surface;
+use crate::parallel::Scatter;
 
 /// The solved lattice: origins and per-edge integer offsets.
 #[derive(Debug, Clone)]
@@ -343,19 +344,22 @@ impl System<'_> {
                 )
             })
             .collect();
+        let scatter = Scatter::default();
         let apply = |x: &[f64], out: &mut [f64]| {
             out.iter_mut().zip(x).for_each(|(o, x)| *o = 1e-6 * x);
-            for &([a, b], t, w) in &packed {
-                let (a, b) = (a as usize, b as usize);
-                let (xa0, xa1) = (x[2 * a], x[2 * a + 1]);
-                let (xb0, xb1) = (x[2 * b], x[2 * b + 1]);
-                let l0 = w * (t[0] * xb0 + t[1] * xb1 - xa0);
-                let l1 = w * (t[2] * xb0 + t[3] * xb1 - xa1);
-                out[2 * a] -= l0;
-                out[2 * a + 1] -= l1;
-                out[2 * b] += t[0] * l0 + t[2] * l1;
-                out[2 * b + 1] += t[1] * l0 + t[3] * l1;
-            }
+            scatter.add(packed.len(), out, |range, out| {
+                for &([a, b], t, w) in &packed[range] {
+                    let (a, b) = (a as usize, b as usize);
+                    let (xa0, xa1) = (x[2 * a], x[2 * a + 1]);
+                    let (xb0, xb1) = (x[2 * b], x[2 * b + 1]);
+                    let l0 = w * (t[0] * xb0 + t[1] * xb1 - xa0);
+                    let l1 = w * (t[2] * xb0 + t[3] * xb1 - xa1);
+                    out[2 * a] -= l0;
+                    out[2 * a + 1] -= l1;
+                    out[2 * b] += t[0] * l0 + t[2] * l1;
+                    out[2 * b + 1] += t[1] * l0 + t[3] * l1;
+                }
+            });
             for k in 0..out.len() {
                 if active[k] {
                     out[k] = x[k];

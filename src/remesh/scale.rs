@@ -32,6 +32,7 @@ use nalgebra::{Matrix2, Vector2};
 use super::flow::{self, Jumps};
 use super::linalg::conjugate_gradient;
 use super::surface::Surface;
+use crate::parallel::Scatter;
 
 /// Conjugate-gradient steps of the Poisson solve.
 const ITERATIONS: usize = 400;
@@ -163,16 +164,19 @@ pub(crate) fn solve(
         .iter()
         .map(|a| 1e-6 * a / total_area * n as f64)
         .collect();
+    let scatter = Scatter::default();
     let apply = |x: &[f64], out: &mut [f64]| {
         for (o, (x, p)) in out.iter_mut().zip(x.iter().zip(&pull)) {
             *o = p * x;
         }
-        for row in &rows {
-            let r: Vector2<f64> = (0..3).map(|k| row.coef[k] * x[row.v[k]]).sum();
-            for k in 0..3 {
-                out[row.v[k]] += row.weight * row.coef[k].dot(&r);
+        scatter.add(rows.len(), out, |range, out| {
+            for row in &rows[range] {
+                let r: Vector2<f64> = (0..3).map(|k| row.coef[k] * x[row.v[k]]).sum();
+                for k in 0..3 {
+                    out[row.v[k]] += row.weight * row.coef[k].dot(&r);
+                }
             }
-        }
+        });
     };
     let mut rhs = vec![0.0; n];
     for row in &rows {
