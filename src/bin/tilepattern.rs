@@ -1178,7 +1178,7 @@ fn pattern_summary(p: &Pattern) -> String {
 
 fn remesh_summary(m: &Metrics) -> String {
     format!(
-        "{} quads (pure quad: {}), {} interior irregular vertices, mean edge {:.3} t, {:.0} % of edges within 20 %, area covered {:.3}, max distance {:.3} t ({:.2} s)",
+        "{} quads (pure quad: {}), {} interior irregular vertices, mean edge {:.3} t, {:.1} % of edges within 20 %, area covered {:.3}, max distance {:.3} t ({:.2} s)",
         m.faces,
         m.pure_quad,
         m.interior_irregular_vertices,
