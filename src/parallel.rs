@@ -215,6 +215,53 @@ mod tests {
     }
 
     #[test]
+    fn a_scatter_adds_each_part_in_turn_to_what_the_output_held() {
+        // Items i add i-dependent terms to two outputs, as an edge adds to its two ends.
+        let items = MIN_PART * 3 + 5;
+        let n = 1000;
+        let ends = |i: usize| [(i * 7) % n, (i * 13 + 1) % n];
+        let term = |i: usize| 1.0 / (1.0 + i as f64);
+        let add = |range: Range<usize>, out: &mut [f64]| {
+            for i in range {
+                let [a, b] = ends(i);
+                out[a] += term(i);
+                out[b] -= 0.5 * term(i);
+            }
+        };
+        let start: Vec<f64> = (0..n).map(|k| k as f64 * 1e-3).collect();
+        // What the split must give: the first part into the output, every other part into
+        // zeros, then those added in order.
+        let mut expected = start.clone();
+        let mut ranges = ranges(items);
+        add(ranges.next().unwrap(), &mut expected);
+        let others: Vec<Vec<f64>> = ranges
+            .map(|r| {
+                let mut own = vec![0.0; n];
+                add(r, &mut own);
+                own
+            })
+            .collect();
+        for (k, e) in expected.iter_mut().enumerate() {
+            for own in &others {
+                *e += own[k];
+            }
+        }
+        let scatter = Scatter::default();
+        for _ in 0..2 {
+            // Twice: the spare vectors kept from the first call start from zero again.
+            let mut out = start.clone();
+            scatter.add(items, &mut out, add);
+            assert!(out == expected);
+        }
+        // And the sum is the plain loop's up to rounding.
+        let mut plain = start.clone();
+        add(0..items, &mut plain);
+        for (x, y) in plain.iter().zip(&expected) {
+            assert!((x - y).abs() < 1e-9, "{x} {y}");
+        }
+    }
+
+    #[test]
     fn tasks_come_back_in_order() {
         let tasks: Vec<_> = (0..9).map(|k| move || k * k).collect();
         assert_eq!(run(tasks), (0..9).map(|k| k * k).collect::<Vec<_>>());
