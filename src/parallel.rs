@@ -145,6 +145,43 @@ pub(crate) fn chunks_mut2(
     run(tasks).into_iter().sum()
 }
 
+/// Calls `each(i, &mut a[i], &mut b[i])` for every `i`, on up to [`threads`] threads once
+/// there are [`MIN_COSTLY`] items or more. For work where each item stands alone (nothing is
+/// summed across items), so that the result is the same however the items are split; meant
+/// for costly items such as closest-point queries, which pay for threads at far fewer items
+/// than the loops [`parts`] splits.
+pub(crate) fn each_mut2<A: Send, B: Send>(
+    a: &mut [A],
+    b: &mut [B],
+    each: impl Fn(usize, &mut A, &mut B) + Sync,
+) {
+    assert_eq!(a.len(), b.len(), "vectors of one length");
+    let items = a.len();
+    let count = if items < MIN_COSTLY {
+        1
+    } else {
+        threads().min(MAX_PARTS)
+    };
+    let len = items.div_ceil(count).max(1);
+    let each = &each;
+    let tasks: Vec<_> = a
+        .chunks_mut(len)
+        .zip(b.chunks_mut(len))
+        .enumerate()
+        .map(|(k, (a, b))| {
+            move || {
+                for (i, (a, b)) in a.iter_mut().zip(b).enumerate() {
+                    each(k * len + i, a, b);
+                }
+            }
+        })
+        .collect();
+    run(tasks);
+}
+
+/// Fewest costly items [`each_mut2`] splits.
+pub(crate) const MIN_COSTLY: usize = 1024;
+
 /// Sums of per-item terms scattered into a vector (an operator applied edge by edge, each
 /// edge adding to its two ends), split by items: the first part adds into the output itself,
 /// every other into a spare vector of its own, and the spares are then added to the output
@@ -258,6 +295,20 @@ mod tests {
         add(0..items, &mut plain);
         for (x, y) in plain.iter().zip(&expected) {
             assert!((x - y).abs() < 1e-9, "{x} {y}");
+        }
+    }
+
+    #[test]
+    fn each_item_is_visited_once_with_its_own_index() {
+        for items in [3, MIN_COSTLY, MIN_COSTLY * 5 + 3] {
+            let mut a: Vec<usize> = vec![0; items];
+            let mut b: Vec<f64> = (0..items).map(|i| i as f64).collect();
+            each_mut2(&mut a, &mut b, |i, a, b| {
+                *a += i + 1;
+                *b *= 2.0;
+            });
+            assert!(a.iter().enumerate().all(|(i, &a)| a == i + 1));
+            assert!(b.iter().enumerate().all(|(i, &b)| b == 2.0 * i as f64));
         }
     }
 

@@ -23,6 +23,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use super::contacts::{Contact, Side};
 use crate::geom::SurfaceIndex;
+use crate::parallel;
 use crate::tiles::Frame;
 
 /// Where the centre offset along a bed joint may lie: `nominal +- tolerance`.
@@ -459,9 +460,11 @@ impl Problem<'_> {
             }
             let before: Vec<Frame> = frames.to_vec();
             let before_beyond = beyond.clone();
-            for t in 0..n {
-                (frames[t], beyond[t]) = self.moved(&frames[t], &clamped(&step[t], &self.sizes[t]));
-            }
+            // Each tile is put back on the surface on its own (a closest-point query each):
+            // on the threads of `parallel`, the same result however they split the tiles.
+            parallel::each_mut2(frames, &mut beyond, |t, frame, beyond| {
+                (*frame, *beyond) = self.moved(frame, &clamped(&step[t], &self.sizes[t]));
+            });
             let value = self.value(frames, &beyond);
             if value < current {
                 calm = if current - value < CALM * current.max(1e-300) {
