@@ -29,7 +29,7 @@ pub(crate) fn parts(items: usize) -> usize {
 }
 
 /// Length of every part but the last when `items` are cut into [`parts`]`(items)`.
-pub(crate) fn part_len(items: usize) -> usize {
+fn part_len(items: usize) -> usize {
     items.div_ceil(parts(items)).max(1)
 }
 
@@ -145,8 +145,8 @@ pub(crate) fn chunks_mut2(
     run(tasks).into_iter().sum()
 }
 
-/// Calls `each(i, &mut a[i], &mut b[i])` for every `i`, on up to [`threads`] threads once
-/// there are [`MIN_COSTLY`] items or more. For work where each item stands alone (nothing is
+/// Calls `each(i, &mut a[i], &mut b[i])` for every `i`, on up to [`MAX_PARTS`] of the
+/// [`threads`] once there are [`MIN_COSTLY`] items or more. For work where each item stands alone (nothing is
 /// summed across items), so that the result is the same however the items are split; meant
 /// for costly items such as closest-point queries, which pay for threads at far fewer items
 /// than the loops [`parts`] splits.
@@ -208,7 +208,6 @@ impl Scatter {
         let mut spare = self.spare.borrow_mut();
         spare.resize_with(count - 1, Vec::new);
         for s in spare.iter_mut() {
-            s.clear();
             s.resize(out.len(), 0.0);
         }
         let add = &add;
@@ -220,7 +219,11 @@ impl Scatter {
             tasks.push(Box::new(move || add(first, own)));
             for (s, r) in spare.iter_mut().zip(ranges) {
                 let s: &mut [f64] = s;
-                tasks.push(Box::new(move || add(r, s)));
+                // Zeroed by the part's own thread, beside the first part's work.
+                tasks.push(Box::new(move || {
+                    s.fill(0.0);
+                    add(r, s);
+                }));
             }
             run(tasks);
         }

@@ -486,7 +486,10 @@ impl<'a, 'c, P: Fn() -> f64> Engine<'a, 'c, P> {
 /// left once it fits) and hands over to the rounds should it not finish. At 3 s for 3000
 /// program faces (the fit of 2026-12-02) the 20 m cap was expected to take 41 s, more than
 /// the 32 s CBC gets of the default 60, and the rounds ended 1.1 % from the bound (16877.5)
-/// where CBC proves 17014 in 21 s.
+/// where CBC proves 17014 in 21 s. With Clp's presolve off in courses (`mip`, later on
+/// 2026-12-04) CBC is faster still (1155-6342 quads 0.07-0.52 s, one 2060-quad mesh 2.4 s,
+/// the 20 m cap 5.4 s), so this fit now expects too much for most; it only decides whether
+/// CBC is tried, and trying it on the programs it underestimates costs little.
 fn expected_courses_seconds(faces: usize) -> f64 {
     COURSES_SECONDS_AT_3000_FACES * (faces as f64 / 3000.0).powf(COURSES_TIME_EXPONENT)
 }

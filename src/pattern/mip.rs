@@ -38,8 +38,6 @@ pub(super) fn expected_linear_seconds(faces: usize) -> f64 {
     LINEAR_SECONDS_AT_1000_FACES * (faces as f64 / 1000.0).powf(LINEAR_TIME_EXPONENT)
 }
 
-/// Solves the bond's program over the free tiles of `restriction`, stopping at the time
-/// limit or once CBC's relative gap is at most `gap` (0: prove optimality).
 /// Clp's presolve for the root of a program over `graph`: off in level courses, on
 /// otherwise. In courses the root relaxation is nearly or wholly integral and presolve
 /// removes little but costs most of the solve (`match --courses level --method mip`,
@@ -56,6 +54,8 @@ fn presolve_for(graph: &DualGraph) -> cbc::Presolve {
     }
 }
 
+/// Solves the bond's program over the free tiles of `restriction`, stopping at the time
+/// limit or once CBC's relative gap is at most `gap` (0: prove optimality).
 #[expect(
     clippy::too_many_arguments,
     reason = "the program's inputs, its limits and its control"
