@@ -179,7 +179,44 @@ pub(crate) fn each_mut2<A: Send, B: Send>(
     run(tasks);
 }
 
-/// Fewest costly items [`each_mut2`] splits.
+/// `each(i)` for every `i` in `0..items`, in order, computed on up to [`MAX_PARTS`] of the
+/// [`threads`] once there are [`MIN_COSTLY`] items or more: for independent costly items
+/// (closest-point queries, the samples of a face), so the result is the same however they
+/// are split. Whatever the caller then sums over the results it sums in item order, as the
+/// plain loop did.
+pub(crate) fn map<T: Send>(items: usize, each: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    map_with(items, || (), |(), i| each(i))
+}
+
+/// [`map`] for items that need scratch space: each part makes its own with `scratch()` and
+/// lends it to `each(scratch, i)` for its items in turn. What an item gives must not depend
+/// on what earlier items left in the scratch.
+pub(crate) fn map_with<S, T: Send>(
+    items: usize,
+    scratch: impl Fn() -> S + Sync,
+    each: impl Fn(&mut S, usize) -> T + Sync,
+) -> Vec<T> {
+    let count = if items < MIN_COSTLY {
+        1
+    } else {
+        threads().min(MAX_PARTS)
+    };
+    let len = items.div_ceil(count).max(1);
+    let (each, scratch) = (&each, &scratch);
+    let tasks: Vec<_> = (0..count)
+        .map(|k| {
+            move || {
+                let mut own = scratch();
+                ((k * len).min(items)..((k + 1) * len).min(items))
+                    .map(|i| each(&mut own, i))
+                    .collect()
+            }
+        })
+        .collect();
+    run::<Vec<T>, _>(tasks).into_iter().flatten().collect()
+}
+
+/// Fewest costly items [`each_mut2`] and [`map`] split.
 pub(crate) const MIN_COSTLY: usize = 1024;
 
 /// Sums of per-item terms scattered into a vector (an operator applied edge by edge, each
@@ -242,6 +279,14 @@ impl Scatter {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_map_gives_every_item_once_in_order() {
+        for items in [0, 1, MIN_COSTLY - 1, MIN_COSTLY, 3 * MIN_COSTLY + 7] {
+            let got = map(items, |i| i * i);
+            assert_eq!(got, (0..items).map(|i| i * i).collect::<Vec<_>>());
+        }
+    }
 
     #[test]
     fn parts_depend_on_the_size_only_and_cover_it_in_order() {

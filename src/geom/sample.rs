@@ -40,24 +40,21 @@ pub fn triangle(t: &[Point3<f64>; 3], spacing: f64, mut visit: impl FnMut(Point3
     }
 }
 
-/// Calls `visit` with the samples ([`triangle`]) of each face of a polygon mesh given by
-/// `positions` and `faces` (each face fanned from its first corner), in face order: the face,
-/// the sample and its area.
-pub fn faces(
+/// Calls `visit` with the samples ([`triangle`]) of one polygon, the corners `face` of
+/// `positions`, fanned from its first corner: the sample and its area.
+pub fn face(
     positions: &[Point3<f64>],
-    faces: &[Vec<usize>],
+    face: &[usize],
     spacing: f64,
-    mut visit: impl FnMut(usize, Point3<f64>, f64),
+    mut visit: impl FnMut(Point3<f64>, f64),
 ) {
-    for (f, face) in faces.iter().enumerate() {
-        for k in 1..face.len().saturating_sub(1) {
-            let corners = [
-                positions[face[0]],
-                positions[face[k]],
-                positions[face[k + 1]],
-            ];
-            triangle(&corners, spacing, |q, area| visit(f, q, area));
-        }
+    for k in 1..face.len().saturating_sub(1) {
+        let corners = [
+            positions[face[0]],
+            positions[face[k]],
+            positions[face[k + 1]],
+        ];
+        triangle(&corners, spacing, &mut visit);
     }
 }
 
@@ -91,8 +88,7 @@ mod tests {
         let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
         let positions = [p(0.0, 0.0), p(2.0, 0.0), p(2.0, 1.0), p(0.0, 1.0)];
         let (mut area, mut count) = (0.0, 0);
-        faces(&positions, &[vec![0, 1, 2, 3]], 10.0, |f, _, a| {
-            assert_eq!(f, 0);
+        face(&positions, &[0, 1, 2, 3], 10.0, |_, a| {
             area += a;
             count += 1;
         });

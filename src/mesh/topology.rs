@@ -3,6 +3,8 @@
 
 use std::collections::HashMap;
 
+use foldhash::fast::FixedState;
+
 use super::{MeshError, PolyMesh};
 
 /// An undirected mesh edge with its (at most two) faces.
@@ -48,7 +50,11 @@ impl Topology {
     /// # Errors
     /// [`MeshError::NonManifoldEdge`] when an edge borders more than two faces.
     pub fn new(mesh: &PolyMesh) -> Result<Self, MeshError> {
-        let mut index: HashMap<[usize; 2], usize> = HashMap::new();
+        // Looked up once per face corner: a fast fixed-seed hasher (only lookups, never the
+        // map's order, shape the result).
+        let corners: usize = mesh.faces().iter().map(Vec::len).sum();
+        let mut index: HashMap<[usize; 2], usize, FixedState> =
+            HashMap::with_capacity_and_hasher(corners / 2 + 1, FixedState::default());
         let mut edges: Vec<Edge> = Vec::new();
         let mut vertex_edges = vec![Vec::new(); mesh.positions().len()];
         let mut face_edges = Vec::with_capacity(mesh.face_count());

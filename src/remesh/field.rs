@@ -130,32 +130,35 @@ pub(crate) fn principal_curvatures(s: &Surface, reach: f64) -> Vec<Option<Princi
         let e = frames[v];
         e * angle.cos() + s.normals[v].cross(&e) * angle.sin()
     };
+    // Sites, in vertex order: a vertex no earlier site's small neighbourhood holds is one.
     let mut mark = vec![usize::MAX; n];
-    let mut stamp = 0;
     let mut site = vec![usize::MAX; n];
-    let mut fits = Vec::new();
+    let mut sites = Vec::new();
     for v in 0..n {
         if site[v] != usize::MAX {
             continue;
         }
-        stamp += 1;
-        let near = neighbourhood(s, v, reach, 2, stamp, &mut mark);
-        let fit = curvature(s, &frames, v, &near, true);
-        stamp += 1;
-        site[v] = fits.len();
-        for w in neighbourhood(s, v, reach / SITES_PER_REACH, 0, stamp, &mut mark) {
+        site[v] = sites.len();
+        for w in neighbourhood(s, v, reach / SITES_PER_REACH, 0, v, &mut mark) {
             if site[w] == usize::MAX {
-                site[w] = fits.len();
+                site[w] = sites.len();
             }
         }
-        fits.push(fit.map(|(angle, aniso, mean)| (along(v, angle), aniso, mean)));
+        sites.push(v);
     }
-    let mut principal = Vec::with_capacity(n);
-    for v in 0..n {
-        stamp += 1;
-        let ring = neighbourhood(s, v, 0.0, 2, stamp, &mut mark);
+    // The fits, each on its own (on the threads of `parallel`, each part with its own marks;
+    // a search's stamp is its vertex, so no two searches of a part share one).
+    let scratch = || vec![usize::MAX; n];
+    let fits = crate::parallel::map_with(sites.len(), scratch, |mark, k| {
+        let v = sites[k];
+        let near = neighbourhood(s, v, reach, 2, v, mark);
+        curvature(s, &frames, v, &near, true)
+            .map(|(angle, aniso, mean)| (along(v, angle), aniso, mean))
+    });
+    let principal = crate::parallel::map_with(n, scratch, |mark, v| {
+        let ring = neighbourhood(s, v, 0.0, 2, v, mark);
         let reading = fits[site[v]].zip(curvature(s, &frames, v, &ring, false));
-        principal.push(reading.map(|((dir, aniso, mean), (local, _, _))| {
+        reading.map(|((dir, aniso, mean), (local, _, _))| {
             let nv = s.normals[v];
             Principal {
                 dir: in_tangent_plane(&dir, &nv),
@@ -163,8 +166,8 @@ pub(crate) fn principal_curvatures(s: &Surface, reach: f64) -> Vec<Option<Princi
                 aniso,
                 mean,
             }
-        }));
-    }
+        })
+    });
     principal
 }
 

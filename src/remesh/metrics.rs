@@ -131,22 +131,34 @@ pub(crate) fn metrics_with(
             [((deviations.len() as f64 * 0.95).ceil() as usize).clamp(1, deviations.len()) - 1]
     };
 
+    // Closest-point queries, each on its own (on the threads of `parallel`), folded in order.
+    let distances = |points: Vec<Vector3<f64>>| {
+        crate::parallel::map(points.len(), |i| locator.distance(&points[i]))
+    };
     let mut max_distance: f64 = 0.0;
-    for p in &pos {
-        max_distance = max_distance.max(locator.distance(p));
-    }
-    for &((a, b), _) in &unique {
-        max_distance = max_distance.max(locator.distance(&((pos[a] + pos[b]) * 0.5)));
-    }
-    for f in 0..faces.len() {
-        max_distance = max_distance.max(locator.distance(&quads.face_centroid(f).coords));
+    for d in distances(pos.clone())
+        .into_iter()
+        .chain(distances(
+            unique
+                .iter()
+                .map(|&((a, b), _)| (pos[a] + pos[b]) * 0.5)
+                .collect(),
+        ))
+        .chain(distances(
+            (0..faces.len())
+                .map(|f| quads.face_centroid(f).coords)
+                .collect(),
+        ))
+    {
+        max_distance = max_distance.max(d);
     }
 
     // Coverage: sample every input triangle and ask how far the quad mesh is.
     let quad_locator = Locator::from_polymesh(quads);
-    let mut covered = 0.0;
-    let mut total = 0.0;
-    for face in input.faces() {
+    let input_faces = input.faces();
+    let samples = crate::parallel::map(input_faces.len(), |f| {
+        let face = &input_faces[f];
+        let mut found = Vec::with_capacity(3 * face.len());
         for k in 1..face.len() - 1 {
             let [a, b, c] = [face[0], face[k], face[k + 1]].map(|v| input.positions()[v].coords);
             let area = (b - a).cross(&(c - a)).norm() * 0.5;
@@ -154,11 +166,17 @@ pub(crate) fn metrics_with(
             for corner in [a, b, c] {
                 let sample = centre * 0.6 + corner * 0.4;
                 let (q, _) = quad_locator.closest(&sample);
-                total += area / 3.0;
-                if (q - sample).norm() <= 0.1 * t {
-                    covered += area / 3.0;
-                }
+                found.push((area / 3.0, (q - sample).norm() <= 0.1 * t));
             }
+        }
+        found
+    });
+    let mut covered = 0.0;
+    let mut total = 0.0;
+    for &(area, hit) in samples.iter().flatten() {
+        total += area;
+        if hit {
+            covered += area;
         }
     }
     let area_covered_ratio = if total > 0.0 { covered / total } else { 0.0 };

@@ -31,9 +31,12 @@ pub fn covered_share(surface: &PolyMesh, tiles: &[Tile], joint: f64) -> f64 {
         .fold(f64::INFINITY, f64::min);
     let spacing = side / sample::SAMPLES_PER_TILE_SIDE;
     let grid = HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
-    let (mut covered, mut total) = (0.0, 0.0);
     let p = surface.positions();
-    for face in surface.faces() {
+    let faces = surface.faces();
+    // Per face (each on its own, so on the threads of `parallel`), its samples' areas and
+    // whether a tile covers each; summed below in face and sample order.
+    let samples = crate::parallel::map(faces.len(), |f| {
+        let face = &faces[f];
         // The tiles near any point of the face, found once; the last tile hit is tried first
         // (neighbouring samples mostly lie under the same tile).
         let radius = face
@@ -42,23 +45,26 @@ pub fn covered_share(surface: &PolyMesh, tiles: &[Tile], joint: f64) -> f64 {
             .fold(0.0, f64::max);
         let near = grid.near(&p[face[0]], reach + radius);
         let mut last = 0;
-        for k in 1..face.len().saturating_sub(1) {
-            let corners = [p[face[0]], p[face[k]], p[face[k + 1]]];
-            sample::triangle(&corners, spacing, |q, area| {
-                let hit = near
-                    .get(last)
-                    .is_some_and(|&t| covers(&tiles[t], &q, joint / 2.0))
-                    || near
-                        .iter()
-                        .position(|&t| covers(&tiles[t], &q, joint / 2.0))
-                        .is_some_and(|i| {
-                            last = i;
-                            true
-                        });
-                total += area;
-                covered += if hit { area } else { 0.0 };
-            });
-        }
+        let mut found = Vec::new();
+        sample::face(p, face, spacing, |q, area| {
+            let hit = near
+                .get(last)
+                .is_some_and(|&t| covers(&tiles[t], &q, joint / 2.0))
+                || near
+                    .iter()
+                    .position(|&t| covers(&tiles[t], &q, joint / 2.0))
+                    .is_some_and(|i| {
+                        last = i;
+                        true
+                    });
+            found.push((area, hit));
+        });
+        found
+    });
+    let (mut covered, mut total) = (0.0, 0.0);
+    for &(area, hit) in samples.iter().flatten() {
+        total += area;
+        covered += if hit { area } else { 0.0 };
     }
     if total > 0.0 { covered / total } else { 0.0 }
 }

@@ -91,27 +91,34 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
         outline::separation_of(&tiles[a], &outlines[a], &tiles[b], &outlines[b])
     };
     let gap = |a: usize, b: usize| separation(a, b).gap;
-    let mut found: Vec<Joint> = Vec::with_capacity(meeting.len());
     let grid =
         (reach > 0.0).then(|| HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin])));
-    if let Some(grid) = &grid {
-        for a in 0..tiles.len() {
-            for b in grid.near(&tiles[a].frame.origin, reach) {
-                if b > a
-                    && !meeting.contains(&[a, b])
-                    && outline::may_touch(&tiles[a], &tiles[b], near)
-                {
+    // Each tile's and each pair's question stands alone: on the threads of `parallel`,
+    // gathered in order.
+    let mut found: Vec<Joint> = match &grid {
+        Some(grid) => crate::parallel::map(tiles.len(), |a| {
+            grid.near(&tiles[a].frame.origin, reach)
+                .into_iter()
+                .filter(|&b| {
+                    b > a
+                        && !meeting.contains(&[a, b])
+                        && outline::may_touch(&tiles[a], &tiles[b], near)
+                })
+                .filter_map(|b| {
                     let s = separation(a, b);
-                    if s.gap < 0.0 || (s.gap < near && s.shares_joint(&tiles[a], &tiles[b])) {
-                        found.push(Joint {
+                    (s.gap < 0.0 || (s.gap < near && s.shares_joint(&tiles[a], &tiles[b])))
+                        .then_some(Joint {
                             tiles: [a, b],
                             gap: s.gap,
-                        });
-                    }
-                }
-            }
-        }
-    }
+                        })
+                })
+                .collect::<Vec<_>>()
+        })
+        .into_iter()
+        .flatten()
+        .collect(),
+        None => Vec::new(),
+    };
     // Tiles on neighbouring faces parted by a tear share no joint when a piece filling the
     // tear ([`crate::tiles`]' tear fill) lies between them, over the middle of their origins:
     // their joints are with that piece, found above.
@@ -123,10 +130,16 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
                 .any(|c| c != a && c != b && outline::covers(&tiles[c], &middle, 0.0))
         })
     };
-    found.extend(meeting.iter().filter_map(|&[a, b]| {
-        let gap = gap(a, b);
-        (gap < near || !parted(a, b)).then_some(Joint { tiles: [a, b], gap })
-    }));
+    let meeting: Vec<[usize; 2]> = meeting.into_iter().collect();
+    found.extend(
+        crate::parallel::map(meeting.len(), |k| {
+            let [a, b] = meeting[k];
+            let gap = gap(a, b);
+            (gap < near || !parted(a, b)).then_some(Joint { tiles: [a, b], gap })
+        })
+        .into_iter()
+        .flatten(),
+    );
     found.sort_by_key(|j| j.tiles);
     found
 }

@@ -108,17 +108,20 @@ impl Tears<'_> {
                     .unwrap_or_else(Vector3::z)
             })
             .collect();
-        let mut open: Vec<(Point3<f64>, Vector3<f64>, f64)> = Vec::new();
-        sample::faces(
-            self.surface.positions(),
-            self.surface.faces(),
-            spacing,
-            |f, q, area| {
+        // Each face's on its own (on the threads of `parallel`), gathered in face order.
+        let faces = self.surface.faces();
+        let open: Vec<(Point3<f64>, Vector3<f64>, f64)> = crate::parallel::map(faces.len(), |f| {
+            let mut open = Vec::new();
+            sample::face(self.surface.positions(), &faces[f], spacing, |q, area| {
                 if !covered(tiles, &placed, &q) {
                     open.push((q, normals[f], area));
                 }
-            },
-        );
+            });
+            open
+        })
+        .into_iter()
+        .flatten()
+        .collect();
         let holes = HashGrid::of_points(self.blank[1], open.iter().map(|s| [s.0]));
         // Samples found covered: tiles are only added, so a covered sample stays covered and
         // need not be asked again (on a surface where the tiles leave wide holes, each
@@ -376,14 +379,16 @@ mod tests {
     /// Share of the rectangle's area between the rows that some tile covers.
     fn between_covered(surface: &PolyMesh, tiles: &[Tile], h: f64) -> f64 {
         let (mut covered, mut total) = (0.0, 0.0);
-        sample::faces(surface.positions(), surface.faces(), 0.02, |_, q, a| {
-            if q.y > 0.15 && q.y < h - 0.15 && q.x < 1.15 {
-                total += a;
-                if tiles.iter().any(|t| covers(t, &q, 0.005)) {
-                    covered += a;
+        for face in surface.faces() {
+            sample::face(surface.positions(), face, 0.02, |q, a| {
+                if q.y > 0.15 && q.y < h - 0.15 && q.x < 1.15 {
+                    total += a;
+                    if tiles.iter().any(|t| covers(t, &q, 0.005)) {
+                        covered += a;
+                    }
                 }
-            }
-        });
+            });
+        }
         covered / total
     }
 
