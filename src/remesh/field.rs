@@ -155,7 +155,7 @@ pub(crate) fn principal_curvatures(s: &Surface, reach: f64) -> Vec<Option<Princi
         curvature(s, &frames, v, &near, true)
             .map(|(angle, aniso, mean)| (along(v, angle), aniso, mean))
     });
-    let principal = crate::parallel::map_with(n, scratch, |mark, v| {
+    crate::parallel::map_with(n, scratch, |mark, v| {
         let ring = neighbourhood(s, v, 0.0, 2, v, mark);
         let reading = fits[site[v]].zip(curvature(s, &frames, v, &ring, false));
         reading.map(|((dir, aniso, mean), (local, _, _))| {
@@ -167,8 +167,7 @@ pub(crate) fn principal_curvatures(s: &Surface, reach: f64) -> Vec<Option<Princi
                 mean,
             }
         })
-    });
-    principal
+    })
 }
 
 /// How far around a vertex its curvature is read, in target quad edges: a tile spans two
