@@ -61,8 +61,9 @@ pub struct JointSummary {
 }
 
 /// Every joint of `tiles` placed on `mesh`, in index order: pairs of tiles whose faces share
-/// a mesh edge (unless parted by more than three joints with a third tile between them, over
-/// the middle of their origins), pairs of any tiles (filler pieces too) that overlap, and pairs that come
+/// a mesh edge (unless parted by more than three joints with a third tile between them, on
+/// the line between their origins), pairs of any tiles (filler pieces too) that overlap, and
+/// pairs that come
 /// within three joints of each other (with `joint` 0: three hundredths of the widest tile)
 /// along a stretch of at least a quarter of the narrower one's width (tiles that only meet
 /// at a corner share no joint).
@@ -120,14 +121,28 @@ pub fn joints(mesh: &PolyMesh, tiles: &[Tile], joint: f64) -> Vec<Joint> {
         None => Vec::new(),
     };
     // Tiles on neighbouring faces parted by a tear share no joint when a piece filling the
-    // tear ([`crate::tiles`]' tear fill) lies between them, over the middle of their origins:
-    // their joints are with that piece, found above.
+    // tear ([`crate::tiles`]' tear fill) lies between them, on the line between their
+    // origins: their joints are with that piece, found above. The line is read every half
+    // tile width (a far-parted pair may have several pieces between them, and the gaps
+    // between pieces), each point taken onto each nearby tile's plane (on a curved surface
+    // the chord between two far-parted tiles runs under the pieces between them, on a 20 m
+    // dome further than a tile's half width) and counted as covered within half a joint of
+    // its outline (a point may fall on a joint between two pieces).
     let parted = |a: usize, b: usize| {
-        let middle = nalgebra::center(&tiles[a].frame.origin, &tiles[b].frame.origin);
+        let (pa, pb) = (tiles[a].frame.origin, tiles[b].frame.origin);
+        let step = tiles[a].size[1].min(tiles[b].size[1]) / 2.0;
+        let points = ((pb - pa).norm() / step.max(f64::MIN_POSITIVE))
+            .ceil()
+            .clamp(1.0, 64.0) as usize;
         grid.as_ref().is_some_and(|grid| {
-            grid.near(&middle, reach)
-                .into_iter()
-                .any(|c| c != a && c != b && outline::covers(&tiles[c], &middle, 0.0))
+            (1..=points).any(|k| {
+                let at = pa + (pb - pa) * (k as f64 / (points + 1) as f64);
+                grid.near(&at, reach).into_iter().any(|c| {
+                    let frame = &tiles[c].frame;
+                    let onto = at + frame.z * frame.z.dot(&(frame.origin - at));
+                    c != a && c != b && outline::covers(&tiles[c], &onto, joint / 2.0)
+                })
+            })
         })
     };
     let meeting: Vec<[usize; 2]> = meeting.into_iter().collect();
@@ -221,5 +236,69 @@ mod tests {
             found.iter().all(|j| (j.gap - 0.01).abs() < 1e-9),
             "{found:?}"
         );
+    }
+
+    #[test]
+    fn tiles_parted_by_pieces_with_a_joint_on_their_middle_share_no_joint() {
+        // The same 360 mm tear filled by two pieces of 165 mm, a joint from the tiles and
+        // from each other: the joint between the pieces lies on the tiles' middle.
+        let grid = generate::grid(2, 1);
+        let mesh = PolyMesh::new(
+            grid.positions().iter().map(|p| p * 0.5).collect(),
+            grid.faces().to_vec(),
+        )
+        .unwrap();
+        let size = [0.14, 0.14, 0.015];
+        let piece = [0.165, 0.14, 0.015];
+        let tiles = vec![
+            tile(0.25, size, vec![0]),
+            tile(0.75, size, vec![1]),
+            tile(0.4125, piece, vec![]),
+            tile(0.5875, piece, vec![]),
+        ];
+        let found = joints(&mesh, &tiles, 0.01);
+        assert_eq!(
+            found.iter().map(|j| j.tiles).collect::<Vec<_>>(),
+            [[0, 2], [1, 3], [2, 3]]
+        );
+        assert!(
+            found.iter().all(|j| (j.gap - 0.01).abs() < 1e-9),
+            "{found:?}"
+        );
+    }
+
+    #[test]
+    fn tiles_parted_on_a_curved_surface_share_no_joint_with_each_other() {
+        // Tiles 2.4 m apart on a sphere of radius 10 m (a 20 m dome's crown, torn open by
+        // the fit), the tear between them filled with pieces on the surface: the chord
+        // between the tiles runs 72 mm under the pieces, more than half a tile's width.
+        let radius = 10.0;
+        let on_sphere = |x: f64, length: f64, faces: Vec<usize>| {
+            let angle = x / radius;
+            let normal = Vector3::new(angle.sin(), 0.0, angle.cos());
+            let origin = Point3::from(normal * radius);
+            let along = Vector3::new(angle.cos(), 0.0, -angle.sin());
+            let frame = Frame::from_normal(origin, normal, &along);
+            Tile::new(TileKind::Full, faces, frame, [length, 0.14, 0.015])
+        };
+        // Two faces side by side, only their adjacency counts.
+        let mesh = PolyMesh::new(
+            generate::grid(2, 1).positions().to_vec(),
+            generate::grid(2, 1).faces().to_vec(),
+        )
+        .unwrap();
+        let mut tiles = vec![
+            on_sphere(-1.2, 0.28, vec![0]),
+            on_sphere(1.2, 0.28, vec![1]),
+        ];
+        // Pieces of 280 mm at a 290 mm pitch along the arc from one tile to the other.
+        let pieces = (1..8).map(|k| on_sphere(-1.2 + 0.29 * k as f64, 0.28, vec![]));
+        tiles.extend(pieces);
+        let found = joints(&mesh, &tiles, 0.01);
+        assert!(
+            found.iter().all(|j| j.tiles != [0, 1]),
+            "the parted tiles still share a joint: {found:?}"
+        );
+        assert!(found.iter().all(|j| j.gap < 0.05), "{found:?}");
     }
 }
