@@ -326,9 +326,11 @@ pub(crate) fn conform(
         }
     }
     let threshold = CONFORM_FROM * t;
-    let mut active: Vec<usize> = (0..faces.len())
-        .filter(|&fi| deviation(pos, &faces[fi], locator) > threshold)
-        .collect();
+    // Each face's deviation on its own (on the threads of `parallel`).
+    let off = crate::parallel::map(faces.len(), |fi| {
+        deviation(pos, &faces[fi], locator) > threshold
+    });
+    let mut active: Vec<usize> = (0..faces.len()).filter(|&fi| off[fi]).collect();
     let mut disp = vec![Vector3::zeros(); n];
     let mut weight = vec![0.0; n];
     let mut stamp = vec![usize::MAX; faces.len()];

@@ -45,13 +45,11 @@ pub(super) fn snap_and_peel(
         // Faces at the boundary that still leave the surface are peeled off and the gap is
         // closed again by a fresh row extension; in the last round the new boundary vertices
         // are only put onto the input boundary, and the peeling is kept only if it helped.
-        let bad: Vec<bool> = faces
-            .iter()
-            .map(|f| {
-                f.iter().any(|&v| !anchors.bnbrs[v].is_empty())
-                    && fit::deviation(pos, f, locator) > PEEL * t
-            })
-            .collect();
+        let bad: Vec<bool> = crate::parallel::map(faces.len(), |fi| {
+            let f = &faces[fi];
+            f.iter().any(|&v| !anchors.bnbrs[v].is_empty())
+                && fit::deviation(pos, f, locator) > PEEL * t
+        });
         if !bad.iter().any(|&b| b) {
             break;
         }
@@ -110,16 +108,21 @@ const PEEL: f64 = 0.08;
 fn relax(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], locator: &Locator, t: f64, rounds: usize) {
     let n = pos.len();
     let anchors = Anchors::new(pos, faces, locator, t);
-    for (v, p) in pos.iter_mut().enumerate() {
-        if !anchors.pinned[v] {
-            *p = anchors.project(locator, v, p);
+    // Every vertex moves on its own (from the positions before the round), so each round's
+    // moves run on the threads of `parallel` and give the same positions however split.
+    let projected = crate::parallel::map(n, |v| {
+        if anchors.pinned[v] {
+            pos[v]
+        } else {
+            anchors.project(locator, v, &pos[v])
         }
-    }
+    });
+    pos.copy_from_slice(&projected);
     for _ in 0..rounds {
-        let old = pos.to_vec();
-        for v in 0..n {
+        let old = &*pos;
+        let moved = crate::parallel::map(n, |v| {
             if anchors.pinned[v] {
-                continue;
+                return old[v];
             }
             let list = if anchors.bnbrs[v].is_empty() {
                 &anchors.nbrs[v]
@@ -127,12 +130,13 @@ fn relax(pos: &mut [Vector3<f64>], faces: &[Vec<usize>], locator: &Locator, t: f
                 &anchors.bnbrs[v]
             };
             if list.is_empty() {
-                continue;
+                return old[v];
             }
             let mean =
                 list.iter().fold(Vector3::zeros(), |acc, &w| acc + old[w]) / list.len() as f64;
-            pos[v] = anchors.project(locator, v, &(old[v] * 0.5 + mean * 0.5));
-        }
+            anchors.project(locator, v, &(old[v] * 0.5 + mean * 0.5))
+        });
+        pos.copy_from_slice(&moved);
     }
 }
 
