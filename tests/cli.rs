@@ -339,6 +339,73 @@ fn remesh_gives_the_same_quads_on_one_thread_and_on_several() {
 }
 
 #[test]
+fn run_gives_the_same_tiles_and_report_on_one_thread_and_on_several() {
+    // A 2 m saddle of 4608 triangles: the curvature fits, the remesh metrics, the tear fill's
+    // samples and the report's coverage go over more than a thousand items each, so they are
+    // split over the threads (`parallel::map`), which must not change a bit of the tiles or
+    // of the report (its timings aside).
+    let dir = scratch("run-threads");
+    let surface = dir.join("saddle.obj");
+    std::fs::write(&surface, saddle_obj_of(48)).unwrap();
+    let run = |threads: &str| {
+        let out_dir = dir.join(format!("out-{threads}"));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_tilepattern"))
+            .env("TILEPATTERN_THREADS", threads)
+            .args([
+                "run",
+                s(&surface),
+                "--tile",
+                "280x140x15",
+                "--joint",
+                "10",
+                "--out",
+                s(&out_dir),
+            ])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let mut report: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out_dir.join("report.json")).unwrap()).unwrap();
+        fn drop_seconds(value: &mut serde_json::Value) {
+            match value {
+                serde_json::Value::Object(map) => {
+                    map.remove("seconds");
+                    map.values_mut().for_each(drop_seconds);
+                }
+                serde_json::Value::Array(items) => items.iter_mut().for_each(drop_seconds),
+                _ => {}
+            }
+        }
+        drop_seconds(&mut report);
+        (std::fs::read(out_dir.join("tiles.obj")).unwrap(), report)
+    };
+    let (tiles, report) = run("1");
+    assert!(
+        report["joints"]["contacts"].as_u64().unwrap() > 100,
+        "{report}"
+    );
+    assert!(
+        report["cutting"]["coverage"].as_f64().unwrap() > 0.9,
+        "{report}"
+    );
+    for threads in ["2", "3"] {
+        let (other_tiles, other_report) = run(threads);
+        assert!(
+            tiles == other_tiles,
+            "tiles.obj differs on {threads} threads"
+        );
+        assert_eq!(
+            report, other_report,
+            "report.json differs on {threads} threads"
+        );
+    }
+}
+
+#[test]
 fn remesh_and_run_go_from_triangles_to_tiles() {
     let dir = scratch("run");
     let surface = dir.join("saddle.obj");
