@@ -402,11 +402,16 @@ impl Problem<'_> {
             end: start,
         };
         let mut mu = 1e-4;
+        let mut kept: Option<Normal> = None;
         let mut current = start;
         let mut calm = 0;
         while progress.iterations < max_iterations {
             progress.iterations += 1;
-            let eq = self.normal_equations(frames, &beyond);
+            // After a rejected step the frames are back where they were: the same equations.
+            let eq = match kept.take() {
+                Some(eq) => eq,
+                None => self.normal_equations(frames, &beyond),
+            };
             current = eq.value;
             let damped: Vec<Matrix3<f64>> = eq
                 .diag
@@ -481,6 +486,7 @@ impl Problem<'_> {
             } else {
                 frames.copy_from_slice(&before);
                 beyond.copy_from_slice(&before_beyond);
+                kept = Some(eq);
                 mu *= 8.0;
                 if mu > 1e6 {
                     progress.converged = true;
