@@ -156,13 +156,7 @@ pub(crate) fn each_mut2<A: Send, B: Send>(
     each: impl Fn(usize, &mut A, &mut B) + Sync,
 ) {
     assert_eq!(a.len(), b.len(), "vectors of one length");
-    let items = a.len();
-    let count = if items < MIN_COSTLY {
-        1
-    } else {
-        threads().min(MAX_PARTS)
-    };
-    let len = items.div_ceil(count).max(1);
+    let len = costly_part_len(a.len());
     let each = &each;
     let tasks: Vec<_> = a
         .chunks_mut(len)
@@ -196,14 +190,9 @@ pub(crate) fn map_with<S, T: Send>(
     scratch: impl Fn() -> S + Sync,
     each: impl Fn(&mut S, usize) -> T + Sync,
 ) -> Vec<T> {
-    let count = if items < MIN_COSTLY {
-        1
-    } else {
-        threads().min(MAX_PARTS)
-    };
-    let len = items.div_ceil(count).max(1);
+    let len = costly_part_len(items);
     let (each, scratch) = (&each, &scratch);
-    let tasks: Vec<_> = (0..count)
+    let tasks: Vec<_> = (0..items.div_ceil(len))
         .map(|k| {
             move || {
                 let mut own = scratch();
@@ -218,6 +207,19 @@ pub(crate) fn map_with<S, T: Send>(
 
 /// Fewest costly items [`each_mut2`] and [`map`] split.
 pub(crate) const MIN_COSTLY: usize = 1024;
+
+/// Length of the parts costly, independent items are handed out in ([`each_mut2`],
+/// [`map_with`]): all in one part below [`MIN_COSTLY`], otherwise one part per thread, at
+/// most [`MAX_PARTS`]. The split decides only which thread computes an item, never what it
+/// gives.
+fn costly_part_len(items: usize) -> usize {
+    let count = if items < MIN_COSTLY {
+        1
+    } else {
+        threads().min(MAX_PARTS)
+    };
+    items.div_ceil(count).max(1)
+}
 
 /// Sums of per-item terms scattered into a vector (an operator applied edge by edge, each
 /// edge adding to its two ends), split by items: the first part adds into the output itself,

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{json, s, scratch, tilepattern};
+use common::{json, s, scratch, tilepattern, tilepattern_on_threads};
 
 #[test]
 fn demo_writes_the_four_files() {
@@ -320,15 +320,9 @@ fn remesh_gives_the_same_quads_on_one_thread_and_on_several() {
     std::fs::write(&surface, saddle_obj_of(48)).unwrap();
     let quads = |threads: &str| {
         let quads = dir.join(format!("quads-{threads}.obj"));
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_tilepattern"))
-            .env("TILEPATTERN_THREADS", threads)
-            .args(["remesh", s(&surface), "--edge", "0.03", "-o", s(&quads)])
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
+        tilepattern_on_threads(
+            threads,
+            &["remesh", s(&surface), "--edge", "0.03", "-o", s(&quads)],
         );
         std::fs::read(&quads).unwrap()
     };
@@ -349,9 +343,9 @@ fn run_gives_the_same_tiles_and_report_on_one_thread_and_on_several() {
     std::fs::write(&surface, saddle_obj_of(48)).unwrap();
     let run = |threads: &str| {
         let out_dir = dir.join(format!("out-{threads}"));
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_tilepattern"))
-            .env("TILEPATTERN_THREADS", threads)
-            .args([
+        tilepattern_on_threads(
+            threads,
+            &[
                 "run",
                 s(&surface),
                 "--tile",
@@ -360,16 +354,9 @@ fn run_gives_the_same_tiles_and_report_on_one_thread_and_on_several() {
                 "10",
                 "--out",
                 s(&out_dir),
-            ])
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
+            ],
         );
-        let mut report: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out_dir.join("report.json")).unwrap()).unwrap();
+        let mut report = json(&out_dir.join("report.json"));
         fn drop_seconds(value: &mut serde_json::Value) {
             match value {
                 serde_json::Value::Object(map) => {

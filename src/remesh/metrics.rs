@@ -132,26 +132,17 @@ pub(crate) fn metrics_with(
     };
 
     // Closest-point queries, each on its own (on the threads of `parallel`), folded in order.
-    let distances = |points: Vec<Vector3<f64>>| {
-        crate::parallel::map(points.len(), |i| locator.distance(&points[i]))
+    let farthest = |count: usize, point: &(dyn Fn(usize) -> Vector3<f64> + Sync)| {
+        crate::parallel::map(count, |i| locator.distance(&point(i)))
+            .into_iter()
+            .fold(0.0, f64::max)
     };
-    let mut max_distance: f64 = 0.0;
-    for d in distances(pos.clone())
-        .into_iter()
-        .chain(distances(
-            unique
-                .iter()
-                .map(|&((a, b), _)| (pos[a] + pos[b]) * 0.5)
-                .collect(),
-        ))
-        .chain(distances(
-            (0..faces.len())
-                .map(|f| quads.face_centroid(f).coords)
-                .collect(),
-        ))
-    {
-        max_distance = max_distance.max(d);
-    }
+    let max_distance = farthest(pos.len(), &|v| pos[v])
+        .max(farthest(unique.len(), &|e| {
+            let ((a, b), _) = unique[e];
+            (pos[a] + pos[b]) * 0.5
+        }))
+        .max(farthest(faces.len(), &|f| quads.face_centroid(f).coords));
 
     // Coverage: sample every input triangle and ask how far the quad mesh is.
     let quad_locator = Locator::from_polymesh(quads);

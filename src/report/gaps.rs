@@ -206,6 +206,16 @@ mod tests {
     use crate::tiles::{Frame, TileKind};
     use nalgebra::Vector3;
 
+    /// Two quads of 500 mm side by side.
+    fn two_quads() -> PolyMesh {
+        let grid = generate::grid(2, 1);
+        PolyMesh::new(
+            grid.positions().iter().map(|p| p * 0.5).collect(),
+            grid.faces().to_vec(),
+        )
+        .unwrap()
+    }
+
     fn tile(x: f64, size: [f64; 3], faces: Vec<usize>) -> Tile {
         let frame = Frame::from_normal(Point3::new(x, 0.25, 0.0), Vector3::z(), &Vector3::x());
         Tile::new(TileKind::Half, faces, frame, size)
@@ -214,12 +224,7 @@ mod tests {
     #[test]
     fn tiles_parted_by_a_piece_share_no_joint() {
         // Two quads of 500 mm, a 140 mm tile on each: 360 mm apart.
-        let grid = generate::grid(2, 1);
-        let mesh = PolyMesh::new(
-            grid.positions().iter().map(|p| p * 0.5).collect(),
-            grid.faces().to_vec(),
-        )
-        .unwrap();
+        let mesh = two_quads();
         let size = [0.14, 0.14, 0.015];
         let mut tiles = vec![tile(0.25, size, vec![0]), tile(0.75, size, vec![1])];
         let found = joints(&mesh, &tiles, 0.01);
@@ -242,12 +247,7 @@ mod tests {
     fn tiles_parted_by_pieces_with_a_joint_on_their_middle_share_no_joint() {
         // The same 360 mm tear filled by two pieces of 165 mm, a joint from the tiles and
         // from each other: the joint between the pieces lies on the tiles' middle.
-        let grid = generate::grid(2, 1);
-        let mesh = PolyMesh::new(
-            grid.positions().iter().map(|p| p * 0.5).collect(),
-            grid.faces().to_vec(),
-        )
-        .unwrap();
+        let mesh = two_quads();
         let size = [0.14, 0.14, 0.015];
         let piece = [0.165, 0.14, 0.015];
         let tiles = vec![
@@ -282,11 +282,7 @@ mod tests {
             Tile::new(TileKind::Full, faces, frame, [length, 0.14, 0.015])
         };
         // Two faces side by side, only their adjacency counts.
-        let mesh = PolyMesh::new(
-            generate::grid(2, 1).positions().to_vec(),
-            generate::grid(2, 1).faces().to_vec(),
-        )
-        .unwrap();
+        let mesh = generate::grid(2, 1);
         let mut tiles = vec![
             on_sphere(-1.2, 0.28, vec![0]),
             on_sphere(1.2, 0.28, vec![1]),

@@ -15,6 +15,22 @@ pub fn tilepattern(args: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
+/// Runs the `tilepattern` command line with `args` on at most `threads` threads
+/// (`TILEPATTERN_THREADS`), and fails the test unless it succeeds.
+pub fn tilepattern_on_threads(threads: &str, args: &[&str]) -> Output {
+    let out = Command::new(env!("CARGO_BIN_EXE_tilepattern"))
+        .env("TILEPATTERN_THREADS", threads)
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 /// An empty scratch folder for the test `name` (of this test process).
 pub fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("tp-test-{}-{name}", std::process::id()));
