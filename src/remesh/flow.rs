@@ -64,7 +64,9 @@ const NONE: usize = usize::MAX;
 /// and still have its lone dislocations walked out ([`Jumps::unwanted`]). Measured on the
 /// guide test of `tests/guides.rs` (a guide at 30 degrees to the designer's field): its
 /// patches ask for about 2-3.5 and their dislocations must stay; those the integration leaves
-/// on an evenly triangulated vault sit in patches asking for 0.05-0.25.
+/// on an evenly triangulated vault sit in patches asking for 0.05-0.25. (Measured while the
+/// density read each step in its start frame, which made it twice as long and turned it by
+/// a quarter; [`super::scale`]'s `mid_step` reads it halfway. The tests still hold.)
 const CALM: f64 = 0.5;
 
 impl<'a> Jumps<'a> {

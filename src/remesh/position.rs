@@ -514,10 +514,15 @@ mod tests {
         assert!(still[0].hypot(still[1]) < 1e-9, "{still:?}");
         let slow = patch_density(0.05);
         let fast = patch_density(0.1);
-        let (slow, fast) = (slow[0].hypot(slow[1]), fast[0].hypot(fast[1]));
-        // Crosses turning by 0.1 rad per metre over 2 m: rows of 0.1 m gain a few tenths of
-        // a row across the patch.
-        assert!(slow > 0.05, "{slow}");
-        assert!((fast / slow - 2.0).abs() < 0.1, "{slow} {fast}");
+        // Crosses turning by `turn` radians per metre along x bend the rows along x: over the
+        // patch's 2 m height the rows on one side are `2 turn` longer per metre than on the
+        // other, so rows of 0.1 m must gain `turn * 2 * 2 / 0.1` columns (2 at 0.05, 4 at
+        // 0.1), a Burgers content along the rows (x), not across them. Read in each step's
+        // start frame, it came out twice as long and across the rows ([0.8, 7.9] at 0.1).
+        for (d, turn) in [(slow, 0.05), (fast, 0.1)] {
+            let expected = turn * 2.0 * 2.0 / 0.1;
+            assert!((d[0] / expected - 1.0).abs() < 0.02, "{d:?} at {turn}");
+            assert!(d[1].abs() < 0.15 * d[0], "{d:?} at {turn}");
+        }
     }
 }
