@@ -421,6 +421,10 @@ namespace TilePattern
         /// courses converge or part, and along the edge where the edge's filler pieces did not
         /// reach).</summary>
         public int TearPieces { get; internal set; }
+        /// <summary>Of <see cref="TearPieces"/>, those cut to the room their neighbours leave
+        /// away from the surface's edge: the cuts the fit's holes ask for (the fit_cuts
+        /// warning counts them with the tiles cut to fit).</summary>
+        public int TearCuts { get; internal set; }
         /// <summary>Tiles entirely off the surface (dropped).</summary>
         public int OutsideTiles { get; internal set; }
         /// <summary>Pieces too narrow to keep (dropped): cut to the boundary, or by the fit.</summary>
@@ -593,6 +597,7 @@ namespace TilePattern
                     BoundaryTiles = JsonAccess.Integer(cutting, "boundary_tiles"),
                     FillerTiles = JsonAccess.Integer(cutting, "filler_tiles"),
                     TearPieces = JsonAccess.Integer(cutting, "tear_pieces"),
+                    TearCuts = JsonAccess.Integer(cutting, "tear_cuts"),
                     OutsideTiles = JsonAccess.Integer(cutting, "outside_tiles"),
                     Slivers = slivers == null ? 0 : slivers.Count,
                     BoundaryShapes = JsonAccess.Integer(cutting, "boundary_shapes"),

@@ -265,4 +265,5 @@ def test_tiles_of_a_fit_cut_read_like_boundary_tiles():
     # The holes the fit leaves are filled with pieces on no face, counted among the fillers.
     cutting = report["cutting"]
     assert 0 < cutting["tear_pieces"] <= cutting["filler_tiles"]
+    assert 0 <= cutting["tear_cuts"] <= cutting["tear_pieces"]
     assert cutting["filler_tiles"] == int(np.sum(np.all(placed.faces == -1, axis=1)))

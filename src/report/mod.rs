@@ -89,6 +89,11 @@ pub struct CuttingSummary {
     /// fit left where courses converge or part, and along the edge where the edge's filler
     /// pieces did not reach.
     pub tear_pieces: usize,
+    /// Of `tear_pieces`, those cut to the room their neighbours leave away from the
+    /// surface's edge (a piece the edge cuts is cut there anyway; a whole piece is no cut):
+    /// the cuts the fit's tears ask for, counted with the tiles cut to fit by the
+    /// `fit_cuts` warning.
+    pub tear_cuts: usize,
     /// Tiles dropped because no part of them lies on the surface.
     pub outside_tiles: usize,
     /// Pieces too thin to cut or lay, left out: the gap they leave is filled with mortar or a
@@ -177,6 +182,7 @@ impl Report {
             boundary_tiles: self.boundary_tiles,
             filler_tiles: finished.fillers,
             tear_pieces: finished.tear_pieces,
+            tear_cuts: finished.tear_cuts,
             outside_tiles: finished
                 .dropped
                 .iter()

@@ -34,8 +34,9 @@ pub enum WarningCode {
     /// Reading the file joined coincident vertices or removed faces (see
     /// [`crate::mesh::weld`]).
     VerticesWelded = 9,
-    /// The fit stage cut more than [`MAX_FIT_CUT_SHARE`] of the tiles: courses converge or
-    /// diverge (domes, bends, around singularities) where rigid tiles cannot meet.
+    /// The fit stage cut more than [`MAX_FIT_CUT_SHARE`] of the tiles, counting the pieces
+    /// cut to fill the holes it opened away from the edge: courses converge or diverge
+    /// (domes, bends, around singularities) where rigid tiles cannot meet.
     FitCuts = 10,
     /// The joints stray far from the nominal joint: their p95 deviation is more than
     /// [`MAX_P95_DEVIATION_SHARE`] of the joint.
@@ -97,13 +98,16 @@ pub fn joint_checks(report: &Report) -> Vec<Warning> {
     let mut out = Vec::new();
     let j = &report.joints;
     let tiles = report.full_tiles + report.half_tiles;
-    if tiles > 0 && j.fit_cuts as f64 > MAX_FIT_CUT_SHARE * tiles as f64 {
+    // Pieces cut to fill the fit's tears away from the edge are cuts of the fit too.
+    let tear_cuts = report.cutting.as_ref().map_or(0, |c| c.tear_cuts);
+    let cut = j.fit_cuts + tear_cuts;
+    if tiles > 0 && cut as f64 > MAX_FIT_CUT_SHARE * tiles as f64 {
         out.push(Warning::new(
             WarningCode::FitCuts,
             format!(
-                "{} tiles ({:.1} % of the {tiles} full and half tiles) had to be cut to fit (cut list: C labels): courses converge or diverge here (a dome's crown, a bend, around the quad mesh's singularities) and rigid tiles cannot meet; look at gaps.svg, and try another field direction (--direction, --field) or lay those parts by hand (--exclude)",
+                "{} tiles had to be cut to fit (cut list: C labels) and {tear_cuts} pieces cut to fill the holes it opened (cutting.tear_cuts): {:.1} % of the {tiles} full and half tiles; courses converge or diverge here (a dome's crown, a bend, around the quad mesh's singularities) and rigid tiles cannot meet; look at gaps.svg, and try another field direction (--direction, --field) or lay those parts by hand (--exclude)",
                 j.fit_cuts,
-                100.0 * j.fit_cuts as f64 / tiles as f64
+                100.0 * cut as f64 / tiles as f64
             ),
         ));
     }

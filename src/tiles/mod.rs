@@ -246,6 +246,9 @@ pub struct Finished {
     pub fillers: usize,
     /// Of `fillers`, the pieces filling holes the fit left (`tears.rs`).
     pub tear_pieces: usize,
+    /// Of `tear_pieces`, those cut to the room their neighbours leave away from the
+    /// surface's edge: the cuts the fit's tears alone ask for.
+    pub tear_cuts: usize,
     /// Whether the fill of those holes was stopped (by [`finish_with`]'s `keep_going`)
     /// before every hole was tried.
     pub tear_fill_stopped: bool,
@@ -449,6 +452,7 @@ pub fn finish_with(
     } else {
         tears::Filled {
             pieces: 0,
+            inside_cuts: 0,
             stopped: false,
         }
     };
@@ -467,6 +471,7 @@ pub fn finish_with(
             dropped,
             fillers,
             tear_pieces: tears.pieces,
+            tear_cuts: tears.inside_cuts,
             tear_fill_stopped: tears.stopped,
             cut_list,
             sequence,

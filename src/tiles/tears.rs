@@ -58,6 +58,10 @@ const POLL_EVERY: usize = 64;
 pub(crate) struct Filled {
     /// Pieces appended to the tiles.
     pub pieces: usize,
+    /// Of `pieces`, those cut to the room their neighbours leave and not reaching the
+    /// surface's edge: cuts the fit's tears alone ask for (a piece at the edge is cut there
+    /// anyway, and a whole piece is no cut).
+    pub inside_cuts: usize,
     /// Whether `keep_going` stopped the fill before every uncovered sample was tried.
     pub stopped: bool,
 }
@@ -73,13 +77,15 @@ impl Tears<'_> {
         keep_going: &mut dyn FnMut() -> bool,
     ) -> Filled {
         let before = tiles.len();
-        let laid = |tiles: &Vec<Tile>, stopped| Filled {
+        let mut inside_cuts = 0;
+        let laid = |tiles: &Vec<Tile>, inside_cuts, stopped| Filled {
             pieces: tiles.len() - before,
+            inside_cuts,
             stopped,
         };
         // Every piece continues a tile near it: with none there is nothing to continue.
         if tiles.is_empty() {
-            return laid(tiles, false);
+            return laid(tiles, 0, false);
         }
         let mut outlines: Vec<Vec<Point3<f64>>> =
             tiles.iter().map(outline::world_corners).collect();
@@ -136,7 +142,7 @@ impl Tears<'_> {
             }
             tried += 1;
             if tried % POLL_EVERY == 0 && !keep_going() {
-                return laid(tiles, true);
+                return laid(tiles, inside_cuts, true);
             }
             // The nearest tile sets the piece's turn and which way is up.
             let near = placed.near(&q, reach);
@@ -174,33 +180,34 @@ impl Tears<'_> {
             let from = tiles[nearest].frame;
             // The candidate keeping most area, the first of equals; a whole piece keeps all
             // a piece can, so the candidates after it are not cut.
-            let mut best: Option<Tile> = None;
+            let mut best: Option<(Tile, bool)> = None;
             for frame in [from.x, from.y]
                 .iter()
                 .map(|along| Frame::from_normal(centre, up, along))
                 .chain(self.course_cells(&from, &q, &up))
             {
                 let near = placed.near(&frame.origin, touching);
-                let Some(piece) = self.piece(frame, tiles, &outlines, &near, &q) else {
+                let Some((piece, at_edge)) = self.piece(frame, tiles, &outlines, &near, &q) else {
                     continue;
                 };
                 if best
                     .as_ref()
-                    .is_none_or(|b| piece.kept_area() > b.kept_area())
+                    .is_none_or(|b| piece.kept_area() > b.0.kept_area())
                 {
-                    best = Some(piece);
+                    best = Some((piece, at_edge));
                 }
-                if best.as_ref().is_some_and(|b| b.cut.is_none()) {
+                if best.as_ref().is_some_and(|b| b.0.cut.is_none()) {
                     break;
                 }
             }
-            if let Some(piece) = best {
+            if let Some((piece, at_edge)) = best {
+                inside_cuts += usize::from(piece.cut.is_some() && !at_edge);
                 placed.insert(tiles.len(), &piece.frame.origin, &piece.frame.origin);
                 outlines.push(outline::world_corners(&piece));
                 tiles.push(piece);
             }
         }
-        laid(tiles, false)
+        laid(tiles, inside_cuts, false)
     }
 
     /// Frames for a piece continuing the course of the tile on `from` to the sample `q`: the
@@ -265,7 +272,8 @@ impl Tears<'_> {
     }
 
     /// The piece on `frame` cut to the surface and to the room the tiles `near` leave, if it
-    /// is wide enough, overlaps none of them and still covers the sample `q` it is laid for.
+    /// is wide enough, overlaps none of them and still covers the sample `q` it is laid for;
+    /// with whether the surface's edge cut it.
     fn piece(
         &self,
         frame: Frame,
@@ -273,13 +281,16 @@ impl Tears<'_> {
         outlines: &[Vec<Point3<f64>>],
         near: &[usize],
         q: &Point3<f64>,
-    ) -> Option<Tile> {
+    ) -> Option<(Tile, bool)> {
         let mut piece = Tile::new(TileKind::Full, Vec::new(), frame, self.blank);
-        match self.boundary.clip(&piece, self.tolerance) {
+        let at_edge = match self.boundary.clip(&piece, self.tolerance) {
             Clipped::Outside => return None,
-            Clipped::Whole => {}
-            Clipped::Cut(cut) => piece.cut = Some(cut),
-        }
+            Clipped::Whole => false,
+            Clipped::Cut(cut) => {
+                piece.cut = Some(cut);
+                true
+            }
+        };
         if !super::fit::cut_to_room(&mut piece, tiles, outlines, near, self.joint) {
             return None;
         }
@@ -296,7 +307,7 @@ impl Tears<'_> {
             !outline::may_touch(&tiles[t], &piece, 0.0)
                 || outline::separation_of(&tiles[t], &outlines[t], &piece, &own).gap >= 0.0
         });
-        (clear && covers(&piece, q, 0.0)).then_some(piece)
+        (clear && covers(&piece, q, 0.0)).then_some((piece, at_edge))
     }
 }
 
@@ -363,6 +374,10 @@ mod tests {
     }
 
     fn fill(surface: &PolyMesh, tiles: &mut Vec<Tile>) -> usize {
+        filled(surface, tiles).pieces
+    }
+
+    fn filled(surface: &PolyMesh, tiles: &mut Vec<Tile>) -> Filled {
         let boundary = SurfaceBoundary::new(surface, 0.28);
         Tears {
             surface,
@@ -373,7 +388,32 @@ mod tests {
             tolerance: 0.001,
         }
         .fill(tiles, &mut || true)
-        .pieces
+    }
+
+    #[test]
+    fn pieces_cut_to_the_room_inside_are_told_from_those_the_edge_cuts() {
+        // Rows 360 mm apart on a sheet 0.95 m wide, the rows running 200 mm past its right
+        // edge: the courses continued into the hole leave pieces cut to the room between the
+        // rows, and at the right end pieces the sheet's edge cuts.
+        let (w, h) = (0.95, 0.64);
+        let surface = rectangle(w, h);
+        let mut tiles = rows(h);
+        let filled = filled(&surface, &mut tiles);
+        let pieces = &tiles[tiles.len() - filled.pieces..];
+        // Read independently: a cut piece whose whole blank would cross the edge (x = 0 or
+        // x = w) by more than the cut tolerance was cut there; any other cut piece was cut
+        // to the room only, even where it touches the edge.
+        let at_edge = |t: &Tile| {
+            let blank = Tile::new(TileKind::Full, Vec::new(), t.frame, t.size);
+            outline::world_corners(&blank)
+                .iter()
+                .any(|p| p.x < -0.001 - 1e-9 || p.x > w + 0.001 + 1e-9)
+        };
+        let cut = pieces.iter().filter(|t| t.cut.is_some());
+        let inside = cut.clone().filter(|t| !at_edge(t)).count();
+        assert!(inside > 0, "no piece cut inside of {}", filled.pieces);
+        assert!(cut.count() > inside, "no piece cut at the edge");
+        assert_eq!(filled.inside_cuts, inside);
     }
 
     /// Share of the rectangle's area between the rows that some tile covers.
