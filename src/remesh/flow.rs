@@ -39,8 +39,13 @@ impl Rot {
 
 /// Rounds a frame transfer matrix to the nearest quarter turn.
 fn quarter_turns(t: &Matrix2<f64>) -> Rot {
-    let angle = (t[(1, 0)] - t[(0, 1)]).atan2(t[(0, 0)] + t[(1, 1)]);
+    let angle = turn_angle(t);
     Rot(((angle / std::f64::consts::FRAC_PI_2).round() as i64).rem_euclid(4) as u8)
+}
+
+/// The angle (radians, in `(-pi, pi]`) of the rotation nearest to a frame transfer matrix.
+pub(crate) fn turn_angle(t: &Matrix2<f64>) -> f64 {
+    (t[(1, 0)] - t[(0, 1)]).atan2(t[(0, 0)] + t[(1, 1)])
 }
 
 /// The whole quarter turn nearest to a frame transfer matrix, as a rotation matrix: how the

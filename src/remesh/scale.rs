@@ -80,9 +80,7 @@ fn mid_step(
     x: usize,
     y: usize,
 ) -> Vector2<f64> {
-    let e = s.edge(x, y);
-    let t = &transfer[e];
-    let angle = (t[(1, 0)] - t[(0, 1)]).atan2(t[(0, 0)] + t[(1, 1)]);
+    let angle = flow::turn_angle(&transfer[s.edge(x, y)]);
     let quarter = std::f64::consts::FRAC_PI_2;
     let rest = angle - quarter * (angle / quarter).round();
     // `x`'s frame turns towards `y`'s by `rest` when `x` is the lower end, by `-rest` when
