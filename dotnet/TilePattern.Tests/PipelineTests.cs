@@ -69,6 +69,7 @@ namespace TilePattern.Tests
                 Assert.AreEqual(report.Cutting.FillerTiles, tiling.Tiles.Count(t => t.Faces.Length == 0));
                 Assert.That(report.Cutting.TearPieces, Is.InRange(0, report.Cutting.FillerTiles));
                 Assert.That(report.Cutting.TearCuts, Is.InRange(0, report.Cutting.TearPieces));
+                Assert.That(report.Cutting.TearCuts + report.Cutting.TearHalves, Is.InRange(0, report.Cutting.TearPieces));
                 Assert.IsNotNull(report.Fit, "the fit runs by default");
                 Assert.IsNotNull(report.Joints.BeforeFit);
                 Assert.AreEqual(tiling.BoundaryCount, report.BoundaryTiles);

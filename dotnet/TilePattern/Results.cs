@@ -425,6 +425,10 @@ namespace TilePattern
         /// away from the surface's edge: the cuts the fit's holes ask for (the fit_cuts
         /// warning counts them with the tiles cut to fit).</summary>
         public int TearCuts { get; internal set; }
+        /// <summary>Of <see cref="TearPieces"/>, whole half tiles laid where a hole's room held
+        /// one with its joints within half a joint of the nominal one (no cut on site; they
+        /// are in the cut list's H).</summary>
+        public int TearHalves { get; internal set; }
         /// <summary>Tiles entirely off the surface (dropped).</summary>
         public int OutsideTiles { get; internal set; }
         /// <summary>Pieces too narrow to keep (dropped): cut to the boundary, or by the fit.</summary>
@@ -598,6 +602,7 @@ namespace TilePattern
                     FillerTiles = JsonAccess.Integer(cutting, "filler_tiles"),
                     TearPieces = JsonAccess.Integer(cutting, "tear_pieces"),
                     TearCuts = JsonAccess.Integer(cutting, "tear_cuts"),
+                    TearHalves = JsonAccess.Integer(cutting, "tear_halves"),
                     OutsideTiles = JsonAccess.Integer(cutting, "outside_tiles"),
                     Slivers = slivers == null ? 0 : slivers.Count,
                     BoundaryShapes = JsonAccess.Integer(cutting, "boundary_shapes"),

@@ -266,4 +266,5 @@ def test_tiles_of_a_fit_cut_read_like_boundary_tiles():
     cutting = report["cutting"]
     assert 0 < cutting["tear_pieces"] <= cutting["filler_tiles"]
     assert 0 <= cutting["tear_cuts"] <= cutting["tear_pieces"]
+    assert 0 <= cutting["tear_cuts"] + cutting["tear_halves"] <= cutting["tear_pieces"]
     assert cutting["filler_tiles"] == int(np.sum(np.all(placed.faces == -1, axis=1)))

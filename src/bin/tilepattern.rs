@@ -1193,9 +1193,11 @@ fn remesh_summary(m: &Metrics) -> String {
 fn tiling_summary(t: &Tiling, units: Units) -> String {
     let cutting = t.report.cutting.as_ref().map_or(String::new(), |c| {
         format!(
-            "; {} filler pieces ({} of them in the fit's tears); {} cut shapes, {} slivers and {} tiles off the surface left out, coverage {:.3}",
+            "; {} filler pieces ({} of them in the fit's tears: {} cut to the room there, {} whole halves); {} cut shapes, {} slivers and {} tiles off the surface left out, coverage {:.3}",
             c.filler_tiles,
             c.tear_pieces,
+            c.tear_cuts,
+            c.tear_halves,
             c.boundary_shapes,
             c.slivers.len(),
             c.outside_tiles,

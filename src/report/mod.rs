@@ -94,6 +94,11 @@ pub struct CuttingSummary {
     /// the cuts the fit's tears ask for, counted with the tiles cut to fit by the
     /// `fit_cuts` warning.
     pub tear_cuts: usize,
+    /// Of `tear_pieces`, whole half tiles laid where a hole's room held one with its joints
+    /// within half a joint of the nominal one, instead of a piece cut to the room: no cut on
+    /// site (halves are cut off site, as the pattern's half tiles are; they are in the cut
+    /// list's `H`).
+    pub tear_halves: usize,
     /// Tiles dropped because no part of them lies on the surface.
     pub outside_tiles: usize,
     /// Pieces too thin to cut or lay, left out: the gap they leave is filled with mortar or a
@@ -183,6 +188,7 @@ impl Report {
             filler_tiles: finished.fillers,
             tear_pieces: finished.tear_pieces,
             tear_cuts: finished.tear_cuts,
+            tear_halves: finished.tear_halves,
             outside_tiles: finished
                 .dropped
                 .iter()

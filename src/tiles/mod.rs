@@ -249,6 +249,10 @@ pub struct Finished {
     /// Of `tear_pieces`, those cut to the room their neighbours leave away from the
     /// surface's edge: the cuts the fit's tears alone ask for.
     pub tear_cuts: usize,
+    /// Of `tear_pieces`, whole half tiles laid where the room held one with joints within
+    /// half a joint of the nominal one (no cut on site: halves are cut off site, as the
+    /// pattern's are).
+    pub tear_halves: usize,
     /// Whether the fill of those holes was stopped (by [`finish_with`]'s `keep_going`)
     /// before every hole was tried.
     pub tear_fill_stopped: bool,
@@ -453,6 +457,7 @@ pub fn finish_with(
         tears::Filled {
             pieces: 0,
             inside_cuts: 0,
+            halves: 0,
             stopped: false,
         }
     };
@@ -472,6 +477,7 @@ pub fn finish_with(
             fillers,
             tear_pieces: tears.pieces,
             tear_cuts: tears.inside_cuts,
+            tear_halves: tears.halves,
             tear_fill_stopped: tears.stopped,
             cut_list,
             sequence,

@@ -34,6 +34,11 @@ const COURSE_PITCH_SLACK: f64 = 0.1;
 /// of the tile whose course is continued, so a few steps do; more means bad input.
 const MAX_WALK_STEPS: f64 = 16.0;
 
+/// How far from the nominal joint the joints around a standard piece laid in a hole may be
+/// ([`Tears::standard`]), as a share of the joint: a half (5 mm on a 10 mm joint, the fit's
+/// own line for joints that need no look, [`super::fit::MAX_P95_DEVIATION_SHARE`]).
+const JOINT_SPREAD: f64 = 0.5;
+
 /// What the tear fill needs to know of the tiles and the surface.
 pub(crate) struct Tears<'a> {
     /// The input surface, sampled.
@@ -62,6 +67,9 @@ pub(crate) struct Filled {
     /// surface's edge: cuts the fit's tears alone ask for (a piece at the edge is cut there
     /// anyway, and a whole piece is no cut).
     pub inside_cuts: usize,
+    /// Of `pieces`, whole half tiles laid where the room held one ([`Tears::standard`]):
+    /// no cut on site, though a half is cut from a tile as the pattern's halves are.
+    pub halves: usize,
     /// Whether `keep_going` stopped the fill before every uncovered sample was tried.
     pub stopped: bool,
 }
@@ -81,6 +89,10 @@ impl Tears<'_> {
         let laid = |tiles: &Vec<Tile>, inside_cuts, stopped| Filled {
             pieces: tiles.len() - before,
             inside_cuts,
+            halves: tiles[before..]
+                .iter()
+                .filter(|t| t.kind == TileKind::Half)
+                .count(),
             stopped,
         };
         // Every piece continues a tile near it: with none there is nothing to continue.
@@ -178,8 +190,9 @@ impl Tears<'_> {
             };
             let centre = self.boundary.closest(&centre, self.blank[1]).unwrap_or(q);
             let from = tiles[nearest].frame;
-            // The candidate keeping most area, the first of equals; a whole piece keeps all
-            // a piece can, so the candidates after it are not cut.
+            // A whole piece before any cut one (a half laid whole where the room holds one,
+            // see `standard`), then the candidate keeping most area, the first of equals; a
+            // whole piece is kept, so the candidates after it are not cut.
             let mut best: Option<(Tile, bool)> = None;
             for frame in [from.x, from.y]
                 .iter()
@@ -190,10 +203,12 @@ impl Tears<'_> {
                 let Some((piece, at_edge)) = self.piece(frame, tiles, &outlines, &near, &q) else {
                     continue;
                 };
-                if best
-                    .as_ref()
-                    .is_none_or(|b| piece.kept_area() > b.0.kept_area())
-                {
+                let rank = |t: &Tile| (t.cut.is_none(), t.kept_area());
+                if best.as_ref().is_none_or(|b| {
+                    rank(&piece)
+                        .partial_cmp(&rank(&b.0))
+                        .is_some_and(|o| o.is_gt())
+                }) {
                     best = Some((piece, at_edge));
                 }
                 if best.as_ref().is_some_and(|b| b.0.cut.is_none()) {
@@ -307,7 +322,82 @@ impl Tears<'_> {
             !outline::may_touch(&tiles[t], &piece, 0.0)
                 || outline::separation_of(&tiles[t], &outlines[t], &piece, &own).gap >= 0.0
         });
-        (clear && covers(&piece, q, 0.0)).then_some((piece, at_edge))
+        if !(clear && covers(&piece, q, 0.0)) {
+            return None;
+        }
+        if piece.cut.is_some() && !at_edge {
+            if let Some(whole) = self.standard(&piece, tiles, outlines, near, q) {
+                return Some((whole, false));
+            }
+        }
+        Some((piece, at_edge))
+    }
+
+    /// A standard piece (a whole tile, or else a half) laid instead of `cut`, a piece cut to
+    /// the room inside a hole, where that room holds one with every joint at most
+    /// [`JOINT_SPREAD`] of a joint from the nominal one: a mason opens or closes the joints
+    /// around a gap a little rather than cut a tile a few millimetres short. The piece is
+    /// centred on the room `cut` keeps (its outline's extent in its own frame) and must lie
+    /// wholly on the surface, clear of its neighbours by the narrowest joint allowed, and
+    /// still cover the sample `q` it is laid for (within a joint).
+    fn standard(
+        &self,
+        cut: &Tile,
+        tiles: &[Tile],
+        outlines: &[Vec<Point3<f64>>],
+        near: &[usize],
+        q: &Point3<f64>,
+    ) -> Option<Tile> {
+        let loops = &cut.cut.as_ref()?.loops;
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in loops.iter().flatten() {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let room = [hi[0] - lo[0], hi[1] - lo[1]];
+        // Each of the two joints across the room takes half of what the piece leaves.
+        let spread = JOINT_SPREAD * self.joint;
+        if !room[1].is_finite() || room[1] < self.blank[1] - 2.0 * spread {
+            return None;
+        }
+        let centre = cut.frame.origin
+            + cut.frame.x * ((lo[0] + hi[0]) / 2.0)
+            + cut.frame.y * ((lo[1] + hi[1]) / 2.0);
+        let centre = self.boundary.closest(&centre, self.blank[1])?;
+        let frame = Frame::from_normal(centre, cut.frame.z, &cut.frame.x);
+        for (kind, length) in [
+            (TileKind::Full, self.blank[0]),
+            (TileKind::Half, self.blank[0] / 2.0),
+        ] {
+            if (room[0] - length).abs() > 2.0 * spread {
+                continue;
+            }
+            let mut piece = Tile::new(
+                kind,
+                Vec::new(),
+                frame,
+                [length, self.blank[1], self.blank[2]],
+            );
+            if !matches!(self.boundary.clip(&piece, self.tolerance), Clipped::Whole) {
+                continue;
+            }
+            if !super::fit::cut_to_room(&mut piece, tiles, outlines, near, self.joint - spread)
+                || piece.cut.is_some()
+            {
+                continue;
+            }
+            let own = outline::world_corners(&piece);
+            let clear = near.iter().all(|&t| {
+                !outline::may_touch(&tiles[t], &piece, 0.0)
+                    || outline::separation_of(&tiles[t], &outlines[t], &piece, &own).gap >= 0.0
+            });
+            if clear && covers(&piece, q, self.joint) {
+                return Some(piece);
+            }
+        }
+        None
     }
 }
 
@@ -482,6 +572,84 @@ mod tests {
             "{whole} whole of {} on the curve",
             on_curve.len() - 8
         );
+    }
+
+    /// Three courses of 280 x 140 tiles with 10 mm joints on a flat sheet 1.15 x 0.44 m: the
+    /// bottom and top ones whole, the middle one with a gap `g` between its first tile and
+    /// the next two.
+    fn course_with_a_gap(g: f64) -> (PolyMesh, Vec<Tile>) {
+        let tile = |x: f64, y: f64| {
+            let frame = Frame::from_normal(Point3::new(x, y, 0.0), Vector3::z(), &Vector3::x());
+            Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
+        };
+        let mut tiles: Vec<Tile> = (0..4)
+            .flat_map(|i| {
+                let x = 0.14 + 0.29 * i as f64;
+                [tile(x, 0.07), tile(x, 0.37)]
+            })
+            .collect();
+        tiles.extend([tile(0.14, 0.22), tile(0.42 + g, 0.22), tile(0.71 + g, 0.22)]);
+        (rectangle(1.15, 0.44), tiles)
+    }
+
+    #[test]
+    fn a_hole_that_holds_a_half_takes_a_whole_half_with_its_joints_opened() {
+        // A gap of 166 mm: a piece cut to the room would be 146 mm long; a half (140 mm)
+        // leaves joints of 13 mm, within half a joint of the nominal one.
+        let (surface, mut tiles) = course_with_a_gap(0.166);
+        let before = tiles.len();
+        let filled = filled(&surface, &mut tiles);
+        let in_gap = |t: &Tile| {
+            (t.frame.origin.x - 0.363).abs() < 0.05 && (t.frame.origin.y - 0.22).abs() < 0.05
+        };
+        let laid: Vec<&Tile> = tiles[before..].iter().filter(|t| in_gap(t)).collect();
+        assert_eq!(laid.len(), 1, "{laid:?}");
+        let half = laid[0];
+        assert_eq!(half.kind, TileKind::Half);
+        assert!(half.cut.is_none());
+        assert_eq!(half.size, [0.14, 0.14, 0.015]);
+        assert!(filled.halves >= 1);
+        // Its joints, read independently: to the course's tiles beside it and the courses
+        // above and below, every one within 5 mm of the joint and none narrower than 5 mm.
+        for other in &tiles[..before] {
+            let s = outline::separation(half, other);
+            if s.gap < 0.03 {
+                assert!((s.gap - 0.01).abs() <= 0.005 + 1e-9, "joint {}", s.gap);
+            }
+        }
+        // The hole's piece is no cut on site.
+        assert!(
+            tiles[before..]
+                .iter()
+                .filter(|t| t.cut.is_some())
+                .all(|t| !in_gap(t))
+        );
+    }
+
+    #[test]
+    fn a_hole_too_short_for_a_half_takes_a_piece_cut_to_it() {
+        // A gap of 130 mm: 110 mm of room, 30 mm short of a half, is cut to the room.
+        let (surface, mut tiles) = course_with_a_gap(0.13);
+        let before = tiles.len();
+        let filled = filled(&surface, &mut tiles);
+        // The pieces whose kept outline's centre lies in the gap.
+        let centre = |t: &Tile| {
+            let c = outline::world_corners(t);
+            c.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / c.len() as f64
+        };
+        let cut: Vec<&Tile> = tiles[before..]
+            .iter()
+            .filter(|t| {
+                let c = centre(t);
+                (c.x - 0.345).abs() < 0.03 && (c.y - 0.22).abs() < 0.03
+            })
+            .collect();
+        assert_eq!(cut.len(), 1, "{cut:?}");
+        assert_ne!(cut[0].kind, TileKind::Half);
+        assert!(cut[0].cut.is_some());
+        assert!(filled.inside_cuts >= 1);
+        let s = outline::separation(cut[0], &tiles[8]);
+        assert!((s.gap - 0.01).abs() < 1e-6, "{}", s.gap);
     }
 
     #[test]
