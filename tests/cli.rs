@@ -99,6 +99,31 @@ fn match_then_tiles_round_trip_with_stable_fields() {
     );
     let paper = json(&report);
     let paired = found["pairs"].as_array().unwrap().len() as u64;
+    // The report embeds the pattern it tiled, every field of it but the pairs themselves
+    // (counted), bound_source included.
+    let embedded = &paper["pattern"];
+    assert_eq!(embedded["pairs"].as_u64().unwrap(), paired);
+    assert_eq!(
+        embedded["unpaired"].as_u64().unwrap(),
+        found["unpaired"].as_array().unwrap().len() as u64
+    );
+    for field in [
+        "faces",
+        "continuous_joints",
+        "shifted_pairs",
+        "objective",
+        "bound",
+        "gap",
+        "status",
+        "bound_source",
+    ] {
+        assert!(
+            found.get(field).is_some(),
+            "field {field} missing from the pairs"
+        );
+        assert_eq!(embedded[field], found[field], "report's pattern.{field}");
+    }
+    assert_eq!(paper["objective"], embedded["objective"]);
     assert_eq!(paper["full_tiles"].as_u64().unwrap(), paired);
     assert_eq!(paper["tile"]["length"], 0.28);
     assert!(svg.is_file() && tiles.is_file());

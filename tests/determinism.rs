@@ -74,6 +74,7 @@ fn outputs(tiling: &Tiling) -> [String; 4] {
     pattern["seconds"] = 0.into();
     let mut report = serde_json::to_value(&tiling.report).unwrap();
     report["seconds"] = serde_json::Value::Null;
+    report["pattern"]["seconds"] = serde_json::Value::Null;
     [
         pattern.to_string(),
         report.to_string(),

@@ -70,6 +70,10 @@ namespace TilePattern.Tests
                 Assert.That(report.Cutting.TearPieces, Is.InRange(0, report.Cutting.FillerTiles));
                 Assert.That(report.Cutting.TearCuts, Is.InRange(0, report.Cutting.TearPieces));
                 Assert.That(report.Cutting.TearCuts + report.Cutting.TearHalves, Is.InRange(0, report.Cutting.TearPieces));
+                Assert.IsNotNull(report.Pattern, "the report embeds the pattern");
+                Assert.AreEqual(pattern.Pairs.Length, report.Pattern.Pairs);
+                Assert.AreEqual(pattern.BoundSource, report.Pattern.BoundSource);
+                Assert.AreEqual(report.Objective, report.Pattern.Objective);
                 Assert.IsNotNull(report.Fit, "the fit runs by default");
                 Assert.IsNotNull(report.Joints.BeforeFit);
                 Assert.AreEqual(tiling.BoundaryCount, report.BoundaryTiles);

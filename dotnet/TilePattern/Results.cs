@@ -365,6 +365,73 @@ namespace TilePattern
     }
 
     /// <summary>What the fit stage did (the report's fit object).</summary>
+    /// <summary>The pattern a tiling was built from, without its pairs (report.json's
+    /// <c>pattern</c>): every field of the pattern stage's result, so that none is lost on the way.</summary>
+    public sealed class PatternReport
+    {
+        /// <summary>Faces of the quad mesh.</summary>
+        public int Faces { get; internal set; }
+        /// <summary>Matched pairs: full tiles.</summary>
+        public int Pairs { get; internal set; }
+        /// <summary>Quads in no pair: half tiles.</summary>
+        public int Unpaired { get; internal set; }
+        /// <summary>Faces excluded by the caller.</summary>
+        public int Excluded { get; internal set; }
+        /// <summary>Faces that are not quads.</summary>
+        public int NonQuad { get; internal set; }
+        /// <summary>Continuous joints (eq. 2's y).</summary>
+        public int ContinuousJoints { get; internal set; }
+        /// <summary>Shifted pairs (eq. 3's z).</summary>
+        public int ShiftedPairs { get; internal set; }
+        /// <summary>Pairs of the bond's own relation (herringbone, basket weave).</summary>
+        public int BondPairs { get; internal set; }
+        /// <summary>Objective of the matching.</summary>
+        public double Objective { get; internal set; }
+        /// <summary>Proven bound on the objective.</summary>
+        public double Bound { get; internal set; }
+        /// <summary>Relative gap.</summary>
+        public double Gap { get; internal set; }
+        /// <summary>"optimal", "time_limit" or "feasible".</summary>
+        public string StatusText { get; internal set; }
+        /// <summary>Which argument proved <see cref="Bound"/>.</summary>
+        public BoundSource BoundSource { get; internal set; }
+        /// <summary>"matching", "patches", "whole_program" or "linear_relaxation".</summary>
+        public string BoundSourceText { get; internal set; }
+        /// <summary>Seconds of the pattern stage.</summary>
+        public double Seconds { get; internal set; }
+
+        internal static PatternReport Parse(Dictionary<string, object> p)
+        {
+            if (p == null)
+                return null;
+            var r = new PatternReport
+            {
+                Faces = JsonAccess.Integer(p, "faces"),
+                Pairs = JsonAccess.Integer(p, "pairs"),
+                Unpaired = JsonAccess.Integer(p, "unpaired"),
+                Excluded = JsonAccess.Integer(p, "excluded"),
+                NonQuad = JsonAccess.Integer(p, "non_quad"),
+                ContinuousJoints = JsonAccess.Integer(p, "continuous_joints"),
+                ShiftedPairs = JsonAccess.Integer(p, "shifted_pairs"),
+                BondPairs = JsonAccess.Integer(p, "bond_pairs"),
+                Objective = JsonAccess.Number(p, "objective"),
+                Bound = JsonAccess.Number(p, "bound"),
+                Gap = JsonAccess.Number(p, "gap"),
+                StatusText = JsonAccess.Text(p, "status") ?? "",
+                BoundSourceText = JsonAccess.Text(p, "bound_source") ?? "",
+                Seconds = JsonAccess.Number(p, "seconds"),
+            };
+            switch (r.BoundSourceText)
+            {
+                case "patches": r.BoundSource = BoundSource.Patches; break;
+                case "whole_program": r.BoundSource = BoundSource.WholeProgram; break;
+                case "linear_relaxation": r.BoundSource = BoundSource.LinearRelaxation; break;
+                default: r.BoundSource = BoundSource.Matching; break;
+            }
+            return r;
+        }
+    }
+
     public sealed class FitReport
     {
         /// <summary>Parsed from <see cref="StatusText"/>.</summary>
@@ -528,6 +595,10 @@ namespace TilePattern
 
         public TileDimensions Tile { get; private set; }
 
+        /// <summary>The pattern tiled, without its pairs, every field of it (BoundSource
+        /// included; null if the library did not report it).</summary>
+        public PatternReport Pattern { get; private set; }
+
         /// <summary>The joints as laid (after the fit when it ran; the figures before it in
         /// <see cref="JointReport.BeforeFit"/>).</summary>
         public JointReport Joints { get; private set; }
@@ -592,6 +663,7 @@ namespace TilePattern
             };
             r.Joints = JointReport.Parse(JsonAccess.Object(root, "joints")) ?? JointReport.Parse(new Dictionary<string, object>());
             r.Fit = FitReport.Parse(JsonAccess.Object(root, "fit"));
+            r.Pattern = PatternReport.Parse(JsonAccess.Object(root, "pattern"));
             var cutting = JsonAccess.Object(root, "cutting");
             if (cutting != null)
             {

@@ -32,6 +32,10 @@ def test_the_fit_runs_by_default_and_its_figures_are_reported(shell_quads):
     surface, qv, qf, pattern = shell_quads
     placed = tp.tiles(qv, qf, pattern, surface=surface)
     report = placed.report
+    # The report embeds the pattern it tiled, bound_source included.
+    assert report["pattern"]["pairs"] == len(pattern.pairs)
+    assert report["pattern"]["bound_source"] == pattern.bound_source
+    assert report["pattern"]["objective"] == report["objective"] == pattern.objective
     fit = report["fit"]
     assert fit["status"] in ("converged", "iteration_limit", "time_limit")
     assert fit["iterations"] >= 1 and fit["objective_after"] <= fit["objective_before"]

@@ -391,6 +391,81 @@ pub struct Pattern {
     pub seconds: f64,
 }
 
+/// A [`Pattern`] without its pairs: its counts, its quality and how far it is proven, as the
+/// tiling report embeds it (`report.json`'s `pattern`), one field per field of the pattern so
+/// that none is lost on the way (the report once dropped `bound_source`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PatternSummary {
+    /// Number of faces in the mesh.
+    pub faces: usize,
+    /// Matched face pairs: full tiles.
+    pub pairs: usize,
+    /// Quads in no pair: half tiles.
+    pub unpaired: usize,
+    /// Faces excluded by the caller.
+    pub excluded: usize,
+    /// Faces that are not quads.
+    pub non_quad: usize,
+    /// See [`Pattern::continuous_joints`].
+    pub continuous_joints: usize,
+    /// See [`Pattern::shifted_pairs`].
+    pub shifted_pairs: usize,
+    /// See [`Pattern::bond_pairs`].
+    pub bond_pairs: usize,
+    /// See [`Pattern::objective`].
+    pub objective: f64,
+    /// See [`Pattern::bound`].
+    pub bound: f64,
+    /// See [`Pattern::gap`].
+    pub gap: f64,
+    /// See [`Pattern::status`].
+    pub status: SolveStatus,
+    /// See [`Pattern::bound_source`].
+    pub bound_source: BoundSource,
+    /// See [`Pattern::seconds`].
+    pub seconds: f64,
+}
+
+impl Pattern {
+    /// This pattern's [`PatternSummary`].
+    pub fn summary(&self) -> PatternSummary {
+        // Destructured so that a field added to `Pattern` must be placed here (or named
+        // as left out) for this to compile.
+        let Pattern {
+            faces,
+            pairs,
+            unpaired,
+            excluded,
+            non_quad,
+            continuous_joints,
+            shifted_pairs,
+            bond_pairs,
+            objective,
+            bound,
+            gap,
+            status,
+            bound_source,
+            seconds,
+        } = self;
+        PatternSummary {
+            faces: *faces,
+            pairs: pairs.len(),
+            unpaired: unpaired.len(),
+            excluded: excluded.len(),
+            non_quad: non_quad.len(),
+            continuous_joints: *continuous_joints,
+            shifted_pairs: *shifted_pairs,
+            bond_pairs: *bond_pairs,
+            objective: *objective,
+            bound: *bound,
+            gap: *gap,
+            status: *status,
+            bound_source: *bound_source,
+            seconds: *seconds,
+        }
+    }
+}
+
 /// Matches the faces of `mesh` into tiles under `options`.
 ///
 /// # Errors

@@ -13,7 +13,7 @@ pub use warnings::{Warning, WarningCode};
 use serde::Serialize;
 
 use crate::mesh::PolyMesh;
-use crate::pattern::{Pattern, SolveStatus};
+use crate::pattern::{Pattern, PatternSummary, SolveStatus};
 use crate::tiles::{
     DropReason, DroppedTile, Finished, FitSummary, Sequence, Tile, TileKind, TileSpec,
 };
@@ -56,6 +56,10 @@ pub struct Report {
     pub gap: f64,
     /// Whether the matching is proven optimal.
     pub status: SolveStatus,
+    /// The pattern stage's result without its pairs, every field of it (the fields above
+    /// from `continuous_joints` to `status` are the same figures, kept where scripts read
+    /// them).
+    pub pattern: PatternSummary,
     /// Tile size used.
     pub tile: TileSpec,
     /// Joint gaps and overlaps, with the figures before the fit stage when it ran.
@@ -142,19 +146,21 @@ impl Report {
     ) -> Self {
         let count = |kind| tiles.iter().filter(|t| t.kind == kind).count();
         let blanks = |faces: usize| tiles.iter().filter(|t| t.faces.len() == faces).count();
+        let summary = pattern.summary();
         Self {
             faces: mesh.face_count(),
             full_tiles: blanks(2),
             half_tiles: blanks(1),
             boundary_tiles: count(TileKind::Boundary),
-            non_quad_faces: pattern.non_quad.len(),
-            excluded_faces: pattern.excluded.len(),
-            continuous_joints: pattern.continuous_joints,
-            shifted_pairs: pattern.shifted_pairs,
-            objective: pattern.objective,
-            bound: pattern.bound,
-            gap: pattern.gap,
-            status: pattern.status,
+            non_quad_faces: summary.non_quad,
+            excluded_faces: summary.excluded,
+            continuous_joints: summary.continuous_joints,
+            shifted_pairs: summary.shifted_pairs,
+            objective: summary.objective,
+            bound: summary.bound,
+            gap: summary.gap,
+            status: summary.status,
+            pattern: summary,
             tile: *spec,
             joints: JointSummary {
                 fit_cuts: count(TileKind::FitCut),
@@ -164,7 +170,7 @@ impl Report {
             cutting: None,
             sequence: None,
             seconds: StageSeconds {
-                pattern: pattern.seconds,
+                pattern: summary.seconds,
                 tiles: 0.0,
                 fit: 0.0,
             },
