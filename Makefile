@@ -29,11 +29,15 @@ test: setup
 
 # House rules: rustfmt's layout, no clippy warning on any target, rustdoc without warnings
 # (maintainers' docs, private items included). Checked against the system's shared COIN-OR
-# (--no-default-features), so that the check build does not compile COIN-OR from source again.
+# (--no-default-features), so that the check build does not compile COIN-OR from source again;
+# the command line (feature cli) is checked with it.
 lint:
 	$(CARGO) fmt --check
-	$(CARGO) clippy --all-targets --no-default-features -- -D warnings
-	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --document-private-items --no-default-features
+	$(CARGO) clippy --all-targets --no-default-features --features cli -- -D warnings
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --document-private-items --no-default-features --features cli
+	@# The library alone depends on nothing only the command line uses.
+	@if $(CARGO) tree --no-default-features -e normal --prefix none | grep -E '^(clap|anyhow) '; then \
+		echo "lint: the library (without feature cli) depends on the command line's crates above" >&2; exit 1; fi
 
 rust-test:
 	$(CARGO) test --release
