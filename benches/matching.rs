@@ -70,10 +70,11 @@ fn main() {
         let Ok(surface) = obj::read(&shared.join(format!("{name}.obj"))) else {
             continue;
         };
-        let options = RemeshOptions {
-            target_edge: edge,
-            time_limit: Duration::from_secs(600),
-            ..RemeshOptions::default()
+        let options = {
+            let mut o = RemeshOptions::default();
+            o.target_edge = edge;
+            o.time_limit = Duration::from_secs(600);
+            o
         };
         match remesh(&surface, &options) {
             Ok(remeshed) => cases.push((label, remeshed.quads)),
@@ -177,12 +178,13 @@ fn solve_one(args: &[String]) {
         (Method::Auto, Formulation::Strengthened)
     };
     let seconds: f64 = args[2].parse().expect("a number of seconds");
-    let options = PatternOptions {
-        bond: Bond::Staggered { weight: 0.5 },
-        time_limit: Duration::from_secs_f64(seconds),
-        method,
-        formulation,
-        ..PatternOptions::default()
+    let options = {
+        let mut o = PatternOptions::default();
+        o.bond = Bond::Staggered { weight: 0.5 };
+        o.time_limit = Duration::from_secs_f64(seconds);
+        o.method = method;
+        o.formulation = formulation;
+        o
     };
     let found = pattern::solve(&mesh, &options).expect("bench meshes are valid");
     println!(

@@ -77,30 +77,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let courses = Courses::Level {
             up: [0.0, 0.0, 1.0],
         };
-        let remeshed = remesh::remesh(
-            &surface,
-            &RemeshOptions {
-                target_edge: SPEC.quad_edge(true),
-                // The remesher's own limit is not what is measured here (the 50k case takes
-                // over a minute on a loaded machine).
-                time_limit: Duration::from_secs(1800),
-                ..RemeshOptions::default()
-            },
-        )?;
-        let options = PatternOptions {
-            time_limit: Duration::from_secs_f64(limit),
-            courses,
-            ..PatternOptions::default()
+        let remeshed = remesh::remesh(&surface, &{
+            let mut o = RemeshOptions::default();
+            o.target_edge = SPEC.quad_edge(true);
+            // The remesher's own limit is not what is measured here (the 50k case takes
+            // over a minute on a loaded machine).
+            o.time_limit = Duration::from_secs(1800);
+            o
+        })?;
+        let options = {
+            let mut o = PatternOptions::default();
+            o.time_limit = Duration::from_secs_f64(limit);
+            o.courses = courses;
+            o
         };
         let found = pattern::solve(&remeshed.quads, &options)?;
-        let finish = FinishOptions {
-            fit: FinishOptions::for_spec(&SPEC)
-                .fit
-                .map(|f| tilepattern::tiles::FitOptions {
-                    time_limit: 60.0,
-                    ..f
-                }),
-            ..FinishOptions::for_spec(&SPEC)
+        let finish = {
+            let mut o = FinishOptions::for_spec(&SPEC);
+            o.fit = FinishOptions::for_spec(&SPEC).fit.map(|f| {
+                let mut o = f;
+                o.time_limit = 60.0;
+                o
+            });
+            o
         };
         let fitted = pipeline::tiles_for_pattern_with(
             &remeshed.quads,
@@ -110,16 +109,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             &finish,
             &mut Control::none(),
         )?;
-        let paper = pipeline::tiles_for_pattern(
-            &remeshed.quads,
-            Some(&surface),
-            found,
-            &SPEC,
-            &FinishOptions {
-                fit: None,
-                ..finish
-            },
-        )?;
+        let paper = pipeline::tiles_for_pattern(&remeshed.quads, Some(&surface), found, &SPEC, &{
+            let mut o = finish;
+            o.fit = None;
+            o
+        })?;
         // The fit alone again, for its processor seconds (the wall-clock seconds above count
         // whatever else the machine runs).
         let cpu_before = cpu_seconds();

@@ -85,25 +85,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             (name, obj::read(path)?)
         };
         let edge = SPEC.quad_edge(true) * scale;
-        let quads = remesh::remesh(
-            &surface,
-            &RemeshOptions {
-                target_edge: edge,
-                time_limit: Duration::from_secs(1800),
-                ..RemeshOptions::default()
-            },
-        )?
+        let quads = remesh::remesh(&surface, &{
+            let mut o = RemeshOptions::default();
+            o.target_edge = edge;
+            o.time_limit = Duration::from_secs(1800);
+            o
+        })?
         .quads;
-        let found = pattern::solve(
-            &quads,
-            &PatternOptions {
-                time_limit: Duration::from_secs_f64(limit),
-                courses: Courses::Level {
-                    up: [0.0, 0.0, 1.0],
-                },
-                ..PatternOptions::default()
-            },
-        )?;
+        let found = pattern::solve(&quads, &{
+            let mut o = PatternOptions::default();
+            o.time_limit = Duration::from_secs_f64(limit);
+            o.courses = Courses::Level {
+                up: [0.0, 0.0, 1.0],
+            };
+            o
+        })?;
         let finish = FinishOptions::for_spec(&SPEC);
         let fit_options = finish.fit.expect("the fit is on by default");
         let boxes = tiles::build(&quads, &found, &SPEC)?;
@@ -115,9 +111,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             &fit_options,
             &mut Control::none(),
         )?;
-        let no_fit = FinishOptions {
-            fit: None,
-            ..finish
+        let no_fit = {
+            let mut o = finish;
+            o.fit = None;
+            o
         };
         let (_, paper) = tiles::finish(&quads, Some(&surface), boxes.clone(), &SPEC, &no_fit);
         let (placed, finished) =

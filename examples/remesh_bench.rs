@@ -21,9 +21,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .filter(|p| p.extension().is_some_and(|x| x == "obj"))
         .collect();
     files.sort();
-    let options = RemeshOptions {
-        target_edge: 0.14,
-        ..RemeshOptions::default()
+    let options = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = 0.14;
+        o
     };
     println!(
         "| surface | faces | pure quad | irregular | bdry off | mean edge | edges ±20% | areas ±20% | p95 angle dev | max dist/t | covered | seconds |"

@@ -17,6 +17,7 @@ use crate::tiles::{
 
 /// Any stage's error.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum Error {
     /// The mesh was refused.
     #[error(transparent)]

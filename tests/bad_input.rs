@@ -68,10 +68,9 @@ const UNIT_TILE: TileSpec = TileSpec {
 };
 
 fn quick() -> PatternOptions {
-    PatternOptions {
-        time_limit: Duration::from_secs(5),
-        ..PatternOptions::default()
-    }
+    let mut o = PatternOptions::default();
+    o.time_limit = Duration::from_secs(5);
+    o
 }
 
 /// Rows: (what, vertices, faces, the error expected, the words its message must hold).
@@ -745,13 +744,11 @@ fn huge_faces_are_validated_in_linear_time() {
         .collect();
     faces.push((0..n).collect());
     let ring = PolyMesh::new(positions, faces).unwrap();
-    let found = pattern::solve(
-        &ring,
-        &PatternOptions {
-            bond: Bond::Stack,
-            ..quick()
-        },
-    )
+    let found = pattern::solve(&ring, &{
+        let mut o = quick();
+        o.bond = Bond::Stack;
+        o
+    })
     .unwrap();
     assert_eq!(
         (found.pairs.len(), found.non_quad.clone()),
@@ -769,7 +766,11 @@ fn bad_pattern_options_are_refused() {
     let grid = generate::grid(4, 4);
     for weight in [f64::NAN, -1.0, -0.0001, f64::INFINITY, f64::NEG_INFINITY] {
         for bond in [Bond::Staggered { weight }, Bond::RunningBond { weight }] {
-            let options = PatternOptions { bond, ..quick() };
+            let options = {
+                let mut o = quick();
+                o.bond = bond;
+                o
+            };
             refused(
                 &format!("{bond:?}"),
                 pattern::solve(&grid, &options),
@@ -782,7 +783,11 @@ fn bad_pattern_options_are_refused() {
     // process (1e25 and up).
     for weight in [1000.5, 1e20, 1e300] {
         for bond in [Bond::Staggered { weight }, Bond::RunningBond { weight }] {
-            let options = PatternOptions { bond, ..quick() };
+            let options = {
+                let mut o = quick();
+                o.bond = bond;
+                o
+            };
             refused(
                 &format!("{bond:?}"),
                 pattern::solve(&grid, &options),
@@ -794,7 +799,12 @@ fn bad_pattern_options_are_refused() {
     // Weights at the ends of the range solve (CBC's numerics hold).
     for weight in [0.0, pattern::MAX_WEIGHT] {
         for bond in [Bond::Staggered { weight }, Bond::RunningBond { weight }] {
-            pattern::solve(&grid, &PatternOptions { bond, ..quick() }).unwrap();
+            pattern::solve(&grid, &{
+                let mut o = quick();
+                o.bond = bond;
+                o
+            })
+            .unwrap();
         }
     }
     for seconds in [-1.0, -1e-9, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
@@ -816,30 +826,27 @@ fn bad_pattern_options_are_refused() {
         PatternOptions::time_limit_from_secs(-0.0).unwrap(),
         Duration::ZERO
     );
-    let forever = pattern::solve(
-        &grid,
-        &PatternOptions {
-            time_limit: Duration::MAX,
-            ..PatternOptions::default()
-        },
-    )
+    let forever = pattern::solve(&grid, &{
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::MAX;
+        o
+    })
     .unwrap();
     assert_eq!(forever.status, pattern::SolveStatus::Optimal);
     // Time limit 0: the best start, at once; its bound is still proven.
-    let zero = pattern::solve(
-        &grid,
-        &PatternOptions {
-            time_limit: Duration::ZERO,
-            ..PatternOptions::default()
-        },
-    )
+    let zero = pattern::solve(&grid, &{
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::ZERO;
+        o
+    })
     .unwrap();
     assert!(zero.bound >= zero.objective && zero.seconds < 1.0);
 
-    let forced = |pairs: Vec<[usize; 2]>, excluded: Vec<usize>| PatternOptions {
-        forced_pairs: pairs,
-        excluded_faces: excluded,
-        ..quick()
+    let forced = |pairs: Vec<[usize; 2]>, excluded: Vec<usize>| {
+        let mut o = quick();
+        o.forced_pairs = pairs;
+        o.excluded_faces = excluded;
+        o
     };
     type Row = (
         &'static str,
@@ -934,13 +941,11 @@ fn bad_pattern_options_are_refused() {
 #[test]
 fn bad_tile_sizes_are_refused() {
     let grid = generate::grid(4, 4);
-    let found = pattern::solve(
-        &grid,
-        &PatternOptions {
-            time_limit: Duration::ZERO,
-            ..PatternOptions::default()
-        },
-    )
+    let found = pattern::solve(&grid, &{
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::ZERO;
+        o
+    })
     .unwrap();
     let finish = FinishOptions::for_spec(&UNIT_TILE);
     let build = |spec: &TileSpec, finish: &FinishOptions| {
@@ -1126,10 +1131,11 @@ fn bad_tile_sizes_are_refused() {
 fn bad_remesh_options_are_refused() {
     let surface = generate::triangulate_quads(&generate::grid(6, 6));
     let with = |f: fn(&mut RemeshOptions)| {
-        let mut options = RemeshOptions {
-            target_edge: 0.5,
-            time_limit: Duration::from_secs(20),
-            ..RemeshOptions::default()
+        let mut options = {
+            let mut o = RemeshOptions::default();
+            o.target_edge = 0.5;
+            o.time_limit = Duration::from_secs(20);
+            o
         };
         f(&mut options);
         remesh::remesh(&surface, &options).map(|r| r.quads.face_count())
@@ -1237,9 +1243,10 @@ fn bad_remesh_options_are_refused() {
     assert!(with(|o| o.direction = FieldDirection::Angle(1e300)).unwrap() > 0);
 
     // Surfaces the remesher cannot take.
-    let options = RemeshOptions {
-        target_edge: 0.2,
-        ..RemeshOptions::default()
+    let options = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = 0.2;
+        o
     };
     let flat = PolyMesh::new(
         points(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]]),
@@ -1281,9 +1288,10 @@ fn bad_remesh_options_are_refused() {
         thickness: 1e-7,
         joint: 0.0,
     };
-    let remesh_options = RemeshOptions {
-        target_edge: 1e-6,
-        ..RemeshOptions::default()
+    let remesh_options = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = 1e-6;
+        o
     };
     let result = pipeline::tile_surface(
         &surface,

@@ -103,10 +103,11 @@ fn matches_textbook_at(
 
 fn solve_grid(n: usize, bond: Bond) -> Pattern {
     let mesh = generate::grid(n, n);
-    let options = PatternOptions {
-        bond,
-        time_limit: Duration::from_secs(600),
-        ..PatternOptions::default()
+    let options = {
+        let mut o = PatternOptions::default();
+        o.bond = bond;
+        o.time_limit = Duration::from_secs(600);
+        o
     };
     let found = pattern::solve(&mesh, &options).unwrap();
     assert!(common::is_valid_matching(&mesh, &found.pairs));
@@ -163,11 +164,12 @@ fn a_herringbone_band_inside_a_staggered_field_is_laid_as_asked() {
         .map(|f| if in_band(f) { herring } else { staggered })
         .collect();
     let solve = |zones: Option<Vec<Bond>>| {
-        let options = PatternOptions {
-            bond: staggered,
-            zones,
-            time_limit: Duration::from_secs(120),
-            ..PatternOptions::default()
+        let options = {
+            let mut o = PatternOptions::default();
+            o.bond = staggered;
+            o.zones = zones;
+            o.time_limit = Duration::from_secs(120);
+            o
         };
         let found = pattern::solve(&mesh, &options).unwrap();
         assert!(common::is_valid_matching(&mesh, &found.pairs));
@@ -308,10 +310,11 @@ fn shared_shells_get_valid_patterns_with_an_honest_bound() {
             Bond::Herringbone { weight: 0.5 },
             Bond::BasketWeave { weight: 0.5 },
         ] {
-            let options = PatternOptions {
-                bond,
-                time_limit: Duration::from_secs(3),
-                ..PatternOptions::default()
+            let options = {
+                let mut o = PatternOptions::default();
+                o.bond = bond;
+                o.time_limit = Duration::from_secs(3);
+                o
             };
             let found = pattern::solve(&mesh, &options).unwrap();
             let name = format!("{} {bond:?}", path.display());

@@ -61,11 +61,10 @@ fn permuted(mesh: &PolyMesh, faces: &[usize], vertices: &[usize]) -> PolyMesh {
 }
 
 fn options(bond: Bond) -> PatternOptions {
-    PatternOptions {
-        bond,
-        time_limit: Duration::from_secs(20),
-        ..PatternOptions::default()
-    }
+    let mut o = PatternOptions::default();
+    o.bond = bond;
+    o.time_limit = Duration::from_secs(20);
+    o
 }
 
 /// Everything a run writes, as text, with the wall-clock seconds zeroed.
@@ -156,9 +155,10 @@ fn the_whole_pipeline_is_deterministic_from_a_triangle_surface() {
         1.2,
         spec.target_edge() / 3.0,
     ));
-    let remesh = RemeshOptions {
-        target_edge: spec.target_edge(),
-        ..RemeshOptions::default()
+    let remesh = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = spec.target_edge();
+        o
     };
     let run = || {
         let (remeshed, tiling) = pipeline::tile_surface(
@@ -225,6 +225,7 @@ fn permuted_faces_and_vertices_give_the_same_optimum() {
                 Bond::Staggered { .. } => p.continuous_joints,
                 Bond::RunningBond { .. } => p.shifted_pairs,
                 Bond::Herringbone { .. } | Bond::BasketWeave { .. } => p.bond_pairs,
+                other => panic!("no count for {other:?}"),
             };
             (p.objective, p.bound, p.pairs.len(), p.unpaired.len(), term)
         };

@@ -51,14 +51,12 @@ fn keep_faces(
 
 /// The pattern made of exactly these pairs (the rest unpaired).
 fn pattern_of(mesh: &PolyMesh, pairs: &[[usize; 2]]) -> Pattern {
-    let mut found = pattern::solve(
-        mesh,
-        &PatternOptions {
-            bond: Bond::Stack,
-            time_limit: Duration::ZERO,
-            ..PatternOptions::default()
-        },
-    )
+    let mut found = pattern::solve(mesh, &{
+        let mut o = PatternOptions::default();
+        o.bond = Bond::Stack;
+        o.time_limit = Duration::ZERO;
+        o
+    })
     .unwrap();
     found.pairs = pairs.to_vec();
     found.unpaired = (0..mesh.face_count())
@@ -86,9 +84,10 @@ const SQUARE: TileSpec = TileSpec {
 /// One 2 x 1 tile over two unit quads of `[0, 2] x [0, 1]`, cut to `surface`.
 fn one_tile_on(surface: &PolyMesh) -> Tiling {
     let quads = generate::grid(2, 1);
-    let finish = FinishOptions {
-        min_kept_width: 0.05,
-        ..FinishOptions::for_spec(&SQUARE)
+    let finish = {
+        let mut o = FinishOptions::for_spec(&SQUARE);
+        o.min_kept_width = 0.05;
+        o
     };
     pipeline::tiles_for_pattern(
         &quads,
@@ -332,9 +331,10 @@ fn tiles_on_a_hypar_with_an_opening_stay_on_the_surface_and_cover_it() {
     let quads = hypar_quads();
     let spec = SMALL;
     let finish = FinishOptions::for_spec(&spec);
-    let options = PatternOptions {
-        time_limit: Duration::from_secs(5),
-        ..PatternOptions::default()
+    let options = {
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::from_secs(5);
+        o
     };
     let tiling = pipeline::tile_quad_mesh(
         &quads,
@@ -437,9 +437,10 @@ fn equal_cuts_share_a_label_and_mirrored_cuts_too() {
     let surface = PolyMesh::new(p, f).unwrap();
     let quads = generate::grid(2, 4);
     let found = pattern_of(&quads, &[[0, 1], [2, 3], [5, 4], [7, 6]]);
-    let finish = FinishOptions {
-        min_kept_width: 0.05,
-        ..FinishOptions::for_spec(&SQUARE)
+    let finish = {
+        let mut o = FinishOptions::for_spec(&SQUARE);
+        o.min_kept_width = 0.05;
+        o
     };
     let tiling =
         pipeline::tiles_for_pattern(&quads, Some(&surface), found, &SQUARE, &finish).unwrap();
@@ -467,13 +468,11 @@ fn the_fabrication_output_is_deterministic() {
     let quads = hypar_quads();
     let spec = SMALL;
     let run = || {
-        let found = pattern::solve(
-            &quads,
-            &PatternOptions {
-                time_limit: Duration::ZERO,
-                ..PatternOptions::default()
-            },
-        )
+        let found = pattern::solve(&quads, &{
+            let mut o = PatternOptions::default();
+            o.time_limit = Duration::ZERO;
+            o
+        })
         .unwrap();
         let tiling = pipeline::tiles_for_pattern(
             &quads,

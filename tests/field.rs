@@ -84,11 +84,10 @@ fn aligned_share_on(
 }
 
 fn options(field: Option<UserField>) -> RemeshOptions {
-    RemeshOptions {
-        target_edge: 0.145,
-        user_field: field,
-        ..RemeshOptions::default()
-    }
+    let mut o = RemeshOptions::default();
+    o.target_edge = 0.145;
+    o.user_field = field;
+    o
 }
 
 /// Per-vertex vectors with lengths and signs scrambled (only the direction modulo 90 degrees

@@ -66,16 +66,18 @@ fn pattern_p95(tiling: &Tiling) -> f64 {
 
 /// The whole pipeline in level courses, as `tilepattern run` lays tiles.
 fn tile(surface: &PolyMesh, finish: &FinishOptions) -> Tiling {
-    let options = PatternOptions {
-        time_limit: Duration::from_secs(5),
-        courses: Courses::Level {
+    let options = {
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::from_secs(5);
+        o.courses = Courses::Level {
             up: [0.0, 0.0, 1.0],
-        },
-        ..PatternOptions::default()
+        };
+        o
     };
-    let remesh = RemeshOptions {
-        target_edge: SPEC.quad_edge(true),
-        ..RemeshOptions::default()
+    let remesh = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = SPEC.quad_edge(true);
+        o
     };
     pipeline::tile_surface(
         surface,
@@ -221,13 +223,11 @@ fn no_two_tiles_overlap_on_doubly_curved_shells() {
 fn without_the_fit_tiles_keep_the_papers_placement() {
     let surface = generate::triangulate_quads(&generate::corner_supported_shell(1.5, 0.05));
     let fitted = tile(&surface, &FinishOptions::for_spec(&SPEC));
-    let paper = tile(
-        &surface,
-        &FinishOptions {
-            fit: None,
-            ..FinishOptions::for_spec(&SPEC)
-        },
-    );
+    let paper = tile(&surface, &{
+        let mut o = FinishOptions::for_spec(&SPEC);
+        o.fit = None;
+        o
+    });
     assert!(paper.report.fit.is_none() && paper.report.joints.before_fit.is_none());
     assert!(
         paper
@@ -250,12 +250,13 @@ fn without_the_fit_tiles_keep_the_papers_placement() {
 #[test]
 fn a_cancelled_or_timed_out_fit_keeps_the_placement_so_far() {
     let quads = generate::corner_supported_shell(1.5, SPEC.quad_edge(true));
-    let options = PatternOptions {
-        time_limit: Duration::from_secs(2),
-        courses: Courses::Level {
+    let options = {
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::from_secs(2);
+        o.courses = Courses::Level {
             up: [0.0, 0.0, 1.0],
-        },
-        ..PatternOptions::default()
+        };
+        o
     };
     let pattern = tilepattern::pattern::solve(&quads, &options).unwrap();
     let mut finish = FinishOptions::for_spec(&SPEC);
@@ -301,9 +302,10 @@ fn one_tile_on_large_quads() -> (PolyMesh, tilepattern::pattern::Pattern, TileSp
         thickness: 0.1,
         joint: 0.1,
     };
-    let options = PatternOptions {
-        bond: Bond::Stack,
-        ..PatternOptions::default()
+    let options = {
+        let mut o = PatternOptions::default();
+        o.bond = Bond::Stack;
+        o
     };
     let pattern = tilepattern::pattern::solve(&quads, &options).unwrap();
     (quads, pattern, spec)
@@ -358,13 +360,11 @@ fn bad_fit_options_and_foreign_patterns_are_refused() {
         thickness: 0.1,
         joint: 0.1,
     };
-    let pattern = tilepattern::pattern::solve(
-        &quads,
-        &PatternOptions {
-            bond: Bond::Stack,
-            ..PatternOptions::default()
-        },
-    )
+    let pattern = tilepattern::pattern::solve(&quads, &{
+        let mut o = PatternOptions::default();
+        o.bond = Bond::Stack;
+        o
+    })
     .unwrap();
     let with = |change: &dyn Fn(&mut tilepattern::tiles::FitOptions)| {
         let mut finish = FinishOptions::for_spec(&spec);
@@ -427,16 +427,18 @@ fn over_full_courses_of_a_dome_lose_a_closer_instead_of_tearing() {
 /// pattern (time limit 0: deterministic however busy the machine).
 fn greedy_cap_tiling() -> pipeline::Tiling {
     let cap = generate::spherical_cap(3.0, 0.6, 0.087);
-    let options = PatternOptions {
-        time_limit: Duration::ZERO,
-        courses: Courses::Level {
+    let options = {
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::ZERO;
+        o.courses = Courses::Level {
             up: [0.0, 0.0, 1.0],
-        },
-        ..PatternOptions::default()
+        };
+        o
     };
-    let remesh = RemeshOptions {
-        target_edge: SPEC.quad_edge(true),
-        ..RemeshOptions::default()
+    let remesh = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = SPEC.quad_edge(true);
+        o
     };
     let finish = FinishOptions::for_spec(&SPEC);
     pipeline::tile_surface(

@@ -123,11 +123,10 @@ fn along_guide(
 }
 
 fn options(guides: Option<GuideCurves>) -> RemeshOptions {
-    RemeshOptions {
-        target_edge: T,
-        guides,
-        ..RemeshOptions::default()
-    }
+    let mut o = RemeshOptions::default();
+    o.target_edge = T;
+    o.guides = guides;
+    o
 }
 
 #[test]
@@ -183,9 +182,10 @@ fn guides_and_a_designer_field_combine() {
     let guide = shell_guide(30.0);
     let along_x = vec![[1.0, 0.0, 0.0]; shell.positions().len()];
     let field = UserField::for_mesh(&shell, along_x, 0.2).unwrap();
-    let with_field = |guides: Option<GuideCurves>| RemeshOptions {
-        user_field: Some(field.clone()),
-        ..options(guides)
+    let with_field = |guides: Option<GuideCurves>| {
+        let mut o = options(guides);
+        o.user_field = Some(field.clone());
+        o
     };
     let quads = remesh(
         &shell,
@@ -269,12 +269,13 @@ fn bad_guides_name_the_curve_at_fault() {
         run(vec![millimetres]),
         RemeshError::GuideOffSurface { curve: 0, .. }
     ));
-    let weight = RemeshOptions {
-        guides: Some(GuideCurves {
+    let weight = {
+        let mut o = options(None);
+        o.guides = Some(GuideCurves {
             weight: f64::NAN,
             ..GuideCurves::new(vec![good])
-        }),
-        ..options(None)
+        });
+        o
     };
     assert!(matches!(
         remesh(&shell, &weight),

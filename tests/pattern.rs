@@ -12,10 +12,9 @@ use tilepattern::pattern::{
 };
 
 fn options(bond: Bond) -> PatternOptions {
-    PatternOptions {
-        bond,
-        ..PatternOptions::default()
-    }
+    let mut o = PatternOptions::default();
+    o.bond = bond;
+    o
 }
 
 fn graph_of(mesh: &PolyMesh) -> DualGraph {
@@ -56,10 +55,11 @@ fn staggered_weight_decides_between_a_joint_and_two_half_tiles() {
     // Paper, Figure 5: no perfect matching of 10 x 10 avoids every continuous joint.
     let grid = generate::grid(10, 10);
     for formulation in [Formulation::Paper, Formulation::Strengthened] {
-        let heavy = PatternOptions {
-            bond: Bond::Staggered { weight: 2.0 },
-            formulation,
-            ..PatternOptions::default()
+        let heavy = {
+            let mut o = PatternOptions::default();
+            o.bond = Bond::Staggered { weight: 2.0 };
+            o.formulation = formulation;
+            o
         };
         let found = pattern::solve(&grid, &heavy).unwrap();
         assert_eq!(
@@ -70,10 +70,11 @@ fn staggered_weight_decides_between_a_joint_and_two_half_tiles() {
         assert_eq!(found.status, SolveStatus::Optimal);
         assert_eq!(found.bound, 49.0);
 
-        let light = PatternOptions {
-            bond: Bond::Staggered { weight: 0.5 },
-            formulation,
-            ..PatternOptions::default()
+        let light = {
+            let mut o = PatternOptions::default();
+            o.bond = Bond::Staggered { weight: 0.5 };
+            o.formulation = formulation;
+            o
         };
         let found = pattern::solve(&grid, &light).unwrap();
         assert_eq!(
@@ -177,14 +178,12 @@ fn solver_equals_exhaustive_search_on_tiny_meshes() {
                 .map(|m| score(&graph, m, bond).objective)
                 .fold(f64::NEG_INFINITY, f64::max);
             for formulation in [Formulation::Paper, Formulation::Strengthened] {
-                let found = pattern::solve(
-                    &mesh,
-                    &PatternOptions {
-                        bond,
-                        formulation,
-                        ..PatternOptions::default()
-                    },
-                )
+                let found = pattern::solve(&mesh, &{
+                    let mut o = PatternOptions::default();
+                    o.bond = bond;
+                    o.formulation = formulation;
+                    o
+                })
                 .unwrap();
                 assert!(
                     (found.objective - best).abs() < 1e-9,
@@ -225,10 +224,11 @@ fn score_counts_agree_with_the_pattern_it_reports() {
 #[test]
 fn forced_pairs_are_kept_and_excluded_faces_left_out() {
     let grid = generate::grid(4, 4);
-    let opts = PatternOptions {
-        forced_pairs: vec![[5, 6]],
-        excluded_faces: vec![0, 15],
-        ..options(Bond::Staggered { weight: 0.5 })
+    let opts = {
+        let mut o = options(Bond::Staggered { weight: 0.5 });
+        o.forced_pairs = vec![[5, 6]];
+        o.excluded_faces = vec![0, 15];
+        o
     };
     let found = pattern::solve(&grid, &opts).unwrap();
     assert!(found.pairs.contains(&[5, 6]));
@@ -262,24 +262,27 @@ fn bad_options_get_specific_errors() {
     let run = |opts: PatternOptions| pattern::solve(&grid, &opts).unwrap_err();
     let base = PatternOptions::default();
     assert_eq!(
-        run(PatternOptions {
-            bond: Bond::Staggered { weight: f64::NAN },
-            ..base.clone()
+        run({
+            let mut o = base.clone();
+            o.bond = Bond::Staggered { weight: f64::NAN };
+            o
         })
         .to_string(),
         "bond weight NaN is not a finite number >= 0"
     );
     assert!(matches!(
-        run(PatternOptions {
-            bond: Bond::RunningBond { weight: -1.0 },
-            ..base.clone()
+        run({
+            let mut o = base.clone();
+            o.bond = Bond::RunningBond { weight: -1.0 };
+            o
         }),
         PatternError::InvalidWeight { .. }
     ));
     assert_eq!(
-        run(PatternOptions {
-            excluded_faces: vec![9],
-            ..base.clone()
+        run({
+            let mut o = base.clone();
+            o.excluded_faces = vec![9];
+            o
         }),
         PatternError::FaceOutOfRange {
             face: 9,
@@ -287,31 +290,35 @@ fn bad_options_get_specific_errors() {
         }
     );
     assert_eq!(
-        run(PatternOptions {
-            forced_pairs: vec![[0, 4]],
-            ..base.clone()
+        run({
+            let mut o = base.clone();
+            o.forced_pairs = vec![[0, 4]];
+            o
         }),
         PatternError::ForcedNotAdjacent { a: 0, b: 4 }
     );
     assert_eq!(
-        run(PatternOptions {
-            forced_pairs: vec![[0, 1], [1, 2]],
-            ..base.clone()
+        run({
+            let mut o = base.clone();
+            o.forced_pairs = vec![[0, 1], [1, 2]];
+            o
         }),
         PatternError::ForcedTwice { face: 1 }
     );
     assert_eq!(
-        run(PatternOptions {
-            forced_pairs: vec![[0, 1]],
-            excluded_faces: vec![1],
-            ..base.clone()
+        run({
+            let mut o = base.clone();
+            o.forced_pairs = vec![[0, 1]];
+            o.excluded_faces = vec![1];
+            o
         }),
         PatternError::ForcedExcluded { face: 1 }
     );
     assert_eq!(
-        run(PatternOptions {
-            forced_pairs: vec![[0, 99]],
-            ..base
+        run({
+            let mut o = base;
+            o.forced_pairs = vec![[0, 99]];
+            o
         }),
         PatternError::FaceOutOfRange {
             face: 99,
@@ -321,13 +328,11 @@ fn bad_options_get_specific_errors() {
     for gap in [-0.01, 1.5, f64::NAN, f64::INFINITY] {
         assert!(
             matches!(
-                pattern::solve(
-                    &grid,
-                    &PatternOptions {
-                        gap,
-                        ..PatternOptions::default()
-                    }
-                ),
+                pattern::solve(&grid, &{
+                    let mut o = PatternOptions::default();
+                    o.gap = gap;
+                    o
+                }),
                 Err(PatternError::InvalidGap { .. })
             ),
             "gap {gap}"
@@ -348,25 +353,24 @@ fn time_limit_returns_a_valid_unproven_pattern() {
     // The paper's plain model on CBC cannot prove a 60 x 60 staggered grid in a second (the
     // default engine can: the star rows' relaxation closes it).
     let grid = generate::grid(60, 60);
-    let opts = PatternOptions {
-        bond: Bond::Staggered { weight: 0.5 },
-        method: Method::Mip,
-        formulation: Formulation::Paper,
-        time_limit: Duration::from_secs(1),
-        ..PatternOptions::default()
+    let opts = {
+        let mut o = PatternOptions::default();
+        o.bond = Bond::Staggered { weight: 0.5 };
+        o.method = Method::Mip;
+        o.formulation = Formulation::Paper;
+        o.time_limit = Duration::from_secs(1);
+        o
     };
     let found = pattern::solve(&grid, &opts).unwrap();
     assert_eq!(found.status, SolveStatus::TimeLimit);
     assert!(common::is_valid_matching(&grid, &found.pairs));
     assert!(found.bound >= found.objective && found.gap > 0.0);
 
-    let instant = pattern::solve(
-        &grid,
-        &PatternOptions {
-            time_limit: Duration::ZERO,
-            ..opts
-        },
-    )
+    let instant = pattern::solve(&grid, &{
+        let mut o = opts;
+        o.time_limit = Duration::ZERO;
+        o
+    })
     .unwrap();
     assert_eq!(instant.status, SolveStatus::TimeLimit);
     assert!(common::is_valid_matching(&grid, &instant.pairs) && !instant.pairs.is_empty());
@@ -399,9 +403,10 @@ fn shared_quadriflow_meshes_get_valid_matchings() {
     assert!(!paths.is_empty());
     for path in paths {
         let mesh = tilepattern::mesh::obj::read(&path).unwrap();
-        let opts = PatternOptions {
-            time_limit: Duration::from_secs(3),
-            ..PatternOptions::default()
+        let opts = {
+            let mut o = PatternOptions::default();
+            o.time_limit = Duration::from_secs(3);
+            o
         };
         let found = pattern::solve(&mesh, &opts).unwrap();
         assert!(
@@ -450,12 +455,13 @@ fn the_engine_reaches_the_paper_models_proven_optimum() {
             Bond::Staggered { weight: 2.0 },
         ] {
             let limit = Duration::from_secs(15);
-            let paper = PatternOptions {
-                bond,
-                method: Method::Mip,
-                formulation: Formulation::Paper,
-                time_limit: limit,
-                ..PatternOptions::default()
+            let paper = {
+                let mut o = PatternOptions::default();
+                o.bond = bond;
+                o.method = Method::Mip;
+                o.formulation = Formulation::Paper;
+                o.time_limit = limit;
+                o
             };
             let reference = pattern::solve(&mesh, &paper).unwrap();
             if reference.status != SolveStatus::Optimal {
@@ -467,14 +473,12 @@ fn the_engine_reaches_the_paper_models_proven_optimum() {
             // The engine proves these in well under a second alone; the generous limit only
             // keeps the check from depending on how loaded the machine is (the tests of a
             // binary run in parallel, on two cores in CI).
-            let engine = pattern::solve(
-                &mesh,
-                &PatternOptions {
-                    bond,
-                    time_limit: Duration::from_secs(120),
-                    ..PatternOptions::default()
-                },
-            )
+            let engine = pattern::solve(&mesh, &{
+                let mut o = PatternOptions::default();
+                o.bond = bond;
+                o.time_limit = Duration::from_secs(120);
+                o
+            })
             .unwrap();
             assert!(common::is_valid_matching(&mesh, &engine.pairs), "{name}");
             assert_eq!(engine.objective, reference.objective, "{name} {bond:?}");
@@ -488,13 +492,11 @@ fn bounds_are_never_below_a_pattern_found_and_gaps_are_honest() {
     // On a mesh too large for a quick proof, the pattern, its bound and gap must agree.
     let mesh = common::subdivided(&common::mixed_polygons(), 4);
     assert!(mesh.face_count() > 1000);
-    let found = pattern::solve(
-        &mesh,
-        &PatternOptions {
-            time_limit: Duration::from_secs(3),
-            ..PatternOptions::default()
-        },
-    )
+    let found = pattern::solve(&mesh, &{
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::from_secs(3);
+        o
+    })
     .unwrap();
     assert!(common::is_valid_matching(&mesh, &found.pairs));
     assert!(found.bound >= found.objective);
@@ -509,12 +511,13 @@ fn a_gap_stops_the_search_once_the_pattern_is_close_enough() {
     // The paper's plain program on CBC would prove 10 x 10 (w = 0.5) only by branching; with
     // a 5 % gap CBC stops at the first pattern that close to its bound.
     let grid = generate::grid(10, 10);
-    let paper = PatternOptions {
-        method: Method::Mip,
-        formulation: Formulation::Paper,
-        time_limit: Duration::from_secs(60),
-        gap: 0.05,
-        ..PatternOptions::default()
+    let paper = {
+        let mut o = PatternOptions::default();
+        o.method = Method::Mip;
+        o.formulation = Formulation::Paper;
+        o.time_limit = Duration::from_secs(60);
+        o.gap = 0.05;
+        o
     };
     let found = pattern::solve(&grid, &paper).unwrap();
     assert!(common::is_valid_matching(&grid, &found.pairs));
@@ -523,14 +526,12 @@ fn a_gap_stops_the_search_once_the_pattern_is_close_enough() {
     // The default engine on a mesh with forced defects (valence 3, 5 and 6; over 1000 faces):
     // it stops once within 1 % (or proven), long before the minute it is given.
     let mesh = common::subdivided(&common::mixed_polygons(), 4);
-    let found = pattern::solve(
-        &mesh,
-        &PatternOptions {
-            time_limit: Duration::from_secs(60),
-            gap: 0.01,
-            ..PatternOptions::default()
-        },
-    )
+    let found = pattern::solve(&mesh, &{
+        let mut o = PatternOptions::default();
+        o.time_limit = Duration::from_secs(60);
+        o.gap = 0.01;
+        o
+    })
     .unwrap();
     assert!(common::is_valid_matching(&mesh, &found.pairs));
     assert!(found.gap <= 0.01, "gap {}", found.gap);
@@ -593,13 +594,14 @@ fn level_courses_with_odd_rows_are_proven_optimal() {
     }
     let odd_rows = rows.values().filter(|&&count| count % 2 == 1).count();
     assert!(odd_rows >= 4, "{odd_rows} rows of odd length");
-    let options = PatternOptions {
-        bond: Bond::Staggered { weight: 0.5 },
-        courses: Courses::Level {
+    let options = {
+        let mut o = PatternOptions::default();
+        o.bond = Bond::Staggered { weight: 0.5 };
+        o.courses = Courses::Level {
             up: [0.0, 0.0, 1.0],
-        },
-        time_limit: Duration::from_secs(60),
-        ..PatternOptions::default()
+        };
+        o.time_limit = Duration::from_secs(60);
+        o
     };
     let found = pattern::solve(&plate, &options).unwrap();
     assert_eq!(found.status, SolveStatus::Optimal);

@@ -192,10 +192,9 @@ fn vertex_manifold(mesh: &PolyMesh) -> bool {
 }
 
 fn options(t: f64) -> RemeshOptions {
-    RemeshOptions {
-        target_edge: t,
-        ..RemeshOptions::default()
-    }
+    let mut o = RemeshOptions::default();
+    o.target_edge = t;
+    o
 }
 
 /// The thresholds every generated surface must meet at its target edge.
@@ -484,10 +483,11 @@ fn other_field_directions_still_give_pure_quads() {
         FieldDirection::Vector([0.0, 1.0, 0.0]),
         FieldDirection::Angle(45.0),
     ] {
-        let o = RemeshOptions {
-            target_edge: 0.15,
-            direction,
-            ..RemeshOptions::default()
+        let o = {
+            let mut o = RemeshOptions::default();
+            o.target_edge = 0.15;
+            o.direction = direction;
+            o
         };
         let result = remesh(&input, &o).expect("remesh");
         let m = &result.metrics;
@@ -503,10 +503,11 @@ fn every_boundary_mode_gives_a_sound_mesh() {
     // Always: rows follow the round rim too, which costs cones and dislocations but must
     // stay a clean cover; Never: quads are trimmed at the square's edges.
     for boundary in [BoundaryAlignment::Always, BoundaryAlignment::Never] {
-        let o = RemeshOptions {
-            target_edge: 0.15,
-            boundary,
-            ..RemeshOptions::default()
+        let o = {
+            let mut o = RemeshOptions::default();
+            o.target_edge = 0.15;
+            o.boundary = boundary;
+            o
         };
         let result = remesh(&cap(), &o).expect("remesh");
         let m = &result.metrics;
@@ -667,18 +668,20 @@ fn progress_is_reported_and_cancel_stops_the_stage() {
 #[test]
 fn time_limit_without_a_mesh_is_an_error() {
     let input = hypar();
-    let none = RemeshOptions {
-        time_limit: Duration::ZERO,
-        ..options(0.15)
+    let none = {
+        let mut o = options(0.15);
+        o.time_limit = Duration::ZERO;
+        o
     };
     assert!(matches!(
         remesh(&input, &none),
         Err(RemeshError::TimeLimit { .. })
     ));
     // A generous limit changes nothing.
-    let generous = RemeshOptions {
-        time_limit: Duration::from_secs(600),
-        ..options(0.15)
+    let generous = {
+        let mut o = options(0.15);
+        o.time_limit = Duration::from_secs(600);
+        o
     };
     let (a, b) = (
         remesh(&input, &generous).expect("remesh"),
@@ -719,10 +722,11 @@ fn pinched_input_is_refused() {
 #[test]
 fn shapeup_stays_on_the_surface() {
     let input = cap();
-    let o = RemeshOptions {
-        target_edge: 0.15,
-        shapeup: true,
-        ..RemeshOptions::default()
+    let o = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = 0.15;
+        o.shapeup = true;
+        o
     };
     let result = remesh(&input, &o).expect("remesh");
     check("cap+shapeup", &result.metrics, 16);
@@ -759,26 +763,29 @@ fn bad_options_are_refused() {
         remesh(&input, &options(1e-5)),
         Err(RemeshError::TargetEdgeTooSmall { .. })
     ));
-    let zero = RemeshOptions {
-        direction: FieldDirection::Vector([0.0; 3]),
-        ..options(0.15)
+    let zero = {
+        let mut o = options(0.15);
+        o.direction = FieldDirection::Vector([0.0; 3]);
+        o
     };
     assert!(matches!(
         remesh(&input, &zero),
         Err(RemeshError::BadDirection(_))
     ));
-    let nan = RemeshOptions {
-        direction: FieldDirection::Angle(f64::NAN),
-        ..options(0.15)
+    let nan = {
+        let mut o = options(0.15);
+        o.direction = FieldDirection::Angle(f64::NAN);
+        o
     };
     assert!(matches!(
         remesh(&input, &nan),
         Err(RemeshError::BadAngle(_))
     ));
-    let tolerance = RemeshOptions {
-        shapeup: true,
-        shapeup_tolerance: -1.0,
-        ..options(0.15)
+    let tolerance = {
+        let mut o = options(0.15);
+        o.shapeup = true;
+        o.shapeup_tolerance = -1.0;
+        o
     };
     assert!(matches!(
         remesh(&input, &tolerance),

@@ -12,14 +12,12 @@ use tilepattern::tiles::{self, TileError, TileKind, TileSpec};
 
 /// The pattern made of exactly these pairs (the rest of the quads unpaired).
 fn pattern_of(mesh: &PolyMesh, pairs: &[[usize; 2]]) -> Pattern {
-    let mut found = pattern::solve(
-        mesh,
-        &PatternOptions {
-            bond: Bond::Stack,
-            time_limit: Duration::ZERO,
-            ..PatternOptions::default()
-        },
-    )
+    let mut found = pattern::solve(mesh, &{
+        let mut o = PatternOptions::default();
+        o.bond = Bond::Stack;
+        o.time_limit = Duration::ZERO;
+        o
+    })
     .unwrap();
     found.pairs = pairs.to_vec();
     found.unpaired = (0..mesh.face_count())

@@ -25,9 +25,7 @@ use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, Pa
 use tilepattern::pipeline::{self, Tiling};
 use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
 use tilepattern::report::{JointSummary, Report, Warning, WarningCode, svg};
-use tilepattern::tiles::{
-    self, CutGroup, FinishOptions, FitOptions, Sequence, SequenceOptions, Tile, TileSpec,
-};
+use tilepattern::tiles::{self, CutGroup, FinishOptions, Sequence, Tile, TileSpec};
 
 #[derive(Parser)]
 #[command(
@@ -216,13 +214,14 @@ impl FieldArgs {
             .as_deref()
             .map(|path| guide_file::read(path, self.guide_weight, surface, target_edge))
             .transpose()?;
-        Ok(RemeshOptions {
-            target_edge,
-            direction,
-            user_field,
-            guides,
-            shapeup: self.shapeup,
-            ..RemeshOptions::default()
+        Ok({
+            let mut o = RemeshOptions::default();
+            o.target_edge = target_edge;
+            o.direction = direction;
+            o.user_field = user_field;
+            o.guides = guides;
+            o.shapeup = self.shapeup;
+            o
         })
     }
 }
@@ -463,9 +462,10 @@ fn run(cli: Cli) -> Result<()> {
             let loaded = read_mesh(&input)?;
             print_warnings(&reading_warnings(&loaded));
             let surface = loaded.mesh;
-            let options = RemeshOptions {
-                time_limit: RemeshOptions::time_limit_from_secs(time_limit)?,
-                ..field.options(edge, &surface)?
+            let options = {
+                let mut o = field.options(edge, &surface)?;
+                o.time_limit = RemeshOptions::time_limit_from_secs(time_limit)?;
+                o
             };
             let remeshed = tilepattern::remesh::remesh(&surface, &options)?;
             mesh::obj::write(&remeshed.quads, &output)?;
@@ -492,9 +492,10 @@ fn run(cli: Cli) -> Result<()> {
             // Zones per input face: the pipeline carries them over to the quads.
             let options = pattern.options(true, tile.up, zones.as_deref())?;
             let edge = spec.quad_edge(options.courses != Courses::Free);
-            let remesh = RemeshOptions {
-                time_limit: RemeshOptions::time_limit_from_secs(remesh_time_limit)?,
-                ..field.options(edge, surface)?
+            let remesh = {
+                let mut o = field.options(edge, surface)?;
+                o.time_limit = RemeshOptions::time_limit_from_secs(remesh_time_limit)?;
+                o
             };
             let mut line = ProgressLine::on_terminal();
             let found = pipeline::tile_surface(
@@ -555,13 +556,15 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
         spec.target_edge() / 3.0,
     ));
     let options = args.options(true, [0.0, 0.0, 1.0], None)?;
-    let remesh = RemeshOptions {
-        target_edge: spec.quad_edge(options.courses != Courses::Free),
-        ..RemeshOptions::default()
+    let remesh = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = spec.quad_edge(options.courses != Courses::Free);
+        o
     };
-    let finish = FinishOptions {
-        fit: FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit),
-        ..FinishOptions::for_spec(&spec)
+    let finish = {
+        let mut o = FinishOptions::for_spec(&spec);
+        o.fit = FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit);
+        o
     };
     let mut line = ProgressLine::on_terminal();
     let found = pipeline::tile_surface(
@@ -805,24 +808,24 @@ impl PatternArgs {
             FormulationArg::Paper => Formulation::Paper,
             FormulationArg::Strengthened => Formulation::Strengthened,
         };
-        Ok(PatternOptions {
-            bond,
-            time_limit: PatternOptions::time_limit_from_secs(self.time_limit)?,
-            forced_pairs: self.forced.clone(),
-            excluded_faces: self.exclude.clone(),
-            formulation,
-            method: match self.method {
-                MethodArg::Auto => Method::Auto,
-                MethodArg::Mip => Method::Mip,
-            },
-            courses: if level {
-                Courses::Level { up }
-            } else {
-                Courses::Free
-            },
-            gap: self.gap,
-            zones,
-        })
+        let mut options = PatternOptions::default();
+        options.bond = bond;
+        options.time_limit = PatternOptions::time_limit_from_secs(self.time_limit)?;
+        options.forced_pairs = self.forced.clone();
+        options.excluded_faces = self.exclude.clone();
+        options.formulation = formulation;
+        options.method = match self.method {
+            MethodArg::Auto => Method::Auto,
+            MethodArg::Mip => Method::Mip,
+        };
+        options.courses = if level {
+            Courses::Level { up }
+        } else {
+            Courses::Free
+        };
+        options.gap = self.gap;
+        options.zones = zones;
+        Ok(options)
     }
 }
 
@@ -831,29 +834,27 @@ impl TileArgs {
     fn finish(&self, spec: &TileSpec, units: Units) -> FinishOptions {
         let scale = units.per_mm();
         let auto = FinishOptions::for_spec(spec);
-        FinishOptions {
-            tolerance: self.cut_tolerance.map_or(auto.tolerance, |v| v * scale),
-            min_kept_width: self
-                .min_kept_width
-                .map_or(auto.min_kept_width, |v| v * scale),
-            sequence: SequenceOptions {
-                up: nalgebra::Vector3::from(self.up),
-                support_band: self
-                    .support_band
-                    .map_or(auto.sequence.support_band, |v| v * scale),
-            },
-            fit: auto.fit.filter(|_| !self.no_fit).map(|fit| FitOptions {
-                overlap_tolerance: self
-                    .overlap_tolerance
-                    .map_or(fit.overlap_tolerance, |v| v * scale),
-                bond_tolerance: self
-                    .bond_tolerance
-                    .map_or(fit.bond_tolerance, |v| v * scale),
-                time_limit: self.fit_time_limit,
-                ..fit
-            }),
-            units_per_mm: scale,
-        }
+        let mut finish = auto;
+        finish.tolerance = self.cut_tolerance.map_or(auto.tolerance, |v| v * scale);
+        finish.min_kept_width = self
+            .min_kept_width
+            .map_or(auto.min_kept_width, |v| v * scale);
+        finish.sequence.up = nalgebra::Vector3::from(self.up);
+        finish.sequence.support_band = self
+            .support_band
+            .map_or(auto.sequence.support_band, |v| v * scale);
+        finish.fit = auto.fit.filter(|_| !self.no_fit).map(|mut fit| {
+            fit.overlap_tolerance = self
+                .overlap_tolerance
+                .map_or(fit.overlap_tolerance, |v| v * scale);
+            fit.bond_tolerance = self
+                .bond_tolerance
+                .map_or(fit.bond_tolerance, |v| v * scale);
+            fit.time_limit = self.fit_time_limit;
+            fit
+        });
+        finish.units_per_mm = scale;
+        finish
     }
 
     /// The tile in model units, and the units chosen with the reason.

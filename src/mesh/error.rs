@@ -3,6 +3,7 @@ use thiserror::Error;
 /// Why a mesh was refused. Every variant names the face or vertex (0-based) at fault, so a
 /// designer can find it in Rhino or in the OBJ file.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum MeshError {
     /// The mesh has no faces or no vertices.
     #[error("the mesh is empty ({vertices} vertices, {faces} faces): give at least one face")]

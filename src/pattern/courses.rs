@@ -32,6 +32,7 @@ use crate::mesh::{PolyMesh, Topology};
 
 /// Which way tiles may lie.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub enum Courses {
     /// Either way across any quad (the paper's eqs. 1-3).
     #[default]

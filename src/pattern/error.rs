@@ -2,6 +2,7 @@ use thiserror::Error;
 
 /// Why the pattern stage could not run.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum PatternError {
     /// A bond weight is negative, NaN or infinite.
     #[error("bond weight {weight:?} is not a finite number >= 0")]

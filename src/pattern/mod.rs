@@ -54,6 +54,7 @@ use crate::mesh::{PolyMesh, Topology};
 
 /// Which laying pattern the objective asks for.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Bond {
     /// Eq. (1): as many tiles as possible, nothing else.
     Stack,
@@ -183,6 +184,7 @@ pub const MAX_TIME_LIMIT_SECONDS: u64 = 1_000_000_000;
 
 /// How the integer program is written for the solver.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
 pub enum Formulation {
     /// The constraints exactly as printed in the paper.
     Paper,
@@ -199,6 +201,7 @@ pub enum Formulation {
 
 /// Options of the pattern stage.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct PatternOptions {
     /// The objective.
     pub bond: Bond,
@@ -231,6 +234,7 @@ pub struct PatternOptions {
 
 /// How the pattern stage searches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
 pub enum Method {
     /// The fastest route to a proven optimum: a maximum-matching bound and three
     /// constructive starts (courses along the boundary, a running bond along quad strips, the
@@ -324,6 +328,7 @@ impl PatternOptions {
 /// How far the solver got.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum SolveStatus {
     /// The objective equals the proven bound.
     Optimal,
@@ -336,6 +341,7 @@ pub enum SolveStatus {
 /// Which argument gave a pattern's proven bound.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum BoundSource {
     /// A maximum-cardinality matching (blossom): no pattern has more tiles; for a running
     /// bond with at most two shifted pairs per tile.

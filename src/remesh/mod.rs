@@ -102,6 +102,7 @@ pub enum BoundaryAlignment {
 
 /// Options of [`remesh`].
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct RemeshOptions {
     /// Target quad edge `t` in model units: half a tile length plus a joint (0.145 m for a
     /// 280 x 140 mm tile with a 5 mm joint).
@@ -186,6 +187,7 @@ pub struct Remeshed {
 
 /// Why [`remesh`] refused or failed.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum RemeshError {
     /// The target edge is zero, negative, NaN or infinite.
     #[error("target edge {0} is not a positive finite length")]

@@ -145,6 +145,7 @@ pub struct Tile {
 
 /// How tiles are made buildable: cutting, grouping and ordering.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct FinishOptions {
     /// Cutting tolerance in model units: tiles the boundary enters by no more than this stay
     /// whole, and cut shapes this close count as the same shape.
@@ -487,6 +488,7 @@ pub fn finish_with(
 
 /// Why tiles could not be built.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum TileError {
     /// A tile dimension or finishing option is out of range.
     #[error(

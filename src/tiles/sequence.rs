@@ -16,6 +16,7 @@ use crate::mesh::{PolyMesh, Topology};
 
 /// Where the vault stands.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct SequenceOptions {
     /// The up direction (gravity points the other way); default `+z`.
     pub up: Vector3<f64>,

@@ -90,6 +90,7 @@ const TEAR_FROM: f64 = 1.5;
 
 /// How the fit stage places tiles.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct FitOptions {
     /// The bond to keep: its offsets between courses bound how far tiles may slide.
     pub bond: Bond,
@@ -150,6 +151,7 @@ impl FitOptions {
 /// How the fit ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum FitStatus {
     /// Further steps no longer improved the joints.
     Converged,
