@@ -25,7 +25,7 @@ use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, Pa
 use tilepattern::pipeline::{self, Tiling};
 use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
 use tilepattern::report::{JointSummary, Report, Warning, WarningCode, svg};
-use tilepattern::tiles::{self, CutGroup, FinishOptions, Sequence, Tile, TileSpec};
+use tilepattern::tiles::{self, CutGroup, FinishOptions, Sequence, Tile, TileKind, TileSpec};
 
 #[derive(Parser)]
 #[command(
@@ -1246,7 +1246,11 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
         pattern_summary(&t.pattern),
         t.report.full_tiles,
         t.report.half_tiles,
-        t.report.boundary_tiles,
+        // The pattern's own tiles: report.boundary_tiles counts filler pieces too.
+        t.tiles
+            .iter()
+            .filter(|tile| !tile.faces.is_empty() && tile.kind == TileKind::Boundary)
+            .count(),
     )
 }
 

@@ -38,7 +38,9 @@ pub struct Report {
     pub full_tiles: usize,
     /// Half tiles over unmatched quads, each needs a cut.
     pub half_tiles: usize,
-    /// Of the tiles above, those cut to the surface's boundary.
+    /// Tiles and pieces cut (kind boundary): the tiles above cut to the surface's boundary,
+    /// and the filler pieces, cut to the edge or to the room in the fit's tears (the
+    /// command line's summary names the tiles above alone).
     pub boundary_tiles: usize,
     /// Faces that are not quads: no tile was placed on them.
     pub non_quad_faces: usize,
@@ -83,7 +85,7 @@ pub struct Report {
 /// How much cutting the boundary needs and how well the tiles cover the surface.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CuttingSummary {
-    /// Tiles cut to the boundary.
+    /// Tiles and pieces cut, as [`Report::boundary_tiles`].
     pub boundary_tiles: usize,
     /// Filler pieces (half blanks) laid beyond the quad mesh's boundary, where it falls short
     /// of the surface's edge, and the pieces filling the fit's tears (`tear_pieces`); most
