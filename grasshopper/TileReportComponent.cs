@@ -29,7 +29,7 @@ namespace TilePattern.Gh
         {
             pManager.AddIntegerParameter("Full tiles", "F", "Tiles cut from full blanks (matched pairs)", GH_ParamAccess.item);
             pManager.AddIntegerParameter("Half tiles", "H", "Tiles cut from half blanks (unpaired quads)", GH_ParamAccess.item);
-            pManager.AddIntegerParameter("Cut tiles", "C", "Full or half tiles cut to the boundary", GH_ParamAccess.item);
+            pManager.AddIntegerParameter("Cut tiles", "C", "Tiles and pieces cut: full or half tiles cut to the boundary, and the filler pieces cut to the edge or to the holes the fit left", GH_ParamAccess.item);
             pManager.AddIntegerParameter("Continuous joints", "CJ", "Continuous joints left in the pattern", GH_ParamAccess.item);
             pManager.AddIntegerParameter("Contacts", "N", "Pairs of neighbouring tiles (joints measured)", GH_ParamAccess.item);
             pManager.AddNumberParameter("Min gap", "Gmin", "Narrowest joint between neighbouring tiles (negative: overlap)", GH_ParamAccess.item);
