@@ -190,9 +190,8 @@ impl Tears<'_> {
             };
             let centre = self.boundary.closest(&centre, self.blank[1]).unwrap_or(q);
             let from = tiles[nearest].frame;
-            // A whole piece before any cut one (a half laid whole where the room holds one,
-            // see `standard`), then the candidate keeping most area, the first of equals; a
-            // whole piece is kept, so the candidates after it are not cut.
+            // The candidate keeping most area, the first of equals; a whole piece keeps all
+            // a piece can, so the candidates after it are not cut.
             let mut best: Option<(Tile, bool)> = None;
             for frame in [from.x, from.y]
                 .iter()
@@ -203,18 +202,27 @@ impl Tears<'_> {
                 let Some((piece, at_edge)) = self.piece(frame, tiles, &outlines, &near, &q) else {
                     continue;
                 };
-                let rank = |t: &Tile| (t.cut.is_none(), t.kept_area());
-                if best.as_ref().is_none_or(|b| {
-                    rank(&piece)
-                        .partial_cmp(&rank(&b.0))
-                        .is_some_and(|o| o.is_gt())
-                }) {
+                if best
+                    .as_ref()
+                    .is_none_or(|b| piece.kept_area() > b.0.kept_area())
+                {
                     best = Some((piece, at_edge));
                 }
                 if best.as_ref().is_some_and(|b| b.0.cut.is_none()) {
                     break;
                 }
             }
+            // A piece cut inside a hole whose room holds a standard piece is laid whole.
+            let best = best.map(|(piece, at_edge)| {
+                if piece.cut.is_none() || at_edge {
+                    return (piece, at_edge);
+                }
+                let near = placed.near(&piece.frame.origin, touching);
+                match self.standard(&piece, tiles, &outlines, &near, &q) {
+                    Some(whole) => (whole, false),
+                    None => (piece, at_edge),
+                }
+            });
             if let Some((piece, at_edge)) = best {
                 inside_cuts += usize::from(piece.cut.is_some() && !at_edge);
                 placed.insert(tiles.len(), &piece.frame.origin, &piece.frame.origin);
@@ -322,15 +330,7 @@ impl Tears<'_> {
             !outline::may_touch(&tiles[t], &piece, 0.0)
                 || outline::separation_of(&tiles[t], &outlines[t], &piece, &own).gap >= 0.0
         });
-        if !(clear && covers(&piece, q, 0.0)) {
-            return None;
-        }
-        if piece.cut.is_some() && !at_edge {
-            if let Some(whole) = self.standard(&piece, tiles, outlines, near, q) {
-                return Some((whole, false));
-            }
-        }
-        Some((piece, at_edge))
+        (clear && covers(&piece, q, 0.0)).then_some((piece, at_edge))
     }
 
     /// A standard piece (a whole tile, or else a half) laid instead of `cut`, a piece cut to
