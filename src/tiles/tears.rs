@@ -325,12 +325,8 @@ impl Tears<'_> {
         }
         // On a strongly curved surface a straight cut in the piece's plane may leave it
         // overlapping a neighbour turned away from it: such a piece is not laid.
-        let own = outline::world_corners(&piece);
-        let clear = near.iter().all(|&t| {
-            !outline::may_touch(&tiles[t], &piece, 0.0)
-                || outline::separation_of(&tiles[t], &outlines[t], &piece, &own).gap >= 0.0
-        });
-        (clear && covers(&piece, q, 0.0)).then_some((piece, at_edge))
+        (clear_of(&piece, tiles, outlines, near) && covers(&piece, q, 0.0))
+            .then_some((piece, at_edge))
     }
 
     /// A standard piece (a whole tile, or else a half) laid instead of `cut`, a piece cut to
@@ -388,17 +384,22 @@ impl Tears<'_> {
             {
                 continue;
             }
-            let own = outline::world_corners(&piece);
-            let clear = near.iter().all(|&t| {
-                !outline::may_touch(&tiles[t], &piece, 0.0)
-                    || outline::separation_of(&tiles[t], &outlines[t], &piece, &own).gap >= 0.0
-            });
-            if clear && covers(&piece, q, self.joint) {
+            if clear_of(&piece, tiles, outlines, near) && covers(&piece, q, self.joint) {
                 return Some(piece);
             }
         }
         None
     }
+}
+
+/// Whether `piece` overlaps none of the tiles `near` (indices into `tiles`, with their
+/// [`outline::world_corners`] in `outlines`).
+fn clear_of(piece: &Tile, tiles: &[Tile], outlines: &[Vec<Point3<f64>>], near: &[usize]) -> bool {
+    let own = outline::world_corners(piece);
+    near.iter().all(|&t| {
+        !outline::may_touch(&tiles[t], piece, 0.0)
+            || outline::separation_of(&tiles[t], &outlines[t], piece, &own).gap >= 0.0
+    })
 }
 
 #[cfg(test)]
