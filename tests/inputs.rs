@@ -461,6 +461,11 @@ fn never_silent(out: &Output, report: &serde_json::Value) {
     // Pieces cut to fill the fit's tears away from the edge count as its cuts.
     let cuts = joints["fit_cuts"].as_u64().unwrap() + cutting["tear_cuts"].as_u64().unwrap();
     assert!(cutting["tear_cuts"].as_u64() <= cutting["tear_pieces"].as_u64());
+    // Whole halves laid in the holes are pieces too, and no cut on site.
+    assert!(
+        cutting["tear_cuts"].as_u64().unwrap() + cutting["tear_halves"].as_u64().unwrap()
+            <= cutting["tear_pieces"].as_u64().unwrap()
+    );
     let codes = codes(report);
     assert_eq!(
         100 * cuts > tiles,
