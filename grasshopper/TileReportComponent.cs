@@ -46,6 +46,8 @@ namespace TilePattern.Gh
             pManager.AddNumberParameter("Within 2 mm", "W2", "Share of joints with |gap - joint| at most 2 mm", GH_ParamAccess.item);
             pManager.AddNumberParameter("Within 5 mm", "W5", "Share of joints with |gap - joint| at most 5 mm", GH_ParamAccess.item);
             pManager.AddNumberParameter("P95 deviation before fit", "D95b", "95th percentile of |gap - joint| as the paper places the tiles, before the fit (empty without the fit)", GH_ParamAccess.item);
+            pManager.AddIntegerParameter("Tear cuts", "TC", "Pieces cut on site to the room inside the holes the fit opened (with Fit cuts, what the fit asks to be cut; empty without cutting to a surface)", GH_ParamAccess.item);
+            pManager.AddIntegerParameter("Tear halves", "TH", "Whole half tiles laid in those holes where the room held one with its joints within half a joint (no cut on site; empty without cutting to a surface)", GH_ParamAccess.item);
         }
 
         protected override void SolveInstance(IGH_DataAccess DA)
@@ -78,6 +80,11 @@ namespace TilePattern.Gh
             DA.SetData(16, r.Joints.Within5Mm);
             if (r.Joints.BeforeFit != null)
                 DA.SetData(17, r.Joints.BeforeFit.P95Deviation);
+            if (r.Cutting != null)
+            {
+                DA.SetData(18, r.Cutting.TearCuts);
+                DA.SetData(19, r.Cutting.TearHalves);
+            }
             foreach (UserMessage message in UserMessage.ForJoints(r))
                 Show(message);
         }
