@@ -350,7 +350,8 @@ pub unsafe extern "C" fn tp_pattern_summary(
 ) -> TpStatus {
     guard(|| {
         // SAFETY: live handle by the caller's promise.
-        let p = &unsafe { borrow(pattern, "pattern") }?.pattern;
+        // The pattern's own summary (the report embeds the same), laid out for C.
+        let p = unsafe { borrow(pattern, "pattern") }?.pattern.summary();
         let status = match p.status {
             SolveStatus::Optimal => TP_SOLVE_OPTIMAL,
             SolveStatus::TimeLimit => TP_SOLVE_TIME_LIMIT,
@@ -358,10 +359,10 @@ pub unsafe extern "C" fn tp_pattern_summary(
         };
         let summary = TpPatternSummary {
             faces: p.faces,
-            pairs: p.pairs.len(),
-            unpaired: p.unpaired.len(),
-            excluded: p.excluded.len(),
-            non_quad: p.non_quad.len(),
+            pairs: p.pairs,
+            unpaired: p.unpaired,
+            excluded: p.excluded,
+            non_quad: p.non_quad,
             continuous_joints: p.continuous_joints,
             shifted_pairs: p.shifted_pairs,
             objective: p.objective,

@@ -593,6 +593,13 @@ mod tests {
         (rectangle(1.15, 0.44), tiles)
     }
 
+    /// Whether the centre of what `t` keeps lies within `reach` of `(x, y)` in both axes.
+    fn kept_at(t: &Tile, x: f64, y: f64, reach: f64) -> bool {
+        let c = outline::world_corners(t);
+        let c = c.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / c.len() as f64;
+        (c.x - x).abs() < reach && (c.y - y).abs() < reach
+    }
+
     #[test]
     fn a_hole_that_holds_a_half_takes_a_whole_half_with_its_joints_opened() {
         // A gap of 166 mm: a piece cut to the room would be 146 mm long; a half (140 mm)
@@ -600,9 +607,7 @@ mod tests {
         let (surface, mut tiles) = course_with_a_gap(0.166);
         let before = tiles.len();
         let filled = filled(&surface, &mut tiles);
-        let in_gap = |t: &Tile| {
-            (t.frame.origin.x - 0.363).abs() < 0.05 && (t.frame.origin.y - 0.22).abs() < 0.05
-        };
+        let in_gap = |t: &Tile| kept_at(t, 0.363, 0.22, 0.05);
         let laid: Vec<&Tile> = tiles[before..].iter().filter(|t| in_gap(t)).collect();
         assert_eq!(laid.len(), 1, "{laid:?}");
         let half = laid[0];
@@ -634,16 +639,9 @@ mod tests {
         let before = tiles.len();
         let filled = filled(&surface, &mut tiles);
         // The pieces whose kept outline's centre lies in the gap.
-        let centre = |t: &Tile| {
-            let c = outline::world_corners(t);
-            c.iter().fold(Vector3::zeros(), |s, p| s + p.coords) / c.len() as f64
-        };
         let cut: Vec<&Tile> = tiles[before..]
             .iter()
-            .filter(|t| {
-                let c = centre(t);
-                (c.x - 0.345).abs() < 0.03 && (c.y - 0.22).abs() < 0.03
-            })
+            .filter(|t| kept_at(t, 0.345, 0.22, 0.03))
             .collect();
         assert_eq!(cut.len(), 1, "{cut:?}");
         assert_ne!(cut[0].kind, TileKind::Half);
