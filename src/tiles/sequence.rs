@@ -68,6 +68,9 @@ pub fn laying_order(
     }
     let mut neighbours: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); tiles.len()];
     let mut boundary_low = vec![f64::INFINITY; tiles.len()];
+    // The mesh's lowest boundary point, whether or not a tile holds the face there (the
+    // lowest quads may be unpaired, or left out as off the surface).
+    let mut lowest = f64::INFINITY;
     for edge in topology.edges() {
         match edge.faces[..] {
             [f, g] => {
@@ -79,12 +82,13 @@ pub fn laying_order(
                 }
             }
             [f] => {
+                let low = edge
+                    .vertices
+                    .iter()
+                    .map(|&v| height(&mesh.positions()[v]))
+                    .fold(f64::INFINITY, f64::min);
+                lowest = lowest.min(low);
                 if let Some(a) = tile_of[f] {
-                    let low = edge
-                        .vertices
-                        .iter()
-                        .map(|&v| height(&mesh.positions()[v]))
-                        .fold(f64::INFINITY, f64::min);
                     boundary_low[a] = boundary_low[a].min(low);
                 }
             }
@@ -95,7 +99,6 @@ pub fn laying_order(
         neighbours[a].insert(b);
         neighbours[b].insert(a);
     }
-    let lowest = boundary_low.iter().copied().fold(f64::INFINITY, f64::min);
     let (low, high) = mesh
         .positions()
         .iter()
@@ -179,5 +182,57 @@ pub fn laying_order(
         support_tiles: on_support.iter().filter(|&&s| s).count(),
         unsupported,
         support,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Point3;
+
+    use super::*;
+    use crate::mesh::generate;
+    use crate::tiles::{Frame, TileKind};
+
+    /// A tile (or, without faces, a filler piece) lying flat at `(x, y)` of the plane z = 0.
+    fn tile_at(faces: Vec<usize>, x: f64, y: f64) -> Tile {
+        let frame = Frame {
+            origin: Point3::new(x, y, 0.0),
+            x: Vector3::x(),
+            y: Vector3::y(),
+            z: Vector3::z(),
+        };
+        Tile::new(TileKind::Full, faces, frame, [1.9, 0.9, 0.1])
+    }
+
+    #[test]
+    fn a_mesh_whose_boundary_quads_hold_no_tile_still_stands_on_its_boundary() {
+        // A 4 x 4 wall of unit quads standing in the plane z = 0 with y up; the two tiles
+        // cover the four inner quads only, so no tile holds a boundary face (its quads
+        // unpaired or left out as off the surface), and a filler piece lies at the foot.
+        let mesh = generate::grid(4, 4);
+        let face_at = |x: f64, y: f64| {
+            (0..mesh.face_count())
+                .find(|&f| {
+                    let c = mesh.face_centroid(f);
+                    (c.x - x).abs() < 0.1 && (c.y - y).abs() < 0.1
+                })
+                .unwrap()
+        };
+        let mut tiles = vec![
+            tile_at(vec![face_at(1.5, 1.5), face_at(2.5, 1.5)], 2.0, 1.5),
+            tile_at(vec![face_at(1.5, 2.5), face_at(2.5, 2.5)], 2.0, 2.5),
+            tile_at(vec![], 2.0, 0.2),
+        ];
+        let options = SequenceOptions {
+            up: Vector3::y(),
+            support_band: 0.5,
+        };
+        let order = laying_order(&mesh, &mut tiles, &[[0, 2]], &options);
+        // It has a boundary: the laying order must not say it has none.
+        assert_eq!(order.support, Support::Edges);
+        // The piece at the foot stands on the support; the tiles rest on it and each other.
+        assert_eq!(order.support_tiles, 1);
+        assert_eq!(order.unsupported, 0);
+        assert_eq!(tiles[2].step, 0);
     }
 }
