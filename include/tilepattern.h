@@ -305,6 +305,10 @@ enum TpWarning
    * a host's meshes are taken as given).
    */
   TP_WARNING_NORMALS_UNIFIED = 13,
+  /**
+   * Fewer than 80 % of the quad edges are within 20 % of half a tile.
+   */
+  TP_WARNING_QUAD_SIZE = 14,
 };
 #ifndef __cplusplus
 typedef int32_t TpWarning;

@@ -490,6 +490,27 @@ fn a_dome_whose_courses_converge_says_so() {
     says_its_tiles_do_not_meet("dome", &generate::spherical_cap(1.5, 0.5, 0.06));
 }
 
+#[test]
+fn quads_far_from_half_a_tile_are_said() {
+    // The same dome with its rows forced along its rings (`--direction` up, projected: the
+    // meridians and, across them, the rings), as a designer asking for level courses might:
+    // the rings shrink towards the crown, and the quads stretch and shear (about a third of
+    // their edges within 20 % of half a tile, against 88 % with the curvature field). The
+    // quads, not only the joints, are named; with the curvature field they are not.
+    let dome = obj::to_string(&generate::spherical_cap(1.5, 0.5, 0.06));
+    let args = ["--tile", "280x140x15", "--units", "m"];
+    let (out, report, _) = run("rings", "dome.obj", dome.as_bytes(), &args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(!codes(&report.unwrap()).contains(&"quad_size".to_owned()));
+    let rings = [&args[..], &["--direction", "0,0,1"]].concat();
+    let (out, report, _) = run("rings", "dome.obj", dome.as_bytes(), &rings);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    assert!(codes(&report).contains(&"quad_size".to_owned()), "{report}");
+    assert!(stderr(&out).contains("warning [quad_size]: only"));
+    never_silent(&out, &report);
+}
+
 /// Tiles `surface` (in metres, 280 x 140 x 15 mm tiles) and asks for a visible word on the
 /// tiles that cannot meet (`fit_cuts` or `wide_joints`) and the never-silent rule.
 fn says_its_tiles_do_not_meet(name: &str, surface: &PolyMesh) {

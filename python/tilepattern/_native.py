@@ -104,6 +104,7 @@ TP_WARNING_FIT_CUTS = 10
 TP_WARNING_WIDE_JOINTS = 11
 TP_WARNING_FOLDED_SURFACE = 12
 TP_WARNING_NORMALS_UNIFIED = 13
+TP_WARNING_QUAD_SIZE = 14
 
 #: Warning code -> its name in report.json, for every code of ``enum TpWarning``.
 WARNING_NAMES = {
@@ -120,6 +121,7 @@ WARNING_NAMES = {
     TP_WARNING_WIDE_JOINTS: "wide_joints",
     TP_WARNING_FOLDED_SURFACE: "folded_surface",
     TP_WARNING_NORMALS_UNIFIED: "normals_unified",
+    TP_WARNING_QUAD_SIZE: "quad_size",
 }
 
 MAX_VERTICES = 4_000_000

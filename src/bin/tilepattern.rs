@@ -470,6 +470,14 @@ fn run(cli: Cli) -> Result<()> {
             let remeshed = tilepattern::remesh::remesh(&surface, &options)?;
             mesh::obj::write(&remeshed.quads, &output)?;
             eprintln!("{}", remesh_summary(&remeshed.metrics));
+            print_warnings(
+                &tilepattern::report::warnings::quad_size_of(
+                    remeshed.metrics.edges_within_20pct,
+                    edge,
+                )
+                .into_iter()
+                .collect::<Vec<_>>(),
+            );
             json.map_or(Ok(()), |path| write_json(Some(&path), &remeshed.metrics))
         }
         Command::Run {

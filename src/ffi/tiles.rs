@@ -648,6 +648,8 @@ pub enum TpWarning {
     /// Reading the file turned faces over to agree with their neighbours (the command line;
     /// a host's meshes are taken as given).
     TP_WARNING_NORMALS_UNIFIED = 13,
+    /// Fewer than 80 % of the quad edges are within 20 % of half a tile.
+    TP_WARNING_QUAD_SIZE = 14,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -667,6 +669,7 @@ impl From<WarningCode> for TpWarning {
             WarningCode::WideJoints => TP_WARNING_WIDE_JOINTS,
             WarningCode::FoldedSurface => TP_WARNING_FOLDED_SURFACE,
             WarningCode::NormalsUnified => TP_WARNING_NORMALS_UNIFIED,
+            WarningCode::QuadSize => TP_WARNING_QUAD_SIZE,
         }
     }
 }

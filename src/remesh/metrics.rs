@@ -105,7 +105,7 @@ pub(crate) fn metrics_with(
     } else {
         lengths.iter().sum::<f64>() / lengths.len() as f64
     };
-    let edges_within_20pct = fraction(lengths.iter().map(|l| (l - 1.0).abs() <= 0.2));
+    let edges_within_20pct = within_20pct(&lengths);
     let faces_area_within_20pct = fraction(
         (0..faces.len()).map(|f| (quads.face_area_vector(f).norm() / (t * t) - 1.0).abs() <= 0.2),
     );
@@ -185,6 +185,31 @@ pub(crate) fn metrics_with(
         area_covered_ratio,
         seconds: 0.0,
     }
+}
+
+/// Share of the quad mesh's edges (each counted once) within 20 % of `t`: the remesher's
+/// promise, and what the tile checks ask of quads made elsewhere
+/// ([`crate::report::warnings`]).
+pub fn edges_within_20pct(quads: &PolyMesh, t: f64) -> f64 {
+    let pos = quads.positions();
+    let mut edges: Vec<(usize, usize)> = quads
+        .faces()
+        .iter()
+        .flat_map(|f| (0..f.len()).map(move |i| (f[i], f[(i + 1) % f.len()])))
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    let lengths: Vec<f64> = edges
+        .iter()
+        .map(|&(a, b)| (pos[a] - pos[b]).norm() / t)
+        .collect();
+    within_20pct(&lengths)
+}
+
+/// Share of `ratios` (edge length over `t`) within 20 % of 1.
+fn within_20pct(ratios: &[f64]) -> f64 {
+    fraction(ratios.iter().map(|l| (l - 1.0).abs() <= 0.2))
 }
 
 fn fraction(flags: impl Iterator<Item = bool>) -> f64 {

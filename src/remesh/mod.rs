@@ -66,7 +66,7 @@ use crate::control::Control;
 use crate::mesh::{MeshError, PolyMesh};
 
 pub use guides::GuideCurves;
-pub use metrics::{Metrics, metrics};
+pub use metrics::{Metrics, edges_within_20pct, metrics};
 pub use user_field::{FieldSite, UserField};
 
 /// How the quads are oriented on the surface.

@@ -47,6 +47,9 @@ pub enum WarningCode {
     /// Reading the file turned faces over to agree with their neighbours (see
     /// [`crate::mesh::orient`]).
     NormalsUnified = 13,
+    /// Fewer than [`MIN_QUAD_EDGES_WITHIN`] of the quad mesh's edges are within 20 % of half
+    /// a tile (the paper's section 3.1 quad): its quads are not the tiles' size.
+    QuadSize = 14,
 }
 
 /// One warning.
@@ -91,6 +94,35 @@ pub const TILE_SHAPE_TOLERANCE: f64 = 0.1;
 /// edges, above which tiles gape: about 29 degrees, a curvature radius of twice the tile
 /// length.
 pub const MAX_TURN_PER_TILE: f64 = 0.5;
+
+/// Share of quad edges within 20 % of half a tile ([`TileSpec::target_edge`]) below which the
+/// quads are flagged. The remesher promises 95 % on surfaces that allow it; QuadriFlow's
+/// quads of the shared shells have 90-97 %; a direction field whose rows converge all over a
+/// dome leaves 25-45 %.
+pub const MIN_QUAD_EDGES_WITHIN: f64 = 0.8;
+
+/// Quads far from half a tile: tiles on them overlap, gape or are cut, whatever the fit does.
+pub fn quad_size(quads: &PolyMesh, spec: &TileSpec) -> Option<Warning> {
+    let t = spec.target_edge();
+    (quads.face_count() > 0)
+        .then(|| quad_size_of(crate::remesh::edges_within_20pct(quads, t), t))
+        .flatten()
+}
+
+/// The [`WarningCode::QuadSize`] warning for quads of which `share` of the edges are within
+/// 20 % of the target edge `t` (the remesher's own figure, `Metrics::edges_within_20pct`).
+pub fn quad_size_of(share: f64, t: f64) -> Option<Warning> {
+    (share < MIN_QUAD_EDGES_WITHIN).then(|| {
+        Warning::new(
+            WarningCode::QuadSize,
+            format!(
+                "only {:.0} % of the quad edges are within 20 % of the target edge ({t}, half a tile): tiles on quads this far from their size overlap, gape or are cut; usual causes are a direction field whose rows converge everywhere (--direction or --field along a dome's rings or meridians), quads made for another tile, or units; remesh with the curvature field (no --direction or --field) or look at the quads",
+                100.0 * share,
+                t = (t * 1e6).round() / 1e6
+            ),
+        )
+    })
+}
 
 /// The checks of the joints a tiling leaves: cuts by the fit stage, and joints far from
 /// the nominal one (both measured as the report measures them, after the fit when it ran).
@@ -137,6 +169,7 @@ pub fn check(
     out.extend(surface_checks(surface, up));
     out.extend(tile_shape(spec));
     out.extend(curvature(quads, spec));
+    out.extend(quad_size(quads, spec));
     if let Some(c) = &report.cutting {
         if c.coverage < MIN_COVERAGE {
             out.push(Warning::new(
@@ -397,6 +430,27 @@ mod tests {
             .collect();
         assert_eq!(codes, vec![WarningCode::NormalsDown]);
         assert!(curvature(&grid, &TILE).is_none());
+    }
+
+    #[test]
+    fn quads_far_from_half_a_tile_are_flagged() {
+        // Unit quads are half of TILE (target edge 1): no word.
+        assert!(quad_size(&generate::grid(4, 3), &TILE).is_none());
+        // Stretched to 1.5 along x: 4 x 4 of the 31 edges run along x, so 15 of 31 fit.
+        let grid = generate::grid(4, 3);
+        let stretched = grid
+            .positions()
+            .iter()
+            .map(|p| nalgebra::Point3::new(1.5 * p.x, p.y, p.z))
+            .collect();
+        let stretched = PolyMesh::new(stretched, grid.faces().to_vec()).unwrap();
+        let w = quad_size(&stretched, &TILE).expect("half the edges 50 % long");
+        assert_eq!(w.code, WarningCode::QuadSize);
+        assert!(w.message.contains("only 48 %"), "{}", w.message);
+        assert!(w.message.contains("(1, half a tile)"), "{}", w.message);
+        // The remesher's own figure gives the same word.
+        assert_eq!(quad_size_of(15.0 / 31.0, 1.0), Some(w));
+        assert!(quad_size_of(MIN_QUAD_EDGES_WITHIN, 1.0).is_none());
     }
 
     /// A strip of three unit quads along x whose last quad is turned back over the middle
