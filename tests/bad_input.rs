@@ -1409,8 +1409,18 @@ fn the_command_line_reports_bad_input() {
             1,
             &["face 0", "vertex 1", "more than once"],
         ),
+        // A face given twice is removed while reading (welding, on by default), with a
+        // warning; kept as given, it is refused.
         (
             args(&["match", &duplicate]),
+            0,
+            &[
+                "warning [vertices_welded]",
+                "1 faces with a corner given twice or repeating",
+            ],
+        ),
+        (
+            args(&["match", &duplicate, "--weld", "off"]),
             1,
             &["face 1", "repeats face 0"],
         ),

@@ -291,6 +291,40 @@ fn welding_joins_a_soup_and_can_be_turned_off() {
     );
 }
 
+#[test]
+fn a_welded_file_with_a_degenerate_and_a_doubled_face_is_read_with_a_warning() {
+    // A mesh whose vertices are shared already, with a face whose corner repeats and a face
+    // given twice, as exports carry them: read with both removed and said (they were refused
+    // unless some other vertex happened to be joined), refused with --weld off.
+    let quads = generate::corner_supported_shell(3.0, 0.15);
+    let mut text = obj::to_string(&quads);
+    text.push_str("f 1 2 2\n");
+    let first_face = text
+        .lines()
+        .find(|l| l.starts_with("f "))
+        .unwrap()
+        .to_owned();
+    text.push_str(&first_face);
+    text.push('\n');
+    let read = io::parse(text.as_bytes(), Some("obj"), Weld::default()).unwrap();
+    assert_eq!(read.mesh.faces(), quads.faces());
+    assert_eq!((read.weld.merged_vertices, read.weld.dropped_faces), (0, 2));
+    assert!(io::parse(text.as_bytes(), Some("obj"), Weld::Off).is_err());
+    let (out, report, _) = run(
+        "degenerate",
+        "shell.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--units", "m"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(codes(&report.unwrap()).contains(&"vertices_welded".to_owned()));
+    assert!(
+        stderr(&out).contains("2 faces with a corner given twice or repeating an earlier face"),
+        "{}",
+        stderr(&out)
+    );
+}
+
 /// `mesh` as OBJ text with every third face turned over (its corners after the first reversed).
 fn with_every_third_face_turned(mesh: &PolyMesh) -> String {
     let faces: Vec<Vec<usize>> = mesh

@@ -1130,17 +1130,27 @@ fn reading_warnings(loaded: &Loaded) -> Vec<Warning> {
 fn weld_warning(loaded: &Loaded) -> Option<Warning> {
     let w = loaded.weld;
     w.changed().then(|| {
-        Warning::new(
-            WarningCode::VerticesWelded,
+        let renumbered = if w.dropped_faces > 0 {
+            " (faces after them are renumbered)"
+        } else {
+            ""
+        };
+        let message = if w.merged_vertices > 0 {
             format!(
-                "the {} file's faces did not share all their vertices: {} coincident vertices were joined (within {:.3e} model units) and {} collapsed or repeated faces removed{}; give --weld off to keep the file as it is",
+                "the {} file's faces did not share all their vertices: {} coincident vertices were joined (within {:.3e} model units) and {} collapsed or repeated faces removed{renumbered}; give --weld off to keep the file as it is",
                 loaded.format.name(),
                 w.merged_vertices,
                 w.tolerance,
                 w.dropped_faces,
-                if w.dropped_faces > 0 { " (faces after them are renumbered)" } else { "" }
-            ),
-        )
+            )
+        } else {
+            format!(
+                "the {} file has {} faces with a corner given twice or repeating an earlier face: removed{renumbered}; give --weld off to keep the file as it is (it is then refused)",
+                loaded.format.name(),
+                w.dropped_faces,
+            )
+        };
+        Warning::new(WarningCode::VerticesWelded, message)
     })
 }
 

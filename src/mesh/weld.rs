@@ -41,7 +41,10 @@ impl WeldSummary {
 }
 
 /// Joins every vertex to the first earlier vertex within `tolerance` (0: identical
-/// coordinates only), then removes the faces this collapses and repeats. Vertices keep their
+/// coordinates only), then removes the faces this collapses and repeats, and those that
+/// already were (fewer than three different corners, a face given twice, as STL and soup
+/// exports carry): whether a face is dropped does not hang on whether some other vertex
+/// was joined. Vertices keep their
 /// order (joined ones are left out), faces theirs. Meshes welding cannot read (an index out
 /// of range, a non-finite or too large coordinate) are returned as they are, for validation to name the
 /// fault.
@@ -70,9 +73,6 @@ pub fn weld(
     }
     let first = representatives(&positions, tolerance);
     let merged = first.iter().enumerate().filter(|&(i, &r)| i != r).count();
-    if merged == 0 {
-        return (positions, faces, untouched);
-    }
     // New numbers: the representatives in their order.
     let mut number = vec![usize::MAX; positions.len()];
     let mut kept = Vec::with_capacity(positions.len() - merged);
@@ -87,6 +87,7 @@ pub fn weld(
     let mut dropped = 0;
     for face in faces {
         let mut f: Vec<usize> = face.iter().map(|&v| number[first[v]]).collect();
+        let given = f.clone();
         // Corners joined along the face's edges collapse into one.
         f.dedup();
         while f.len() > 1 && f.first() == f.last() {
@@ -99,7 +100,13 @@ pub fn weld(
             dropped += 1;
             continue;
         }
-        out.push(f);
+        // A face the file itself gives with a corner twice but that keeps three others (a
+        // quad `1 2 2 4`) is left as given, for validation to name: only joining makes
+        // corners one here.
+        let mut own = face.clone();
+        own.sort_unstable();
+        own.dedup();
+        out.push(if own.len() < face.len() { given } else { f });
     }
     (
         kept,
@@ -185,6 +192,19 @@ mod tests {
         // The sliver collapses; the last face repeats the first once 2 is 1.
         assert_eq!(faces, vec![vec![0, 1, 2]]);
         assert_eq!(summary.dropped_faces, 2);
+    }
+
+    #[test]
+    fn faces_collapsed_or_repeated_in_the_file_are_dropped_with_nothing_to_join() {
+        // No two vertices within the tolerance, but a face with a repeated corner and a face
+        // given twice (in the other turn), as exports carry them.
+        let positions = vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
+        let faces = vec![vec![0, 1, 2], vec![0, 2, 2], vec![0, 2, 3], vec![2, 0, 1]];
+        let (kept, faces, summary) = weld(positions, faces, 1e-6);
+        assert_eq!(kept.len(), 4);
+        assert_eq!(faces, vec![vec![0, 1, 2], vec![0, 2, 3]]);
+        assert_eq!((summary.merged_vertices, summary.dropped_faces), (0, 2));
+        assert!(summary.changed());
     }
 
     #[test]
