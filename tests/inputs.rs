@@ -13,7 +13,7 @@ use common::{json, s, scratch, tilepattern};
 
 use nalgebra::Point3;
 use tilepattern::mesh::io::{self, Format, Weld};
-use tilepattern::mesh::{PolyMesh, generate, obj};
+use tilepattern::mesh::{PolyMesh, Topology, generate, obj};
 
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
@@ -323,6 +323,72 @@ fn a_welded_file_with_a_degenerate_and_a_doubled_face_is_read_with_a_warning() {
         "{}",
         stderr(&out)
     );
+}
+
+/// A barrel vault (span 4 m, rise 2.2 m, 6 m long) as two halves meshed apart, the seam
+/// along its crown cut into `left` and `right` segments: OBJ text, vertices of each half
+/// counted on their own (the seam's coincident vertices given twice).
+fn barrel_in_two_halves(left: usize, right: usize) -> String {
+    let mut text = String::new();
+    let mut offset = 1;
+    for (from, to, along) in [(0.0, 0.5, left), (0.5, 1.0, right)] {
+        let across = 16;
+        for i in 0..=across {
+            let u: f64 = from + (to - from) * i as f64 / across as f64;
+            for j in 0..=along {
+                let v = j as f64 / along as f64;
+                let (x, z) = (
+                    -2.0 * (std::f64::consts::PI * u).cos(),
+                    2.2 * (std::f64::consts::PI * u).sin(),
+                );
+                writeln!(text, "v {x} {} {z}", 6.0 * v).unwrap();
+            }
+        }
+        let at = |i: usize, j: usize| offset + i * (along + 1) + j;
+        for i in 0..across {
+            for j in 0..along {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                writeln!(text, "f {a} {b} {c}\nf {a} {c} {d}").unwrap();
+            }
+        }
+        offset += (across + 1) * (along + 1);
+    }
+    text
+}
+
+#[test]
+fn a_crack_between_patches_meshed_apart_is_zipped() {
+    // The crown seam cut every 10 cm on one half and every 13.3 cm on the other: welding
+    // joins the 16 seam vertices that coincide, and the halves touched at those alone
+    // (refused: 'two boundary loops or two surface sheets touch'). The other 75 are inserted
+    // into the other half's seam edges, and the vault tiles as one piece.
+    let text = barrel_in_two_halves(60, 45);
+    let read = io::parse(text.as_bytes(), Some("obj"), Weld::default()).unwrap();
+    assert_eq!(read.weld.merged_vertices, 16);
+    assert_eq!(read.weld.zipped_vertices, 75);
+    assert_eq!(Topology::new(&read.mesh).unwrap().face_pieces().1, 1);
+    // The same halves with matching seams need nothing inserted.
+    let matching = io::parse(
+        barrel_in_two_halves(60, 60).as_bytes(),
+        Some("obj"),
+        Weld::default(),
+    )
+    .unwrap();
+    assert_eq!(matching.weld.zipped_vertices, 0);
+    let (out, report, _) = run(
+        "crack",
+        "barrel.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--units", "m"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    let codes = codes(&report);
+    assert!(codes.contains(&"vertices_welded".to_owned()), "{codes:?}");
+    assert!(!codes.contains(&"several_pieces".to_owned()), "{codes:?}");
+    assert!(stderr(&out).contains("75 vertices lying on the edge of another patch"));
+    assert!(report["cutting"]["coverage"].as_f64().unwrap() > 0.97);
+    never_silent(&out, &report);
 }
 
 /// `mesh` as OBJ text with every third face turned over (its corners after the first reversed).

@@ -1135,21 +1135,34 @@ fn weld_warning(loaded: &Loaded) -> Option<Warning> {
         } else {
             ""
         };
-        let message = if w.merged_vertices > 0 {
+        let mut message = if w.merged_vertices > 0 {
             format!(
-                "the {} file's faces did not share all their vertices: {} coincident vertices were joined (within {:.3e} model units) and {} collapsed or repeated faces removed{renumbered}; give --weld off to keep the file as it is",
+                "the {} file's faces did not share all their vertices: {} coincident vertices were joined (within {:.3e} model units) and {} collapsed or repeated faces removed{renumbered}",
                 loaded.format.name(),
                 w.merged_vertices,
                 w.tolerance,
                 w.dropped_faces,
             )
-        } else {
+        } else if w.dropped_faces > 0 {
             format!(
-                "the {} file has {} faces with a corner given twice or repeating an earlier face: removed{renumbered}; give --weld off to keep the file as it is (it is then refused)",
+                "the {} file has {} faces with a corner given twice or repeating an earlier face: removed{renumbered}",
                 loaded.format.name(),
                 w.dropped_faces,
             )
+        } else {
+            format!("the {} file was read", loaded.format.name())
         };
+        if w.zipped_vertices > 0 {
+            message.push_str(&format!(
+                "; {} vertices lying on the edge of another patch (a crack where patches meshed apart meet with their vertices at different places) were inserted into it, splitting its triangles, so that the patches share the seam",
+                w.zipped_vertices
+            ));
+        }
+        message.push_str(if w.dropped_faces > 0 && w.merged_vertices == 0 {
+            "; give --weld off to keep the file as it is (it is then refused)"
+        } else {
+            "; give --weld off to keep the file as it is"
+        });
         Warning::new(WarningCode::VerticesWelded, message)
     })
 }

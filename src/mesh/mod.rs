@@ -12,6 +12,7 @@ pub mod obj;
 pub mod orient;
 mod topology;
 pub mod weld;
+pub mod zip;
 
 pub use error::MeshError;
 pub use topology::{Edge, Topology};

@@ -24,6 +24,9 @@ pub struct WeldSummary {
     /// Faces removed because welding left them with fewer than three corners or made them
     /// repeat an earlier face (faces after the first removed one are renumbered).
     pub dropped_faces: usize,
+    /// Vertices inserted into a boundary edge they lay on, closing a crack between patches
+    /// meshed apart ([`super::zip`]).
+    pub zipped_vertices: usize,
 }
 
 impl WeldSummary {
@@ -32,11 +35,12 @@ impl WeldSummary {
         tolerance: -1.0,
         merged_vertices: 0,
         dropped_faces: 0,
+        zipped_vertices: 0,
     };
 
     /// True when welding changed the mesh.
     pub fn changed(&self) -> bool {
-        self.merged_vertices > 0 || self.dropped_faces > 0
+        self.merged_vertices > 0 || self.dropped_faces > 0 || self.zipped_vertices > 0
     }
 }
 
@@ -62,6 +66,7 @@ pub fn weld(
         tolerance,
         merged_vertices: 0,
         dropped_faces: 0,
+        zipped_vertices: 0,
     };
     let readable = positions.iter().all(|p| {
         p.coords
@@ -115,6 +120,7 @@ pub fn weld(
             tolerance,
             merged_vertices: merged,
             dropped_faces: dropped,
+            zipped_vertices: 0,
         },
     )
 }

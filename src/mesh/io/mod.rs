@@ -17,6 +17,7 @@ use nalgebra::Point3;
 use serde::Serialize;
 
 use super::weld::{self, DEFAULT_RELATIVE_TOLERANCE, WeldSummary};
+use super::zip;
 use super::{MeshError, PolyMesh, obj, orient};
 
 /// Positions and faces as a file gives them, before welding and validation.
@@ -135,7 +136,11 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
     let (positions, faces, summary) = match weld {
         Weld::Relative(fraction) if fraction.is_finite() && fraction > 0.0 => {
             let tolerance = fraction * diagonal(&positions);
-            weld::weld(positions, faces, tolerance)
+            let (positions, faces, mut summary) = weld::weld(positions, faces, tolerance);
+            // Cracks between patches meshed apart, once coincident vertices are one.
+            let (faces, zipped) = zip::zip(&positions, faces);
+            summary.zipped_vertices = zipped;
+            (positions, faces, summary)
         }
         _ => (positions, faces, WeldSummary::OFF),
     };
