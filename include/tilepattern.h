@@ -306,7 +306,7 @@ enum TpWarning
    */
   TP_WARNING_NORMALS_UNIFIED = 13,
   /**
-   * Fewer than 80 % of the quad edges are within 20 % of half a tile.
+   * Fewer than 70 % of the quad edges are within 20 % of half a tile.
    */
   TP_WARNING_QUAD_SIZE = 14,
 };

@@ -538,7 +538,7 @@ namespace TilePattern
         FoldedSurface = 12,
         /// <summary>Reading a file turned faces over to agree with their neighbours.</summary>
         NormalsUnified = 13,
-        /// <summary>Fewer than 80 % of the quad edges are within 20 % of half a tile.</summary>
+        /// <summary>Fewer than 70 % of the quad edges are within 20 % of half a tile.</summary>
         QuadSize = 14,
     }
 

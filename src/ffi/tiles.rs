@@ -648,7 +648,7 @@ pub enum TpWarning {
     /// Reading the file turned faces over to agree with their neighbours (the command line;
     /// a host's meshes are taken as given).
     TP_WARNING_NORMALS_UNIFIED = 13,
-    /// Fewer than 80 % of the quad edges are within 20 % of half a tile.
+    /// Fewer than 70 % of the quad edges are within 20 % of half a tile.
     TP_WARNING_QUAD_SIZE = 14,
 }
 
