@@ -8,7 +8,7 @@
 
 use std::collections::HashMap;
 
-use nalgebra::Point3;
+use nalgebra::{Point3, Vector3};
 
 use crate::geom::{HashGrid, closest};
 
@@ -21,17 +21,32 @@ use crate::geom::{HashGrid, closest};
 pub const ZIP_DISTANCE: f64 = 0.03;
 
 /// Cosine of the largest angle between a seam's two sides (15 degrees): a boundary vertex is
-/// inserted into an edge only if a boundary edge leaving it runs against the edge this
-/// nearly.
+/// inserted into an edge only if a boundary edge at it runs along the edge this nearly.
 pub const SEAM_COS: f64 = 0.965_925_826_289_068_3;
 
+/// A triangle edge to split: its face and its first corner's place in the face.
+type Split = (usize, usize);
+
+/// A boundary edge: its face, its place in the face (from corner `k` to `k + 1`), its ends,
+/// and the unit direction from the edge into its face, across it.
+struct Side {
+    face: usize,
+    k: usize,
+    ends: [usize; 2],
+    inward: Vector3<f64>,
+}
+
 /// Inserts every boundary vertex of `faces` that lies within [`ZIP_DISTANCE`] of a boundary
-/// edge of a triangle (and not within that of its ends), and has a boundary edge running
-/// against it ([`SEAM_COS`]), into the edge, splitting the
-/// triangle. Returns the faces (split triangles replace theirs in place, in order) and the
-/// number of insertions. Faces of more than three corners are left as they are: a crack
-/// along them is not closed.
-pub fn zip(positions: &[Point3<f64>], faces: Vec<Vec<usize>>) -> (Vec<Vec<usize>>, usize) {
+/// edge of a triangle (and not within that of its ends) into the edge, splitting the
+/// triangle into a fan from its third corner, when the vertex is the end of a boundary edge
+/// that runs along the edge ([`SEAM_COS`], either way: the patches may be wound either way,
+/// orientation comes later) with its face on the other side (a seam; a patch folded over
+/// the edge, on the same side, is left). Returns the faces and the number of vertices
+/// inserted. Each split triangle keeps its place (its first part) and the other parts are
+/// appended after the file's faces, so face numbers do not move. Faces of more than three
+/// corners are left as they are: a crack along them is not closed, nor one whose two sides
+/// have vertices closer than [`ZIP_DISTANCE`] of an edge but not welded.
+pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<usize>>, usize) {
     // Meshes validation will refuse are left to it.
     let readable = positions.iter().all(|p| {
         p.coords
@@ -41,7 +56,6 @@ pub fn zip(positions: &[Point3<f64>], faces: Vec<Vec<usize>>) -> (Vec<Vec<usize>
     if !readable {
         return (faces, 0);
     }
-    // Directed edges of faces whose undirected edge only one face has.
     let mut uses: HashMap<(usize, usize), usize> = HashMap::new();
     for face in &faces {
         for k in 0..face.len() {
@@ -49,100 +63,129 @@ pub fn zip(positions: &[Point3<f64>], faces: Vec<Vec<usize>>) -> (Vec<Vec<usize>
             *uses.entry((a.min(b), a.max(b))).or_default() += 1;
         }
     }
-    let mut boundary: Vec<(usize, usize, usize)> = Vec::new();
+    let at = |v: usize| positions[v].coords;
+    let mut sides: Vec<Side> = Vec::new();
     for (f, face) in faces.iter().enumerate() {
+        let centre = face.iter().map(|&v| at(v)).sum::<Vector3<f64>>() / face.len() as f64;
         for k in 0..face.len() {
             let (a, b) = (face[k], face[(k + 1) % face.len()]);
-            if uses[&(a.min(b), a.max(b))] == 1 {
-                boundary.push((f, a, b));
-            }
-        }
-    }
-    if boundary.is_empty() {
-        return (faces, 0);
-    }
-    let mut on_boundary: Vec<usize> = boundary.iter().flat_map(|&(_, a, b)| [a, b]).collect();
-    on_boundary.sort_unstable();
-    on_boundary.dedup();
-    let length = |a: usize, b: usize| (positions[b] - positions[a]).norm();
-    let longest = boundary
-        .iter()
-        .map(|&(_, a, b)| length(a, b))
-        .fold(0.0, f64::max);
-    let mean = boundary.iter().map(|&(_, a, b)| length(a, b)).sum::<f64>() / boundary.len() as f64;
-    let grid = HashGrid::of_points(
-        mean.max(f64::MIN_POSITIVE),
-        boundary
-            .iter()
-            .map(|&(_, a, b)| [positions[a], positions[b]]),
-    );
-    // Per boundary vertex: the directions of the boundary edges leaving it (faces on their
-    // left). Across a crack the two sides' edges run opposite ways along the seam; a vertex
-    // near an edge it does not run against (a fold, a corner) is no T-junction.
-    let mut leaving: HashMap<usize, Vec<nalgebra::Vector3<f64>>> = HashMap::new();
-    for &(_, a, b) in &boundary {
-        if let Some(d) = (positions[b] - positions[a]).try_normalize(0.0) {
-            leaving.entry(a).or_default().push(d);
-        }
-    }
-    // Per triangle edge (face, start corner): the vertices to insert, by their parameter.
-    let mut inserts: HashMap<(usize, usize), Vec<(f64, usize)>> = HashMap::new();
-    for &v in &on_boundary {
-        let p = positions[v].coords;
-        for e in grid.near(&positions[v], ZIP_DISTANCE * longest) {
-            let (f, a, b) = boundary[e];
-            if faces[f].len() != 3 || v == a || v == b {
+            if uses[&(a.min(b), a.max(b))] != 1 {
                 continue;
             }
-            let (pa, pb) = (positions[a].coords, positions[b].coords);
-            let reach = ZIP_DISTANCE * (pb - pa).norm();
-            let s = closest::segment_parameter(&p, &pa, &pb);
-            let off = (pa + (pb - pa) * s - p).norm();
-            let against = (pb - pa).try_normalize(0.0).is_some_and(|d| {
-                leaving
-                    .get(&v)
-                    .is_some_and(|out| out.iter().any(|o| o.dot(&d) < -SEAM_COS))
-            });
-            if against && off <= reach && (p - pa).norm() > reach && (p - pb).norm() > reach {
-                inserts.entry((f, a)).or_default().push((s, v));
-            }
-        }
-    }
-    if inserts.is_empty() {
-        return (faces, 0);
-    }
-    let mut count = 0;
-    let mut out = Vec::with_capacity(faces.len() + 2 * inserts.len());
-    for (f, face) in faces.into_iter().enumerate() {
-        let mut triangles = vec![face.clone()];
-        for k in 0..face.len() {
-            let (a, b) = (face[k], face[(k + 1) % face.len()]);
-            let Some(points) = inserts.get_mut(&(f, a)) else {
+            let Some(d) = (at(b) - at(a)).try_normalize(0.0) else {
                 continue;
             };
-            points.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-            points.dedup_by_key(|x| x.1);
-            count += points.len();
-            // The triangle that holds the directed edge a -> b now (an earlier split of
-            // another edge may have made it smaller), fanned from its third corner.
-            let t = triangles
-                .iter()
-                .position(|t| (0..3).any(|i| t[i] == a && t[(i + 1) % 3] == b))
-                .expect("a split keeps every other edge of the triangle");
-            let old = triangles.remove(t);
-            let i = (0..3).find(|&i| old[i] == a).expect("the triangle has a");
-            let apex = old[(i + 2) % 3];
-            let chain: Vec<usize> = std::iter::once(a)
-                .chain(points.iter().map(|&(_, v)| v))
-                .chain(std::iter::once(b))
-                .collect();
-            for (j, pair) in chain.windows(2).enumerate() {
-                triangles.insert(t + j, vec![pair[0], pair[1], apex]);
+            let to_centre = centre - at(a);
+            let Some(inward) = (to_centre - d * d.dot(&to_centre)).try_normalize(0.0) else {
+                continue;
+            };
+            sides.push(Side {
+                face: f,
+                k,
+                ends: [a, b],
+                inward,
+            });
+        }
+    }
+    if sides.is_empty() {
+        return (faces, 0);
+    }
+    // Boundary vertices in a grid of points, and the sides at each.
+    let mut at_vertex: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (i, side) in sides.iter().enumerate() {
+        for v in side.ends {
+            at_vertex.entry(v).or_default().push(i);
+        }
+    }
+    let mut vertices: Vec<usize> = at_vertex.keys().copied().collect();
+    vertices.sort_unstable();
+    let mean = sides
+        .iter()
+        .map(|s| (at(s.ends[1]) - at(s.ends[0])).norm())
+        .sum::<f64>()
+        / sides.len() as f64;
+    let grid = HashGrid::of_points(
+        mean.max(f64::MIN_POSITIVE),
+        vertices.iter().map(|&v| [positions[v]]),
+    );
+    // Per split edge (face, corner): the vertices to insert, by their parameter along it.
+    let mut inserts: Vec<(Split, Vec<(f64, usize)>)> = Vec::new();
+    for side in sides.iter().filter(|s| faces[s.face].len() == 3) {
+        let [a, b] = side.ends;
+        let (pa, pb) = (at(a), at(b));
+        let d = (pb - pa).normalize();
+        let reach = ZIP_DISTANCE * (pb - pa).norm();
+        let widen = Vector3::repeat(reach);
+        let lo = Point3::from(pa.inf(&pb) - widen);
+        let hi = Point3::from(pa.sup(&pb) + widen);
+        let mut points = Vec::new();
+        for v in grid.in_box(&lo, &hi).into_iter().map(|i| vertices[i]) {
+            if faces[side.face].contains(&v) {
+                continue;
+            }
+            let p = at(v);
+            let s = closest::segment_parameter(&p, &pa, &pb);
+            let off = (pa + (pb - pa) * s - p).norm();
+            if off > reach || (p - pa).norm() <= reach || (p - pb).norm() <= reach {
+                continue;
+            }
+            let seam = at_vertex[&v].iter().any(|&o| {
+                let other = &sides[o];
+                let e = (at(other.ends[1]) - at(other.ends[0])).normalize();
+                e.dot(&d).abs() > SEAM_COS && other.inward.dot(&side.inward) < 0.0
+            });
+            if seam {
+                points.push((s, v));
             }
         }
-        out.extend(triangles);
+        if !points.is_empty() {
+            points.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+            inserts.push(((side.face, side.k), points));
+        }
     }
-    (out, count)
+    let mut inserted: Vec<usize> = Vec::new();
+    // Split, face by face (a face's edges in order), each edge in the part that holds it.
+    let mut appended = Vec::new();
+    let mut i = 0;
+    while i < inserts.len() {
+        let f = inserts[i].0.0;
+        let face = faces[f].clone();
+        let mut parts = vec![face.clone()];
+        while i < inserts.len() && inserts[i].0.0 == f {
+            let ((_, k), points) = &inserts[i];
+            i += 1;
+            let (a, b) = (face[*k], face[(k + 1) % 3]);
+            let t = parts
+                .iter()
+                .position(|t| (0..3).any(|j| t[j] == a && t[(j + 1) % 3] == b))
+                .expect("a split keeps every other edge of the triangle");
+            let j = parts[t]
+                .iter()
+                .position(|&x| x == a)
+                .expect("the part has a");
+            let apex = parts[t][(j + 2) % 3];
+            // No corner of the part is inserted into its own edge.
+            let middle: Vec<usize> = points
+                .iter()
+                .map(|&(_, v)| v)
+                .filter(|v| !parts[t].contains(v))
+                .collect();
+            inserted.extend(&middle);
+            let chain: Vec<usize> = std::iter::once(a)
+                .chain(middle)
+                .chain(std::iter::once(b))
+                .collect();
+            let fan: Vec<Vec<usize>> = chain.windows(2).map(|w| vec![w[0], w[1], apex]).collect();
+            parts.splice(t..=t, fan);
+        }
+        let mut parts = parts.into_iter();
+        faces[f] = parts.next().expect("a split leaves a part");
+        appended.extend(parts);
+    }
+    faces.extend(appended);
+    inserted.sort_unstable();
+    inserted.dedup();
+    (faces, inserted.len())
 }
 
 #[cfg(test)]
@@ -175,16 +218,17 @@ mod tests {
         ];
         let (zipped, count) = zip(&positions, faces);
         assert_eq!(count, 1);
-        // The left triangle with the seam edge 1 -> 2 is split at 4, fanned from 0.
+        // The left triangle with the seam edge 1 -> 2 is split at 4, fanned from 0: its
+        // first part keeps its place, the second comes after the file's faces.
         assert_eq!(
             zipped,
             vec![
                 vec![1, 4, 0],
-                vec![4, 2, 0],
                 vec![0, 2, 3],
                 vec![1, 5, 4],
                 vec![4, 5, 6],
                 vec![4, 6, 2],
+                vec![4, 2, 0],
             ]
         );
         // Every edge is now shared by two faces or on the outline.
@@ -207,8 +251,9 @@ mod tests {
         assert_eq!(zip(&positions, faces.clone()), (faces, 0));
         // A patch below the edge 0 -> 1 whose boundary runs back along it from vertex 3 at
         // (0.5, -off) to 4: within ZIP_DISTANCE of the edges' lengths 3 is inserted into
-        // 0 -> 1 and 0 into 3 -> 4; beyond it they are left apart.
-        let below = |off: f64, faces: Vec<Vec<usize>>| {
+        // 0 -> 1 and 0 into 3 -> 4, whichever way the patch is wound; beyond it they are
+        // left apart.
+        let zipped = |off: f64, faces: Vec<Vec<usize>>| {
             let positions = vec![
                 p(0.0, 0.0),
                 p(1.0, 0.0),
@@ -217,15 +262,23 @@ mod tests {
                 p(-0.2, -off),
                 p(0.2, -1.0),
                 p(0.9, -1.0),
+                p(0.5, off),
+                p(-0.2, off),
+                p(0.2, 1.0),
             ];
             zip(&positions, faces).1
         };
-        let seam = || vec![vec![0, 1, 2], vec![3, 4, 5]];
-        assert_eq!(below(0.01, seam()), 2);
-        assert_eq!(below(0.05, seam()), 0);
-        // The same patch turned over: its boundary runs along the edge, not against it (a
-        // fold, no seam), and the corner of a triangle touching the edge is no seam either.
-        assert_eq!(below(0.01, vec![vec![0, 1, 2], vec![3, 5, 4]]), 0);
-        assert_eq!(below(0.01, vec![vec![0, 1, 2], vec![3, 5, 6]]), 0);
+        let top = vec![0, 1, 2];
+        assert_eq!(zipped(0.01, vec![top.clone(), vec![3, 4, 5]]), 2);
+        assert_eq!(zipped(0.01, vec![top.clone(), vec![3, 5, 4]]), 2);
+        assert_eq!(zipped(0.05, vec![top.clone(), vec![3, 4, 5]]), 0);
+        // A corner of a triangle touching the edge is no seam, nor a patch folded over the
+        // edge onto the same side (7, 8, 9 above it).
+        assert_eq!(zipped(0.01, vec![top.clone(), vec![3, 5, 6]]), 0);
+        assert_eq!(zipped(0.01, vec![top, vec![7, 8, 9]]), 0);
+        // A sliver's own corner near its own edge is left (no face with a corner twice).
+        let sliver = vec![vec![0, 1, 2]];
+        let positions = [p(0.0, 0.0), p(1.0, 0.0), p(0.5, 0.01)];
+        assert_eq!(zip(&positions, sliver.clone()), (sliver, 0));
     }
 }

@@ -95,7 +95,7 @@ pub const TILE_SHAPE_TOLERANCE: f64 = 0.1;
 /// length.
 pub const MAX_TURN_PER_TILE: f64 = 0.5;
 
-/// Share of quad edges within 20 % of half a tile ([`TileSpec::target_edge`]) below which the
+/// Share of quad edges within 20 % of the quads' target ([`TileSpec::quad_edge`]) below which the
 /// quads are flagged. The remesher promises 95 % on surfaces that allow it, and a patch of
 /// a torus, curved both ways, gets 82 % with tiles that still fit (p95 2.1 mm); QuadriFlow's
 /// quads of the shared shells have 90-97 %; a direction field whose rows converge all over a
@@ -103,11 +103,19 @@ pub const MAX_TURN_PER_TILE: f64 = 0.5;
 pub const MIN_QUAD_EDGES_WITHIN: f64 = 0.7;
 
 /// Quads far from half a tile: tiles on them overlap, gape or are cut, whatever the fit does.
+/// Measured against both edges the quads may have been made for ([`TileSpec::quad_edge`]:
+/// half a tile, or a course's height in level courses), the better share counting.
 pub fn quad_size(quads: &PolyMesh, spec: &TileSpec) -> Option<Warning> {
-    let t = spec.target_edge();
-    (quads.face_count() > 0)
-        .then(|| quad_size_of(crate::remesh::edges_within_20pct(quads, t), t))
-        .flatten()
+    if quads.face_count() == 0 {
+        return None;
+    }
+    let (share, t) = [spec.quad_edge(false), spec.quad_edge(true)]
+        .map(|t| (crate::remesh::edges_within_20pct(quads, t), t))
+        .into_iter()
+        .fold((f64::NEG_INFINITY, 0.0), |best, x| {
+            if x.0 > best.0 { x } else { best }
+        });
+    quad_size_of(share, t)
 }
 
 /// The [`WarningCode::QuadSize`] warning for quads of which `share` of the edges are within
@@ -117,8 +125,8 @@ pub fn quad_size_of(share: f64, t: f64) -> Option<Warning> {
         Warning::new(
             WarningCode::QuadSize,
             format!(
-                "only {:.0} % of the quad edges are within 20 % of the target edge ({t}, half a tile): tiles on quads this far from their size overlap, gape or are cut; usual causes are a direction field whose rows converge everywhere (--direction or --field along a dome's rings or meridians), quads made for another tile, or units; remesh with the curvature field (no --direction or --field) or look at the quads",
-                100.0 * share,
+                "only {:.0} % of the quad edges are within 20 % of the target edge ({t}): tiles on quads this far from their size overlap, gape or are cut; usual causes are a direction field whose rows converge everywhere (--direction or --field along a dome's rings or meridians), quads made for another tile, or units; remesh with the curvature field (no --direction or --field) or look at the quads",
+                (100.0 * share).floor(),
                 t = (t * 1e6).round() / 1e6
             ),
         )
@@ -448,7 +456,7 @@ mod tests {
         let w = quad_size(&stretched, &TILE).expect("half the edges 50 % long");
         assert_eq!(w.code, WarningCode::QuadSize);
         assert!(w.message.contains("only 48 %"), "{}", w.message);
-        assert!(w.message.contains("(1, half a tile)"), "{}", w.message);
+        assert!(w.message.contains("target edge (1)"), "{}", w.message);
         // The remesher's own figure gives the same word.
         assert_eq!(quad_size_of(15.0 / 31.0, 1.0), Some(w));
         assert!(quad_size_of(MIN_QUAD_EDGES_WITHIN, 1.0).is_none());
