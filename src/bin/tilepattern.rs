@@ -1154,7 +1154,7 @@ fn weld_warning(loaded: &Loaded) -> Option<Warning> {
         };
         if w.zipped_vertices > 0 {
             message.push_str(&format!(
-                "; {} vertices lying on the edge of another patch (a crack where patches meshed apart meet with their vertices at different places) were inserted into it, splitting its triangles, so that the patches share the seam",
+                "; {} vertices lying on the edge of another patch (a crack where patches meshed apart meet with their vertices at different places) were inserted into it, splitting its triangles, or joined to its end where they nearly met it, so that the patches share the seam",
                 w.zipped_vertices
             ));
         }

@@ -41,11 +41,13 @@ struct Side {
 /// triangle into a fan from its third corner, when the vertex is the end of a boundary edge
 /// that runs along the edge ([`SEAM_COS`], either way: the patches may be wound either way,
 /// orientation comes later) with its face on the other side (a seam; a patch folded over
-/// the edge, on the same side, is left). Returns the faces and the number of vertices
-/// inserted. Each split triangle keeps its place (its first part) and the other parts are
-/// appended after the file's faces, so face numbers do not move. Faces of more than three
-/// corners are left as they are: a crack along them is not closed, nor one whose two sides
-/// have vertices closer than [`ZIP_DISTANCE`] of an edge but not welded.
+/// the edge, on the same side, is left). Such a vertex within [`ZIP_DISTANCE`] of an end of
+/// the edge is joined to that end instead (the two sides' vertices nearly coincide there).
+/// Returns the faces and the number of vertices inserted or joined. Each split triangle
+/// keeps its place (its first part) and the other parts are appended after the file's faces,
+/// so face numbers do not move unless a joined pair collapses a sliver (then it is left
+/// out). Faces of more than three corners are left as they are: a crack along them is not
+/// closed.
 pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<usize>>, usize) {
     // Meshes validation will refuse are left to it.
     let readable = positions.iter().all(|p| {
@@ -110,6 +112,8 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
     );
     // Per split edge (face, corner): the vertices to insert, by their parameter along it.
     let mut inserts: Vec<(Split, Vec<(f64, usize)>)> = Vec::new();
+    // Seam vertices of the two sides nearer than the reach to one another, to join.
+    let mut joins: Vec<(usize, usize)> = Vec::new();
     for side in sides.iter().filter(|s| faces[s.face].len() == 3) {
         let [a, b] = side.ends;
         let (pa, pb) = (at(a), at(b));
@@ -126,7 +130,7 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
             let p = at(v);
             let s = closest::segment_parameter(&p, &pa, &pb);
             let off = (pa + (pb - pa) * s - p).norm();
-            if off > reach || (p - pa).norm() <= reach || (p - pb).norm() <= reach {
+            if off > reach {
                 continue;
             }
             let seam = at_vertex[&v].iter().any(|&o| {
@@ -134,7 +138,15 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
                 let e = (at(other.ends[1]) - at(other.ends[0])).normalize();
                 e.dot(&d).abs() > SEAM_COS && other.inward.dot(&side.inward) < 0.0
             });
-            if seam {
+            if !seam {
+                continue;
+            }
+            // Within reach of an end, the two are one vertex of the seam; else v splits it.
+            if (p - pa).norm() <= reach {
+                joins.push((v, a));
+            } else if (p - pb).norm() <= reach {
+                joins.push((v, b));
+            } else {
                 points.push((s, v));
             }
         }
@@ -183,6 +195,36 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
         appended.extend(parts);
     }
     faces.extend(appended);
+    // Joined vertices become the lowest of their group (a vertex no face uses is left).
+    let mut same: Vec<usize> = (0..positions.len()).collect();
+    let find = |same: &mut Vec<usize>, mut v: usize| {
+        while same[v] != v {
+            same[v] = same[same[v]];
+            v = same[v];
+        }
+        v
+    };
+    for &(v, w) in &joins {
+        let (x, y) = (find(&mut same, v), find(&mut same, w));
+        if x != y {
+            same[x.max(y)] = x.min(y);
+            inserted.push(x.max(y));
+        }
+    }
+    if !joins.is_empty() {
+        for face in &mut faces {
+            for v in face.iter_mut() {
+                *v = find(&mut same, *v);
+            }
+        }
+        // A sliver between two joined vertices collapses.
+        faces.retain(|face| {
+            let mut corners = face.clone();
+            corners.sort_unstable();
+            corners.dedup();
+            corners.len() == face.len()
+        });
+    }
     inserted.sort_unstable();
     inserted.dedup();
     (faces, inserted.len())
@@ -242,6 +284,43 @@ mod tests {
         assert_eq!(uses[&(1, 4)], 2);
         assert_eq!(uses[&(2, 4)], 2);
         assert!(!uses.contains_key(&(1, 2)));
+    }
+
+    #[test]
+    fn seam_vertices_that_nearly_coincide_are_joined() {
+        // The right side's seam ends at 7, 2 cm below the left side's corner 2 on a 2 m
+        // edge (within ZIP_DISTANCE, farther than any weld): 7 becomes 2, and 4 splits the
+        // left side's edge as before.
+        let positions = vec![
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(1.0, 2.0),
+            p(0.0, 2.0),
+            p(1.001, 1.0),
+            p(2.0, 0.0),
+            p(2.0, 2.0),
+            p(1.0, 1.98),
+        ];
+        let faces = vec![
+            vec![0, 1, 2],
+            vec![0, 2, 3],
+            vec![1, 5, 4],
+            vec![4, 5, 6],
+            vec![4, 6, 7],
+        ];
+        let (zipped, count) = zip(&positions, faces);
+        assert_eq!(count, 2);
+        assert_eq!(
+            zipped,
+            vec![
+                vec![1, 4, 0],
+                vec![0, 2, 3],
+                vec![1, 5, 4],
+                vec![4, 5, 6],
+                vec![4, 6, 2],
+                vec![4, 2, 0],
+            ]
+        );
     }
 
     #[test]
