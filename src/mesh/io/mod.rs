@@ -137,8 +137,14 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
         Weld::Relative(fraction) if fraction.is_finite() && fraction > 0.0 => {
             let tolerance = fraction * diagonal(&positions);
             let (positions, faces, mut summary) = weld::weld(positions, faces, tolerance);
-            // Cracks between patches meshed apart, once coincident vertices are one.
-            let (faces, zipped) = zip::zip(&positions, faces);
+            // Cracks between patches meshed apart, once coincident vertices are one; in
+            // triangle meshes only (STL, soups, triangulated exports): a quad mesh is a
+            // remesher's or the user's own, given to be tiled as it is.
+            let (faces, zipped) = if faces.iter().all(|f| f.len() == 3) {
+                zip::zip(&positions, faces)
+            } else {
+                (faces, 0)
+            };
             summary.zipped_vertices = zipped;
             (positions, faces, summary)
         }
