@@ -326,9 +326,9 @@ fn a_welded_file_with_a_degenerate_and_a_doubled_face_is_read_with_a_warning() {
 }
 
 /// A barrel vault (span 4 m, rise 2.2 m, 6 m long) as two halves meshed apart, the seam
-/// along its crown cut into `left` and `right` segments: OBJ text, vertices of each half
-/// counted on their own (the seam's coincident vertices given twice).
-fn barrel_in_two_halves(left: usize, right: usize) -> String {
+/// along its crown cut into `left` and `right` segments: OBJ text of triangles (or quads),
+/// vertices of each half counted on their own (the seam's coincident vertices given twice).
+fn barrel_in_two_halves(left: usize, right: usize, quads: bool) -> String {
     let mut text = String::new();
     let mut offset = 1;
     for (from, to, along) in [(0.0, 0.5, left), (0.5, 1.0, right)] {
@@ -348,7 +348,11 @@ fn barrel_in_two_halves(left: usize, right: usize) -> String {
         for i in 0..across {
             for j in 0..along {
                 let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-                writeln!(text, "f {a} {b} {c}\nf {a} {c} {d}").unwrap();
+                if quads {
+                    writeln!(text, "f {a} {b} {c} {d}").unwrap();
+                } else {
+                    writeln!(text, "f {a} {b} {c}\nf {a} {c} {d}").unwrap();
+                }
             }
         }
         offset += (across + 1) * (along + 1);
@@ -362,19 +366,26 @@ fn a_crack_between_patches_meshed_apart_is_zipped() {
     // joins the 16 seam vertices that coincide, and the halves touched at those alone
     // (refused: 'two boundary loops or two surface sheets touch'). The other 75 are inserted
     // into the other half's seam edges, and the vault tiles as one piece.
-    let text = barrel_in_two_halves(60, 45);
+    let text = barrel_in_two_halves(60, 45, false);
     let read = io::parse(text.as_bytes(), Some("obj"), Weld::default()).unwrap();
     assert_eq!(read.weld.merged_vertices, 16);
     assert_eq!(read.weld.zipped_vertices, 75);
     assert_eq!(Topology::new(&read.mesh).unwrap().face_pieces().1, 1);
     // The same halves with matching seams need nothing inserted.
     let matching = io::parse(
-        barrel_in_two_halves(60, 60).as_bytes(),
+        barrel_in_two_halves(60, 60, false).as_bytes(),
         Some("obj"),
         Weld::default(),
     )
     .unwrap();
     assert_eq!(matching.weld.zipped_vertices, 0);
+    // A mesh of quads is taken as it is (the user's or a remesher's): not zipped.
+    let quads = barrel_in_two_halves(60, 45, true);
+    let read = io::parse(quads.as_bytes(), Some("obj"), Weld::default()).unwrap();
+    assert_eq!(
+        (read.weld.merged_vertices, read.weld.zipped_vertices),
+        (16, 0)
+    );
     let (out, report, _) = run(
         "crack",
         "barrel.obj",
