@@ -31,6 +31,21 @@ pub const MAX_INDICES: usize = 16_000_000;
 /// close to overflowing and a tile's grid cells would no longer fit an integer.
 pub const MAX_COORDINATE: f64 = 1e12;
 
+/// Whether `p` is a coordinate triple validation accepts: finite, no larger than
+/// [`MAX_COORDINATE`].
+pub(crate) fn usable_point(p: &Point3<f64>) -> bool {
+    p.coords
+        .iter()
+        .all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE)
+}
+
+/// Whether every position is [`usable_point`] and every face index names one: what the
+/// repairs done while reading (welding, zipping) need before they touch a mesh, leaving
+/// anything else for validation to name.
+pub(crate) fn readable(positions: &[Point3<f64>], faces: &[Vec<usize>]) -> bool {
+    positions.iter().all(usable_point) && faces.iter().flatten().all(|&v| v < positions.len())
+}
+
 /// Checks counts against [`MAX_VERTICES`], [`MAX_FACES`] and [`MAX_INDICES`] before anything
 /// is allocated for them.
 ///

@@ -6,7 +6,6 @@ use std::collections::{HashMap, HashSet};
 use nalgebra::Point3;
 use serde::Serialize;
 
-use super::MAX_COORDINATE;
 use crate::geom::HashGrid;
 
 /// Default weld tolerance as a fraction of the mesh's bounding-box diagonal: far below any
@@ -68,12 +67,7 @@ pub fn weld(
         dropped_faces: 0,
         zipped_vertices: 0,
     };
-    let readable = positions.iter().all(|p| {
-        p.coords
-            .iter()
-            .all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE)
-    }) && faces.iter().flatten().all(|&v| v < positions.len());
-    if !readable {
+    if !super::readable(&positions, &faces) {
         return (positions, faces, untouched);
     }
     let first = representatives(&positions, tolerance);
@@ -91,8 +85,8 @@ pub fn weld(
     let mut out = Vec::with_capacity(faces.len());
     let mut dropped = 0;
     for face in faces {
-        let mut f: Vec<usize> = face.iter().map(|&v| number[first[v]]).collect();
-        let given = f.clone();
+        let given: Vec<usize> = face.iter().map(|&v| number[first[v]]).collect();
+        let mut f = given.clone();
         // Corners joined along the face's edges collapse into one.
         f.dedup();
         while f.len() > 1 && f.first() == f.last() {
@@ -108,10 +102,13 @@ pub fn weld(
         // A face the file itself gives with a corner twice but that keeps three others (a
         // quad `1 2 2 4`) is left as given, for validation to name: only joining makes
         // corners one here.
-        let mut own = face.clone();
-        own.sort_unstable();
-        own.dedup();
-        out.push(if own.len() < face.len() { given } else { f });
+        let repeats_in_file = f.len() < given.len() && {
+            let mut own = face.clone();
+            own.sort_unstable();
+            own.dedup();
+            own.len() < face.len()
+        };
+        out.push(if repeats_in_file { given } else { f });
     }
     (
         kept,

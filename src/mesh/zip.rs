@@ -50,12 +50,7 @@ struct Side {
 /// closed.
 pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<usize>>, usize) {
     // Meshes validation will refuse are left to it.
-    let readable = positions.iter().all(|p| {
-        p.coords
-            .iter()
-            .all(|c| c.is_finite() && c.abs() <= super::MAX_COORDINATE)
-    }) && faces.iter().flatten().all(|&v| v < positions.len());
-    if !readable {
+    if !super::readable(positions, &faces) {
         return (faces, 0);
     }
     let mut uses: HashMap<(usize, usize), usize> = HashMap::new();
@@ -238,41 +233,53 @@ mod tests {
         Point3::new(x, y, 0.0)
     }
 
-    #[test]
-    fn a_seam_cut_in_two_and_in_three_is_closed() {
-        // Left: one triangle pair over 0..1 x 0..2 with the seam x = 1 in one edge; right: the
-        // seam in two edges, its middle vertex 4 a T-junction on the left's seam edge.
-        let positions = vec![
+    /// Left: one triangle pair over 0..1 x 0..2 with the seam x = 1 in one edge, 1 -> 2;
+    /// right: the seam in two edges, its middle vertex 4 (at `middle`) a T-junction on the
+    /// left's seam edge, its top end 2 itself or, with `top`, a vertex 7 of its own there.
+    fn two_sides(
+        middle: Point3<f64>,
+        top: Option<Point3<f64>>,
+    ) -> (Vec<Point3<f64>>, Vec<Vec<usize>>) {
+        let mut positions = vec![
             p(0.0, 0.0),
             p(1.0, 0.0),
             p(1.0, 2.0),
             p(0.0, 2.0),
-            p(1.0, 1.0 + 1e-4),
+            middle,
             p(2.0, 0.0),
             p(2.0, 2.0),
         ];
+        positions.extend(top);
+        let end = if top.is_some() { 7 } else { 2 };
         let faces = vec![
             vec![0, 1, 2],
             vec![0, 2, 3],
             vec![1, 5, 4],
             vec![4, 5, 6],
-            vec![4, 6, 2],
+            vec![4, 6, end],
         ];
+        (positions, faces)
+    }
+
+    /// [`two_sides`] zipped: the left triangle with the seam edge 1 -> 2 split at 4, fanned
+    /// from 0, its first part in its place and the second after the file's faces.
+    fn zipped_two_sides() -> Vec<Vec<usize>> {
+        vec![
+            vec![1, 4, 0],
+            vec![0, 2, 3],
+            vec![1, 5, 4],
+            vec![4, 5, 6],
+            vec![4, 6, 2],
+            vec![4, 2, 0],
+        ]
+    }
+
+    #[test]
+    fn a_seam_cut_in_two_and_in_three_is_closed() {
+        let (positions, faces) = two_sides(p(1.0, 1.0 + 1e-4), None);
         let (zipped, count) = zip(&positions, faces);
         assert_eq!(count, 1);
-        // The left triangle with the seam edge 1 -> 2 is split at 4, fanned from 0: its
-        // first part keeps its place, the second comes after the file's faces.
-        assert_eq!(
-            zipped,
-            vec![
-                vec![1, 4, 0],
-                vec![0, 2, 3],
-                vec![1, 5, 4],
-                vec![4, 5, 6],
-                vec![4, 6, 2],
-                vec![4, 2, 0],
-            ]
-        );
+        assert_eq!(zipped, zipped_two_sides());
         // Every edge is now shared by two faces or on the outline.
         let mut uses: HashMap<(usize, usize), usize> = HashMap::new();
         for f in &zipped {
@@ -291,36 +298,10 @@ mod tests {
         // The right side's seam ends at 7, 2 cm below the left side's corner 2 on a 2 m
         // edge (within ZIP_DISTANCE, farther than any weld): 7 becomes 2, and 4 splits the
         // left side's edge as before.
-        let positions = vec![
-            p(0.0, 0.0),
-            p(1.0, 0.0),
-            p(1.0, 2.0),
-            p(0.0, 2.0),
-            p(1.001, 1.0),
-            p(2.0, 0.0),
-            p(2.0, 2.0),
-            p(1.0, 1.98),
-        ];
-        let faces = vec![
-            vec![0, 1, 2],
-            vec![0, 2, 3],
-            vec![1, 5, 4],
-            vec![4, 5, 6],
-            vec![4, 6, 7],
-        ];
+        let (positions, faces) = two_sides(p(1.001, 1.0), Some(p(1.0, 1.98)));
         let (zipped, count) = zip(&positions, faces);
         assert_eq!(count, 2);
-        assert_eq!(
-            zipped,
-            vec![
-                vec![1, 4, 0],
-                vec![0, 2, 3],
-                vec![1, 5, 4],
-                vec![4, 5, 6],
-                vec![4, 6, 2],
-                vec![4, 2, 0],
-            ]
-        );
+        assert_eq!(zipped, zipped_two_sides());
     }
 
     #[test]

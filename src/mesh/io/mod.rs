@@ -163,11 +163,7 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
 
 /// Bounding-box diagonal of the finite positions (0 for none).
 fn diagonal(positions: &[Point3<f64>]) -> f64 {
-    let mut finite = positions.iter().filter(|p| {
-        p.coords
-            .iter()
-            .all(|c| c.is_finite() && c.abs() <= super::MAX_COORDINATE)
-    });
+    let mut finite = positions.iter().filter(|p| super::usable_point(p));
     let Some(first) = finite.next() else {
         return 0.0;
     };
