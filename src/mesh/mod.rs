@@ -5,6 +5,7 @@
 //! (OBJ order for files). [`PolyMesh::new`] validates everything the later stages rely on and
 //! names the offending face or vertex when it refuses a mesh.
 
+pub mod crease;
 mod error;
 pub mod generate;
 pub mod io;
