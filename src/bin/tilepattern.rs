@@ -1209,8 +1209,16 @@ fn pattern_summary(p: &Pattern) -> String {
 }
 
 fn remesh_summary(m: &Metrics) -> String {
+    let sheets = if m.crease_sheets > 0 {
+        format!(
+            "; split at its creases into {} sheets, each with quads of its own, tiles cut to the creases",
+            m.crease_sheets
+        )
+    } else {
+        String::new()
+    };
     format!(
-        "{} quads (pure quad: {}), {} interior irregular vertices, mean edge {:.3} t, {:.1} % of edges within 20 %, area covered {:.3}, max distance {:.3} t ({:.2} s)",
+        "{} quads (pure quad: {}), {} interior irregular vertices, mean edge {:.3} t, {:.1} % of edges within 20 %, area covered {:.3}, max distance {:.3} t ({:.2} s){}",
         m.faces,
         m.pure_quad,
         m.interior_irregular_vertices,
@@ -1218,7 +1226,8 @@ fn remesh_summary(m: &Metrics) -> String {
         100.0 * m.edges_within_20pct,
         m.area_covered_ratio,
         m.max_distance_to_input_ratio,
-        m.seconds
+        m.seconds,
+        sheets
     )
 }
 

@@ -34,6 +34,10 @@ pub struct Metrics {
     /// Wall-clock seconds of the remesh itself, without measuring these metrics (0 when
     /// measured on a foreign mesh).
     pub seconds: f64,
+    /// The sheets between the surface's creases that the remesh quadrangulated each on its
+    /// own (a groin vault's four webs; `mesh::crease`), or 0 when no crease parts the surface
+    /// (and when measured on a foreign mesh).
+    pub crease_sheets: usize,
 }
 
 /// Measures `quads` against `input` at target edge `t`; works on any polygon mesh, e.g.
@@ -184,6 +188,7 @@ pub(crate) fn metrics_with(
         max_distance_to_input_ratio: max_distance / t,
         area_covered_ratio,
         seconds: 0.0,
+        crease_sheets: 0,
     }
 }
 

@@ -63,7 +63,7 @@ use budget::Budget;
 use thiserror::Error;
 
 use crate::control::Control;
-use crate::mesh::{MeshError, PolyMesh};
+use crate::mesh::{MeshError, PolyMesh, crease};
 
 pub use guides::GuideCurves;
 pub use metrics::{Metrics, edges_within_20pct, metrics};
@@ -356,16 +356,26 @@ pub fn remesh_with(
 ) -> Result<Remeshed, RemeshError> {
     let start = Instant::now();
     check_options(input, options)?;
+    // Each sheet between creases gets quads of its own (`mesh::crease`).
+    let sheets = crease::split_at_creases(input);
+    let (input, user_field) = match &sheets {
+        Some(sheets) => (
+            &sheets.mesh,
+            options
+                .user_field
+                .as_ref()
+                .map(|u| u.on_copies(&sheets.source)),
+        ),
+        None => (input, None),
+    };
+    let user_field = user_field.as_ref().or(options.user_field.as_ref());
     let mut budget = Budget::new(control, start, options.time_limit);
     let t = options.target_edge;
     budget.stage(0.0, 0.02);
     budget.check()?;
     let (mut base, surface_of) = surface::Surface::from_polymesh_mapped(input)?;
     base.set_boundary_scale(t * 0.5);
-    let samples = options
-        .user_field
-        .as_ref()
-        .map(|u| (u.samples(input, &surface_of, base.len()), u.weight));
+    let samples = user_field.map(|u| (u.samples(input, &surface_of, base.len()), u.weight));
     let locator = surface::Locator::new(&base);
     let guides = match &options.guides {
         Some(g) if g.active() => Some((g.samples(&base, &locator, t)?, g.weight)),
@@ -435,6 +445,7 @@ pub fn remesh_with(
     let seconds = start.elapsed().as_secs_f64();
     let mut found = metrics::metrics_with(&locator, input, &quads, t);
     found.seconds = seconds;
+    found.crease_sheets = sheets.as_ref().map_or(0, |s| s.count);
     budget.finish();
     Ok(Remeshed {
         quads,

@@ -115,6 +115,20 @@ impl UserField {
         Ok(())
     }
 
+    /// The field on a mesh whose vertex `k` stands for vertex `source[k]` of the mesh this
+    /// field was given for (a surface cut open along its creases): vectors per vertex are
+    /// repeated on the copies, vectors per face kept.
+    pub(crate) fn on_copies(&self, source: &[usize]) -> Self {
+        let vectors = match self.site {
+            FieldSite::Vertices => source.iter().map(|&v| self.vectors[v]).collect(),
+            FieldSite::Faces => self.vectors.clone(),
+        };
+        Self {
+            vectors,
+            ..self.clone()
+        }
+    }
+
     /// The vectors as weighted samples on the working surface: per surface vertex, unit
     /// vectors with their weights. `surface_of[v]` is the surface vertex of input vertex `v`
     /// (`usize::MAX` when no face uses it), `count` the number of surface vertices.

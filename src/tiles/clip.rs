@@ -16,7 +16,7 @@ use super::Tile;
 pub use crate::geom::polygon::{Point2, signed_area};
 use crate::geom::polygon::{clip_to_convex, cross, dist, point_segment, sub};
 use crate::geom::{HashGrid, closest};
-use crate::mesh::{PolyMesh, Topology};
+use crate::mesh::{PolyMesh, Topology, crease};
 
 /// The part of a tile kept after cutting.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -80,6 +80,8 @@ struct Segment {
     /// Vertex indices of its start and end.
     from: usize,
     to: usize,
+    /// The sheet of its face: a tile is cut by the edges of the sheet it lies on.
+    sheet: usize,
 }
 
 /// The boundary of a reference surface, indexed for queries near a point, and its faces, to
@@ -91,13 +93,43 @@ pub struct SurfaceBoundary {
     /// Each face as its corners and unit normal.
     faces: Vec<(Vec<Point3<f64>>, Vector3<f64>)>,
     face_grid: HashGrid,
+    /// Each face's sheet: the pieces of the surface once cut open along its creases.
+    sheet: Vec<usize>,
 }
 
 impl SurfaceBoundary {
     /// Collects the boundary edges of `surface` (outer edge and openings) in a grid of cells of
-    /// side `cell` (about a tile's size).
+    /// side `cell` (about a tile's size), the creases that part it into sheets among them
+    /// ([`Self::with_seam_gap`] with no gap).
     pub fn new(surface: &PolyMesh, cell: f64) -> Self {
+        Self::with_seam_gap(surface, cell, 0.0)
+    }
+
+    /// Collects the boundary edges of `surface` (outer edge and openings) in a grid of cells of
+    /// side `cell` (about a tile's size). The creases that part the surface into sheets
+    /// ([`crease::split_at_creases`]) are boundary edges too, of both sheets, each moved
+    /// `seam_gap` into its own sheet: half a joint, so that the tiles of two webs cut to
+    /// their groin leave a joint between them.
+    pub fn with_seam_gap(surface: &PolyMesh, cell: f64, seam_gap: f64) -> Self {
+        let sheets = crease::split_at_creases(surface);
+        let (surface, sheet, seam_moves) = match &sheets {
+            Some(sheets) => (
+                &sheets.mesh,
+                sheets.sheet.clone(),
+                seam_moves(&sheets.mesh, &sheets.seams, seam_gap),
+            ),
+            None => (
+                surface,
+                Topology::new(surface)
+                    .expect("a PolyMesh is manifold by construction")
+                    .face_pieces()
+                    .0,
+                HashMap::new(),
+            ),
+        };
         let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
+        let at =
+            |v: usize| surface.positions()[v] + seam_moves.get(&v).copied().unwrap_or_default();
         let mut segments = Vec::new();
         for (f, face) in surface.faces().iter().enumerate() {
             let normal = surface
@@ -107,13 +139,13 @@ impl SurfaceBoundary {
             for (i, &e) in topology.face_edges(f).iter().enumerate() {
                 if topology.edges()[e].is_boundary() {
                     let (from, to) = (face[i], face[(i + 1) % face.len()]);
-                    let [a, b] = [from, to].map(|k| surface.positions()[k]);
                     segments.push(Segment {
-                        a,
-                        b,
+                        a: at(from),
+                        b: at(to),
                         normal,
                         from,
                         to,
+                        sheet: sheet[f],
                     });
                 }
             }
@@ -137,7 +169,13 @@ impl SurfaceBoundary {
             grid,
             faces,
             face_grid,
+            sheet,
         }
+    }
+
+    /// The sheet of the face closest to `p` within `radius`.
+    fn sheet_at(&self, p: &Point3<f64>, radius: f64) -> Option<usize> {
+        self.closest_face(p, radius).map(|(f, _)| self.sheet[f])
     }
 
     /// Boundary edges within `radius` of `p`, in index order.
@@ -163,7 +201,12 @@ impl SurfaceBoundary {
 
     /// The point of the surface closest to `p`, if one lies within `radius`.
     pub fn closest(&self, p: &Point3<f64>, radius: f64) -> Option<Point3<f64>> {
-        let mut best: Option<(f64, Point3<f64>)> = None;
+        self.closest_face(p, radius).map(|(_, q)| q)
+    }
+
+    /// The face closest to `p` and its point closest to `p`, if one lies within `radius`.
+    fn closest_face(&self, p: &Point3<f64>, radius: f64) -> Option<(usize, Point3<f64>)> {
+        let mut best: Option<(f64, usize, Point3<f64>)> = None;
         for f in self.face_grid.near(p, radius) {
             let (corners, normal) = &self.faces[f];
             let n = corners.len();
@@ -190,11 +233,11 @@ impl SurfaceBoundary {
                     .expect("a face has corners")
             };
             let d = (q - p).norm();
-            if d <= radius && best.is_none_or(|(bd, _)| d < bd) {
-                best = Some((d, q));
+            if d <= radius && best.is_none_or(|(bd, _, _)| d < bd) {
+                best = Some((d, f, q));
             }
         }
-        best.map(|(_, q)| q)
+        best.map(|(_, f, q)| (f, q))
     }
 
     /// Cuts `tile` to the surface. A tile the boundary enters by no more than `tolerance`
@@ -206,10 +249,12 @@ impl SurfaceBoundary {
         // close enough not to pick up another part of the shell above or below it.
         let reach = hx.hypot(hy) + hy;
         let mut near = self.near(&tile.frame.origin, reach);
+        let sheet = self.sheet_at(&tile.frame.origin, reach);
         near.retain(|&s| {
-            [self.segments[s].a, self.segments[s].b]
-                .iter()
-                .any(|p| tile.frame.to_local(p).z.abs() <= hx)
+            sheet.is_none_or(|own| self.segments[s].sheet == own)
+                && [self.segments[s].a, self.segments[s].b]
+                    .iter()
+                    .any(|p| tile.frame.to_local(p).z.abs() <= hx)
         });
         if near.is_empty() {
             return if self.touches(&tile.frame.origin, hy) {
@@ -319,6 +364,40 @@ impl SurfaceBoundary {
         }
         chains
     }
+}
+
+/// How far each vertex on a seam moves into its own sheet so that the seam's edges lie `gap`
+/// inside it: along the mean of its seam edges' inward normals (on their faces), by `gap`
+/// over the cosine of half the seam's turn there.
+fn seam_moves(mesh: &PolyMesh, seams: &[[usize; 2]], gap: f64) -> HashMap<usize, Vector3<f64>> {
+    let p = mesh.positions();
+    let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
+    let mut inward: HashMap<usize, Vec<Vector3<f64>>> = HashMap::new();
+    for &[a, b] in seams {
+        // The face left of a -> b (its own orientation), whose normal turns the edge inward.
+        let Some(face) = topology
+            .vertex_edges(a)
+            .iter()
+            .map(|&e| &topology.edges()[e])
+            .find(|e| e.vertices == [a.min(b), a.max(b)])
+            .map(|e| e.faces[0])
+        else {
+            continue;
+        };
+        let normal = mesh.face_area_vector(face);
+        if let Some(d) = normal.cross(&(p[b] - p[a])).try_normalize(0.0) {
+            inward.entry(a).or_default().push(d);
+            inward.entry(b).or_default().push(d);
+        }
+    }
+    inward
+        .into_iter()
+        .filter_map(|(v, ds)| {
+            let mean = ds.iter().sum::<Vector3<f64>>().try_normalize(0.0)?;
+            let cos = ds.iter().map(|d| d.dot(&mean)).fold(1.0, f64::min).max(0.5);
+            Some((v, mean * (gap / cos)))
+        })
+        .collect()
 }
 
 impl Cut {

@@ -291,7 +291,8 @@ pub fn finish_with(
     keep_going: &mut dyn FnMut() -> bool,
 ) -> (Vec<Tile>, Finished) {
     let reference = surface.unwrap_or(quads);
-    let boundary = SurfaceBoundary::new(reference, spec.length.max(spec.width));
+    let boundary =
+        SurfaceBoundary::with_seam_gap(reference, spec.length.max(spec.width), spec.joint / 2.0);
     let half_blank = [spec.length / 2.0, spec.width, spec.thickness];
     let seeds = if options.fit.is_some() {
         fill::Seeds::Tiles { joint: spec.joint }

@@ -224,6 +224,7 @@ impl Surface {
     /// [`BoundaryAlignment`]).
     pub fn aligned_boundary(&self, mode: BoundaryAlignment) -> Vec<bool> {
         let mut aligned = vec![false; self.len()];
+        let seam = self.seam_vertices();
         for lp in self.boundary_loops() {
             let has_corner = lp.vertices.iter().any(|&v| self.is_corner(v));
             let align = match mode {
@@ -232,10 +233,54 @@ impl Surface {
                 BoundaryAlignment::Auto => has_corner,
             };
             for v in lp.vertices {
-                aligned[v] = align && !self.narrow[v];
+                aligned[v] = align && !self.narrow[v] && !seam[v];
             }
         }
         aligned
+    }
+
+    /// Boundary vertices on a boundary edge of another loop: where the sheets of a surface cut
+    /// open along a crease meet (`mesh::crease`). The quads cross such a seam as the field of
+    /// their own sheet leads them and are trimmed to it, as a mason cuts the tiles of a web
+    /// to the groin, so the seam is never aligned to.
+    pub fn seam_vertices(&self) -> Vec<bool> {
+        let mut seam = vec![false; self.len()];
+        let loops = self.boundary_loops();
+        let segments = self.boundary_segments();
+        if loops.len() < 2 {
+            return seam;
+        }
+        let mut loop_of = vec![usize::MAX; self.len()];
+        for (i, lp) in loops.iter().enumerate() {
+            for &v in &lp.vertices {
+                loop_of[v] = i;
+            }
+        }
+        let ends = |[a, b]: [usize; 2]| [Point3::from(self.pos[a]), Point3::from(self.pos[b])];
+        let mean = segments
+            .iter()
+            .map(|&[a, b]| (self.pos[b] - self.pos[a]).norm())
+            .sum::<f64>()
+            / segments.len() as f64;
+        let grid = HashGrid::of_points(mean, segments.iter().map(|&s| ends(s)));
+        let near = 1e-6 * mean;
+        for (v, flag) in seam.iter_mut().enumerate() {
+            if loop_of[v] == usize::MAX {
+                continue;
+            }
+            *flag = grid
+                .near(&Point3::from(self.pos[v]), near)
+                .iter()
+                .any(|&s| {
+                    let [a, b] = segments[s];
+                    loop_of[a] != loop_of[v]
+                        && (closest::on_segment(&self.pos[v], &self.pos[a], &self.pos[b])
+                            - self.pos[v])
+                            .norm()
+                            <= near
+                });
+        }
+        seam
     }
 
     /// True at boundary corners (see [`Surface::set_boundary_scale`]).
