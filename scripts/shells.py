@@ -4,8 +4,8 @@
     scripts/shells.py OUT_DIR
 
 Parametric surfaces triangulated on a grid (diagonals alternating), in metres unless the
-name says otherwise: a groin vault (two semicircular barrels crossing, creases along the
-diagonals), a catenary barrel in millimetres, an elliptic paraboloid on a rectangle in
+name says otherwise: a groin vault and a cloister vault (the lower and the upper of two
+semicircular barrels crossing, creases along the diagonals), a catenary barrel in millimetres, an elliptic paraboloid on a rectangle in
 centimetres and again as a binary STL triangle soup, a wave, a patch of a torus (both
 curvatures), a dome with an oculus, a four-lobed umbrella (creases along its axes), a
 corner-supported shell on a triangular plan, a barrel of 64 coarse triangles, a pointed
@@ -82,6 +82,16 @@ def write_stl_soup(path, mesh):
 
 
 def groin(u, v):
+    # The lower of two semicircular barrels crossing: each web follows the barrel running
+    # into it, the groins are salient, the vault stands on its corners.
+    x, y = 6 * u - 3, 6 * v - 3
+    across = y if abs(x) >= abs(y) else x
+    return (x, y, math.sqrt(max(0.0, 9.0 - across * across)))
+
+
+def cloister(u, v):
+    # The upper of the two barrels (a domical vault): four webs rising from walls on all
+    # four sides, meeting in valleys along the diagonals.
     x, y = 6 * u - 3, 6 * v - 3
     across = x if abs(x) >= abs(y) else y
     return (x, y, math.sqrt(max(0.0, 9.0 - across * across)))
@@ -153,6 +163,7 @@ def main():
     os.makedirs(out, exist_ok=True)
     path = lambda name: os.path.join(out, name)
     write_obj(path("groin.obj"), grid(groin, 80, 80))
+    write_obj(path("cloister.obj"), grid(cloister, 80, 80))
     write_obj(path("catbarrel_mm.obj"), grid(catenary, 60, 90), scale=1000)
     write_obj(path("ellpara_cm.obj"), grid(paraboloid, 90, 60), scale=100)
     write_stl_soup(path("ellpara_soup.stl"), grid(paraboloid, 70, 45))
