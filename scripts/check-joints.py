@@ -13,6 +13,13 @@ positive = the joint's width, negative = how deep they overlap.
 Prints pairs, overlapping pairs (deeper than --overlap, default 1 mm), the deepest overlap,
 p95 |gap - joint|, the share of pairs within 2 and 5 mm. Exit code 1 when some pair overlaps
 deeper than --overlap. Pure Python (no numpy), for runs of a few thousand tiles.
+
+With `--surface SURFACE.obj` (the input surface, same units) it also measures how each tile
+lies on the surface, which joints alone do not show (a rigid tile bridging a crease meets its
+neighbours well and stands off the surface): the corners of the tile's face nearest the
+surface, their signed distances to it, and the spread of those (largest minus smallest; a
+flat tile on a sphere of radius R spreads by about (L^2 + W^2) / 8R). Prints the tiles that
+spread by more than --lift (default 5 mm) and the largest spread.
 """
 import argparse
 import json
@@ -113,6 +120,107 @@ def separation(p, q):
     return best
 
 
+def read_mesh(path):
+    verts, faces = [], []
+    with open(path) as f:
+        for line in f:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == "v":
+                verts.append(tuple(float(x) for x in parts[1:4]))
+            elif parts[0] == "f":
+                ids = [int(x.split("/")[0]) for x in parts[1:]]
+                ids = [i - 1 if i > 0 else len(verts) + i for i in ids]
+                for k in range(1, len(ids) - 1):
+                    faces.append((verts[ids[0]], verts[ids[k]], verts[ids[k + 1]]))
+    return faces
+
+
+def closest_on_triangle(p, a, b, c):
+    """The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5)."""
+    ab, ac, ap = sub(b, a), sub(c, a), sub(p, a)
+    d1, d2 = dot(ab, ap), dot(ac, ap)
+    if d1 <= 0 and d2 <= 0:
+        return a
+    bp = sub(p, b)
+    d3, d4 = dot(ab, bp), dot(ac, bp)
+    if d3 >= 0 and d4 <= d3:
+        return b
+    vc = d1 * d4 - d3 * d2
+    if vc <= 0 and d1 >= 0 and d3 <= 0:
+        t = d1 / (d1 - d3)
+        return tuple(a[k] + t * ab[k] for k in range(3))
+    cp = sub(p, c)
+    d5, d6 = dot(ab, cp), dot(ac, cp)
+    if d6 >= 0 and d5 <= d6:
+        return c
+    vb = d5 * d2 - d1 * d6
+    if vb <= 0 and d2 >= 0 and d6 <= 0:
+        t = d2 / (d2 - d6)
+        return tuple(a[k] + t * ac[k] for k in range(3))
+    va = d3 * d6 - d5 * d4
+    if va <= 0 and (d4 - d3) >= 0 and (d5 - d6) >= 0:
+        t = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+        return tuple(b[k] + t * (c[k] - b[k]) for k in range(3))
+    denom = 1.0 / (va + vb + vc)
+    v, w = vb * denom, vc * denom
+    return tuple(a[k] + ab[k] * v + ac[k] * w for k in range(3))
+
+
+class Surface:
+    """Triangles in a grid of cubes, for signed distances of points near the surface."""
+
+    def __init__(self, triangles, cell):
+        self.triangles, self.cell, self.grid = triangles, cell, {}
+        for i, tri in enumerate(triangles):
+            lo = [int(math.floor(min(p[k] for p in tri) / cell)) for k in range(3)]
+            hi = [int(math.floor(max(p[k] for p in tri) / cell)) for k in range(3)]
+            for x in range(lo[0], hi[0] + 1):
+                for y in range(lo[1], hi[1] + 1):
+                    for z in range(lo[2], hi[2] + 1):
+                        self.grid.setdefault((x, y, z), []).append(i)
+
+    def signed_distance(self, p):
+        """Distance to the nearest triangle within a cell, positive on its normal's side;
+        None when no triangle is that near."""
+        k = [int(math.floor(p[i] / self.cell)) for i in range(3)]
+        best = None
+        seen = set()
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for dz in (-1, 0, 1):
+                    for i in self.grid.get((k[0] + dx, k[1] + dy, k[2] + dz), ()):
+                        if i in seen:
+                            continue
+                        seen.add(i)
+                        a, b, c = self.triangles[i]
+                        q = closest_on_triangle(p, a, b, c)
+                        d = norm(sub(p, q))
+                        if best is None or d < best[0]:
+                            n = cross(sub(b, a), sub(c, a))
+                            best = (d, 1.0 if dot(sub(p, q), n) >= 0 else -1.0)
+        return None if best is None or best[0] > self.cell else best[0] * best[1]
+
+
+def lifts(tiles, surface):
+    """Per tile: the spread of the signed distances of its face nearest the surface."""
+    out = []
+    for t in tiles:
+        # The tile's two faces are its vertices below and above its own mid-plane.
+        sides = ([], [])
+        for p in t["v"]:
+            sides[dot(sub(p, t["c"]), t["n"]) > 0].append(p)
+        faces = []
+        for side in sides:
+            d = [surface.signed_distance(p) for p in side]
+            d = [x for x in d if x is not None]
+            if d:
+                faces.append((sum(abs(x) for x in d) / len(d), max(d) - min(d)))
+        out.append(min(faces)[1] if faces else None)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("obj")
@@ -121,6 +229,8 @@ def main():
     ap.add_argument("--reach", type=float, help="neighbours within this separation (default 3 joints)")
     ap.add_argument("--overlap", type=float, help="overlaps deeper than this fail (default 1 mm)")
     ap.add_argument("--json", help="write the figures here")
+    ap.add_argument("--surface", help="the input surface (OBJ): measure how the tiles lie on it")
+    ap.add_argument("--lift", type=float, help="tiles spreading more than this off the surface are counted (default 5 mm)")
     args = ap.parse_args()
     mm = args.units_per_mm
     reach = args.reach if args.reach is not None else 3 * args.joint
@@ -168,6 +278,12 @@ def main():
         "within_2mm": sum(1 for d in deviations if d <= 2 * mm) / max(1, len(deviations)),
         "within_5mm": sum(1 for d in deviations if d <= 5 * mm) / max(1, len(deviations)),
     }
+    if args.surface:
+        lift = args.lift if args.lift is not None else 5.0 * mm
+        cell = max(max(t["r"] for t in tiles), 4 * lift)
+        spread = [x for x in lifts(tiles, Surface(read_mesh(args.surface), cell)) if x is not None]
+        figures["tiles_lifted"] = sum(1 for x in spread if x > lift)
+        figures["largest_lift_mm"] = max(spread, default=0.0) / mm
     print(json.dumps(figures))
     for a, b, g in deep[:10]:
         print("overlap %s %s %.2f mm" % (a, b, -g / mm), file=sys.stderr)

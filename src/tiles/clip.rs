@@ -173,9 +173,15 @@ impl SurfaceBoundary {
         }
     }
 
+    /// The sheet face `f` of the surface lies on (its piece when no crease parts it).
+    pub(crate) fn face_sheet(&self, f: usize) -> usize {
+        self.sheet[f]
+    }
+
     /// The sheet of the face closest to `p` within `radius`.
-    fn sheet_at(&self, p: &Point3<f64>, radius: f64) -> Option<usize> {
-        self.closest_face(p, radius).map(|(f, _)| self.sheet[f])
+    pub(crate) fn sheet_at(&self, p: &Point3<f64>, radius: f64) -> Option<usize> {
+        self.closest_face(p, radius, None)
+            .map(|(f, _)| self.sheet[f])
     }
 
     /// Boundary edges within `radius` of `p`, in index order.
@@ -201,13 +207,32 @@ impl SurfaceBoundary {
 
     /// The point of the surface closest to `p`, if one lies within `radius`.
     pub fn closest(&self, p: &Point3<f64>, radius: f64) -> Option<Point3<f64>> {
-        self.closest_face(p, radius).map(|(_, q)| q)
+        self.closest_face(p, radius, None).map(|(_, q)| q)
     }
 
-    /// The face closest to `p` and its point closest to `p`, if one lies within `radius`.
-    fn closest_face(&self, p: &Point3<f64>, radius: f64) -> Option<(usize, Point3<f64>)> {
+    /// [`Self::closest`] on one sheet ([`Self::sheet_at`]).
+    pub(crate) fn closest_on(
+        &self,
+        p: &Point3<f64>,
+        radius: f64,
+        sheet: usize,
+    ) -> Option<Point3<f64>> {
+        self.closest_face(p, radius, Some(sheet)).map(|(_, q)| q)
+    }
+
+    /// The face closest to `p` (of `sheet` when given) and its point closest to `p`, if one
+    /// lies within `radius`.
+    fn closest_face(
+        &self,
+        p: &Point3<f64>,
+        radius: f64,
+        sheet: Option<usize>,
+    ) -> Option<(usize, Point3<f64>)> {
         let mut best: Option<(f64, usize, Point3<f64>)> = None;
         for f in self.face_grid.near(p, radius) {
+            if sheet.is_some_and(|s| self.sheet[f] != s) {
+                continue;
+            }
             let (corners, normal) = &self.faces[f];
             let n = corners.len();
             // Over the face (inside every edge's side plane): its foot on the face's plane;

@@ -204,15 +204,19 @@ pub(crate) fn fill(
                 continue;
             };
             let depth = along.norm();
+            // Cells continue the sheet of their edge: none crosses a crease.
+            let Some(sheet) = boundary.sheet_at(&nalgebra::center(&edge.a, &edge.b), depth) else {
+                continue;
+            };
             // The surface must go on beyond the edge: the middle of the new cell, in the
             // face's plane, lies close to it.
             let middle = nalgebra::center(&edge.a, &edge.b) + outward * (depth / 2.0);
-            if boundary.closest(&middle, depth / 4.0).is_none() {
+            if boundary.closest_on(&middle, depth / 4.0, sheet).is_none() {
                 continue;
             }
             // Continue in the face's plane, then down onto the surface where it curves away
             // (beyond its edge the plane goes on, to be cut off).
-            let onto = |q: Point3<f64>| boundary.closest(&q, depth).unwrap_or(q);
+            let onto = |q: Point3<f64>| boundary.closest_on(&q, depth, sheet).unwrap_or(q);
             let (a2, b2) = (
                 onto(edge.a + outward * depth),
                 onto(edge.b + outward * depth),

@@ -116,7 +116,7 @@ impl Tears<'_> {
                 .into_iter()
                 .any(|t| covers(&tiles[t], q, margin))
         };
-        // The samples no tile covers, with their face's normal.
+        // The samples no tile covers, with their face's normal and sheet.
         let spacing = self.blank[1] / sample::SAMPLES_PER_TILE_SIDE;
         let normals: Vec<Vector3<f64>> = (0..self.surface.face_count())
             .map(|f| {
@@ -128,11 +128,13 @@ impl Tears<'_> {
             .collect();
         // Each face's on its own (on the threads of `parallel`), gathered in face order.
         let faces = self.surface.faces();
-        let open: Vec<(Point3<f64>, Vector3<f64>, f64)> = crate::parallel::map(faces.len(), |f| {
+        type Open = (Point3<f64>, Vector3<f64>, f64, usize);
+        let open: Vec<Open> = crate::parallel::map(faces.len(), |f| {
             let mut open = Vec::new();
+            let sheet = self.boundary.face_sheet(f);
             sample::face(self.surface.positions(), &faces[f], spacing, |q, area| {
                 if !covered(tiles, &placed, &q) {
-                    open.push((q, normals[f], area));
+                    open.push((q, normals[f], area, sheet));
                 }
             });
             open
@@ -147,7 +149,7 @@ impl Tears<'_> {
         let mut done = vec![false; open.len()];
         let mut tried = 0;
         for i in 0..open.len() {
-            let (q, normal, _) = open[i];
+            let (q, normal, _, sheet) = open[i];
             if done[i] || covered(tiles, &placed, &q) {
                 done[i] = true;
                 continue;
@@ -169,11 +171,12 @@ impl Tears<'_> {
             } else {
                 normal
             };
-            // Centred on the hole around the sample, as far as a piece's half width reaches.
+            // Centred on the hole around the sample, as far as a piece's half width reaches,
+            // on the sample's own sheet (a piece is cut to the crease between two).
             let (mut sum, mut weight) = (Vector3::zeros(), 0.0);
             for s in holes.near(&q, self.blank[1] / 2.0) {
-                let (p, _, area) = open[s];
-                if done[s] || (p - q).norm() > self.blank[1] / 2.0 {
+                let (p, _, area, on) = open[s];
+                if done[s] || on != sheet || (p - q).norm() > self.blank[1] / 2.0 {
                     continue;
                 }
                 if covered(tiles, &placed, &p) {
