@@ -59,6 +59,10 @@ pub struct Sheets {
 
 /// Cuts `mesh` open along the creases that part it into sheets; `None` when none does.
 pub fn split_at_creases(mesh: &PolyMesh) -> Option<Sheets> {
+    // Most surfaces turn gently everywhere: they are told apart without building the edges.
+    if !turns_sharply(mesh) {
+        return None;
+    }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let mut crease = sharp_edges(mesh, &topology);
     if !crease.iter().any(|&c| c) {
@@ -94,6 +98,46 @@ pub fn split_at_creases(mesh: &PolyMesh) -> Option<Sheets> {
         return None;
     }
     Some(cut_open(mesh, &topology, &crease, sheet, count))
+}
+
+/// Whether two faces sharing an edge turn by [`CREASE_DEGREES`] or more: the faces around
+/// each vertex in one array (no hashing), each face's neighbour across an edge found among
+/// the faces of the edge's first vertex.
+fn turns_sharply(mesh: &PolyMesh) -> bool {
+    let n = normals(mesh);
+    let faces = mesh.faces();
+    let mut start = vec![0usize; mesh.positions().len() + 1];
+    for face in faces {
+        for &v in face {
+            start[v + 1] += 1;
+        }
+    }
+    for v in 0..mesh.positions().len() {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut around = vec![0usize; start[mesh.positions().len()]];
+    for (f, face) in faces.iter().enumerate() {
+        for &v in face {
+            around[fill[v]] = f;
+            fill[v] += 1;
+        }
+    }
+    let cos = CREASE_DEGREES.to_radians().cos();
+    faces.iter().enumerate().any(|(f, face)| {
+        (0..face.len()).any(|i| {
+            let (a, b) = (face[i], face[(i + 1) % face.len()]);
+            around[start[a]..start[a + 1]].iter().any(|&g| {
+                // Across the edge a -> b: the face holding b -> a (orientation is consistent).
+                let other = &faces[g];
+                g > f
+                    && (0..other.len()).any(|j| other[j] == b && other[(j + 1) % other.len()] == a)
+                    && n[f] != Vector3::zeros()
+                    && n[g] != Vector3::zeros()
+                    && n[f].dot(&n[g]) <= cos
+            })
+        })
+    })
 }
 
 /// Unit normal of every face (zero for a face without area).
