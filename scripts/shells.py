@@ -5,7 +5,9 @@
 
 Parametric surfaces triangulated on a grid (diagonals alternating), in metres unless the
 name says otherwise: a groin vault and a cloister vault (the lower and the upper of two
-semicircular barrels crossing, creases along the diagonals), a catenary barrel in millimetres, an elliptic paraboloid on a rectangle in
+semicircular barrels crossing, creases along the diagonals), the groin vault again with its
+four webs meshed apart (seams that do not match, as a modeller meshes a polysurface face by
+face), a catenary barrel in millimetres, an elliptic paraboloid on a rectangle in
 centimetres and again as a binary STL triangle soup, a wave, a patch of a torus (both
 curvatures), a dome with an oculus, a four-lobed umbrella (creases along its axes), a
 corner-supported shell on a triangular plan, a barrel of 64 coarse triangles, a pointed
@@ -57,6 +59,28 @@ def combined(*patches):
     for vs, fs in patches:
         faces += [tuple(v + len(verts) for v in t) for t in fs]
         verts += vs
+    return verts, faces
+
+
+def fan_web(f, outer_a, outer_b, rows):
+    """A triangular web from the plan edge outer_a-outer_b to the centre, in rows parallel to
+    that edge (row i has rows - i cells), lifted by f(x, y): as a modeller meshes one face of
+    a polysurface on its own."""
+    verts, index = [], {}
+    for i in range(rows + 1):
+        cells = rows - i
+        for j in range(cells + 1):
+            s = j / cells if cells else 0.5
+            x = (1 - i / rows) * (outer_a[0] + (outer_b[0] - outer_a[0]) * s)
+            y = (1 - i / rows) * (outer_a[1] + (outer_b[1] - outer_a[1]) * s)
+            index[i, j] = len(verts)
+            verts.append((x, y, f(x, y)))
+    faces = []
+    for i in range(rows):
+        for j in range(rows - i):
+            faces.append((index[i, j], index[i, j + 1], index[i + 1, j]))
+            if j < rows - i - 1:
+                faces.append((index[i, j + 1], index[i + 1, j + 1], index[i + 1, j]))
     return verts, faces
 
 
@@ -164,6 +188,12 @@ def main():
     path = lambda name: os.path.join(out, name)
     write_obj(path("groin.obj"), grid(groin, 80, 80))
     write_obj(path("cloister.obj"), grid(cloister, 80, 80))
+    # The groin vault's four webs meshed apart, 40 and 47 rows: their seams along the groins
+    # do not match.
+    on_plan = lambda x, y: groin((x + 3) / 6, (y + 3) / 6)[2]
+    write_obj(path("groin_webs.obj"), combined(
+        fan_web(on_plan, (3, -3), (3, 3), 40), fan_web(on_plan, (3, 3), (-3, 3), 47),
+        fan_web(on_plan, (-3, 3), (-3, -3), 40), fan_web(on_plan, (-3, -3), (3, -3), 47)))
     write_obj(path("catbarrel_mm.obj"), grid(catenary, 60, 90), scale=1000)
     write_obj(path("ellpara_cm.obj"), grid(paraboloid, 90, 60), scale=100)
     write_stl_soup(path("ellpara_soup.stl"), grid(paraboloid, 70, 45))
