@@ -37,6 +37,7 @@ namespace TilePattern.Gh
             pManager.AddNumberParameter("Field weight", "FW", "Share of the Field against the curvature field (or Direction / Angle), 0 to 1 (default 1: the field alone)", GH_ParamAccess.item, 1.0);
             pManager.AddCurveParameter("Guides", "G", "Optional: guide curves the quad rows follow near them (within 2 quad edges, falling off), on or near the mesh, in model units; turned into polylines at the document's tolerance (5 degrees angle tolerance)", GH_ParamAccess.list);
             pManager.AddNumberParameter("Guide weight", "GW", "Share of the Guides on the curves against every other source (curvature, Direction / Angle, Field), 0 to 1 (default 1: the guides alone on them)", GH_ParamAccess.item, 1.0);
+            pManager.AddBooleanParameter("Creases", "Cr", "Split the mesh where its faces turn sharply (a groin vault's groins, a fold) and give each part quads of its own, as masons lay each web in its own courses (default true); give Tile Boxes the same", GH_ParamAccess.item, true);
             for (int i = 1; i <= 4; i++)
                 pManager[i].Optional = true;
             pManager[6].Optional = true;
@@ -44,6 +45,7 @@ namespace TilePattern.Gh
             pManager[9].Optional = true;
             pManager[10].Optional = true;
             pManager[11].Optional = true;
+            pManager[12].Optional = true;
             ((Param_Number)pManager[4]).AngleParameter = true;
             var courses = (Param_Integer)pManager[7];
             courses.AddNamedValue("Level", (int)Courses.Level);
@@ -85,6 +87,8 @@ namespace TilePattern.Gh
             DA.GetDataList(10, curves);
             double guideWeight = 1.0;
             DA.GetData(11, ref guideWeight);
+            bool creases = true;
+            DA.GetData(12, ref creases);
             if (courses != (int)Courses.Free && courses != (int)Courses.Level)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
@@ -96,7 +100,7 @@ namespace TilePattern.Gh
             if (hasDirection && hasAngle)
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "Both a direction and an angle are given: the direction is used.");
 
-            var options = new RemeshOptions { TargetEdge = TileOptions.QuadEdgeOf(length, width, joint, (Courses)courses), ShapeUp = shapeUp };
+            var options = new RemeshOptions { TargetEdge = TileOptions.QuadEdgeOf(length, width, joint, (Courses)courses), ShapeUp = shapeUp, Creases = creases };
             if (hasDirection)
             {
                 options.Direction = FieldDirection.Vector;

@@ -54,8 +54,10 @@ namespace TilePattern.Gh
             pManager.AddMeshParameter("Surface", "S", "Optional: the input surface; tiles are cut to its boundary (default: the quad mesh's boundary)", GH_ParamAccess.item);
             // Appended inputs keep the indices above (saved definitions wire by index).
             pManager.AddBooleanParameter("Fit", "F", "Move the tiles on the surface so that every joint comes close to the mortar joint, keeping the bond, and cut what cannot fit (default true); false keeps the paper's placement", GH_ParamAccess.item, true);
+            pManager.AddBooleanParameter("Creases", "Cr", "Cut the tiles to the Surface's creases (where its faces turn sharply: a groin vault's groins, a fold), half a joint short on each side, and keep every tile on its own side (default true); give Quad Remesh the same", GH_ParamAccess.item, true);
             for (int i = 1; i <= 6; i++)
                 pManager[i].Optional = true;
+            pManager[8].Optional = true;
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
@@ -96,6 +98,8 @@ namespace TilePattern.Gh
             bool hasSurface = DA.GetData(6, ref surfaceMesh) && surfaceMesh != null;
             bool fit = true;
             DA.GetData(7, ref fit);
+            bool creases = true;
+            DA.GetData(8, ref creases);
             double tolerance = Tolerance();
 
             PolyMesh quads = null, surface = null;
@@ -109,7 +113,7 @@ namespace TilePattern.Gh
             WarnTurned(turnedQuads, "quad");
             WarnTurned(turnedSurface, "surface");
             // UnitsPerMm from the document's units: the report's shares of joints within 2 and 5 mm.
-            var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm };
+            var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm, Creases = creases };
             // The pattern by identity and by content (identity hashes alone may collide).
             var flatPairs = new List<int>(2 * pattern.Pairs.Length);
             foreach (FacePair pair in pattern.Pairs)

@@ -26,8 +26,10 @@
  * `guide_curve_sizes`, `guide_count`, `guide_weight`) and `TpPatternOptions` grew (zones,
  * a bond per face: `zones`, `zone_count`); callers built against ABI 4 or 5 keep working
  * unchanged.
+ * 7: `TpRemeshOptions` and `TpTileOptions` grew (`creases`: split the surface at its creases,
+ * on by default); callers built against ABI 4 to 6 keep working unchanged (and get it on).
  */
-#define TP_ABI_VERSION 6
+#define TP_ABI_VERSION 7
 
 /**
  * Stage numbers passed to a progress callback.
@@ -540,6 +542,12 @@ typedef struct TpRemeshOptions {
    * nothing 2 target edges away); default 1.
    */
   double guide_weight;
+  /**
+   * Non-zero (default): each sheet between the creases that part the surface (a groin
+   * vault's webs) gets quads of its own, its field never aligned to the crease; zero runs
+   * one field over the whole surface. Pair it with `TpTileOptions.creases`. Since ABI 7.
+   */
+  int32_t creases;
 } TpRemeshOptions;
 
 /**
@@ -613,6 +621,13 @@ typedef struct TpTileOptions {
    * joints within 2 and 5 mm); default 0.001 (a model in metres). Since ABI 3.
    */
   double units_per_mm;
+  /**
+   * Non-zero (default): the creases that part the surface into sheets (a groin vault's
+   * groins) are cut to like a boundary, half a joint short on each side, and tiles and
+   * filler pieces stay on their own sheet; zero takes the surface as one sheet. Pair it
+   * with `TpRemeshOptions.creases`. Since ABI 7.
+   */
+  int32_t creases;
 } TpTileOptions;
 
 

@@ -285,7 +285,13 @@ pub fn tiles_for_pattern_with(
                 mm,
             );
             let fit_started = Instant::now();
-            let (moved, summary) = tiles::fit::fit(quads, surface, boxes, spec, options, control)?;
+            // Tiles are placed on the sheet they lie on: across a crease the surface's normals
+            // would blend the two sheets' and tilt the tiles next to it.
+            let sheets = surface
+                .filter(|_| finish.creases)
+                .and_then(crate::mesh::crease::split_at_creases);
+            let on = sheets.as_ref().map(|s| &s.mesh).or(surface);
+            let (moved, summary) = tiles::fit::fit(quads, on, boxes, spec, options, control)?;
             (
                 moved,
                 Some((before, summary, fit_started.elapsed().as_secs_f64())),

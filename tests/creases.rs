@@ -1,11 +1,15 @@
 //! Creases (`mesh::crease`): the webs of a groin or a cloister vault each get quads and level
 //! courses of their own, and the tiles are cut to the creases.
 
+mod common;
+
 use std::time::Duration;
+
+use common::{json, s, scratch, tilepattern};
 
 use nalgebra::Point3;
 use tilepattern::control::Control;
-use tilepattern::mesh::PolyMesh;
+use tilepattern::mesh::{PolyMesh, obj};
 use tilepattern::pattern::{Courses, PatternOptions};
 use tilepattern::pipeline;
 use tilepattern::remesh::RemeshOptions;
@@ -174,4 +178,54 @@ fn off_surface(p: &Point3<f64>, groin: bool) -> f64 {
     let dx = (crossed(p.x + e, p.y) - crossed(p.x - e, p.y)) / (2.0 * e);
     let dy = (crossed(p.x, p.y + e) - crossed(p.x, p.y - e)) / (2.0 * e);
     (p.z - crossed(p.x, p.y)) / (1.0 + dx * dx + dy * dy).sqrt()
+}
+
+/// A 2.4 x 1.2 m plate folded along x = 0 (the halves turn by 44 degrees), 24 x 12 quads.
+fn folded_plate() -> PolyMesh {
+    let mut positions = Vec::new();
+    for j in 0..=12 {
+        for i in 0..=24 {
+            let x = 0.1 * (f64::from(i) - 12.0);
+            positions.push(Point3::new(x, 0.1 * f64::from(j), 0.4 * x.abs()));
+        }
+    }
+    let faces = (0..12)
+        .flat_map(|j| (0..24).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            let a = j * 25 + i;
+            vec![a, a + 1, a + 26, a + 25]
+        })
+        .collect();
+    PolyMesh::new(positions, faces).unwrap()
+}
+
+#[test]
+fn the_command_line_splits_at_creases_unless_told_not_to() {
+    let dir = scratch("creases");
+    let input = dir.join("plate.obj");
+    std::fs::write(&input, obj::to_string(&folded_plate())).unwrap();
+    let run = |out: &str, extra: &[&str]| {
+        let out_dir = dir.join(out);
+        let mut args = vec!["run", s(&input), "--tile", "280x140x15", "--units", "m"];
+        args.extend(["--out", s(&out_dir)]);
+        args.extend(extra);
+        let output = tilepattern(&args);
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let text = String::from_utf8_lossy(&output.stdout).into_owned()
+            + &String::from_utf8_lossy(&output.stderr);
+        (json(&out_dir.join("report.json")), text)
+    };
+    let (split, said) = run("split", &[]);
+    assert_eq!(split["remesh"]["crease_sheets"], 2);
+    assert!(
+        said.contains("split at its creases into 2 sheets"),
+        "{said}"
+    );
+    let (joined, said) = run("joined", &["--no-creases"]);
+    assert_eq!(joined["remesh"]["crease_sheets"], 0);
+    assert!(!said.contains("split at its creases"), "{said}");
 }

@@ -173,10 +173,10 @@ namespace TilePattern.Tests
             AssertMirror(typeof(TpRemeshOptions), "TpRemeshOptions", n => n.StartsWith("direction_vector[") ? "direction_" + "xyz"[n[17] - '0'] : n);
             Assert.AreEqual(120, Marshal.SizeOf(typeof(TpPatternOptions)));
             Assert.AreEqual(96, Marshal.SizeOf(typeof(TpPatternSummary)));
-            Assert.AreEqual(136, Marshal.SizeOf(typeof(TpRemeshOptions)));
+            Assert.AreEqual(144, Marshal.SizeOf(typeof(TpRemeshOptions)));
             // The ABI 5 size ends where the ABI 6 fields begin.
             Assert.AreEqual(96, (int)Marshal.OffsetOf(typeof(TpRemeshOptions), "guide_points"));
-            Assert.AreEqual(128, Marshal.SizeOf(typeof(TpTileOptions)));
+            Assert.AreEqual(136, Marshal.SizeOf(typeof(TpTileOptions)));
             // The ABI 2 sizes end where the ABI 3 fields begin.
             Assert.AreEqual(64, (int)Marshal.OffsetOf(typeof(TpPatternOptions), "courses"));
             // The ABI 3 size ends where the ABI 4 field begins.
@@ -184,6 +184,9 @@ namespace TilePattern.Tests
             // The ABI 5 size ends where the ABI 6 fields (zones) begin.
             Assert.AreEqual(104, (int)Marshal.OffsetOf(typeof(TpPatternOptions), "zones"));
             Assert.AreEqual(88, (int)Marshal.OffsetOf(typeof(TpTileOptions), "fit"));
+            // The ABI 6 sizes end where the ABI 7 fields (creases) begin.
+            Assert.AreEqual(136, (int)Marshal.OffsetOf(typeof(TpRemeshOptions), "creases"));
+            Assert.AreEqual(128, (int)Marshal.OffsetOf(typeof(TpTileOptions), "creases"));
         }
 
         static void AssertLibrarySize(string name, uint library, Type mirror)

@@ -339,6 +339,42 @@ namespace TilePattern.Tests
             Assert.Greater(along.FaceCount, coarse.FaceCount);
         }
 
+        /// <summary>Quads with corners on both sides of the fold at x = 1.2.</summary>
+        static int QuadsOverTheFold(PolyMesh quads)
+        {
+            int over = 0;
+            for (int f = 0; f < quads.FaceCount; f++)
+            {
+                bool left = false, right = false;
+                foreach (int v in quads.Face(f))
+                {
+                    double x = quads.Vertex(v)[0] - 1.2;
+                    left |= x < -0.01;
+                    right |= x > 0.01;
+                }
+                if (left && right)
+                    over++;
+            }
+            return over;
+        }
+
+        [Test]
+        public void CreasesSplitAFoldedPlateUnlessTurnedOff()
+        {
+            // 2.4 x 1.2 m, folded along x = 1.2: the halves turn by 44 degrees.
+            PolyMesh plate = TestMeshes.Grid(24, 12, 0.1, (x, y) => 0.4 * Math.Abs(x - 1.2));
+            PolyMesh split = TilePatternEngine.Remesh(plate, new RemeshOptions());
+            PolyMesh joined = TilePatternEngine.Remesh(plate, new RemeshOptions { Creases = false });
+            Assert.AreEqual(0, QuadsOverTheFold(split));
+            Assert.Greater(QuadsOverTheFold(joined), 0);
+            using (Pattern pattern = TilePatternEngine.Match(split, new PatternOptions { TimeLimitSeconds = 5 }))
+            {
+                int cut = TilePatternEngine.Tiles(pattern, new TileOptions(), plate).Tiles.Count(t => t.Kind == TileKind.Boundary);
+                int uncut = TilePatternEngine.Tiles(pattern, new TileOptions { Creases = false }, plate).Tiles.Count(t => t.Kind == TileKind.Boundary);
+                Assert.Greater(cut, uncut, "tiles cut to the fold");
+            }
+        }
+
         [Test]
         public void OptionsStartFromTheLibraryDefaults()
         {
@@ -372,6 +408,9 @@ namespace TilePattern.Tests
             Assert.AreEqual(0.001, t.UnitsPerMm, "a model in metres");
             Assert.AreEqual(0.145, RemeshOptions.ForTile(t, Courses.Free).TargetEdge, 1e-15);
             Assert.AreEqual(0.15, RemeshOptions.ForTile(t, Courses.Level).TargetEdge, 1e-15, "a course's height: width + joint");
+            // ABI 7: split at the creases.
+            Assert.IsTrue(r.Creases);
+            Assert.IsTrue(t.Creases);
         }
 
         [Test]

@@ -1,5 +1,5 @@
-// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 6: guide
-// curves and zones; 5 the designer's field, 4 the gap, 3 the fit stage and level courses; 2
+// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 7: the
+// creases switch; 6 guide curves and zones; 5 the designer's field, 4 the gap, 3 the fit stage and level courses; 2
 // added boundary tiles and the tp_*_options_init functions), and
 // mirrors of its structs. Nothing here is public: the public API is TilePatternEngine.
 //
@@ -63,7 +63,7 @@ namespace TilePattern
         public int status;
     }
 
-    /// <summary>Mirror of TpRemeshOptions (136 bytes on 64-bit targets; 96 before ABI 6, 72 before ABI 5). The C array
+    /// <summary>Mirror of TpRemeshOptions (144 bytes on 64-bit targets; 136 before ABI 7, 96 before ABI 6, 72 before ABI 5). The C array
     /// <c>double direction_vector[3]</c> is spelled as three doubles, which has the same
     /// layout and keeps the struct blittable.</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -87,9 +87,11 @@ namespace TilePattern
         public IntPtr guide_curve_sizes;
         public UIntPtr guide_count;
         public double guide_weight;
+        // Since ABI 7: split at the creases.
+        public int creases;
     }
 
-    /// <summary>Mirror of TpTileOptions (128 bytes; 88 before ABI 3); <c>double up[3]</c> is
+    /// <summary>Mirror of TpTileOptions (136 bytes; 128 before ABI 7, 88 before ABI 3); <c>double up[3]</c> is
     /// spelled as three doubles.</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct TpTileOptions
@@ -111,6 +113,8 @@ namespace TilePattern
         public double fit_overlap_tolerance;
         public double fit_bond_tolerance;
         public double units_per_mm;
+        // Since ABI 7: cut to the creases.
+        public int creases;
     }
 
     // Return buffers of the tp_*_options_default() functions. These return their struct by
@@ -142,7 +146,7 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 6;
+        internal const int TP_ABI_VERSION = 7;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const uint TP_STAGE_TILES = 3;

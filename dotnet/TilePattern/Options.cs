@@ -144,6 +144,7 @@ namespace TilePattern
             DirectionVector = new[] { d.direction_x, d.direction_y, d.direction_z };
             AngleDegrees = d.angle_degrees;
             ShapeUp = d.shapeup != 0;
+            Creases = d.creases != 0;
             TimeLimitSeconds = d.time_limit_seconds;
             FieldWeight = d.field_weight;
             GuideWeight = d.guide_weight;
@@ -177,6 +178,12 @@ namespace TilePattern
 
         /// <summary>Pull faces towards squares without leaving the surface.</summary>
         public bool ShapeUp { get; set; }
+
+        /// <summary>True (default): each sheet between the creases that part the surface (a
+        /// groin vault's webs, split where the faces turn sharply) gets quads of its own, their
+        /// field never aligned to the crease; false runs one field over the whole surface. Give
+        /// <see cref="TileOptions.Creases"/> the same.</summary>
+        public bool Creases { get; set; }
 
         /// <summary>Wall-clock limit of the stage in seconds (default 60): when it passes, the quad
         /// mesh as it stands is returned if one exists, otherwise a <see cref="SolverTimeLimitException"/>.</summary>
@@ -266,6 +273,7 @@ namespace TilePattern
             Xyz.Read(DirectionVector, "DirectionVector", ref o.direction_x, ref o.direction_y, ref o.direction_z);
             o.angle_degrees = AngleDegrees;
             o.shapeup = ShapeUp ? 1 : 0;
+            o.creases = Creases ? 1 : 0;
             o.time_limit_seconds = TimeLimitSeconds;
             o.field_weight = FieldWeight;
             o.guide_weight = GuideWeight;
@@ -421,6 +429,7 @@ namespace TilePattern
             OverlapTolerance = d.fit_overlap_tolerance;
             BondTolerance = d.fit_bond_tolerance;
             UnitsPerMm = d.units_per_mm;
+            Creases = d.creases != 0;
         }
 
         public double Length { get; set; }
@@ -471,6 +480,12 @@ namespace TilePattern
         /// (<see cref="TileDefaults.UnitsPerMm"/> gives it for a document's units).</summary>
         public double UnitsPerMm { get; set; }
 
+        /// <summary>True (default): tiles are cut to the creases that part the surface into
+        /// sheets, half a joint short on each side, and tiles and filler pieces stay on their own
+        /// sheet; false takes the surface as one sheet. Give <see cref="RemeshOptions.Creases"/>
+        /// the same.</summary>
+        public bool Creases { get; set; }
+
         /// <summary>The quad edge to remesh with: (length + joint) / 2, the paper's choice, for
         /// <see cref="Courses.Free"/>; for <see cref="Courses.Level"/> at least a course's height,
         /// width + joint, since no placement can change the quads' height across the courses (the
@@ -505,6 +520,7 @@ namespace TilePattern
             o.fit_overlap_tolerance = OverlapTolerance;
             o.fit_bond_tolerance = BondTolerance;
             o.units_per_mm = UnitsPerMm;
+            o.creases = Creases ? 1 : 0;
             return o;
         }
     }

@@ -47,7 +47,7 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 6
+ABI_VERSION = 7
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
@@ -414,6 +414,8 @@ class TpRemeshOptions(Structure):
         ("guide_curve_sizes", POINTER(c_uint32)),
         ("guide_count", c_size_t),
         ("guide_weight", c_double),
+        # Since ABI 7: split at the creases.
+        ("creases", c_int32),
     ]
 
 
@@ -436,6 +438,8 @@ class TpTileOptions(Structure):
         ("fit_overlap_tolerance", c_double),
         ("fit_bond_tolerance", c_double),
         ("units_per_mm", c_double),
+        # Since ABI 7: cut to the creases.
+        ("creases", c_int32),
     ]
 
 

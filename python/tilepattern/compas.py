@@ -108,7 +108,8 @@ def remesh(mesh, target_edge=0.145, **options):
         Quad edge in model units: ``(L + joint) / 2`` for tiles of length ``L``.
     **options
         ``direction``, ``angle``, ``shapeup``, ``time_limit``, ``progress``, ``field``,
-        ``field_weight``, ``guides``, ``guide_weight``: see :func:`tilepattern.remesh`.
+        ``field_weight``, ``guides``, ``guide_weight``, ``creases``: see
+        :func:`tilepattern.remesh`.
 
     Returns
     -------
@@ -281,8 +282,8 @@ def tiles(mesh, pattern, surface=None, **options):
     **options
         ``length``, ``width``, ``thickness``, ``joint``, ``cut_tolerance``,
         ``min_kept_width``, ``up``, ``support_band``, ``fit``, ``fit_time_limit``,
-        ``overlap_tolerance``, ``bond_tolerance``, ``units_per_mm``, ``progress``: see
-        :func:`tilepattern.tiles`.
+        ``overlap_tolerance``, ``bond_tolerance``, ``units_per_mm``, ``progress``,
+        ``creases``: see :func:`tilepattern.tiles`.
 
     Returns
     -------

@@ -213,6 +213,7 @@ def remesh(
     field_weight: float = 1.0,
     guides=None,
     guide_weight: float = 1.0,
+    creases: bool = True,
 ) -> Tuple[np.ndarray, np.ndarray]:
     """Quadrangulate a surface into near-square quads (stage 1).
 
@@ -257,6 +258,11 @@ def remesh(
     guide_weight : float, optional
         Share of ``guides`` on the curves against every other source (curvature,
         ``direction``, ``field``), from 0 to 1 (default 1: the guides alone on them).
+    creases : bool, optional
+        Give each sheet between the creases that part the surface (a groin vault's webs,
+        split where the faces turn sharply) quads of its own, their field never aligned to
+        the crease (default True); False runs one field over the whole surface. Pass the
+        same to :func:`tiles`.
 
     Returns
     -------
@@ -301,6 +307,7 @@ def remesh(
         options.direction = nat.TP_DIRECTION_ANGLE
         options.angle_degrees = float(angle)
     options.shapeup = 1 if shapeup else 0
+    options.creases = 1 if creases else 0
     options.time_limit_seconds = float(time_limit)
     keep = None
     if field is not None:
@@ -852,6 +859,7 @@ def tiles(
     bond_tolerance: Optional[float] = None,
     units_per_mm: float = 0.001,
     progress: Optional[Progress] = None,
+    creases: bool = True,
 ) -> Tiles:
     """Place a box per matched pair and a half tile per unpaired quad (stage 3).
 
@@ -907,6 +915,10 @@ def tiles(
         ``progress(stage, fraction)`` with ``stage == "tiles"`` and the share of the fit's
         step limit used; return True to cancel (:class:`~tilepattern.CancelledError`, no
         tiles). An exception raised in it cancels and is raised again by ``tiles``.
+    creases : bool, optional
+        Cut the tiles to the creases that part ``surface`` into sheets, half a joint short
+        on each side, and keep tiles and filler pieces on their own sheet (default True);
+        False takes the surface as one sheet. Pass the same as to :func:`remesh`.
 
     Returns
     -------
@@ -952,6 +964,7 @@ def tiles(
     options.fit_overlap_tolerance = _optional(overlap_tolerance)
     options.fit_bond_tolerance = _optional(bond_tolerance)
     options.units_per_mm = float(units_per_mm)
+    options.creases = 1 if creases else 0
     pattern_pointer = pattern.handle  # raises ValueError below if closed
     with mesh_handle(vertices, faces) as quads:
         if surface is None:

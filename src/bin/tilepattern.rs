@@ -40,6 +40,10 @@ struct Cli {
     /// a file (triangle soups, STL), or `off` to keep the file's vertices as they are.
     #[arg(long, global = true, value_parser = parse_weld, default_value = "1e-6")]
     weld: Weld,
+    /// Take the surface as one sheet: no split where its faces turn sharply (by default a
+    /// groin vault's webs get quads of their own and the tiles are cut to the groins).
+    #[arg(long, global = true)]
+    no_creases: bool,
 }
 
 #[derive(Subcommand)]
@@ -197,8 +201,13 @@ struct FieldArgs {
 
 impl FieldArgs {
     /// The remesh options for quads of edge `target_edge` on `surface` (the field file's
-    /// vectors are counted against its vertices and faces).
-    fn options(&self, target_edge: f64, surface: &PolyMesh) -> Result<RemeshOptions> {
+    /// vectors are counted against its vertices and faces), split at its creases or not.
+    fn options(
+        &self,
+        target_edge: f64,
+        surface: &PolyMesh,
+        creases: bool,
+    ) -> Result<RemeshOptions> {
         let direction = match (self.direction, self.angle) {
             (Some(v), _) => FieldDirection::Vector(v),
             (None, Some(a)) => FieldDirection::Angle(a),
@@ -221,6 +230,7 @@ impl FieldArgs {
             o.user_field = user_field;
             o.guides = guides;
             o.shapeup = self.shapeup;
+            o.creases = creases;
             o
         })
     }
@@ -357,6 +367,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<()> {
     let weld = cli.weld;
+    let creases = !cli.no_creases;
     let read_mesh = |path: &Path| read_mesh(path, weld);
     match cli.command {
         Command::Match {
@@ -422,7 +433,7 @@ fn run(cli: Cli) -> Result<()> {
             let (spec, units) = tile.spec(surface.as_ref().unwrap_or(&mesh))?;
             eprintln!("{}", units.why);
             let finish = pipeline::with_bond(
-                &tile.finish(&spec, units.unit),
+                &tile.finish(&spec, units.unit, creases),
                 pattern.bond(pattern::DEFAULT_WEIGHT),
             );
             let mut tiling =
@@ -463,7 +474,7 @@ fn run(cli: Cli) -> Result<()> {
             print_warnings(&reading_warnings(&loaded));
             let surface = loaded.mesh;
             let options = {
-                let mut o = field.options(edge, &surface)?;
+                let mut o = field.options(edge, &surface, creases)?;
                 o.time_limit = RemeshOptions::time_limit_from_secs(time_limit)?;
                 o
             };
@@ -496,12 +507,12 @@ fn run(cli: Cli) -> Result<()> {
                 .transpose()?;
             let (spec, units) = tile.spec(surface)?;
             eprintln!("{}", units.why);
-            let finish = tile.finish(&spec, units.unit);
+            let finish = tile.finish(&spec, units.unit, creases);
             // Zones per input face: the pipeline carries them over to the quads.
             let options = pattern.options(true, tile.up, zones.as_deref())?;
             let edge = spec.quad_edge(options.courses != Courses::Free);
             let remesh = {
-                let mut o = field.options(edge, surface)?;
+                let mut o = field.options(edge, surface, creases)?;
                 o.time_limit = RemeshOptions::time_limit_from_secs(remesh_time_limit)?;
                 o
             };
@@ -838,8 +849,8 @@ impl PatternArgs {
 }
 
 impl TileArgs {
-    /// The finishing options in model units.
-    fn finish(&self, spec: &TileSpec, units: Units) -> FinishOptions {
+    /// The finishing options in model units, cutting to the surface's creases or not.
+    fn finish(&self, spec: &TileSpec, units: Units, creases: bool) -> FinishOptions {
         let scale = units.per_mm();
         let auto = FinishOptions::for_spec(spec);
         let mut finish = auto;
@@ -862,6 +873,7 @@ impl TileArgs {
             fit
         });
         finish.units_per_mm = scale;
+        finish.creases = creases;
         finish
     }
 

@@ -45,7 +45,9 @@ use status::{Failure, TpStatus::*};
 /// `guide_curve_sizes`, `guide_count`, `guide_weight`) and `TpPatternOptions` grew (zones,
 /// a bond per face: `zones`, `zone_count`); callers built against ABI 4 or 5 keep working
 /// unchanged.
-pub const TP_ABI_VERSION: u32 = 6;
+/// 7: `TpRemeshOptions` and `TpTileOptions` grew (`creases`: split the surface at its creases,
+/// on by default); callers built against ABI 4 to 6 keep working unchanged (and get it on).
+pub const TP_ABI_VERSION: u32 = 7;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;

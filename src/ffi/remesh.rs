@@ -62,6 +62,10 @@ pub struct TpRemeshOptions {
     /// Share of the guides on the curves against every other source, 0 to 1 (falling off to
     /// nothing 2 target edges away); default 1.
     pub guide_weight: f64,
+    /// Non-zero (default): each sheet between the creases that part the surface (a groin
+    /// vault's webs) gets quads of its own, its field never aligned to the crease; zero runs
+    /// one field over the whole surface. Pair it with `TpTileOptions.creases`. Since ABI 7.
+    pub creases: i32,
 }
 
 /// The default remesh options.
@@ -83,6 +87,7 @@ pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
         guide_curve_sizes: std::ptr::null(),
         guide_count: 0,
         guide_weight: 1.0,
+        creases: 1,
     }
 }
 
@@ -152,6 +157,7 @@ pub unsafe extern "C" fn tp_remesh(
             user_field,
             guides,
             shapeup: raw.shapeup != 0,
+            creases: raw.creases != 0,
             time_limit,
             ..RemeshOptions::default()
         };

@@ -71,6 +71,11 @@ pub struct TpTileOptions {
     /// Model units per millimetre, for the report's figures in millimetres (the share of
     /// joints within 2 and 5 mm); default 0.001 (a model in metres). Since ABI 3.
     pub units_per_mm: f64,
+    /// Non-zero (default): the creases that part the surface into sheets (a groin vault's
+    /// groins) are cut to like a boundary, half a joint short on each side, and tiles and
+    /// filler pieces stay on their own sheet; zero takes the surface as one sheet. Pair it
+    /// with `TpRemeshOptions.creases`. Since ABI 7.
+    pub creases: i32,
 }
 
 impl TpTileOptions {
@@ -104,6 +109,7 @@ impl TpTileOptions {
             },
             fit,
             units_per_mm: self.units_per_mm,
+            creases: self.creases != 0,
         }
     }
 }
@@ -131,6 +137,7 @@ pub extern "C" fn tp_tile_options_default() -> TpTileOptions {
         fit_overlap_tolerance: -1.0,
         fit_bond_tolerance: -1.0,
         units_per_mm: 0.001,
+        creases: 1,
     }
 }
 

@@ -121,6 +121,10 @@ pub struct RemeshOptions {
     /// `Auto` aligns no loop when `user_field` or `guides` have a share
     /// ([`Self::effective_boundary`]).
     pub boundary: BoundaryAlignment,
+    /// Quadrangulate each sheet between the surface's creases on its own (a groin vault's
+    /// webs; `mesh::crease`), its field never aligned to the crease; default on. Off, one
+    /// field runs over the whole surface, creases or not.
+    pub creases: bool,
     /// Run the shape-up step that pulls faces towards squares of side `t`.
     pub shapeup: bool,
     /// Largest distance, as a fraction of `t`, that shape-up may move the surface away from
@@ -143,6 +147,7 @@ impl Default for RemeshOptions {
             user_field: None,
             guides: None,
             boundary: BoundaryAlignment::Auto,
+            creases: true,
             shapeup: false,
             shapeup_tolerance: 0.1,
             shapeup_iterations: 20,
@@ -357,7 +362,10 @@ pub fn remesh_with(
     let start = Instant::now();
     check_options(input, options)?;
     // Each sheet between creases gets quads of its own (`mesh::crease`).
-    let sheets = crease::split_at_creases(input);
+    let sheets = options
+        .creases
+        .then(|| crease::split_at_creases(input))
+        .flatten();
     let (input, user_field) = match &sheets {
         Some(sheets) => (
             &sheets.mesh,

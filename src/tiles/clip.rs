@@ -99,19 +99,20 @@ pub struct SurfaceBoundary {
 
 impl SurfaceBoundary {
     /// Collects the boundary edges of `surface` (outer edge and openings) in a grid of cells of
-    /// side `cell` (about a tile's size), the creases that part it into sheets among them
-    /// ([`Self::with_seam_gap`] with no gap).
+    /// side `cell` (about a tile's size): the surface as one sheet, creases or not.
     pub fn new(surface: &PolyMesh, cell: f64) -> Self {
-        Self::with_seam_gap(surface, cell, 0.0)
+        Self::build(surface, None, cell, 0.0)
     }
 
-    /// Collects the boundary edges of `surface` (outer edge and openings) in a grid of cells of
-    /// side `cell` (about a tile's size). The creases that part the surface into sheets
-    /// ([`crease::split_at_creases`]) are boundary edges too, of both sheets, each moved
+    /// [`Self::new`], with the creases that part the surface into sheets
+    /// ([`crease::split_at_creases`]) as boundary edges too, of both sheets, each moved
     /// `seam_gap` into its own sheet: half a joint, so that the tiles of two webs cut to
-    /// their groin leave a joint between them.
-    pub fn with_seam_gap(surface: &PolyMesh, cell: f64, seam_gap: f64) -> Self {
-        let sheets = crease::split_at_creases(surface);
+    /// their groin leave a joint between them. A tile is cut by the edges of its own sheet.
+    pub fn with_creases(surface: &PolyMesh, cell: f64, seam_gap: f64) -> Self {
+        Self::build(surface, crease::split_at_creases(surface), cell, seam_gap)
+    }
+
+    fn build(surface: &PolyMesh, sheets: Option<crease::Sheets>, cell: f64, seam_gap: f64) -> Self {
         let (surface, sheet, seam_moves) = match &sheets {
             Some(sheets) => (
                 &sheets.mesh,

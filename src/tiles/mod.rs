@@ -160,6 +160,11 @@ pub struct FinishOptions {
     /// Model units per millimetre, for figures stated in millimetres (the report's share of
     /// joints within 2 and 5 mm); 0.001 for a model in metres.
     pub units_per_mm: f64,
+    /// Cut the tiles to the creases that part the surface into sheets, half a joint short on
+    /// each side, place them on their own sheet and keep filler pieces to it
+    /// (`mesh::crease`; default on). Off, the surface is one sheet, as
+    /// [`crate::remesh::RemeshOptions::creases`] off leaves it.
+    pub creases: bool,
 }
 
 impl FinishOptions {
@@ -176,6 +181,7 @@ impl FinishOptions {
             },
             fit: Some(FitOptions::for_spec(spec)),
             units_per_mm: 0.001,
+            creases: true,
         }
     }
 
@@ -291,8 +297,12 @@ pub fn finish_with(
     keep_going: &mut dyn FnMut() -> bool,
 ) -> (Vec<Tile>, Finished) {
     let reference = surface.unwrap_or(quads);
-    let boundary =
-        SurfaceBoundary::with_seam_gap(reference, spec.length.max(spec.width), spec.joint / 2.0);
+    let cell = spec.length.max(spec.width);
+    let boundary = if options.creases {
+        SurfaceBoundary::with_creases(reference, cell, spec.joint / 2.0)
+    } else {
+        SurfaceBoundary::new(reference, cell)
+    };
     let half_blank = [spec.length / 2.0, spec.width, spec.thickness];
     let seeds = if options.fit.is_some() {
         fill::Seeds::Tiles { joint: spec.joint }

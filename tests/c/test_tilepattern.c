@@ -1098,6 +1098,104 @@ static void test_panic_boundary(void) {
 #endif
 }
 
+/* Creases (ABI 7): a plate folded along x = 0 (the two halves turn by 44 degrees) is split
+   there by default: no quad straddles the fold and tiles are cut to it; `creases` 0 runs one
+   field over it; a caller built against ABI 6 gets the split. */
+static size_t quads_over_the_fold(const TpMesh *quads) {
+  size_t nv, nf, ni;
+  CHECK(tp_mesh_counts(quads, &nv, &nf, &ni) == TP_OK);
+  double *v = (double *)malloc(3 * nv * sizeof(double));
+  uint32_t *idx = (uint32_t *)malloc(ni * sizeof(uint32_t)), *sz = (uint32_t *)malloc(nf * sizeof(uint32_t));
+  CHECK(tp_mesh_copy_vertices(quads, v, 3 * nv) == TP_OK);
+  CHECK(tp_mesh_copy_faces(quads, idx, ni, sz, nf) == TP_OK);
+  size_t over = 0, at = 0;
+  for (size_t f = 0; f < nf; f++) {
+    int left = 0, right = 0;
+    for (uint32_t k = 0; k < sz[f]; k++) {
+      double x = v[3 * idx[at + k]];
+      left |= x < -0.01;
+      right |= x > 0.01;
+    }
+    over += left && right;
+    at += sz[f];
+  }
+  free(v);
+  free(idx);
+  free(sz);
+  return over;
+}
+
+static size_t cut_tiles(const TpMesh *quads, const TpMesh *surface, const TpTileOptions *options) {
+  TpPatternOptions po;
+  CHECK(tp_pattern_options_init(&po, sizeof po) == TP_OK);
+  po.time_limit_seconds = 5.0;
+  TpPattern *pattern = NULL;
+  TpTiles *tiles = NULL;
+  size_t n = 0, cut = 0;
+  CHECK(tp_pattern_solve(quads, &po, NULL, NULL, &pattern) == TP_OK);
+  CHECK(tp_tiles_build_on_surface(quads, pattern, surface, options, &tiles) == TP_OK);
+  CHECK(tp_tiles_count(tiles, &n) == TP_OK);
+  int32_t *kinds = (int32_t *)malloc(n * sizeof(int32_t));
+  CHECK(tp_tiles_copy_kinds(tiles, kinds, n) == TP_OK);
+  for (size_t t = 0; t < n; t++) cut += kinds[t] == TP_TILE_BOUNDARY;
+  free(kinds);
+  tp_tiles_free(tiles);
+  tp_pattern_free(pattern);
+  return cut;
+}
+
+static void test_creases(void) {
+  const uint32_t nx = 24, ny = 12;
+  double *v;
+  uint32_t *idx, *sz;
+  size_t nv, nf;
+  grid(nx, ny, &v, &nv, &idx, &sz, &nf);
+  for (size_t k = 0; k < nv; k++) {
+    double x = 0.1 * (v[3 * k] - nx / 2.0);
+    v[3 * k] = x;
+    v[3 * k + 1] *= 0.1;
+    v[3 * k + 2] = 0.4 * fabs(x);
+  }
+  TpMesh *plate = NULL;
+  CHECK(tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &plate) == TP_OK);
+  free(v);
+  free(idx);
+  free(sz);
+
+  TpRemeshOptions ro;
+  CHECK(tp_remesh_options_init(&ro, sizeof ro) == TP_OK);
+  CHECK(ro.creases == 1);
+  TpMesh *split = NULL, *joined = NULL, *old = NULL;
+  CHECK(tp_remesh(plate, &ro, NULL, NULL, &split) == TP_OK);
+  ro.creases = 0;
+  CHECK(tp_remesh(plate, &ro, NULL, NULL, &joined) == TP_OK);
+  /* An ABI 6 caller: `creases` lies past its struct, the default (on) holds. */
+  ro.struct_size = (uint32_t)offsetof(TpRemeshOptions, creases);
+  CHECK(tp_remesh(plate, &ro, NULL, NULL, &old) == TP_OK);
+  size_t over_split = quads_over_the_fold(split), over_joined = quads_over_the_fold(joined);
+  printf("creases: quads over the fold %zu split, %zu joined, %zu for an ABI 6 caller\n", over_split,
+         over_joined, quads_over_the_fold(old));
+  CHECK(over_split == 0 && quads_over_the_fold(old) == 0);
+  CHECK(over_joined > 0);
+
+  TpTileOptions to;
+  CHECK(tp_tile_options_init(&to, sizeof to) == TP_OK);
+  CHECK(to.creases == 1);
+  to.fit_time_limit_seconds = 5.0;
+  size_t cut_split = cut_tiles(split, plate, &to);
+  to.creases = 0;
+  size_t cut_joined = cut_tiles(split, plate, &to);
+  to.struct_size = (uint32_t)offsetof(TpTileOptions, creases);
+  size_t cut_old = cut_tiles(split, plate, &to);
+  printf("creases: tiles cut %zu to the fold, %zu without it, %zu for an ABI 6 caller\n", cut_split, cut_joined,
+         cut_old);
+  CHECK(cut_split > cut_joined && cut_old == cut_split);
+  tp_mesh_free(split);
+  tp_mesh_free(joined);
+  tp_mesh_free(old);
+  tp_mesh_free(plate);
+}
+
 int main(void) {
   test_version();
   test_mesh();
@@ -1110,6 +1208,7 @@ int main(void) {
   test_gap();
   test_bonds();
   test_zones();
+  test_creases();
   test_panic_boundary();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;

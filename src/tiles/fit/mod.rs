@@ -31,7 +31,7 @@ use serde::Serialize;
 
 use crate::control::Control;
 use crate::geom::SurfaceIndex;
-use crate::mesh::{PolyMesh, Topology, crease};
+use crate::mesh::{PolyMesh, Topology};
 use crate::pattern::Bond;
 use crate::tiles::{Tile, TileError, TileSpec};
 
@@ -211,11 +211,7 @@ pub fn fit(
     }
     let topology = Topology::new(quads).expect("a PolyMesh is manifold by construction");
     let all = contacts::contacts(quads, &topology, &tiles);
-    // Tiles are placed on the sheet they lie on: across a crease the surface's normals would
-    // blend the two sheets' and tilt the tiles next to it.
-    let reference = surface.unwrap_or(quads);
-    let sheets = crease::split_at_creases(reference);
-    let index = SurfaceIndex::from_polymesh(sheets.as_ref().map_or(reference, |s| &s.mesh));
+    let index = SurfaceIndex::from_polymesh(surface.unwrap_or(quads));
     let (anchors, beyond_start): (Vec<_>, Vec<_>) = tiles
         .iter()
         .map(|t| solve::place(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z))
