@@ -3,16 +3,10 @@
 
 mod common;
 
-use std::time::Duration;
-
 use common::{json, s, scratch, tilepattern};
 
 use nalgebra::Point3;
-use tilepattern::control::Control;
-use tilepattern::mesh::{PolyMesh, obj};
-use tilepattern::pattern::{Courses, PatternOptions};
-use tilepattern::pipeline;
-use tilepattern::remesh::RemeshOptions;
+use tilepattern::mesh::{PolyMesh, generate, obj};
 use tilepattern::tiles::{FinishOptions, TileKind, TileSpec, outline};
 
 /// 280 x 140 x 15 mm tiles with a 10 mm joint, in metres.
@@ -39,29 +33,7 @@ fn height(groin: bool) -> impl Fn(f64, f64) -> f64 {
 /// [`height`] triangulated on a 48 x 48 grid whose cells split along the diagonals (as a
 /// designer's mesh of the joined barrels has its edges on them).
 fn crossed_barrels(groin: bool) -> PolyMesh {
-    let n = 48;
-    let at = |i: usize| -HALF + 2.0 * HALF * i as f64 / n as f64;
-    let z = height(groin);
-    let mut positions = Vec::new();
-    for i in 0..=n {
-        for j in 0..=n {
-            let (x, y) = (at(i), at(j));
-            positions.push(Point3::new(x, y, z(x, y)));
-        }
-    }
-    let id = |i: usize, j: usize| i * (n + 1) + j;
-    let mut faces = Vec::new();
-    for i in 0..n {
-        for j in 0..n {
-            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-            if (i + j) % 2 == 0 {
-                faces.extend([vec![a, b, c], vec![a, c, d]]);
-            } else {
-                faces.extend([vec![a, b, d], vec![b, c, d]]);
-            }
-        }
-    }
-    PolyMesh::new(positions, faces).unwrap()
+    generate::diagonal_grid(48, HALF, height(groin))
 }
 
 /// The web a plan point lies in: 0 and 1 the barrel along y (x > 0, x < 0), 2 and 3 the
@@ -88,28 +60,7 @@ fn a_cloister_vault_is_laid_in_level_courses_in_every_web_and_cut_to_its_valleys
 /// Each web of crossed barrels laid level, and cut to the creases between the webs.
 fn lays_every_web_level(groin: bool) {
     let surface = &crossed_barrels(groin);
-    let options = {
-        let mut o = PatternOptions::default();
-        o.time_limit = Duration::from_secs(5);
-        o.courses = Courses::Level {
-            up: [0.0, 0.0, 1.0],
-        };
-        o
-    };
-    let remesh = {
-        let mut o = RemeshOptions::default();
-        o.target_edge = SPEC.quad_edge(true);
-        o
-    };
-    let (remeshed, tiling) = pipeline::tile_surface(
-        surface,
-        &remesh,
-        &options,
-        &SPEC,
-        &FinishOptions::for_spec(&SPEC),
-        &mut Control::none(),
-    )
-    .unwrap();
+    let (remeshed, tiling) = common::run_level(surface, &SPEC, &FinishOptions::for_spec(&SPEC));
     assert_eq!(remeshed.metrics.crease_sheets, 4);
     // Level courses: a full tile's length runs along its web's barrel, level. (One field
     // over the whole vault turns at the groins, and half the webs' tiles climbed.)

@@ -66,29 +66,7 @@ fn pattern_p95(tiling: &Tiling) -> f64 {
 
 /// The whole pipeline in level courses, as `tilepattern run` lays tiles.
 fn tile(surface: &PolyMesh, finish: &FinishOptions) -> Tiling {
-    let options = {
-        let mut o = PatternOptions::default();
-        o.time_limit = Duration::from_secs(5);
-        o.courses = Courses::Level {
-            up: [0.0, 0.0, 1.0],
-        };
-        o
-    };
-    let remesh = {
-        let mut o = RemeshOptions::default();
-        o.target_edge = SPEC.quad_edge(true);
-        o
-    };
-    pipeline::tile_surface(
-        surface,
-        &remesh,
-        &options,
-        &SPEC,
-        finish,
-        &mut Control::none(),
-    )
-    .unwrap()
-    .1
+    common::run_level(surface, &SPEC, finish).1
 }
 
 #[test]

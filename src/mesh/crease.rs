@@ -420,32 +420,10 @@ fn cut_open(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::Point3;
 
-    /// `f` on an `n` x `n` grid of the square [-1, 1]^2, two triangles per cell with the
-    /// diagonals along both of the square's diagonals (as a groin vault's groins run).
+    /// `f` on an `n` x `n` grid of the square [-1, 1]^2, cells split along its diagonals.
     fn surface(n: usize, f: impl Fn(f64, f64) -> f64) -> PolyMesh {
-        let at = |i: usize| -1.0 + 2.0 * i as f64 / n as f64;
-        let mut positions = Vec::new();
-        for i in 0..=n {
-            for j in 0..=n {
-                positions.push(Point3::new(at(i), at(j), f(at(i), at(j))));
-            }
-        }
-        let id = |i: usize, j: usize| i * (n + 1) + j;
-        let mut faces = Vec::new();
-        for i in 0..n {
-            for j in 0..n {
-                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-                // Cells on the main diagonal's side split along it, the others along the other.
-                if (i + j) % 2 == 0 {
-                    faces.extend([vec![a, b, c], vec![a, c, d]]);
-                } else {
-                    faces.extend([vec![a, b, d], vec![b, c, d]]);
-                }
-            }
-        }
-        PolyMesh::new(positions, faces).unwrap()
+        super::super::generate::diagonal_grid(n, 1.0, f)
     }
 
     /// Two semicircular barrels of radius 1.2 crossing over the square.

@@ -4,6 +4,38 @@ use nalgebra::Point3;
 
 use super::PolyMesh;
 
+/// The height field `z = height(x, y)` over the square `[-half, half]^2`, in `n` x `n` cells
+/// of two triangles each, the cells split along whichever of the square's diagonals runs
+/// through them (alternating): a groin or cloister vault's creases, or a fold along a
+/// diagonal, then lie on mesh edges, as in a designer's mesh of joined patches.
+///
+/// # Panics
+/// If `n` is zero.
+pub fn diagonal_grid(n: usize, half: f64, height: impl Fn(f64, f64) -> f64) -> PolyMesh {
+    assert!(n > 0, "a grid needs at least one cell");
+    let at = |i: usize| -half + 2.0 * half * i as f64 / n as f64;
+    let mut positions = Vec::with_capacity((n + 1) * (n + 1));
+    for i in 0..=n {
+        for j in 0..=n {
+            let (x, y) = (at(i), at(j));
+            positions.push(Point3::new(x, y, height(x, y)));
+        }
+    }
+    let id = |i: usize, j: usize| i * (n + 1) + j;
+    let mut faces = Vec::with_capacity(2 * n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if (i + j) % 2 == 0 {
+                faces.extend([vec![a, b, c], vec![a, c, d]]);
+            } else {
+                faces.extend([vec![a, b, d], vec![b, c, d]]);
+            }
+        }
+    }
+    PolyMesh::new(positions, faces).expect("a grid is a valid mesh")
+}
+
 /// A flat `nx` x `ny` grid of unit-spaced square quads in the xy plane.
 ///
 /// Face `i + nx * j` is the square `[i, i+1] x [j, j+1]`; vertex `i + (nx + 1) * j` sits at

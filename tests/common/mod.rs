@@ -289,3 +289,36 @@ pub fn plate_obj(n: usize) -> String {
     }
     text
 }
+
+/// The whole pipeline in level courses, as `tilepattern run` lays tiles: quads a course
+/// high, a pattern stage of at most 5 s.
+pub fn run_level(
+    surface: &PolyMesh,
+    spec: &tilepattern::tiles::TileSpec,
+    finish: &tilepattern::tiles::FinishOptions,
+) -> (tilepattern::remesh::Remeshed, tilepattern::pipeline::Tiling) {
+    use tilepattern::pattern::{Courses, PatternOptions};
+    use tilepattern::remesh::RemeshOptions;
+    let options = {
+        let mut o = PatternOptions::default();
+        o.time_limit = std::time::Duration::from_secs(5);
+        o.courses = Courses::Level {
+            up: [0.0, 0.0, 1.0],
+        };
+        o
+    };
+    let remesh = {
+        let mut o = RemeshOptions::default();
+        o.target_edge = spec.quad_edge(true);
+        o
+    };
+    tilepattern::pipeline::tile_surface(
+        surface,
+        &remesh,
+        &options,
+        spec,
+        finish,
+        &mut tilepattern::control::Control::none(),
+    )
+    .unwrap()
+}
