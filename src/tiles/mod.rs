@@ -478,7 +478,7 @@ pub fn finish_with(
         .enumerate()
         .filter_map(|(i, p)| Some([kept_index[i]?, kept_index[(*p)?]?]))
         .collect();
-    links.extend(filler_neighbours(&kept));
+    links.extend(loose_neighbours(quads, &kept));
     let fillers = kept_index[fillers_from..].iter().flatten().count() + tears.pieces;
     let cut_list = cutlist::cut_list(&mut kept, options.tolerance);
     let sequence = sequence::laying_order(quads, &mut kept, &links, &options.sequence);
@@ -620,10 +620,12 @@ pub fn build(mesh: &PolyMesh, pattern: &Pattern, spec: &TileSpec) -> Result<Vec<
     Ok(tiles)
 }
 
-/// Pairs of tiles, at least one of them a filler piece (no faces, so no mesh adjacency),
+/// Pairs of tiles the quad mesh does not join but that rest against each other: at least one
+/// of them a filler piece (no faces), or the two on different pieces of the quad mesh (the
+/// sheets of a surface cut open at its creases, whose webs lean on each other along a groin),
 /// whose centres are no further apart than their blanks' half lengths and widths plus a
-/// margin: the pieces a filler rests against.
-fn filler_neighbours(tiles: &[Tile]) -> Vec<[usize; 2]> {
+/// margin.
+fn loose_neighbours(quads: &PolyMesh, tiles: &[Tile]) -> Vec<[usize; 2]> {
     let reach = tiles
         .iter()
         .map(|t| t.size[0].max(t.size[1]))
@@ -632,14 +634,28 @@ fn filler_neighbours(tiles: &[Tile]) -> Vec<[usize; 2]> {
     if reach <= 0.0 {
         return Vec::new();
     }
+    let (piece_of_face, pieces) = Topology::new(quads)
+        .expect("a PolyMesh is manifold by construction")
+        .face_pieces();
+    let piece = |t: &Tile| t.faces.first().map(|&f| piece_of_face[f]);
     let grid = crate::geom::HashGrid::of_points(reach, tiles.iter().map(|t| [t.frame.origin]));
     let mut links = Vec::new();
-    for (i, t) in tiles.iter().enumerate().filter(|(_, t)| t.faces.is_empty()) {
+    for (i, t) in tiles.iter().enumerate() {
+        let own = piece(t);
+        if own.is_some() && pieces < 2 {
+            continue;
+        }
         for j in grid.near(&t.frame.origin, reach) {
             let u = &tiles[j];
+            let loose = match (own, piece(u)) {
+                // A filler and a tile on quads: once, from the filler.
+                (None, Some(_)) => true,
+                (None, None) | (Some(_), Some(_)) => j > i,
+                (Some(_), None) => false,
+            } && (own.is_none() || piece(u).is_some_and(|p| Some(p) != own));
             let close =
                 (u.frame.origin - t.frame.origin).norm() <= (t.size[0] + u.size[0]) / 2.0 * 1.25;
-            if j != i && close && (!u.faces.is_empty() || j > i) {
+            if j != i && close && loose {
                 links.push([i, j]);
             }
         }
@@ -725,4 +741,46 @@ pub fn to_obj(tiles: &[Tile]) -> String {
         next += piece.positions.len();
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{Point3, Vector3};
+
+    use super::*;
+    use crate::mesh::generate;
+
+    /// A full tile of 1.9 x 0.9 on faces `faces`, centred at (x, 0.5).
+    fn tile_at(faces: Vec<usize>, x: f64) -> Tile {
+        let frame = Frame {
+            origin: Point3::new(x, 0.5, 0.0),
+            x: Vector3::x(),
+            y: Vector3::y(),
+            z: Vector3::z(),
+        };
+        Tile::new(TileKind::Full, faces, frame, [1.9, 0.9, 0.1])
+    }
+
+    #[test]
+    fn tiles_of_two_sheets_side_by_side_rest_on_each_other() {
+        // Two rows of two unit quads a centimetre apart: the sheets of a surface cut open at
+        // a crease, which no mesh edge joins.
+        let row = |x0: f64| {
+            (0..3).flat_map(move |i| [0.0, 1.0].map(|y| Point3::new(x0 + f64::from(i), y, 0.0)))
+        };
+        let positions: Vec<_> = row(0.0).chain(row(2.01)).collect();
+        let quad =
+            |o: usize, i: usize| vec![o + 2 * i, o + 2 * i + 2, o + 2 * i + 3, o + 2 * i + 1];
+        let sheets = PolyMesh::new(
+            positions,
+            vec![quad(0, 0), quad(0, 1), quad(6, 0), quad(6, 1)],
+        )
+        .unwrap();
+        let tiles = [tile_at(vec![0, 1], 1.0), tile_at(vec![2, 3], 3.01)];
+        assert_eq!(loose_neighbours(&sheets, &tiles), vec![[0, 1]]);
+        // On one sheet the shared mesh edge joins them; nothing loose.
+        let joined = generate::grid(4, 1);
+        let tiles = [tile_at(vec![0, 1], 1.0), tile_at(vec![2, 3], 3.0)];
+        assert!(loose_neighbours(&joined, &tiles).is_empty());
+    }
 }
