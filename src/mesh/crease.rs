@@ -14,12 +14,11 @@
 //! run on from it): a sharp line on a smooth surface, not the even facets of a coarse mesh
 //! of a smooth one (a barrel of eight facets turns by 22.5 degrees at every edge and is no
 //! crease), nor the growing turn of a mesh sampled evenly in plan towards a barrel's
-//! springing. A crease that fades out (a groin
-//! flattens towards the crown) is carried on in the direction it ran to where it meets
-//! another crease or the boundary, when that is near ([`EXTEND_SHARE`] of its length): the
-//! four groins of a groin vault meet at its crown. Creases that do not part the surface (a
-//! fold dying out in the middle) and sheets smaller than [`MIN_SHEET_SHARE`] of the area are
-//! left joined.
+//! springing. A crease that fades out (a groin flattens towards the crown) is carried on in
+//! the direction it ran to where it meets another crease or the boundary, when that is near
+//! ([`EXTEND_SHARE`] of its length): the four groins of a groin vault meet at its crown.
+//! Creases that do not part the surface (a fold dying out in the middle) and sheets smaller
+//! than [`MIN_SHEET_SHARE`] of the area are left joined.
 
 use super::{PolyMesh, Topology};
 use nalgebra::Vector3;
@@ -27,7 +26,8 @@ use nalgebra::Vector3;
 /// Least turn between two faces, in degrees, for their edge to be a crease.
 pub const CREASE_DEGREES: f64 = 12.0;
 
-/// A crease turns by at least this many times the turn across the faces' other edges.
+/// A crease turns by at least this many times the turn across the other edges of the faces
+/// around its ends.
 const CREASE_RATIO: f64 = 2.0;
 
 /// A fading crease is carried on over at most this share of its own length.
