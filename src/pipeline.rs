@@ -286,10 +286,12 @@ pub fn tiles_for_pattern_with(
             );
             let fit_started = Instant::now();
             // Tiles are placed on the sheet they lie on: across a crease the surface's normals
-            // would blend the two sheets' and tilt the tiles next to it.
-            let sheets = surface
-                .filter(|_| finish.creases)
-                .and_then(crate::mesh::crease::split_at_creases);
+            // would blend the two sheets' and tilt the tiles next to it. Without a surface the
+            // quads are the surface, as the tile boundary takes them.
+            let sheets = finish
+                .creases
+                .then(|| crate::mesh::crease::split_at_creases(surface.unwrap_or(quads)))
+                .flatten();
             let on = sheets.as_ref().map(|s| &s.mesh).or(surface);
             let (moved, summary) = tiles::fit::fit(quads, on, boxes, spec, options, control)?;
             (

@@ -180,3 +180,46 @@ fn the_command_line_splits_at_creases_unless_told_not_to() {
     assert_eq!(joined["remesh"]["crease_sheets"], 0);
     assert!(!said.contains("split at its creases"), "{said}");
 }
+
+#[test]
+fn quads_given_without_a_surface_are_cut_at_their_own_creases() {
+    // A plate folded along x = 0 in 16 x 8 quads of half a tile: no remesh, no surface; the
+    // quads are the surface. Pairs across the fold become tiles cut to it, and every whole
+    // tile lies on one of the two planes.
+    let e = SPEC.quad_edge(false);
+    let mut positions = Vec::new();
+    for j in 0..=8 {
+        for i in 0..=16 {
+            let x = e * (f64::from(i) - 8.0);
+            positions.push(Point3::new(x, e * f64::from(j), 0.4 * x.abs()));
+        }
+    }
+    let faces = (0..8)
+        .flat_map(|j| (0..16).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            let a = j * 17 + i;
+            vec![a, a + 1, a + 18, a + 17]
+        })
+        .collect();
+    let quads = PolyMesh::new(positions, faces).unwrap();
+    let tiling = tilepattern::pipeline::tile_quad_mesh(
+        &quads,
+        None,
+        &tilepattern::pattern::PatternOptions::default(),
+        &SPEC,
+        &FinishOptions::for_spec(&SPEC),
+        &mut tilepattern::control::Control::none(),
+    )
+    .unwrap();
+    let plane_gap = |p: &Point3<f64>| (p.z - 0.4 * p.x.abs()).abs() / 0.4_f64.hypot(1.0);
+    for tile in tiling.tiles.iter().filter(|t| t.cut.is_none()) {
+        let outline = outline::world_outline(tile);
+        let side = outline[0].x.signum();
+        assert!(
+            outline
+                .iter()
+                .all(|p| p.x.signum() == side && plane_gap(p) < 1e-3),
+            "a whole tile over the fold: {outline:?}"
+        );
+    }
+}
