@@ -207,9 +207,9 @@ fn sharp_edges(mesh: &PolyMesh, topology: &Topology) -> Vec<bool> {
 }
 
 /// Carries every crease that ends inside the surface on in the direction it ran in, over
-/// edges within 35 degrees of it, to the first vertex on another crease or on the boundary;
-/// when that is farther than [`EXTEND_SHARE`] of the crease's length, the crease is left as
-/// it was. Ends are taken in vertex order, so a carried-on crease is a crease for the next.
+/// edges within 35 degrees of it in the tangent plane, to the first vertex on another crease
+/// or on the boundary; when that is farther than [`EXTEND_SHARE`] of the crease's length,
+/// the crease is left as it was. Ends are taken in vertex order, so a carried-on crease is a crease for the next.
 fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
     let p = mesh.positions();
     let edges = topology.edges();
@@ -224,6 +224,23 @@ fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
     let other = |e: usize, v: usize| {
         let [a, b] = edges[e].vertices;
         if a == v { b } else { a }
+    };
+    let face_normal = normals(mesh);
+    // The area-weighted mean of the normals of the faces around `v`.
+    let vertex_normal = |v: usize| {
+        let mut faces: Vec<usize> = topology
+            .vertex_edges(v)
+            .iter()
+            .flat_map(|&e| edges[e].faces.iter().copied())
+            .collect();
+        faces.sort_unstable();
+        faces.dedup();
+        faces
+            .iter()
+            .map(|&f| face_normal[f] * mesh.face_area_vector(f).norm())
+            .sum::<Vector3<f64>>()
+            .try_normalize(0.0)
+            .unwrap_or_else(Vector3::zeros)
     };
     for end in 0..p.len() {
         let arriving = creased(crease, end);
@@ -245,6 +262,14 @@ fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
         };
         let (mut at, mut walked, mut path) = (end, 0.0, Vec::new());
         let reached = loop {
+            // Angles in the surface's tangent plane at `at`: over a ridge or an apex (a hip
+            // roof's creases meet at its top) the crease runs on straight in plan while it
+            // turns from rising to falling.
+            let normal = vertex_normal(at);
+            let flat = |d: Vector3<f64>| (d - normal * d.dot(&normal)).try_normalize(0.0);
+            let Some(ahead) = flat(dir) else {
+                break false;
+            };
             let step = topology
                 .vertex_edges(at)
                 .iter()
@@ -253,7 +278,7 @@ fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
                 .filter_map(|e| {
                     let to = other(e, at);
                     let along = p[to] - p[at];
-                    let cos = along.dot(&dir) / along.norm();
+                    let cos = flat(along)?.dot(&ahead);
                     (cos >= EXTEND_COS).then_some((cos, e, to, along.norm()))
                 })
                 .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)));
@@ -474,6 +499,16 @@ mod tests {
             sheets.mesh.positions().len() - mesh.positions().len(),
             3 + 2 * 22 + 4
         );
+    }
+
+    #[test]
+    fn a_hip_roof_parts_into_its_four_planes_over_its_apex() {
+        // The four hips meet at the apex, where each turns from rising to falling; the edges
+        // at the apex turn no more than the other hips' there and are carried on over it.
+        let mesh = surface(16, |x, y| 0.8 * (1.0 - x.abs().max(y.abs())));
+        let sheets = split_at_creases(&mesh).expect("the hips");
+        assert_eq!(sheets.count, 4);
+        assert_eq!(sheets.seams.len(), 2 * 2 * 16);
     }
 
     #[test]
