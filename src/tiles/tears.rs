@@ -191,7 +191,10 @@ impl Tears<'_> {
             } else {
                 q
             };
-            let centre = self.boundary.closest(&centre, self.blank[1]).unwrap_or(q);
+            let centre = self
+                .boundary
+                .closest_on(&centre, self.blank[1], sheet)
+                .unwrap_or(q);
             let from = tiles[nearest].frame;
             // The candidate keeping most area, the first of equals; a whole piece keeps all
             // a piece can, so the candidates after it are not cut.
@@ -201,6 +204,11 @@ impl Tears<'_> {
                 .map(|along| Frame::from_normal(centre, up, along))
                 .chain(self.course_cells(&from, &q, &up))
             {
+                // A piece lies on the sample's sheet: a course continued over a crease would
+                // lay it across, turned as the other sheet.
+                if self.boundary.sheet_at(&frame.origin, self.blank[1]) != Some(sheet) {
+                    continue;
+                }
                 let near = placed.near(&frame.origin, touching);
                 let Some((piece, at_edge)) = self.piece(frame, tiles, &outlines, &near, &q) else {
                     continue;
