@@ -228,14 +228,7 @@ fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
     let face_normal = normals(mesh);
     // The area-weighted mean of the normals of the faces around `v`.
     let vertex_normal = |v: usize| {
-        let mut faces: Vec<usize> = topology
-            .vertex_edges(v)
-            .iter()
-            .flat_map(|&e| edges[e].faces.iter().copied())
-            .collect();
-        faces.sort_unstable();
-        faces.dedup();
-        faces
+        faces_around(topology, v)
             .iter()
             .map(|&f| face_normal[f] * mesh.face_area_vector(f).norm())
             .sum::<Vector3<f64>>()
@@ -301,6 +294,18 @@ fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
             }
         }
     }
+}
+
+/// The faces around vertex `v`, in index order.
+fn faces_around(topology: &Topology, v: usize) -> Vec<usize> {
+    let mut faces: Vec<usize> = topology
+        .vertex_edges(v)
+        .iter()
+        .flat_map(|&e| topology.edges()[e].faces.iter().copied())
+        .collect();
+    faces.sort_unstable();
+    faces.dedup();
+    faces
 }
 
 /// Length of the creases joined to vertex `v`.
@@ -373,13 +378,7 @@ fn cut_open(
             continue;
         }
         // The faces around v, joined across its edges that are not creases.
-        let mut around: Vec<usize> = topology
-            .vertex_edges(v)
-            .iter()
-            .flat_map(|&e| edges[e].faces.iter().copied())
-            .collect();
-        around.sort_unstable();
-        around.dedup();
+        let around = faces_around(topology, v);
         let mut wedge: Vec<usize> = (0..around.len()).collect();
         let find = |wedge: &mut Vec<usize>, mut i: usize| {
             while wedge[i] != i {
