@@ -60,15 +60,16 @@ pub struct Sheets {
 /// Cuts `mesh` open along the creases that part it into sheets; `None` when none does.
 pub fn split_at_creases(mesh: &PolyMesh) -> Option<Sheets> {
     // Most surfaces turn gently everywhere: they are told apart without building the edges.
-    if !turns_sharply(mesh) {
+    let normal = normals(mesh);
+    if !turns_sharply(mesh, &normal) {
         return None;
     }
     let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
-    let mut crease = sharp_edges(mesh, &topology);
+    let mut crease = sharp_edges(mesh, &topology, &normal);
     if !crease.iter().any(|&c| c) {
         return None;
     }
-    carry_on(mesh, &topology, &mut crease);
+    carry_on(mesh, &topology, &normal, &mut crease);
     let (_, pieces) = topology.face_pieces();
     let total_area = mesh.area();
     // Creases that part nothing, and sheets too small to lay on their own, are joined again
@@ -103,8 +104,7 @@ pub fn split_at_creases(mesh: &PolyMesh) -> Option<Sheets> {
 /// Whether two faces sharing an edge turn by [`CREASE_DEGREES`] or more: the faces around
 /// each vertex in one array (no hashing), each face's neighbour across an edge found among
 /// the faces of the edge's first vertex.
-fn turns_sharply(mesh: &PolyMesh) -> bool {
-    let n = normals(mesh);
+fn turns_sharply(mesh: &PolyMesh, n: &[Vector3<f64>]) -> bool {
     let faces = mesh.faces();
     let mut start = vec![0usize; mesh.positions().len() + 1];
     for face in faces {
@@ -151,10 +151,9 @@ fn normals(mesh: &PolyMesh) -> Vec<Vector3<f64>> {
         .collect()
 }
 
-/// The turn in degrees between the faces of every interior edge (0 on the boundary and
-/// next to a face without area).
-fn turns(mesh: &PolyMesh, topology: &Topology) -> Vec<f64> {
-    let n = normals(mesh);
+/// The turn in degrees between the faces (unit normals `n`) of every interior edge (0 on the
+/// boundary and next to a face without area).
+fn turns(topology: &Topology, n: &[Vector3<f64>]) -> Vec<f64> {
     topology
         .edges()
         .iter()
@@ -170,8 +169,8 @@ fn turns(mesh: &PolyMesh, topology: &Topology) -> Vec<f64> {
 /// Edges that turn by at least [`CREASE_DEGREES`] and [`CREASE_RATIO`] times any other edge
 /// of the faces around their ends, but those that run on from them (within 35 degrees): on a
 /// smooth surface the turn grows from edge to edge, at a crease it jumps.
-fn sharp_edges(mesh: &PolyMesh, topology: &Topology) -> Vec<bool> {
-    let turn = turns(mesh, topology);
+fn sharp_edges(mesh: &PolyMesh, topology: &Topology, normal: &[Vector3<f64>]) -> Vec<bool> {
+    let turn = turns(topology, normal);
     let p = mesh.positions();
     let edges = topology.edges();
     let direction = |e: usize| {
@@ -209,8 +208,14 @@ fn sharp_edges(mesh: &PolyMesh, topology: &Topology) -> Vec<bool> {
 /// Carries every crease that ends inside the surface on in the direction it ran in, over
 /// edges within 35 degrees of it in the tangent plane, to the first vertex on another crease
 /// or on the boundary; when that is farther than [`EXTEND_SHARE`] of the crease's length,
-/// the crease is left as it was. Ends are taken in vertex order, so a carried-on crease is a crease for the next.
-fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
+/// the crease is left as it was. Ends are taken in vertex order, so a carried-on crease is a
+/// crease for the next (its length stays the one found before any was carried on).
+fn carry_on(
+    mesh: &PolyMesh,
+    topology: &Topology,
+    face_normal: &[Vector3<f64>],
+    crease: &mut [bool],
+) {
     let p = mesh.positions();
     let edges = topology.edges();
     let creased = |crease: &[bool], v: usize| -> Vec<usize> {
@@ -225,7 +230,7 @@ fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
         let [a, b] = edges[e].vertices;
         if a == v { b } else { a }
     };
-    let face_normal = normals(mesh);
+    let length_at = crease_lengths(mesh, topology, crease);
     // The area-weighted mean of the normals of the faces around `v`.
     let vertex_normal = |v: usize| {
         faces_around(topology, v)
@@ -236,12 +241,18 @@ fn carry_on(mesh: &PolyMesh, topology: &Topology, crease: &mut [bool]) {
             .unwrap_or_else(Vector3::zeros)
     };
     for end in 0..p.len() {
-        let arriving = creased(crease, end);
-        if arriving.len() != 1 || topology.is_boundary_vertex(end) {
+        let ending = topology
+            .vertex_edges(end)
+            .iter()
+            .filter(|&&e| crease[e])
+            .count()
+            == 1;
+        if !ending || topology.is_boundary_vertex(end) {
             continue;
         }
         // The crease's length, and its direction over its last three edges.
-        let length = crease_length(topology, crease, end, mesh);
+        let length = length_at[end];
+        let arriving = creased(crease, end);
         let (mut back, mut from) = (end, arriving[0]);
         for _ in 0..3 {
             back = other(from, back);
@@ -308,28 +319,39 @@ fn faces_around(topology: &Topology, v: usize) -> Vec<usize> {
     faces
 }
 
-/// Length of the creases joined to vertex `v`.
-fn crease_length(topology: &Topology, crease: &[bool], v: usize, mesh: &PolyMesh) -> f64 {
+/// For every vertex, the length of the creases joined to it (0 off the creases): the crease
+/// edges' lengths summed over their connected pieces, once for all.
+fn crease_lengths(mesh: &PolyMesh, topology: &Topology, crease: &[bool]) -> Vec<f64> {
     let p = mesh.positions();
-    let mut seen = vec![false; topology.edges().len()];
-    let mut stack = vec![v];
-    let mut visited = std::collections::HashSet::from([v]);
-    let mut length = 0.0;
-    while let Some(at) = stack.pop() {
-        for &e in topology.vertex_edges(at) {
-            if !crease[e] || seen[e] {
-                continue;
-            }
-            seen[e] = true;
-            let [a, b] = topology.edges()[e].vertices;
-            length += (p[a] - p[b]).norm();
-            let to = if a == at { b } else { a };
-            if visited.insert(to) {
-                stack.push(to);
-            }
+    let mut root: Vec<usize> = (0..p.len()).collect();
+    fn find(root: &mut [usize], mut v: usize) -> usize {
+        while root[v] != v {
+            root[v] = root[root[v]];
+            v = root[v];
         }
+        v
     }
-    length
+    let creases = topology
+        .edges()
+        .iter()
+        .enumerate()
+        .filter(|&(e, _)| crease[e]);
+    for (_, edge) in creases.clone() {
+        let [a, b] = edge.vertices.map(|v| find(&mut root, v));
+        root[a.max(b)] = a.min(b);
+    }
+    let mut length = vec![0.0; p.len()];
+    for (_, edge) in creases {
+        let [a, b] = edge.vertices;
+        let r = find(&mut root, a);
+        length[r] += (p[a] - p[b]).norm();
+    }
+    (0..p.len())
+        .map(|v| {
+            let on = topology.vertex_edges(v).iter().any(|&e| crease[e]);
+            if on { length[find(&mut root, v)] } else { 0.0 }
+        })
+        .collect()
 }
 
 /// Faces joined across edges that are not creases: each face's sheet and their number.

@@ -113,22 +113,15 @@ impl SurfaceBoundary {
     }
 
     fn build(surface: &PolyMesh, sheets: Option<crease::Sheets>, cell: f64, seam_gap: f64) -> Self {
-        let (surface, sheet, seam_moves) = match &sheets {
-            Some(sheets) => (
-                &sheets.mesh,
-                sheets.sheet.clone(),
-                seam_moves(&sheets.mesh, &sheets.seams, seam_gap),
-            ),
-            None => (
-                surface,
-                Topology::new(surface)
-                    .expect("a PolyMesh is manifold by construction")
-                    .face_pieces()
-                    .0,
-                HashMap::new(),
-            ),
-        };
+        let surface = sheets.as_ref().map_or(surface, |s| &s.mesh);
         let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
+        let (sheet, seam_moves) = match &sheets {
+            Some(sheets) => (
+                sheets.sheet.clone(),
+                seam_moves(surface, &topology, &sheets.seams, seam_gap),
+            ),
+            None => (topology.face_pieces().0, HashMap::new()),
+        };
         let at =
             |v: usize| surface.positions()[v] + seam_moves.get(&v).copied().unwrap_or_default();
         let mut segments = Vec::new();
@@ -395,9 +388,13 @@ impl SurfaceBoundary {
 /// How far each vertex on a seam moves into its own sheet so that the seam's edges lie `gap`
 /// inside it: along the mean of its seam edges' inward normals (on their faces), by `gap`
 /// over the cosine of half the seam's turn there.
-fn seam_moves(mesh: &PolyMesh, seams: &[[usize; 2]], gap: f64) -> HashMap<usize, Vector3<f64>> {
+fn seam_moves(
+    mesh: &PolyMesh,
+    topology: &Topology,
+    seams: &[[usize; 2]],
+    gap: f64,
+) -> HashMap<usize, Vector3<f64>> {
     let p = mesh.positions();
-    let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
     let mut inward: HashMap<usize, Vec<Vector3<f64>>> = HashMap::new();
     for &[a, b] in seams {
         // The face left of a -> b (its own orientation), whose normal turns the edge inward.

@@ -650,9 +650,10 @@ fn loose_neighbours(quads: &PolyMesh, tiles: &[Tile]) -> Vec<[usize; 2]> {
             let loose = match (own, piece(u)) {
                 // A filler and a tile on quads: once, from the filler.
                 (None, Some(_)) => true,
-                (None, None) | (Some(_), Some(_)) => j > i,
+                (None, None) => j > i,
+                (Some(a), Some(b)) => a != b && j > i,
                 (Some(_), None) => false,
-            } && (own.is_none() || piece(u).is_some_and(|p| Some(p) != own));
+            };
             let close =
                 (u.frame.origin - t.frame.origin).norm() <= (t.size[0] + u.size[0]) / 2.0 * 1.25;
             if j != i && close && loose {
