@@ -26,10 +26,11 @@
 //! to `f` (1 on a curve, 0 at its reach), with share `s_g`, the curve's tangent gets
 //! `g = W s_g f q_i` and every other term keeps `1 - s_g f` of its weight.
 
-use nalgebra::{Matrix5, Vector3, Vector5};
+use nalgebra::{Matrix2, Matrix5, Vector3, Vector5};
 
 use super::budget::Budget;
 use super::linalg::conjugate_gradient;
+use super::multigrid::{BlockMatrix, Multigrid};
 use super::surface::{Surface, any_tangent, in_tangent_plane};
 use super::user_field::Samples;
 use super::{FieldDirection, RemeshOptions};
@@ -494,12 +495,14 @@ pub(crate) fn solve(
         shift: 0.0,
         scatter: &scatter,
     };
+    let cycle = linear.multigrid();
     conjugate_gradient(
         |x: &[f64], out: &mut [f64]| linear.apply(x, out),
         &rhs,
         &mut x,
         4000,
         1e-9,
+        Some(&|r: &[f64], z: &mut [f64]| cycle.precondition(r, z)),
         &mut |k| budget.poll(0.5 * k as f64 / 4000.0),
     );
     // Ginzburg-Landau style renormalisation (Viertel and Osting 2019): the linear solve lets
@@ -508,6 +511,7 @@ pub(crate) fn solve(
     // into separate +1/4 cones placed where they cost least.
     let shift = GL_SHIFT;
     let relaxed = Operator { shift, ..linear };
+    let cycle = relaxed.multigrid();
     for round in 0..GL_STEPS {
         if !budget.poll(0.5 + 0.5 * round as f64 / GL_STEPS as f64) {
             break;
@@ -526,6 +530,7 @@ pub(crate) fn solve(
             &mut x,
             200,
             1e-6,
+            Some(&|r: &[f64], z: &mut [f64]| cycle.precondition(r, z)),
             &mut |_| budget.poll(0.5 + 0.5 * round as f64 / GL_STEPS as f64),
         );
     }
@@ -610,6 +615,21 @@ struct Operator<'a> {
 }
 
 impl Operator<'_> {
+    /// The multigrid cycle that preconditions this operator's solves.
+    fn multigrid(&self) -> Multigrid {
+        let matrix = BlockMatrix::connection(
+            self.s.len(),
+            &self.s.edges,
+            |e| {
+                let C(re, im) = self.transport[e];
+                (1.0, Matrix2::new(re, -im, im, re))
+            },
+            |v| self.weight[v] + self.shift,
+        );
+        let held: Vec<bool> = self.fixed.iter().flat_map(|&f| [f, f]).collect();
+        Multigrid::new(matrix, &held)
+    }
+
     fn apply(&self, x: &[f64], out: &mut [f64]) {
         let n = self.s.len();
         for v in 0..n {

@@ -48,6 +48,7 @@ mod flow;
 mod guides;
 mod linalg;
 mod metrics;
+mod multigrid;
 mod position;
 mod quadmesh;
 mod refine;

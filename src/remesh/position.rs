@@ -381,7 +381,7 @@ impl System<'_> {
                 rhs[k] = 0.0;
             }
         }
-        conjugate_gradient(apply, &rhs, u, iterations, 1e-6, keep_going);
+        conjugate_gradient(apply, &rhs, u, iterations, 1e-6, None, keep_going);
     }
 }
 

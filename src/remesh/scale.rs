@@ -208,7 +208,7 @@ pub(crate) fn solve(
         }
     }
     let mut phi = vec![0.0; n];
-    conjugate_gradient(apply, &rhs, &mut phi, ITERATIONS, 1e-8, keep_going);
+    conjugate_gradient(apply, &rhs, &mut phi, ITERATIONS, 1e-8, None, keep_going);
     limit_scale(&mut phi, &area, limit);
     phi
 }
