@@ -178,6 +178,33 @@ impl SurfaceBoundary {
             .map(|(f, _)| self.sheet[f])
     }
 
+    /// The sheet `tile` lies on: of the faces within `radius` of its centre and within
+    /// [`SHEET_SLACK`] of its half width of the closest, one of those facing most as the tile
+    /// does. At a crease the centre of a tile laid on one web can be closer to the other web
+    /// by a millimetre (a groin vault's corner, where the webs meet at a sharp angle): cut by
+    /// that web's edges, the tile kept the part that runs on past the groin, 100 mm off the
+    /// surface.
+    fn sheet_of(&self, tile: &Tile, radius: f64) -> Option<usize> {
+        let p = &tile.frame.origin;
+        let (_, closest) = self.closest_face(p, radius, None)?;
+        let slack = (closest - p).norm() + SHEET_SLACK * tile.size[1] / 2.0;
+        let mut best: Option<(f64, f64, usize)> = None;
+        for f in self.face_grid.near(p, slack) {
+            let Some(q) = self.closest_on_face(f, p) else {
+                continue;
+            };
+            let d = (q - p).norm();
+            if d > slack {
+                continue;
+            }
+            let facing = self.faces[f].1.dot(&tile.frame.z).abs();
+            if best.is_none_or(|(bf, bd, _)| facing > bf + 1e-9 || (facing > bf - 1e-9 && d < bd)) {
+                best = Some((facing, d, f));
+            }
+        }
+        best.map(|(_, _, f)| self.sheet[f])
+    }
+
     /// Boundary edges within `radius` of `p`, in index order.
     fn near(&self, p: &Point3<f64>, radius: f64) -> Vec<usize> {
         let mut found = self.grid.near(p, radius);
@@ -227,29 +254,8 @@ impl SurfaceBoundary {
             if sheet.is_some_and(|s| self.sheet[f] != s) {
                 continue;
             }
-            let (corners, normal) = &self.faces[f];
-            let n = corners.len();
-            // Over the face (inside every edge's side plane): its foot on the face's plane;
-            // beside it: the nearest point of its nearest edge.
-            let over = (0..n).all(|i| {
-                (corners[(i + 1) % n] - corners[i])
-                    .cross(&(p - corners[i]))
-                    .dot(normal)
-                    >= 0.0
-            });
-            let q = if over {
-                p - normal * (p - corners[0]).dot(normal)
-            } else {
-                (0..n)
-                    .map(|i| {
-                        Point3::from(closest::on_segment(
-                            &p.coords,
-                            &corners[i].coords,
-                            &corners[(i + 1) % n].coords,
-                        ))
-                    })
-                    .min_by(|a, b| (a - p).norm_squared().total_cmp(&(b - p).norm_squared()))
-                    .expect("a face has corners")
+            let Some(q) = self.closest_on_face(f, p) else {
+                continue;
             };
             let d = (q - p).norm();
             if d <= radius && best.is_none_or(|(bd, _, _)| d < bd) {
@@ -257,6 +263,31 @@ impl SurfaceBoundary {
             }
         }
         best.map(|(_, f, q)| (f, q))
+    }
+
+    /// The point of face `f` closest to `p`: over the face (inside every edge's side plane)
+    /// its foot on the face's plane, beside it the nearest point of its nearest edge.
+    fn closest_on_face(&self, f: usize, p: &Point3<f64>) -> Option<Point3<f64>> {
+        let (corners, normal) = &self.faces[f];
+        let n = corners.len();
+        let over = (0..n).all(|i| {
+            (corners[(i + 1) % n] - corners[i])
+                .cross(&(p - corners[i]))
+                .dot(normal)
+                >= 0.0
+        });
+        if over {
+            return Some(p - normal * (p - corners[0]).dot(normal));
+        }
+        (0..n)
+            .map(|i| {
+                Point3::from(closest::on_segment(
+                    &p.coords,
+                    &corners[i].coords,
+                    &corners[(i + 1) % n].coords,
+                ))
+            })
+            .min_by(|a, b| (a - p).norm_squared().total_cmp(&(b - p).norm_squared()))
     }
 
     /// Cuts `tile` to the surface. A tile the boundary enters by no more than `tolerance`
@@ -268,7 +299,7 @@ impl SurfaceBoundary {
         // close enough not to pick up another part of the shell above or below it.
         let reach = hx.hypot(hy) + hy;
         let mut near = self.near(&tile.frame.origin, reach);
-        let sheet = self.sheet_at(&tile.frame.origin, reach);
+        let sheet = self.sheet_of(tile, reach);
         near.retain(|&s| {
             sheet.is_none_or(|own| self.segments[s].sheet == own)
                 && [self.segments[s].a, self.segments[s].b]
@@ -384,6 +415,11 @@ impl SurfaceBoundary {
         chains
     }
 }
+
+/// How much farther than the closest face (in half tile widths) a face of another sheet may
+/// lie from a tile's centre and still be the tile's own ([`SurfaceBoundary::sheet_of`]): a
+/// tenth, 7 mm for a 140 mm tile, well inside the half joint a crease's seams are set back.
+const SHEET_SLACK: f64 = 0.1;
 
 /// How far each vertex on a seam moves into its own sheet so that the seam's edges lie `gap`
 /// inside it: along the mean of its seam edges' inward normals (on their faces), by `gap`
@@ -664,5 +700,68 @@ impl Rect {
             loops.push(outline);
         }
         loops
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tiles::{Frame, TileKind};
+
+    /// A plate folded along `x = 0`: flat for `x < 0`, rising at `angle` degrees beyond,
+    /// meshed in squares of 0.1 over `[-1, 1] x [0, 1]`.
+    fn folded(angle: f64) -> PolyMesh {
+        let slope = angle.to_radians().tan();
+        let (nx, ny) = (20, 10);
+        let positions = (0..=ny)
+            .flat_map(|j| {
+                (0..=nx).map(move |i| {
+                    let x = -1.0 + 0.1 * f64::from(i);
+                    Point3::new(x, 0.1 * f64::from(j), x.max(0.0) * slope)
+                })
+            })
+            .collect();
+        let at = |i: usize, j: usize| i + (nx as usize + 1) * j;
+        let faces = (0..ny as usize)
+            .flat_map(|j| {
+                (0..nx as usize)
+                    .map(move |i| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+            })
+            .collect();
+        PolyMesh::new(positions, faces).unwrap()
+    }
+
+    #[test]
+    fn a_tile_is_cut_by_the_edges_of_the_sheet_it_lies_on() {
+        // A tile lying flat on the flat web, its centre 3 mm past the fold: 1.9 mm from the
+        // rising web's faces, 3 mm from the flat web's edge. It belongs to the flat web and
+        // keeps the part short of the fold (less the half joint), not the part beyond it.
+        let boundary = SurfaceBoundary::with_creases(&folded(40.0), 0.2, 0.005);
+        let frame = Frame {
+            origin: Point3::new(0.003, 0.5, 0.0),
+            x: Vector3::x(),
+            y: Vector3::y(),
+            z: Vector3::z(),
+        };
+        let tile = Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015]);
+        let flat = boundary.sheet_at(&Point3::new(-0.5, 0.5, 0.0), 0.1);
+        let rising = boundary.sheet_at(&Point3::new(0.5, 0.5, 0.5 * 40f64.to_radians().tan()), 0.1);
+        assert_ne!(flat, rising);
+        assert_eq!(
+            boundary.sheet_at(&tile.frame.origin, 0.3),
+            rising,
+            "the closer web"
+        );
+        assert_eq!(boundary.sheet_of(&tile, 0.3), flat);
+        let Clipped::Cut(cut) = boundary.clip(&tile, 0.0) else {
+            panic!("the fold crosses the tile");
+        };
+        let xs: Vec<f64> = cut.loops.iter().flatten().map(|p| p[0]).collect();
+        let (lo, hi) = xs
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), &x| (l.min(x), h.max(x)));
+        // Local x: from the tile's end at -0.14 to the fold's seam at -0.003 - 0.005.
+        assert!((lo + 0.14).abs() < 1e-9, "kept from {lo}");
+        assert!((hi + 0.008).abs() < 1e-6, "kept to {hi}");
     }
 }
