@@ -176,9 +176,88 @@ fn the_command_line_splits_at_creases_unless_told_not_to() {
         said.contains("split at its creases into 2 sheets"),
         "{said}"
     );
+    // Cut to the fold, no tile stands off the plate by its thickness.
+    let lifted = |report: &serde_json::Value| report["cutting"]["lifted_tiles"].as_u64().unwrap();
+    let warned = |report: &serde_json::Value| {
+        report["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|w| w["code"] == "tiles_off_surface")
+    };
+    assert_eq!(lifted(&split), 0, "{}", split["cutting"]);
+    assert!(!warned(&split));
     let (joined, said) = run("joined", &["--no-creases"]);
     assert_eq!(joined["remesh"]["crease_sheets"], 0);
     assert!(!said.contains("split at its creases"), "{said}");
+}
+
+/// A cloister vault on a 4.8 x 3 m rectangle, triangulated on a 48 x 30 grid: its valleys run
+/// from the corners at 32 degrees to the long sides, across the triangles, where no mesh
+/// edge lies for the crease split to follow.
+fn rectangular_cloister() -> PolyMesh {
+    let (nx, ny) = (48, 30);
+    let height = |x: f64, y: f64| {
+        let along = |s: f64, half: f64| (1.0 - (s / half).powi(2)).max(0.0).sqrt();
+        1.5 * along(x, 2.4).min(along(y, 1.5))
+    };
+    let mut positions = Vec::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let (x, y) = (-2.4 + 0.1 * f64::from(i), -1.5 + 0.1 * f64::from(j));
+            positions.push(Point3::new(x, y, height(x, y)));
+        }
+    }
+    let at = |i: u32, j: u32| (j * (nx + 1) + i) as usize;
+    let faces = (0..ny)
+        .flat_map(|j| (0..nx).map(move |i| (i, j)))
+        .flat_map(|(i, j)| {
+            [
+                vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)],
+                vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)],
+            ]
+        })
+        .collect();
+    PolyMesh::new(positions, faces).unwrap()
+}
+
+#[test]
+fn tiles_bridging_a_crease_across_the_triangles_are_reported() {
+    // The crease split finds no crease along edges here, so the quads and the tiles run over
+    // the valleys as if they were smooth: tiles bridge them, their ends off the surface.
+    let dir = scratch("creases-across");
+    let input = dir.join("cloister.obj");
+    std::fs::write(&input, obj::to_string(&rectangular_cloister())).unwrap();
+    let out_dir = dir.join("out");
+    let output = tilepattern(&[
+        "run",
+        s(&input),
+        "--tile",
+        "280x140x15",
+        "--units",
+        "m",
+        "--out",
+        s(&out_dir),
+    ]);
+    let said = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(output.status.success(), "{said}");
+    let report = json(&out_dir.join("report.json"));
+    let cutting = &report["cutting"];
+    assert!(cutting["lifted_tiles"].as_u64().unwrap() > 10, "{cutting}");
+    assert!(
+        cutting["largest_lift"].as_f64().unwrap() > 0.05,
+        "{cutting}"
+    );
+    assert!(
+        report["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|w| w["code"] == "tiles_off_surface"),
+        "{}",
+        report["warnings"]
+    );
+    assert!(said.contains("warning [tiles_off_surface]: "), "{said}");
 }
 
 #[test]

@@ -540,6 +540,8 @@ namespace TilePattern
         NormalsUnified = 13,
         /// <summary>Fewer than 70 % of the quad edges are within 20 % of half a tile.</summary>
         QuadSize = 14,
+        /// <summary>Tiles stand off the surface by more than their thickness (creases across the input's triangles, facets coarser than a tile).</summary>
+        TilesOffSurface = 15,
     }
 
     /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>

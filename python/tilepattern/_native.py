@@ -105,6 +105,7 @@ TP_WARNING_WIDE_JOINTS = 11
 TP_WARNING_FOLDED_SURFACE = 12
 TP_WARNING_NORMALS_UNIFIED = 13
 TP_WARNING_QUAD_SIZE = 14
+TP_WARNING_TILES_OFF_SURFACE = 15
 
 #: Warning code -> its name in report.json, for every code of ``enum TpWarning``.
 WARNING_NAMES = {
@@ -122,6 +123,7 @@ WARNING_NAMES = {
     TP_WARNING_FOLDED_SURFACE: "folded_surface",
     TP_WARNING_NORMALS_UNIFIED: "normals_unified",
     TP_WARNING_QUAD_SIZE: "quad_size",
+    TP_WARNING_TILES_OFF_SURFACE: "tiles_off_surface",
 }
 
 MAX_VERTICES = 4_000_000

@@ -657,6 +657,9 @@ pub enum TpWarning {
     TP_WARNING_NORMALS_UNIFIED = 13,
     /// Fewer than 70 % of the quad edges are within 20 % of half a tile.
     TP_WARNING_QUAD_SIZE = 14,
+    /// Tiles stand off the surface by more than their thickness (creases across the input's
+    /// triangles, facets coarser than a tile).
+    TP_WARNING_TILES_OFF_SURFACE = 15,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -677,6 +680,7 @@ impl From<WarningCode> for TpWarning {
             WarningCode::FoldedSurface => TP_WARNING_FOLDED_SURFACE,
             WarningCode::NormalsUnified => TP_WARNING_NORMALS_UNIFIED,
             WarningCode::QuadSize => TP_WARNING_QUAD_SIZE,
+            WarningCode::TilesOffSurface => TP_WARNING_TILES_OFF_SURFACE,
         }
     }
 }

@@ -120,6 +120,12 @@ pub struct CuttingSummary {
     /// Share of the surface's area under a kept tile face or its half joint (see
     /// [`coverage`]).
     pub coverage: f64,
+    /// Tiles standing off the surface by more than their own thickness (see
+    /// [`warnings::MAX_LIFT`]; the `tiles_off_surface` warning).
+    pub lifted_tiles: usize,
+    /// The farthest any tile's bottom face stands off the surface, in model units (a flat tile
+    /// on a curved surface stands off by `(L^2 + W^2) / 8R` at its corners by itself).
+    pub largest_lift: f64,
 }
 
 impl Report {
@@ -216,6 +222,12 @@ impl Report {
             surface_area: surface.area(),
             tile_area,
             coverage: coverage::covered_share(surface, tiles, joint),
+            lifted_tiles: finished
+                .lifts
+                .iter()
+                .filter(|&&l| l > warnings::MAX_LIFT * self.tile.thickness)
+                .count(),
+            largest_lift: finished.lifts.iter().copied().fold(0.0, f64::max),
         });
         self.sequence = Some(finished.sequence.clone());
     }

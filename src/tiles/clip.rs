@@ -184,7 +184,7 @@ impl SurfaceBoundary {
     /// by a millimetre (a groin vault's corner, where the webs meet at a sharp angle): cut by
     /// that web's edges, the tile kept the part that runs on past the groin, 100 mm off the
     /// surface.
-    fn sheet_of(&self, tile: &Tile, radius: f64) -> Option<usize> {
+    pub(crate) fn sheet_of(&self, tile: &Tile, radius: f64) -> Option<usize> {
         let p = &tile.frame.origin;
         let (_, closest) = self.closest_face(p, radius, None)?;
         let slack = (closest - p).norm() + SHEET_SLACK * tile.size[1] / 2.0;

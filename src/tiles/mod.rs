@@ -267,6 +267,8 @@ pub struct Finished {
     pub cut_list: Vec<CutGroup>,
     /// Summary of the laying order.
     pub sequence: Sequence,
+    /// Per kept tile, how far its bottom face stands off the surface ([`lifts`]).
+    pub lifts: Vec<f64>,
 }
 
 /// Makes tiles buildable: where the quad mesh falls short of the boundary of `surface` (the
@@ -482,6 +484,7 @@ pub fn finish_with(
     let fillers = kept_index[fillers_from..].iter().flatten().count() + tears.pieces;
     let cut_list = cutlist::cut_list(&mut kept, options.tolerance);
     let sequence = sequence::laying_order(quads, &mut kept, &links, &options.sequence);
+    let lifts = lifts(&kept, &boundary);
     (
         kept,
         Finished {
@@ -493,8 +496,33 @@ pub fn finish_with(
             tear_fill_stopped: tears.stopped,
             cut_list,
             sequence,
+            lifts,
         },
     )
+}
+
+/// How far each tile stands off the surface it is laid on: the largest distance from the
+/// surface (of the tile's own sheet, [`SurfaceBoundary::sheet_of`]) of its bottom face's kept
+/// corners. A flat tile on a surface of radius `R` stands off by about `(L^2 + W^2) / 8R` at
+/// its corners by itself (6 mm for 280 x 140 mm at 1.6 m); much more means the surface turns
+/// under it where the quads did not (a crease across the input's triangles, facets coarser
+/// than a tile). A tile with no surface within its diagonal counts that far.
+pub(crate) fn lifts(tiles: &[Tile], boundary: &SurfaceBoundary) -> Vec<f64> {
+    crate::parallel::map(tiles.len(), |t| {
+        let tile = &tiles[t];
+        let reach = tile.size[0].hypot(tile.size[1]);
+        let sheet = boundary.sheet_of(tile, reach);
+        outline::world_outline(tile)
+            .iter()
+            .map(|p| {
+                let q = match sheet {
+                    Some(s) => boundary.closest_on(p, reach, s),
+                    None => boundary.closest(p, reach),
+                };
+                q.map_or(reach, |q| (q - p).norm())
+            })
+            .fold(0.0, f64::max)
+    })
 }
 
 /// Why tiles could not be built.
