@@ -196,29 +196,18 @@ fn the_command_line_splits_at_creases_unless_told_not_to() {
 /// from the corners at 32 degrees to the long sides, across the triangles, where no mesh
 /// edge lies for the crease split to follow.
 fn rectangular_cloister() -> PolyMesh {
-    let (nx, ny) = (48, 30);
-    let height = |x: f64, y: f64| {
-        let along = |s: f64, half: f64| (1.0 - (s / half).powi(2)).max(0.0).sqrt();
-        1.5 * along(x, 2.4).min(along(y, 1.5))
-    };
-    let mut positions = Vec::new();
-    for j in 0..=ny {
-        for i in 0..=nx {
-            let (x, y) = (-2.4 + 0.1 * f64::from(i), -1.5 + 0.1 * f64::from(j));
-            positions.push(Point3::new(x, y, height(x, y)));
-        }
-    }
-    let at = |i: u32, j: u32| (j * (nx + 1) + i) as usize;
-    let faces = (0..ny)
-        .flat_map(|j| (0..nx).map(move |i| (i, j)))
-        .flat_map(|(i, j)| {
-            [
-                vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)],
-                vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)],
-            ]
+    let along = |s: f64, half: f64| (1.0 - (s / half).powi(2)).max(0.0).sqrt();
+    let grid = generate::grid(48, 30);
+    let positions = grid
+        .positions()
+        .iter()
+        .map(|p| {
+            let (x, y) = (-2.4 + 0.1 * p.x, -1.5 + 0.1 * p.y);
+            Point3::new(x, y, 1.5 * along(x, 2.4).min(along(y, 1.5)))
         })
         .collect();
-    PolyMesh::new(positions, faces).unwrap()
+    let lifted = PolyMesh::new(positions, grid.faces().to_vec()).unwrap();
+    generate::triangulate_quads(&lifted)
 }
 
 #[test]
