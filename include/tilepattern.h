@@ -187,16 +187,6 @@
 #define TP_NO_FACE UINT32_MAX
 
 /**
- * How far a tile may stand off the surface, in tile thicknesses, before it is counted
- * (`cutting.lifted_tiles`) and flagged: a tile a whole thickness off its bed is not laid on
- * the surface but across it. A flat 280 x 140 mm tile stands off a surface of radius 1.6 m
- * by 6 mm at its corners, under the 15 mm of a usual tile; the shells of the README's table
- * whose creases the remesher splits stand off by at most 26 mm (a sliver of web at a groin
- * vault's springing), a cloister vault whose valleys cross its triangles by 160 mm.
- */
-#define MAX_LIFT 1.0
-
-/**
  * What a call did. The numbers are stable: new codes get new numbers, none is reused.
  */
 enum TpStatus
