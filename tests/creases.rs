@@ -131,45 +131,46 @@ fn off_surface(p: &Point3<f64>, groin: bool) -> f64 {
     (p.z - crossed(p.x, p.y)) / (1.0 + dx * dx + dy * dy).sqrt()
 }
 
+/// The quads of `generate::grid(nx, ny)` with the grid's vertex `(i, j)` moved to `at(i, j)`.
+fn grid_of(nx: usize, ny: usize, at: impl Fn(f64, f64) -> Point3<f64>) -> PolyMesh {
+    let grid = generate::grid(nx, ny);
+    let positions = grid.positions().iter().map(|p| at(p.x, p.y)).collect();
+    PolyMesh::new(positions, grid.faces().to_vec()).unwrap()
+}
+
 /// A 2.4 x 1.2 m plate folded along x = 0 (the halves turn by 44 degrees), 24 x 12 quads.
 fn folded_plate() -> PolyMesh {
-    let mut positions = Vec::new();
-    for j in 0..=12 {
-        for i in 0..=24 {
-            let x = 0.1 * (f64::from(i) - 12.0);
-            positions.push(Point3::new(x, 0.1 * f64::from(j), 0.4 * x.abs()));
-        }
-    }
-    let faces = (0..12)
-        .flat_map(|j| (0..24).map(move |i| (i, j)))
-        .map(|(i, j)| {
-            let a = j * 25 + i;
-            vec![a, a + 1, a + 26, a + 25]
-        })
-        .collect();
-    PolyMesh::new(positions, faces).unwrap()
+    grid_of(24, 12, |i, j| {
+        let x = 0.1 * (i - 12.0);
+        Point3::new(x, 0.1 * j, 0.4 * x.abs())
+    })
+}
+
+/// `tilepattern run` on `mesh` (written to `dir`) with 280 x 140 x 15 mm tiles, in metres,
+/// into `dir/out` with `extra` flags: its report and what it printed.
+fn run(
+    mesh: &PolyMesh,
+    dir: &std::path::Path,
+    out: &str,
+    extra: &[&str],
+) -> (serde_json::Value, String) {
+    let input = dir.join("input.obj");
+    std::fs::write(&input, obj::to_string(mesh)).unwrap();
+    let out_dir = dir.join(out);
+    let mut args = vec!["run", s(&input), "--tile", "280x140x15", "--units", "m"];
+    args.extend(["--out", s(&out_dir)]);
+    args.extend(extra);
+    let output = tilepattern(&args);
+    let said = String::from_utf8_lossy(&output.stdout).into_owned()
+        + &String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{said}");
+    (json(&out_dir.join("report.json")), said)
 }
 
 #[test]
 fn the_command_line_splits_at_creases_unless_told_not_to() {
     let dir = scratch("creases");
-    let input = dir.join("plate.obj");
-    std::fs::write(&input, obj::to_string(&folded_plate())).unwrap();
-    let run = |out: &str, extra: &[&str]| {
-        let out_dir = dir.join(out);
-        let mut args = vec!["run", s(&input), "--tile", "280x140x15", "--units", "m"];
-        args.extend(["--out", s(&out_dir)]);
-        args.extend(extra);
-        let output = tilepattern(&args);
-        assert!(
-            output.status.success(),
-            "{}",
-            String::from_utf8_lossy(&output.stderr)
-        );
-        let text = String::from_utf8_lossy(&output.stdout).into_owned()
-            + &String::from_utf8_lossy(&output.stderr);
-        (json(&out_dir.join("report.json")), text)
-    };
+    let run = |out: &str, extra: &[&str]| run(&folded_plate(), &dir, out, extra);
     let (split, said) = run("split", &[]);
     assert_eq!(split["remesh"]["crease_sheets"], 2);
     assert!(
@@ -197,40 +198,22 @@ fn the_command_line_splits_at_creases_unless_told_not_to() {
 /// edge lies for the crease split to follow.
 fn rectangular_cloister() -> PolyMesh {
     let along = |s: f64, half: f64| (1.0 - (s / half).powi(2)).max(0.0).sqrt();
-    let grid = generate::grid(48, 30);
-    let positions = grid
-        .positions()
-        .iter()
-        .map(|p| {
-            let (x, y) = (-2.4 + 0.1 * p.x, -1.5 + 0.1 * p.y);
-            Point3::new(x, y, 1.5 * along(x, 2.4).min(along(y, 1.5)))
-        })
-        .collect();
-    let lifted = PolyMesh::new(positions, grid.faces().to_vec()).unwrap();
-    generate::triangulate_quads(&lifted)
+    generate::triangulate_quads(&grid_of(48, 30, |i, j| {
+        let (x, y) = (-2.4 + 0.1 * i, -1.5 + 0.1 * j);
+        Point3::new(x, y, 1.5 * along(x, 2.4).min(along(y, 1.5)))
+    }))
 }
 
 #[test]
 fn tiles_bridging_a_crease_across_the_triangles_are_reported() {
     // The crease split finds no crease along edges here, so the quads and the tiles run over
     // the valleys as if they were smooth: tiles bridge them, their ends off the surface.
-    let dir = scratch("creases-across");
-    let input = dir.join("cloister.obj");
-    std::fs::write(&input, obj::to_string(&rectangular_cloister())).unwrap();
-    let out_dir = dir.join("out");
-    let output = tilepattern(&[
-        "run",
-        s(&input),
-        "--tile",
-        "280x140x15",
-        "--units",
-        "m",
-        "--out",
-        s(&out_dir),
-    ]);
-    let said = String::from_utf8_lossy(&output.stderr).into_owned();
-    assert!(output.status.success(), "{said}");
-    let report = json(&out_dir.join("report.json"));
+    let (report, said) = run(
+        &rectangular_cloister(),
+        &scratch("creases-across"),
+        "out",
+        &[],
+    );
     let cutting = &report["cutting"];
     assert!(cutting["lifted_tiles"].as_u64().unwrap() > 10, "{cutting}");
     assert!(
@@ -255,21 +238,10 @@ fn quads_given_without_a_surface_are_cut_at_their_own_creases() {
     // quads are the surface. Pairs across the fold become tiles cut to it, and every whole
     // tile lies on one of the two planes.
     let e = SPEC.quad_edge(false);
-    let mut positions = Vec::new();
-    for j in 0..=8 {
-        for i in 0..=16 {
-            let x = e * (f64::from(i) - 8.0);
-            positions.push(Point3::new(x, e * f64::from(j), 0.4 * x.abs()));
-        }
-    }
-    let faces = (0..8)
-        .flat_map(|j| (0..16).map(move |i| (i, j)))
-        .map(|(i, j)| {
-            let a = j * 17 + i;
-            vec![a, a + 1, a + 18, a + 17]
-        })
-        .collect();
-    let quads = PolyMesh::new(positions, faces).unwrap();
+    let quads = grid_of(16, 8, |i, j| {
+        let x = e * (i - 8.0);
+        Point3::new(x, e * j, 0.4 * x.abs())
+    });
     let tiling = tilepattern::pipeline::tile_quad_mesh(
         &quads,
         None,
@@ -295,21 +267,10 @@ fn quads_given_without_a_surface_are_cut_at_their_own_creases() {
 /// A folded-plate roof 8 x 4 m: seven folds across x, at every metre, rising 0.8 m over each;
 /// 96 x 48 quads.
 fn folded_roof() -> PolyMesh {
-    let mut positions = Vec::new();
-    for j in 0..=48 {
-        for i in 0..=96 {
-            let x = f64::from(i) / 12.0;
-            positions.push(Point3::new(x, f64::from(j) / 12.0, roof_plane(x, x)));
-        }
-    }
-    let faces = (0..48)
-        .flat_map(|j| (0..96).map(move |i| (i, j)))
-        .map(|(i, j)| {
-            let a = j * 97 + i;
-            vec![a, a + 1, a + 98, a + 97]
-        })
-        .collect();
-    PolyMesh::new(positions, faces).unwrap()
+    grid_of(96, 48, |i, j| {
+        let x = i / 12.0;
+        Point3::new(x, j / 12.0, roof_plane(x, x))
+    })
 }
 
 /// The height at `x` of the roof's plane that holds `on` (the one between the folds around

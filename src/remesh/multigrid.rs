@@ -142,7 +142,8 @@ pub(crate) struct Multigrid {
     levels: Vec<Level>,
     /// Held components of the finest level (kept at zero).
     held: Vec<bool>,
-    /// The coarsest level's Cholesky factor, or `None` to smooth there instead.
+    /// The coarsest level's Cholesky factor, or `None` (not positive definite in floating
+    /// point) to take a regularised block-diagonal step there instead.
     coarsest: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
     coarsest_a: BlockMatrix,
 }
@@ -159,7 +160,6 @@ impl Multigrid {
         let mut mask = held.to_vec();
         loop {
             let n = current.len();
-            let dinv = inverse_diagonal(&current, &mask);
             if n <= COARSEST {
                 return Self::finish(levels, held, current, mask);
             }
@@ -168,6 +168,7 @@ impl Multigrid {
                 return Self::finish(levels, held, current, mask);
             }
             let coarse = galerkin(&current, &mask, &aggregate, &p, coarse_n);
+            let dinv = inverse_diagonal(&current, &mask);
             let omega = damping(&current, &dinv, &mask);
             levels.push(Level {
                 a: current,

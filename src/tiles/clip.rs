@@ -186,17 +186,19 @@ impl SurfaceBoundary {
     /// surface.
     pub(crate) fn sheet_of(&self, tile: &Tile, radius: f64) -> Option<usize> {
         let p = &tile.frame.origin;
-        let (_, closest) = self.closest_face(p, radius, None)?;
-        let slack = (closest - p).norm() + SHEET_SLACK * tile.size[1] / 2.0;
+        // One pass over the faces within `radius`, in index order: their distances, then the
+        // choice among those near the closest.
+        let near: Vec<(f64, usize)> = self
+            .face_grid
+            .near(p, radius)
+            .into_iter()
+            .filter_map(|f| Some(((self.closest_on_face(f, p)? - p).norm(), f)))
+            .filter(|&(d, _)| d <= radius)
+            .collect();
+        let closest = near.iter().map(|&(d, _)| d).reduce(f64::min)?;
+        let slack = closest + SHEET_SLACK * tile.size[1] / 2.0;
         let mut best: Option<(f64, f64, usize)> = None;
-        for f in self.face_grid.near(p, slack) {
-            let Some(q) = self.closest_on_face(f, p) else {
-                continue;
-            };
-            let d = (q - p).norm();
-            if d > slack {
-                continue;
-            }
+        for &(d, f) in near.iter().filter(|&&(d, _)| d <= slack) {
             let facing = self.faces[f].1.dot(&tile.frame.z).abs();
             if best.is_none_or(|(bf, bd, _)| facing > bf + 1e-9 || (facing > bf - 1e-9 && d < bd)) {
                 best = Some((facing, d, f));
@@ -712,23 +714,16 @@ mod tests {
     /// meshed in squares of 0.1 over `[-1, 1] x [0, 1]`.
     fn folded(angle: f64) -> PolyMesh {
         let slope = angle.to_radians().tan();
-        let (nx, ny) = (20, 10);
-        let positions = (0..=ny)
-            .flat_map(|j| {
-                (0..=nx).map(move |i| {
-                    let x = -1.0 + 0.1 * f64::from(i);
-                    Point3::new(x, 0.1 * f64::from(j), x.max(0.0) * slope)
-                })
+        let grid = crate::mesh::generate::grid(20, 10);
+        let positions = grid
+            .positions()
+            .iter()
+            .map(|p| {
+                let x = -1.0 + 0.1 * p.x;
+                Point3::new(x, 0.1 * p.y, x.max(0.0) * slope)
             })
             .collect();
-        let at = |i: usize, j: usize| i + (nx as usize + 1) * j;
-        let faces = (0..ny as usize)
-            .flat_map(|j| {
-                (0..nx as usize)
-                    .map(move |i| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
-            })
-            .collect();
-        PolyMesh::new(positions, faces).unwrap()
+        PolyMesh::new(positions, grid.faces().to_vec()).unwrap()
     }
 
     #[test]
