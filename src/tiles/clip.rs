@@ -222,6 +222,19 @@ impl SurfaceBoundary {
         found
     }
 
+    /// How far the farthest of `points` lies from the surface (of `sheet` when given), or
+    /// `radius` where no surface lies within it: a tile's lift, with `points` its bottom
+    /// face's corners ([`super::lifts`]).
+    pub(crate) fn lift(&self, points: &[Point3<f64>], radius: f64, sheet: Option<usize>) -> f64 {
+        points
+            .iter()
+            .map(|p| {
+                self.closest_face(p, radius, sheet)
+                    .map_or(radius, |(_, q)| (q - p).norm())
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// Whether some face of the surface passes within `radius` of `p`.
     fn touches(&self, p: &Point3<f64>, radius: f64) -> bool {
         self.closest(p, radius)
@@ -308,8 +321,21 @@ impl SurfaceBoundary {
                     .iter()
                     .any(|p| tile.frame.to_local(p).z.abs() <= hx)
         });
+        // Whatever is kept must lie on the surface: the side tests below see the boundary in
+        // the tile's plane only, and where the surface turns steeply away at its edge (a
+        // wall, a tube's crumpled end) a tile flat beyond the edge passes them. A tile tangent
+        // to a surface curved to a radius of a tile length stands off by a sixth of its width
+        // at its corners; half a width off is no tile of this surface.
+        let lies_on = |loops: &[Vec<Point2>]| {
+            let points: Vec<Point3<f64>> = loops
+                .iter()
+                .flatten()
+                .map(|c| tile.frame.origin + tile.frame.x * c[0] + tile.frame.y * c[1])
+                .collect();
+            self.lift(&points, reach, sheet) <= hy
+        };
         if near.is_empty() {
-            return if self.touches(&tile.frame.origin, hy) {
+            return if self.touches(&tile.frame.origin, hy) && lies_on(&[rect.corners().to_vec()]) {
                 Clipped::Whole
             } else {
                 Clipped::Outside
@@ -344,8 +370,9 @@ impl SurfaceBoundary {
         }
         let full = 4.0 * hx * hy;
         let area: f64 = loops.iter().map(|l| signed_area(l)).sum();
-        if area <= tolerance * tile.size[0] + full * 1e-9 {
-            // Nothing, or a strip thinner than the tolerance along the boundary.
+        if area <= tolerance * tile.size[0] + full * 1e-9 || !lies_on(&loops) {
+            // Nothing, or a strip thinner than the tolerance along the boundary, or off the
+            // surface.
             Clipped::Outside
         } else if shallow && area >= full / 2.0 {
             // The boundary only grazes the tile, and the surface is on the tile's side of it.
@@ -758,5 +785,40 @@ mod tests {
         // Local x: from the tile's end at -0.14 to the fold's seam at -0.003 - 0.005.
         assert!((lo + 0.14).abs() < 1e-9, "kept from {lo}");
         assert!((hi + 0.008).abs() < 1e-6, "kept to {hi}");
+    }
+
+    /// A plate `[0, 1] x [0, 1]` at `z = 0`, meshed in squares of 0.1, folded back under
+    /// itself at `x = 1` into a hem 5 cm wide (as at a crumpled end of a scanned or
+    /// hand-modelled tube): the hem's faces face down, its free edge runs at `x = 0.95`.
+    fn hemmed() -> PolyMesh {
+        let grid = crate::mesh::generate::grid(11, 10);
+        let positions = grid
+            .positions()
+            .iter()
+            .map(|p| match p.x {
+                x if x <= 10.0 => Point3::new(0.1 * x, 0.1 * p.y, 0.0),
+                _ => Point3::new(0.95, 0.1 * p.y, -0.02),
+            })
+            .collect();
+        PolyMesh::new(positions, grid.faces().to_vec()).unwrap()
+    }
+
+    #[test]
+    fn a_tile_flat_beyond_a_folded_edge_is_off_the_surface() {
+        // A tile lying flat 1 cm beyond the fold: no boundary edge crosses it, and the edge
+        // it sees (the hem's) keeps the surface on its far side, seen along the hem's normals
+        // from above, so the side test alone put the tile on the surface. Its far corners
+        // stand 29 cm off it.
+        let boundary = SurfaceBoundary::new(&hemmed(), 0.3);
+        let flat = |x: f64| Frame {
+            origin: Point3::new(x, 0.5, 0.0),
+            x: Vector3::x(),
+            y: Vector3::y(),
+            z: Vector3::z(),
+        };
+        let tile = |x| Tile::new(TileKind::Full, vec![], flat(x), [0.28, 0.14, 0.015]);
+        assert!(matches!(boundary.clip(&tile(1.15), 0.0), Clipped::Outside));
+        // On the plate it is whole.
+        assert!(matches!(boundary.clip(&tile(0.5), 0.0), Clipped::Whole));
     }
 }

@@ -512,16 +512,7 @@ pub(crate) fn lifts(tiles: &[Tile], boundary: &SurfaceBoundary) -> Vec<f64> {
         let tile = &tiles[t];
         let reach = tile.size[0].hypot(tile.size[1]);
         let sheet = boundary.sheet_of(tile, reach);
-        outline::world_outline(tile)
-            .iter()
-            .map(|p| {
-                let q = match sheet {
-                    Some(s) => boundary.closest_on(p, reach, s),
-                    None => boundary.closest(p, reach),
-                };
-                q.map_or(reach, |q| (q - p).norm())
-            })
-            .fold(0.0, f64::max)
+        boundary.lift(&outline::world_outline(tile), reach, sheet)
     })
 }
 
