@@ -15,7 +15,7 @@ use nalgebra::{Point3, Vector3};
 use super::Tile;
 pub use crate::geom::polygon::{Point2, signed_area};
 use crate::geom::polygon::{clip_to_convex, cross, dist, point_segment, sub};
-use crate::geom::{HashGrid, closest};
+use crate::geom::{Bvh, HashGrid, closest};
 use crate::mesh::{PolyMesh, Topology, crease};
 
 /// The part of a tile kept after cutting.
@@ -92,7 +92,10 @@ pub struct SurfaceBoundary {
     grid: HashGrid,
     /// Each face as its corners and unit normal.
     faces: Vec<(Vec<Point3<f64>>, Vector3<f64>)>,
+    /// The faces in cells of a tile's size, for the faces within a radius.
     face_grid: HashGrid,
+    /// The faces in a bounding volume hierarchy, for the closest one.
+    face_bvh: Bvh,
     /// Each face's sheet: the pieces of the surface once cut open along its creases.
     sheet: Vec<usize>,
 }
@@ -158,11 +161,22 @@ impl SurfaceBoundary {
             .collect();
         let face_grid =
             HashGrid::of_points(cell, faces.iter().map(|(corners, _)| corners.as_slice()));
+        let boxes: Vec<(Vector3<f64>, Vector3<f64>)> = faces
+            .iter()
+            .map(|(corners, _)| {
+                corners
+                    .iter()
+                    .fold((corners[0].coords, corners[0].coords), |(lo, hi), c| {
+                        (lo.inf(&c.coords), hi.sup(&c.coords))
+                    })
+            })
+            .collect();
         Self {
             segments,
             grid,
             faces,
             face_grid,
+            face_bvh: Bvh::new(&boxes),
             sheet,
         }
     }
@@ -264,20 +278,16 @@ impl SurfaceBoundary {
         radius: f64,
         sheet: Option<usize>,
     ) -> Option<(usize, Point3<f64>)> {
-        let mut best: Option<(f64, usize, Point3<f64>)> = None;
-        for f in self.face_grid.near(p, radius) {
-            if sheet.is_some_and(|s| self.sheet[f] != s) {
-                continue;
-            }
-            let Some(q) = self.closest_on_face(f, p) else {
-                continue;
-            };
-            let d = (q - p).norm();
-            if d <= radius && best.is_none_or(|(bd, _, _)| d < bd) {
-                best = Some((d, f, q));
-            }
-        }
-        best.map(|(_, f, q)| (f, q))
+        // Faces of other sheets are infinitely far; ties go to the smaller index.
+        let (f, d2, q) =
+            self.face_bvh
+                .nearest(&p.coords, |f| match self.closest_on_face(f, p) {
+                    Some(q) if sheet.is_none_or(|s| self.sheet[f] == s) => {
+                        ((q - p).norm_squared(), q.coords)
+                    }
+                    _ => (f64::INFINITY, p.coords),
+                })?;
+        (d2 <= radius * radius).then(|| (f, Point3::from(q)))
     }
 
     /// The point of face `f` closest to `p`: over the face (inside every edge's side plane)
