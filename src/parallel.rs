@@ -145,12 +145,6 @@ pub(crate) fn chunks_mut2(
     run(tasks).into_iter().sum()
 }
 
-/// Calls `each(i, &mut a[i])` for every `i`, split as [`each_mut2`] splits.
-pub(crate) fn each_mut<A: Send>(a: &mut [A], each: impl Fn(usize, &mut A) + Sync) {
-    // A vector of `()` takes no memory: the second vector of `each_mut2` for free.
-    each_mut2(a, &mut vec![(); a.len()], |i, a, ()| each(i, a));
-}
-
 /// Calls `each(i, &mut a[i], &mut b[i])` for every `i`, on up to [`MAX_PARTS`] of the
 /// [`threads`] once there are [`MIN_COSTLY`] items or more. For work where each item stands alone (nothing is
 /// summed across items), so that the result is the same however the items are split; meant

@@ -344,39 +344,22 @@ impl Problem<'_> {
     }
 }
 
-/// Per tile, the contacts it takes part in, in contact order: the contact, the other tile,
-/// and whether this tile is the contact's first (its block is stored as (first, second)).
-fn incidence(tiles: usize, contacts: &[Contact]) -> Vec<Vec<(usize, usize, bool)>> {
-    let mut incident = vec![Vec::new(); tiles];
-    for (c, contact) in contacts.iter().enumerate() {
-        let [a, b] = contact.tiles;
-        incident[a].push((c, b, true));
-        incident[b].push((c, a, false));
-    }
-    incident
-}
-
-/// `y = (H + damping) x` for the block matrix of `eq`, tile by tile (on the threads of
-/// `parallel`): each tile's row adds its contacts' blocks in contact order, so the sums are
-/// the same however the tiles are split.
+/// `y = (H + damping) x` for the block matrix of `eq`.
 fn multiply(
     eq: &Normal,
     damped: &[Matrix3<f64>],
-    incident: &[Vec<(usize, usize, bool)>],
+    contacts: &[Contact],
     x: &[Vector3<f64>],
     y: &mut [Vector3<f64>],
 ) {
-    parallel::each_mut(y, |t, out| {
-        let mut row = damped[t] * x[t];
-        for &(c, other, first) in &incident[t] {
-            if first {
-                row += eq.off[c] * x[other];
-            } else {
-                row += eq.off[c].transpose() * x[other];
-            }
-        }
-        *out = row;
-    });
+    for (t, out) in y.iter_mut().enumerate() {
+        *out = damped[t] * x[t];
+    }
+    for (c, block) in contacts.iter().zip(&eq.off) {
+        let [a, b] = c.tiles;
+        y[a] += block * x[b];
+        y[b] += block.transpose() * x[a];
+    }
 }
 
 fn dot(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
@@ -410,7 +393,6 @@ impl Problem<'_> {
     ) -> Progress {
         let n = frames.len();
         let mut beyond = beyond_edge(self.surface, frames);
-        let incident = incidence(n, self.contacts);
         let start = self.value(frames, &beyond);
         let mut progress = Progress {
             iterations: 0,
@@ -460,7 +442,7 @@ impl Problem<'_> {
                     progress.stopped = true;
                     break;
                 }
-                multiply(&eq, &damped, &incident, &p, &mut ap);
+                multiply(&eq, &damped, self.contacts, &p, &mut ap);
                 let pap = dot(&p, &ap);
                 if pap <= 0.0 {
                     break;
