@@ -115,6 +115,36 @@ impl Bvh {
         id
     }
 
+    /// Primitives whose boxes come within `radius` of `p` (a superset of those within
+    /// `radius`), each once, in index order.
+    pub fn within(&self, p: &Vector3<f64>, radius: f64) -> Vec<usize> {
+        let mut found = Vec::new();
+        if self.nodes.is_empty() {
+            return found;
+        }
+        let r2 = radius * radius;
+        let mut stack = vec![0usize];
+        while let Some(id) = stack.pop() {
+            let node = &self.nodes[id];
+            if box_distance2(node, p) > r2 {
+                continue;
+            }
+            if node.count > 0 {
+                let start = node.start as usize;
+                found.extend(
+                    self.order[start..start + node.count as usize]
+                        .iter()
+                        .map(|&i| i as usize),
+                );
+            } else {
+                stack.push(node.start as usize);
+                stack.push(id + 1);
+            }
+        }
+        found.sort_unstable();
+        found
+    }
+
     /// Nearest primitive to `p` by `dist2` (squared distance to primitive `i` and its closest
     /// point), as (primitive, squared distance, point); ties go to the smaller index.
     pub fn nearest(
@@ -125,14 +155,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return None;
         }
-        let box_d2 = |n: &Node| -> f64 {
-            let mut d2 = 0.0;
-            for k in 0..3 {
-                let d = (n.lo[k] - p[k]).max(p[k] - n.hi[k]).max(0.0);
-                d2 += d * d;
-            }
-            d2
-        };
+        let box_d2 = |n: &Node| box_distance2(n, p);
         let mut best: Option<(usize, f64, Vector3<f64>)> = None;
         let mut stack: Vec<(f64, usize)> = Vec::with_capacity(64);
         stack.push((box_d2(&self.nodes[0]), 0));
@@ -167,6 +190,16 @@ impl Bvh {
     }
 }
 
+/// Squared distance from `p` to the box of `node` (zero inside it).
+fn box_distance2(node: &Node, p: &Vector3<f64>) -> f64 {
+    (0..3)
+        .map(|k| {
+            let d = (node.lo[k] - p[k]).max(p[k] - node.hi[k]).max(0.0);
+            d * d
+        })
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,9 +231,42 @@ mod tests {
     }
 
     #[test]
+    fn boxes_within_a_radius_include_those_a_scan_finds() {
+        let mut rnd = numbers(11);
+        let boxes: Vec<(Vector3<f64>, Vector3<f64>)> = (0..400)
+            .map(|_| {
+                let lo = Vector3::new(rnd(), rnd(), rnd() * 0.1);
+                (lo, lo + Vector3::new(rnd(), rnd(), rnd()) * 0.05)
+            })
+            .collect();
+        let bvh = Bvh::new(&boxes);
+        for _ in 0..100 {
+            let q = Vector3::new(rnd() * 1.4 - 0.2, rnd() * 1.4 - 0.2, rnd() - 0.5);
+            let r = rnd() * 0.3;
+            let scan: Vec<usize> = (0..boxes.len())
+                .filter(|&i| {
+                    let (lo, hi) = &boxes[i];
+                    let d = (lo - q).sup(&(q - hi)).sup(&Vector3::zeros());
+                    d.norm_squared() <= r * r
+                })
+                .collect();
+            let found = bvh.within(&q, r);
+            assert!(found.windows(2).all(|w| w[0] < w[1]), "each once, in order");
+            assert!(
+                scan.iter().all(|i| found.binary_search(i).is_ok()),
+                "none missed"
+            );
+            // A leaf's box decides: its other primitives may come along, far ones do not.
+            let far = Vector3::new(10.0, 10.0, 10.0);
+            assert!(bvh.within(&far, r).is_empty());
+        }
+    }
+
+    #[test]
     fn empty_hierarchy_finds_nothing() {
         let bvh = Bvh::new(&[]);
         assert!(bvh.is_empty());
         assert!(bvh.nearest(&Vector3::zeros(), |_| unreachable!()).is_none());
+        assert!(bvh.within(&Vector3::zeros(), 1.0).is_empty());
     }
 }

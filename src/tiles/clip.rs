@@ -92,9 +92,7 @@ pub struct SurfaceBoundary {
     grid: HashGrid,
     /// Each face as its corners and unit normal.
     faces: Vec<(Vec<Point3<f64>>, Vector3<f64>)>,
-    /// The faces in cells of a tile's size, for the faces within a radius.
-    face_grid: HashGrid,
-    /// The faces in a bounding volume hierarchy, for the closest one.
+    /// The faces in a bounding volume hierarchy: the closest one, those within a radius.
     face_bvh: Bvh,
     /// Each face's sheet: the pieces of the surface once cut open along its creases.
     sheet: Vec<usize>,
@@ -159,8 +157,6 @@ impl SurfaceBoundary {
                 )
             })
             .collect();
-        let face_grid =
-            HashGrid::of_points(cell, faces.iter().map(|(corners, _)| corners.as_slice()));
         let boxes: Vec<(Vector3<f64>, Vector3<f64>)> = faces
             .iter()
             .map(|(corners, _)| {
@@ -175,7 +171,6 @@ impl SurfaceBoundary {
             segments,
             grid,
             faces,
-            face_grid,
             face_bvh: Bvh::new(&boxes),
             sheet,
         }
@@ -203,8 +198,8 @@ impl SurfaceBoundary {
         // One pass over the faces within `radius`, in index order: their distances, then the
         // choice among those near the closest.
         let near: Vec<(f64, usize)> = self
-            .face_grid
-            .near(p, radius)
+            .face_bvh
+            .within(&p.coords, radius)
             .into_iter()
             .filter_map(|f| Some(((self.closest_on_face(f, p)? - p).norm(), f)))
             .filter(|&(d, _)| d <= radius)
@@ -251,8 +246,7 @@ impl SurfaceBoundary {
 
     /// Whether some face of the surface passes within `radius` of `p`.
     fn touches(&self, p: &Point3<f64>, radius: f64) -> bool {
-        self.closest(p, radius)
-            .is_some_and(|q| (q - p).norm() <= radius)
+        self.closest(p, radius).is_some()
     }
 
     /// The point of the surface closest to `p`, if one lies within `radius`.
