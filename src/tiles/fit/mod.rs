@@ -65,6 +65,27 @@ const WEIGHTS: Weights = Weights {
 /// placement is tried again with closers taken out ([`closers`]).
 pub const MAX_P95_DEVIATION_SHARE: f64 = 0.5;
 
+/// Tile steps (one tile through one step of a placement) the fit takes per second on a
+/// reference machine: 2 cores of 2026, where the 20 m cap's first placement (17,311 tiles,
+/// 86 steps) took 4.2 s.
+///
+/// The second placement, with closers taken out ([`closers`]), starts again from the
+/// anchors and costs about as much as the first, so it is begun only when the first's tile
+/// steps are at most a quarter of what the fit's time limit allows at this rate: both then
+/// finish within the limit on a machine half as fast. A count of work, not the clock, so
+/// that the same input and options give the same tiles on any machine (the time limit still
+/// stops a placement, and the status says so). With the default 10 s that is 875k tile
+/// steps: the 3 m cap's 61k (1598 tiles, 38 steps; the one flagged run of 2026-12-05 where
+/// the second placement is kept) is tried, the 20 m cap's 1.5 M is not (there the second
+/// ran to its step limit and was dropped, after 4.4 s).
+const TILE_STEPS_PER_SECOND: f64 = 350_000.0;
+
+/// Whether a second placement may follow a first of `tiles` tiles and `steps` steps within
+/// a fit time limit of `time_limit` seconds ([`TILE_STEPS_PER_SECOND`]).
+fn second_placement_fits(tiles: usize, steps: usize, time_limit: f64) -> bool {
+    tiles as f64 * steps as f64 <= TILE_STEPS_PER_SECOND * time_limit / 4.0
+}
+
 /// How much wider than the joint a gap may be before its cost grows only linearly: the joint
 /// itself (a gap of twice the joint is where courses part rather than a joint to close), a
 /// tenth of the tile's width without a joint. Measured on the shared surfaces and on
@@ -102,7 +123,9 @@ pub struct FitOptions {
     pub overlap_tolerance: f64,
     /// Wall-clock seconds for the placement; when they run out the best placement so far is
     /// kept and the status says so. The pipeline gives the fill of the fit's tears the same
-    /// limit again ([`crate::tiles::finish_with`]).
+    /// limit again ([`crate::tiles::finish_with`]). It also sizes, by a count of work and not
+    /// by the clock, the largest first placement after which a second is tried
+    /// ([`TILE_STEPS_PER_SECOND`]).
     pub time_limit: f64,
     /// Most Levenberg-Marquardt steps.
     pub max_iterations: usize,
@@ -253,15 +276,15 @@ pub fn fit(
     let (mut frames, first) = place(&all, 0.0, 0.6);
     let mut outcome = first;
     // Courses the first placement could not fit lose their closers and the rest is placed
-    // again; not begun when the first took half the time limit (the second would not finish).
-    let late = started.elapsed().as_secs_f64() > options.time_limit / 2.0;
+    // again; not begun after a large first placement (the second would cost as much).
+    let large = !second_placement_fits(tiles.len(), first.iterations, options.time_limit);
     let first_gaps = closers::gaps(&tiles, &frames, &all);
     // Closers only where the joints would be flagged: elsewhere the fit copes (and a large
     // shell's second placement would double its time).
     let flagged =
         closers::p95_deviation_after_cuts(&first_gaps, spec.joint, options.overlap_tolerance)
             > MAX_P95_DEVIATION_SHARE * spec.joint;
-    let mut out = if first.stopped || late || !flagged {
+    let mut out = if first.stopped || large || !flagged {
         Vec::new()
     } else {
         let tear = spec.joint + 2.0 * wide_gap(spec);
@@ -375,4 +398,19 @@ fn bond_band(
         (Bond::Staggered { .. }, false) => half - spec.length / 4.0,
     };
     Some(BondBand { nominal, tolerance })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_second_placement_is_tried_by_the_work_of_the_first_not_the_clock() {
+        // The 3 m cap's flagged first placement: tried at the default limit.
+        assert!(second_placement_fits(1598, 38, 10.0));
+        // The 20 m cap's: not at the default limit, but when the designer gives the fit a
+        // minute.
+        assert!(!second_placement_fits(17_311, 86, 10.0));
+        assert!(second_placement_fits(17_311, 86, 60.0));
+    }
 }
