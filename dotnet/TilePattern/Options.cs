@@ -464,7 +464,10 @@ namespace TilePattern
 
         /// <summary>Wall-clock limit of the fit in seconds (default 10); when it passes the best
         /// placement so far is kept (<see cref="FitStatus.TimeLimit"/>). The same limit holds
-        /// again for filling the fit's tears with pieces (those laid so far are kept).</summary>
+        /// again for filling the fit's tears with pieces (those laid so far are kept). It also
+        /// sizes, by a count of work and not the clock, the largest first placement a second
+        /// one (with closers) may follow, so the same input gives the same tiles on any
+        /// machine.</summary>
         public double FitTimeLimitSeconds { get; set; }
 
         /// <summary>Overlaps the fit may leave; deeper ones are cut. Negative (default): a

@@ -335,6 +335,9 @@ struct TileArgs {
     no_fit: bool,
     /// Wall-clock limit of the fit stage in seconds; when it passes, the best placement so far
     /// is kept (and again for filling the fit's tears with pieces: those laid so far are kept).
+    /// It also sizes, by a count of work and not the clock, the largest first placement that a
+    /// second one (with closers) may follow, so the same input gives the same tiles on any
+    /// machine.
     #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
     fit_time_limit: f64,
     /// Overlaps the fit leaves (millimetres); deeper ones are cut (default: a twentieth of
