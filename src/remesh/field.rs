@@ -457,6 +457,15 @@ pub(crate) fn solve(
         }
     }
 
+    // Each pull stands for the area around its vertex: weighted by that area, relative to
+    // the mean, the pulls integrate over the surface, and a part of it meshed finely (the
+    // rows of a latitude-longitude dome closing towards the pole, a shell's denser bands)
+    // does not pull harder than the same part meshed coarsely. (The renormalising shift
+    // below stays one per vertex: weighted by area too, it lets the quads of a folded
+    // corner span the fold, `tests/remesh.rs`.)
+    for (w, a) in weight.iter_mut().zip(relative_areas(s)) {
+        *w *= a;
+    }
     let mut rhs = vec![0.0; 2 * n];
     for v in 0..n {
         let c = target[v].scale(weight[v]);
@@ -602,11 +611,24 @@ const CURVATURE_WEIGHT: f64 = 40.0;
 const GL_STEPS: usize = 15;
 const GL_SHIFT: f64 = 0.5;
 
+/// Per vertex, its area ([`Surface::vertex_areas`]) relative to the mean vertex area: 1
+/// everywhere on an even triangulation.
+fn relative_areas(s: &Surface) -> Vec<f64> {
+    let area = s.vertex_areas();
+    let mean = area.iter().sum::<f64>() / area.len().max(1) as f64;
+    if mean > 0.0 {
+        area.iter().map(|a| a / mean).collect()
+    } else {
+        vec![1.0; area.len()]
+    }
+}
+
 /// The field energy's normal-equation operator, with an optional diagonal shift.
 #[derive(Clone, Copy)]
 struct Operator<'a> {
     s: &'a Surface,
     transport: &'a [C],
+    /// Per vertex, the weight of its pull (times its relative area, [`relative_areas`]).
     weight: &'a [f64],
     fixed: &'a [bool],
     shift: f64,

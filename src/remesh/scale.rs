@@ -138,7 +138,7 @@ pub(crate) fn solve(
         closure: Vector2<f64>,
         weight: f64,
     }
-    let mut area = vec![0.0; n];
+    let area = s.vertex_areas();
     let rows: Vec<Row> = s
         .tris
         .iter()
@@ -146,9 +146,6 @@ pub(crate) fn solve(
         .filter_map(|(ti, &tri)| {
             let [a, b, c] = tri;
             let twice = (s.pos[b] - s.pos[a]).cross(&(s.pos[c] - s.pos[a])).norm();
-            for v in tri {
-                area[v] += twice / 6.0;
-            }
             if twice <= 1e-300 {
                 return None;
             }

@@ -205,6 +205,22 @@ impl Surface {
     pub fn edge_vec(&self, a: usize, b: usize) -> Vector3<f64> {
         self.pos[b] - self.pos[a]
     }
+
+    /// Per vertex, the area it stands for: a third of the area of each of its triangles (the
+    /// barycentric dual cell), so that a sum of per-vertex terms times these areas is the
+    /// integral of the term over the surface, whatever the triangulation.
+    pub fn vertex_areas(&self) -> Vec<f64> {
+        let mut area = vec![0.0; self.len()];
+        for &[a, b, c] in &self.tris {
+            let twice = (self.pos[b] - self.pos[a])
+                .cross(&(self.pos[c] - self.pos[a]))
+                .norm();
+            for v in [a, b, c] {
+                area[v] += twice / 6.0;
+            }
+        }
+        area
+    }
 }
 
 /// `d` laid into the tangent plane of the unit normal `n` and made a unit vector; some
@@ -270,6 +286,27 @@ mod tests {
 
     use super::samples::{sheet, wavy};
     use super::*;
+
+    #[test]
+    fn vertex_areas_share_out_the_surface() {
+        // A 2 x 2 m sheet of 0.1 m cells, gently curved: the areas sum to the triangles'
+        // area, and a vertex inside a flat one stands for one cell.
+        let s = sheet(20, 0.1, (0..0, 0..0), wavy);
+        let area = s.vertex_areas();
+        let total: f64 = s
+            .tris
+            .iter()
+            .map(|&[a, b, c]| (s.pos[b] - s.pos[a]).cross(&(s.pos[c] - s.pos[a])).norm() / 2.0)
+            .sum();
+        assert!((area.iter().sum::<f64>() - total).abs() < 1e-12 * total);
+        let flat = sheet(20, 0.1, (0..0, 0..0), |_, _| 0.0);
+        let area = flat.vertex_areas();
+        assert!(
+            (area[10 * 21 + 10] - 0.01).abs() < 1e-12,
+            "{}",
+            area[10 * 21 + 10]
+        );
+    }
 
     #[test]
     fn adjacency_lists_every_edge_at_both_ends_in_order() {
