@@ -39,12 +39,14 @@ impl Bvh {
         bvh
     }
 
-    /// A hierarchy over simplices of the points `pos` (segments `[a, b]`, triangles
-    /// `[a, b, c]`; `N` at least 1), each in the box of its corners.
-    pub fn of_simplices<const N: usize>(pos: &[Vector3<f64>], simplices: &[[usize; N]]) -> Self {
+    /// A hierarchy over simplices or polygons of the points `pos` (segments `[a, b]`,
+    /// triangles `[a, b, c]`, a mesh's faces; each with at least one corner), each in the box
+    /// of its corners.
+    pub fn of_simplices<S: AsRef<[usize]>>(pos: &[Vector3<f64>], simplices: &[S]) -> Self {
         let boxes: Vec<_> = simplices
             .iter()
             .map(|s| {
+                let s = s.as_ref();
                 s[1..].iter().fold((pos[s[0]], pos[s[0]]), |(lo, hi), &v| {
                     (lo.inf(&pos[v]), hi.sup(&pos[v]))
                 })

@@ -157,21 +157,12 @@ impl SurfaceBoundary {
                 )
             })
             .collect();
-        let boxes: Vec<(Vector3<f64>, Vector3<f64>)> = faces
-            .iter()
-            .map(|(corners, _)| {
-                corners
-                    .iter()
-                    .fold((corners[0].coords, corners[0].coords), |(lo, hi), c| {
-                        (lo.inf(&c.coords), hi.sup(&c.coords))
-                    })
-            })
-            .collect();
+        let coords: Vec<Vector3<f64>> = surface.positions().iter().map(|p| p.coords).collect();
         Self {
             segments,
             grid,
             faces,
-            face_bvh: Bvh::new(&boxes),
+            face_bvh: Bvh::of_simplices(&coords, surface.faces()),
             sheet,
         }
     }
