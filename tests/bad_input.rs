@@ -1220,6 +1220,18 @@ fn bad_remesh_options_are_refused() {
             &["shape-up"],
         ),
         (
+            "negative renormalisation",
+            |o| o.renormalisation = -0.5,
+            |e| matches!(e, RemeshError::BadRenormalisation(_)),
+            &["renormalisation", "from 0"],
+        ),
+        (
+            "NaN renormalisation",
+            |o| o.renormalisation = f64::NAN,
+            |e| matches!(e, RemeshError::BadRenormalisation(_)),
+            &["renormalisation"],
+        ),
+        (
             "time limit 0",
             |o| o.time_limit = Duration::ZERO,
             |e| matches!(e, RemeshError::TimeLimit { .. }),

@@ -489,3 +489,72 @@ fn remesh_and_run_go_from_triangles_to_tiles() {
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("target edge 0"));
 }
+
+#[test]
+fn run_tries_three_quad_meshes_and_says_which_tiles_it_kept() {
+    let dir = scratch("run-tries");
+    let surface = dir.join("saddle.obj");
+    std::fs::write(&surface, saddle_obj()).unwrap();
+    let run = |extra: &[&str], out_dir: &std::path::Path| {
+        let mut args = vec![
+            "run",
+            s(&surface),
+            "--tile",
+            "280x140x15",
+            "--joint",
+            "10",
+            "--out",
+            s(out_dir),
+        ];
+        args.extend_from_slice(extra);
+        tilepattern(&args)
+    };
+    let auto = dir.join("auto");
+    let out = run(&[], &auto);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report = json(&auto.join("report.json"));
+    let tries = report["tries"].as_array().expect("tries listed");
+    assert_eq!(tries.len(), 3, "{report}");
+    let chosen = report["chosen_try"].as_u64().unwrap() as usize;
+    let rank = |t: &serde_json::Value| {
+        (
+            t["wide_joints"].as_bool().unwrap(),
+            t["score"].as_f64().unwrap(),
+        )
+    };
+    assert!(
+        tries.iter().all(|t| rank(t) >= rank(&tries[chosen])),
+        "{tries:?}"
+    );
+    for field in [
+        "renormalisation",
+        "quads",
+        "interior_irregular_vertices",
+        "p95_deviation",
+        "cut_share",
+        "coverage",
+        "wide_joints",
+        "score",
+        "seconds",
+    ] {
+        assert!(tries[0].get(field).is_some(), "tries field {field} missing");
+    }
+    assert_eq!(
+        tries[chosen]["quads"].as_u64(),
+        report["remesh"]["faces"].as_u64()
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("<- kept"));
+
+    let one = dir.join("one");
+    assert!(run(&["--tries", "1"], &one).status.success());
+    let report = json(&one.join("report.json"));
+    assert!(report.get("tries").is_none() && report.get("chosen_try").is_none());
+
+    let bad = run(&["--tries", "4"], &dir.join("bad"));
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--tries"));
+}

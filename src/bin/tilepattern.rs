@@ -22,7 +22,7 @@ mod zones_file;
 use progress_line::ProgressLine;
 use tilepattern::mesh::{self, MeshError, PolyMesh};
 use tilepattern::pattern::{self, Bond, Courses, Formulation, Method, Pattern, PatternOptions};
-use tilepattern::pipeline::{self, Tiling};
+use tilepattern::pipeline::{self, Tiling, Tries};
 use tilepattern::remesh::{FieldDirection, Metrics, RemeshOptions};
 use tilepattern::report::{JointSummary, Report, Warning, WarningCode, svg};
 use tilepattern::tiles::{self, CutGroup, FinishOptions, Sequence, Tile, TileKind, TileSpec};
@@ -136,6 +136,13 @@ enum Command {
         /// stage's).
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
         remesh_time_limit: f64,
+        /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints
+        /// closest to the nominal one, most of the surface covered; report.json lists each
+        /// try): 1 to 3, the field's cones placed by a renormalisation at the default
+        /// strength, twice and half of it. Default: 3 on surfaces of at most 10,000 quads, 1
+        /// on larger ones. Each try has the stages' time limits.
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=3))]
+        tries: Option<u64>,
         /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv,
         /// cutlist.json, sequence.json, gaps.svg.
         #[arg(long)]
@@ -156,6 +163,13 @@ enum Command {
         /// Keep the paper's placement (section 3.5): no fit stage.
         #[arg(long)]
         no_fit: bool,
+        /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints
+        /// closest to the nominal one, most of the surface covered; report.json lists each
+        /// try): 1 to 3, the field's cones placed by a renormalisation at the default
+        /// strength, twice and half of it. Default: 3 on surfaces of at most 10,000 quads, 1
+        /// on larger ones. Each try has the stages' time limits.
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=3))]
+        tries: Option<u64>,
     },
 }
 
@@ -501,6 +515,7 @@ fn run(cli: Cli) -> Result<()> {
             pattern,
             zones,
             remesh_time_limit,
+            tries,
             out,
         } => {
             let loaded = read_mesh(&input)?;
@@ -520,12 +535,13 @@ fn run(cli: Cli) -> Result<()> {
                 o
             };
             let mut line = ProgressLine::on_terminal();
-            let found = pipeline::tile_surface(
+            let found = pipeline::tile_surface_tries(
                 surface,
                 &remesh,
                 &options,
                 &spec,
                 &finish,
+                tries_of(tries),
                 &mut Control::with_figures(&mut |fraction, figures| {
                     line.update_run(fraction, figures)
                 }),
@@ -558,11 +574,17 @@ fn run(cli: Cli) -> Result<()> {
             span,
             pattern,
             no_fit,
-        } => demo(&out, span, &pattern, no_fit),
+            tries,
+        } => demo(&out, span, &pattern, no_fit, tries_of(tries)),
     }
 }
 
-fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
+/// The pipeline's tries from `--tries` (none given: [`Tries::Auto`]).
+fn tries_of(tries: Option<u64>) -> Tries {
+    tries.map_or(Tries::Auto, |n| Tries::Count(n as usize))
+}
+
+fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool, tries: Tries) -> Result<()> {
     if !(span.is_finite() && (0.5..=100.0).contains(&span)) {
         bail!("--span {span} m: give a shell size between 0.5 and 100 metres");
     }
@@ -589,12 +611,13 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool) -> Result<()> {
         o
     };
     let mut line = ProgressLine::on_terminal();
-    let found = pipeline::tile_surface(
+    let found = pipeline::tile_surface_tries(
         &surface,
         &remesh,
         &options,
         &spec,
         &finish,
+        tries,
         &mut Control::with_figures(&mut |fraction, figures| line.update_run(fraction, figures)),
     );
     line.finish();
@@ -1296,8 +1319,47 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
             figures(j)
         ),
     };
+    // Every try on a line: a designer sees what the others would have given.
+    let tries = t.report.chosen_try.map_or(String::new(), |chosen| {
+        let lines: Vec<String> = t
+            .report
+            .tries
+            .iter()
+            .enumerate()
+            .map(|(k, x)| {
+                let kept = if k == chosen { " <- kept" } else { "" };
+                match x.score {
+                    None => format!(
+                        "\n  try {} (renormalisation {}): failed: {}",
+                        k + 1,
+                        x.renormalisation,
+                        x.failed.as_deref().unwrap_or("no tiles")
+                    ),
+                    Some(score) => format!(
+                        "\n  try {} (renormalisation {}): {} quads, {} irregular, p95 {:.1} mm{}, {:.1} % cut, coverage {:.3}, score {:.2}, {:.1} s{kept}",
+                        k + 1,
+                        x.renormalisation,
+                        x.quads,
+                        x.interior_irregular_vertices,
+                        x.p95_deviation / mm,
+                        if x.wide_joints { " (wide_joints)" } else { "" },
+                        100.0 * x.cut_share,
+                        x.coverage,
+                        score,
+                        x.seconds
+                    ),
+                }
+            })
+            .collect();
+        format!(
+            "\n{} tries, the tiles of try {} kept (joints not flagged wide first, then the lowest score: % cut + p95 per half joint + % uncovered):{}",
+            lines.len(),
+            chosen + 1,
+            lines.concat()
+        )
+    });
     format!(
-        "{}\n{} full tiles, {} half tiles ({} of them cut to the boundary){cutting}{laying}\n{joints}",
+        "{}\n{} full tiles, {} half tiles ({} of them cut to the boundary){cutting}{laying}\n{joints}{tries}",
         pattern_summary(&t.pattern),
         t.report.full_tiles,
         t.report.half_tiles,

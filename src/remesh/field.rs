@@ -518,10 +518,11 @@ pub(crate) fn solve(
     // |z| vanish, which gathers all the boundary-forced turning into one high-order zero (a
     // polar pattern, fatal for square quads). Implicit steps towards unit crosses split it
     // into separate +1/4 cones placed where they cost least.
-    let shift = GL_SHIFT;
+    let shift = options.renormalisation;
     let relaxed = Operator { shift, ..linear };
     let cycle = relaxed.multigrid();
-    for round in 0..GL_STEPS {
+    let steps = if shift > 0.0 { GL_STEPS } else { 0 };
+    for round in 0..steps {
         if !budget.poll(0.5 + 0.5 * round as f64 / GL_STEPS as f64) {
             break;
         }
@@ -607,9 +608,9 @@ const GUIDE_WEIGHT: f64 = 8.0;
 /// turns once across the surface.
 const CURVATURE_WEIGHT: f64 = 40.0;
 
-/// Number and strength of the renormalising steps.
+/// Number of the renormalising steps (their strength is
+/// [`RemeshOptions::renormalisation`]).
 const GL_STEPS: usize = 15;
-const GL_SHIFT: f64 = 0.5;
 
 /// Per vertex, its area ([`Surface::vertex_areas`]) relative to the mean vertex area: 1
 /// everywhere on an even triangulation.

@@ -138,7 +138,18 @@ pub struct RemeshOptions {
     /// returned if there is one (the last fitting rounds and shape-up are cut short),
     /// otherwise [`RemeshError::TimeLimit`]. Default 60 s.
     pub time_limit: Duration,
+    /// Strength of the cross field's renormalising steps (Ginzburg-Landau, Viertel and Osting
+    /// 2019), which split the turning the boundary forces into separate cones and decide
+    /// where they sit: against the smoothness energy of one edge, per vertex. Default
+    /// [`RENORMALISATION`]; any finite value from 0 (no renormalisation: the linear
+    /// solve's field). Other values give other, equally valid placements of the cones, and
+    /// with them other quads: `pipeline::tile_surface_tries` lays the tiles on a few and
+    /// keeps the one whose tiles fit best.
+    pub renormalisation: f64,
 }
+
+/// Default [`RemeshOptions::renormalisation`].
+pub const RENORMALISATION: f64 = 0.5;
 
 impl Default for RemeshOptions {
     fn default() -> Self {
@@ -153,6 +164,7 @@ impl Default for RemeshOptions {
             shapeup_tolerance: 0.1,
             shapeup_iterations: 20,
             time_limit: Duration::from_secs(60),
+            renormalisation: RENORMALISATION,
         }
     }
 }
@@ -302,6 +314,11 @@ pub enum RemeshError {
     /// A rotation angle is not finite.
     #[error("field rotation angle {0} is not finite")]
     BadAngle(f64),
+    /// The renormalisation strength is negative, NaN or infinite.
+    #[error(
+        "renormalisation strength {0} must be a finite number from 0 (the default is {RENORMALISATION})"
+    )]
+    BadRenormalisation(f64),
     /// A shape-up tolerance or iteration count is unusable.
     #[error("shape-up tolerance {0} must be a positive finite fraction of the target edge")]
     BadShapeupTolerance(f64),
@@ -481,6 +498,9 @@ fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), Remesh
     }
     if let Some(guides) = &options.guides {
         guides.check()?;
+    }
+    if !(options.renormalisation.is_finite() && options.renormalisation >= 0.0) {
+        return Err(RemeshError::BadRenormalisation(options.renormalisation));
     }
     if options.shapeup
         && !(options.shapeup_tolerance.is_finite() && options.shapeup_tolerance > 0.0)

@@ -29,6 +29,34 @@ pub struct StageSeconds {
     pub fit: f64,
 }
 
+/// One try of `pipeline::tile_surface_tries`: its figures, as `report.json`'s `tries` lists
+/// them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TryFigures {
+    /// The field's renormalisation strength of this try.
+    pub renormalisation: f64,
+    /// Faces of its quad mesh.
+    pub quads: usize,
+    /// Interior irregular vertices of its quad mesh.
+    pub interior_irregular_vertices: usize,
+    /// Its joints' p95 |gap - joint| after the fit (model units).
+    pub p95_deviation: f64,
+    /// Tiles cut to fit and pieces cut inside the fit's holes, per full and half tile.
+    pub cut_share: f64,
+    /// Share of the surface its tiles cover.
+    pub coverage: f64,
+    /// Whether its report warns that the joints stray (`wide_joints`); tries without the
+    /// warning are kept before tries with it.
+    pub wide_joints: bool,
+    /// `pipeline::score`: lower is better (none when the try failed).
+    pub score: Option<f64>,
+    /// Seconds of this try, all stages.
+    pub seconds: f64,
+    /// Why the try gave no tiles (its figures are then 0 and it is not kept), if it failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failed: Option<String>,
+}
+
 /// Everything a designer wants to know about a tiling, serialised as `report.json`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
@@ -80,6 +108,13 @@ pub struct Report {
     /// Odd input and results to look at twice, each with a stable code and what to do (see
     /// [`warnings`]); empty when all is well.
     pub warnings: Vec<Warning>,
+    /// When the pipeline laid tiles on several quad meshes of the surface
+    /// (`pipeline::tile_surface_tries`): each try's figures, in order; empty otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub tries: Vec<TryFigures>,
+    /// Which of `tries` these tiles are (counted from 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub chosen_try: Option<usize>,
 }
 
 /// How much cutting the boundary needs and how well the tiles cover the surface.
@@ -183,6 +218,8 @@ impl Report {
                 fit: 0.0,
             },
             warnings: Vec::new(),
+            tries: Vec::new(),
+            chosen_try: None,
         }
     }
 

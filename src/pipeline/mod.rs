@@ -1,6 +1,10 @@
 //! The stages run one after another: a quad mesh in, tiles and their report out. Every front
 //! end (CLI, C ABI) calls this rather than chaining the stages itself.
 
+mod tries;
+
+pub use tries::{AUTO_TRIES_QUADS, MAX_TRIES, Tries, score, tile_surface_tries};
+
 use std::time::Instant;
 
 use thiserror::Error;
