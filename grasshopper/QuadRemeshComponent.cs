@@ -38,6 +38,7 @@ namespace TilePattern.Gh
             pManager.AddCurveParameter("Guides", "G", "Optional: guide curves the quad rows follow near them (within 2 quad edges, falling off), on or near the mesh, in model units; turned into polylines at the document's tolerance (5 degrees angle tolerance)", GH_ParamAccess.list);
             pManager.AddNumberParameter("Guide weight", "GW", "Share of the Guides on the curves against every other source (curvature, Direction / Angle, Field), 0 to 1 (default 1: the guides alone on them)", GH_ParamAccess.item, 1.0);
             pManager.AddBooleanParameter("Creases", "Cr", "Split the mesh where its faces turn sharply (a groin vault's groins, a fold) and give each part quads of its own, as masons lay each web in its own courses (default true); give Tile Boxes the same", GH_ParamAccess.item, true);
+            pManager.AddNumberParameter("Renormalisation", "Rn", "Strength that places the field's cones, and with them where rows end: any number from 0 (default 0.5). Other strengths give other, equally valid quads whose tiles may fit better: where Tile Boxes reports cuts or wide joints, try 1 and 0.25 and keep the tiles that fit best (the command line's run does this)", GH_ParamAccess.item, 0.5);
             for (int i = 1; i <= 4; i++)
                 pManager[i].Optional = true;
             pManager[6].Optional = true;
@@ -46,6 +47,7 @@ namespace TilePattern.Gh
             pManager[10].Optional = true;
             pManager[11].Optional = true;
             pManager[12].Optional = true;
+            pManager[13].Optional = true;
             ((Param_Number)pManager[4]).AngleParameter = true;
             var courses = (Param_Integer)pManager[7];
             courses.AddNamedValue("Level", (int)Courses.Level);
@@ -89,6 +91,8 @@ namespace TilePattern.Gh
             DA.GetData(11, ref guideWeight);
             bool creases = true;
             DA.GetData(12, ref creases);
+            double renormalisation = 0.5;
+            DA.GetData(13, ref renormalisation);
             if (courses != (int)Courses.Free && courses != (int)Courses.Level)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
@@ -100,7 +104,7 @@ namespace TilePattern.Gh
             if (hasDirection && hasAngle)
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "Both a direction and an angle are given: the direction is used.");
 
-            var options = new RemeshOptions { TargetEdge = TileOptions.QuadEdgeOf(length, width, joint, (Courses)courses), ShapeUp = shapeUp, Creases = creases };
+            var options = new RemeshOptions { TargetEdge = TileOptions.QuadEdgeOf(length, width, joint, (Courses)courses), ShapeUp = shapeUp, Creases = creases, Renormalisation = renormalisation };
             if (hasDirection)
             {
                 options.Direction = FieldDirection.Vector;

@@ -28,8 +28,10 @@
  * unchanged.
  * 7: `TpRemeshOptions` and `TpTileOptions` grew (`creases`: split the surface at its creases,
  * on by default); callers built against ABI 4 to 6 keep working unchanged (and get it on).
+ * 8: `TpRemeshOptions` grew (`renormalisation`: the strength that places the field's cones,
+ * default 0.5); callers built against ABI 4 to 7 keep working unchanged (and get 0.5).
  */
-#define TP_ABI_VERSION 7
+#define TP_ABI_VERSION 8
 
 /**
  * Stage numbers passed to a progress callback.
@@ -553,6 +555,14 @@ typedef struct TpRemeshOptions {
    * one field over the whole surface. Pair it with `TpTileOptions.creases`. Since ABI 7.
    */
   int32_t creases;
+  /**
+   * Strength of the field's renormalising steps, which place its cones and with them
+   * where rows end; any finite value from 0, default 0.5. Other strengths give other,
+   * equally valid quad meshes whose tiles may fit better: the command line's `run` tries
+   * 0.5, 1 and 0.25 and keeps the best tiles (README, *Tries*). Since ABI 8; older callers
+   * get the default.
+   */
+  double renormalisation;
 } TpRemeshOptions;
 
 /**

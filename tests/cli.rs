@@ -557,4 +557,17 @@ fn run_tries_three_quad_meshes_and_says_which_tiles_it_kept() {
     let bad = run(&["--tries", "4"], &dir.join("bad"));
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--tries"));
+    // The tries start from --renormalisation: twice and half of it.
+    let from = dir.join("from");
+    assert!(run(&["--renormalisation", "0.3"], &from).status.success());
+    let strengths: Vec<f64> = json(&from.join("report.json"))["tries"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["renormalisation"].as_f64().unwrap())
+        .collect();
+    assert_eq!(strengths, [0.3, 0.6, 0.15]);
+    let bad = run(&["--renormalisation", "-1"], &dir.join("bad"));
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("renormalisation"));
 }

@@ -173,7 +173,7 @@ namespace TilePattern.Tests
             AssertMirror(typeof(TpRemeshOptions), "TpRemeshOptions", n => n.StartsWith("direction_vector[") ? "direction_" + "xyz"[n[17] - '0'] : n);
             Assert.AreEqual(120, Marshal.SizeOf(typeof(TpPatternOptions)));
             Assert.AreEqual(96, Marshal.SizeOf(typeof(TpPatternSummary)));
-            Assert.AreEqual(144, Marshal.SizeOf(typeof(TpRemeshOptions)));
+            Assert.AreEqual(152, Marshal.SizeOf(typeof(TpRemeshOptions)));
             // The ABI 5 size ends where the ABI 6 fields begin.
             Assert.AreEqual(96, (int)Marshal.OffsetOf(typeof(TpRemeshOptions), "guide_points"));
             Assert.AreEqual(136, Marshal.SizeOf(typeof(TpTileOptions)));
@@ -187,6 +187,8 @@ namespace TilePattern.Tests
             // The ABI 6 sizes end where the ABI 7 fields (creases) begin.
             Assert.AreEqual(136, (int)Marshal.OffsetOf(typeof(TpRemeshOptions), "creases"));
             Assert.AreEqual(128, (int)Marshal.OffsetOf(typeof(TpTileOptions), "creases"));
+            // The ABI 7 size ends where the ABI 8 field (renormalisation) begins.
+            Assert.AreEqual(144, (int)Marshal.OffsetOf(typeof(TpRemeshOptions), "renormalisation"));
         }
 
         static void AssertLibrarySize(string name, uint library, Type mirror)

@@ -1,5 +1,5 @@
-// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 7: the
-// creases switch; 6 guide curves and zones; 5 the designer's field, 4 the gap, 3 the fit stage and level courses; 2
+// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 8: the
+// field's renormalisation strength; 7 the creases switch; 6 guide curves and zones; 5 the designer's field, 4 the gap, 3 the fit stage and level courses; 2
 // added boundary tiles and the tp_*_options_init functions), and
 // mirrors of its structs. Nothing here is public: the public API is TilePatternEngine.
 //
@@ -63,7 +63,7 @@ namespace TilePattern
         public int status;
     }
 
-    /// <summary>Mirror of TpRemeshOptions (144 bytes on 64-bit targets; 136 before ABI 7, 96 before ABI 6, 72 before ABI 5). The C array
+    /// <summary>Mirror of TpRemeshOptions (152 bytes on 64-bit targets; 144 before ABI 8, 136 before ABI 7, 96 before ABI 6, 72 before ABI 5). The C array
     /// <c>double direction_vector[3]</c> is spelled as three doubles, which has the same
     /// layout and keeps the struct blittable.</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -89,6 +89,8 @@ namespace TilePattern
         public double guide_weight;
         // Since ABI 7: split at the creases.
         public int creases;
+        // Since ABI 8: the strength that places the field's cones.
+        public double renormalisation;
     }
 
     /// <summary>Mirror of TpTileOptions (136 bytes; 128 before ABI 7, 88 before ABI 3); <c>double up[3]</c> is
@@ -146,7 +148,7 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 7;
+        internal const int TP_ABI_VERSION = 8;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const uint TP_STAGE_TILES = 3;

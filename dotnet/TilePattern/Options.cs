@@ -145,6 +145,7 @@ namespace TilePattern
             AngleDegrees = d.angle_degrees;
             ShapeUp = d.shapeup != 0;
             Creases = d.creases != 0;
+            Renormalisation = d.renormalisation;
             TimeLimitSeconds = d.time_limit_seconds;
             FieldWeight = d.field_weight;
             GuideWeight = d.guide_weight;
@@ -184,6 +185,12 @@ namespace TilePattern
         /// field never aligned to the crease; false runs one field over the whole surface. Give
         /// <see cref="TileOptions.Creases"/> the same.</summary>
         public bool Creases { get; set; }
+
+        /// <summary>Strength of the field's renormalising steps, which place its cones and with
+        /// them where rows end: any number from 0, default 0.5. Other strengths give other,
+        /// equally valid quads whose tiles may fit better; the command line's <c>run</c> tries
+        /// 0.5, 1 and 0.25 and keeps the tiles with the fewest cuts and the closest joints.</summary>
+        public double Renormalisation { get; set; }
 
         /// <summary>Wall-clock limit of the stage in seconds (default 60): when it passes, the quad
         /// mesh as it stands is returned if one exists, otherwise a <see cref="SolverTimeLimitException"/>.</summary>
@@ -274,6 +281,7 @@ namespace TilePattern
             o.angle_degrees = AngleDegrees;
             o.shapeup = ShapeUp ? 1 : 0;
             o.creases = Creases ? 1 : 0;
+            o.renormalisation = Renormalisation;
             o.time_limit_seconds = TimeLimitSeconds;
             o.field_weight = FieldWeight;
             o.guide_weight = GuideWeight;

@@ -151,7 +151,8 @@ def test_the_loaded_library_has_the_struct_sizes_of_the_mirrors():
     assert nat.remesh_options().guide_weight == 1.0 and nat.remesh_options().guide_count == 0
     assert nat.tile_options().length == 0.28
     assert nat.remesh_options().creases == 1 and nat.tile_options().creases == 1
-    assert tp.abi_version() == tp.ABI_VERSION == 7
+    assert nat.remesh_options().renormalisation == 0.5
+    assert tp.abi_version() == tp.ABI_VERSION == 8
     assert re.match(r"\d+\.\d+", tp.version())
 
 

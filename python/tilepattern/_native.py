@@ -47,7 +47,7 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 7
+ABI_VERSION = 8
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
@@ -418,6 +418,8 @@ class TpRemeshOptions(Structure):
         ("guide_weight", c_double),
         # Since ABI 7: split at the creases.
         ("creases", c_int32),
+        # Since ABI 8: the strength that places the field's cones.
+        ("renormalisation", c_double),
     ]
 
 

@@ -108,8 +108,8 @@ def remesh(mesh, target_edge=0.145, **options):
         Quad edge in model units: ``(L + joint) / 2`` for tiles of length ``L``.
     **options
         ``direction``, ``angle``, ``shapeup``, ``time_limit``, ``progress``, ``field``,
-        ``field_weight``, ``guides``, ``guide_weight``, ``creases``: see
-        :func:`tilepattern.remesh`.
+        ``field_weight``, ``guides``, ``guide_weight``, ``creases``, ``renormalisation``:
+        see :func:`tilepattern.remesh`.
 
     Returns
     -------

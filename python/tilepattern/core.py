@@ -214,6 +214,7 @@ def remesh(
     guides=None,
     guide_weight: float = 1.0,
     creases: bool = True,
+    renormalisation: float = 0.5,
 ) -> Tuple[np.ndarray, np.ndarray]:
     """Quadrangulate a surface into near-square quads (stage 1).
 
@@ -263,6 +264,13 @@ def remesh(
         split where the faces turn sharply) quads of its own, their field never aligned to
         the crease (default True); False runs one field over the whole surface. Pass the
         same to :func:`tiles`.
+    renormalisation : float, optional
+        Strength of the field's renormalising steps, which place its cones and with them
+        where rows end (any number from 0, default 0.5). Other strengths give other, equally
+        valid quads whose tiles may fit better: the command line's ``run`` tries 0.5, 1 and
+        0.25 and keeps the tiles with the fewest cuts and the closest joints; do the same by
+        calling :func:`remesh`, :func:`match` and :func:`tiles` for each and comparing the
+        reports.
 
     Returns
     -------
@@ -308,6 +316,7 @@ def remesh(
         options.angle_degrees = float(angle)
     options.shapeup = 1 if shapeup else 0
     options.creases = 1 if creases else 0
+    options.renormalisation = float(renormalisation)
     options.time_limit_seconds = float(time_limit)
     keep = None
     if field is not None:

@@ -211,6 +211,11 @@ struct FieldArgs {
         allow_negative_numbers = true
     )]
     guide_weight: f64,
+    /// Strength of the field's renormalising steps, which place its cones and with them where
+    /// rows end (any number from 0): other strengths give other, equally valid quads, whose
+    /// tiles may fit better. `run` tries this, twice and half of it (--tries).
+    #[arg(long, default_value_t = tilepattern::remesh::RENORMALISATION, allow_negative_numbers = true)]
+    renormalisation: f64,
 }
 
 impl FieldArgs {
@@ -245,6 +250,7 @@ impl FieldArgs {
             o.guides = guides;
             o.shapeup = self.shapeup;
             o.creases = creases;
+            o.renormalisation = self.renormalisation;
             o
         })
     }

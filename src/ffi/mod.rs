@@ -47,7 +47,9 @@ use status::{Failure, TpStatus::*};
 /// unchanged.
 /// 7: `TpRemeshOptions` and `TpTileOptions` grew (`creases`: split the surface at its creases,
 /// on by default); callers built against ABI 4 to 6 keep working unchanged (and get it on).
-pub const TP_ABI_VERSION: u32 = 7;
+/// 8: `TpRemeshOptions` grew (`renormalisation`: the strength that places the field's cones,
+/// default 0.5); callers built against ABI 4 to 7 keep working unchanged (and get 0.5).
+pub const TP_ABI_VERSION: u32 = 8;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;

@@ -66,6 +66,12 @@ pub struct TpRemeshOptions {
     /// vault's webs) gets quads of its own, its field never aligned to the crease; zero runs
     /// one field over the whole surface. Pair it with `TpTileOptions.creases`. Since ABI 7.
     pub creases: i32,
+    /// Strength of the field's renormalising steps, which place its cones and with them
+    /// where rows end; any finite value from 0, default 0.5. Other strengths give other,
+    /// equally valid quad meshes whose tiles may fit better: the command line's `run` tries
+    /// 0.5, 1 and 0.25 and keeps the best tiles (README, *Tries*). Since ABI 8; older callers
+    /// get the default.
+    pub renormalisation: f64,
 }
 
 /// The default remesh options.
@@ -88,6 +94,7 @@ pub extern "C" fn tp_remesh_options_default() -> TpRemeshOptions {
         guide_count: 0,
         guide_weight: 1.0,
         creases: 1,
+        renormalisation: remesh::RENORMALISATION,
     }
 }
 
@@ -159,6 +166,7 @@ pub unsafe extern "C" fn tp_remesh(
             shapeup: raw.shapeup != 0,
             creases: raw.creases != 0,
             time_limit,
+            renormalisation: raw.renormalisation,
             ..RemeshOptions::default()
         };
         let mut report = progress_reporter(progress, user, TP_STAGE_REMESH);

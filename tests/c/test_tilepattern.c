@@ -1196,6 +1196,94 @@ static void test_creases(void) {
   tp_mesh_free(plate);
 }
 
+/* Renormalisation (ABI 8): on a round dome (no corner, so its field's cones are free) other
+   strengths place the cones elsewhere and give other quads; a caller built against ABI 7 gets
+   the default; a negative or NaN strength is refused by name. */
+static int same_quads(const TpMesh *a, const TpMesh *b) {
+  size_t na, fa, ia, nb, fb, ib;
+  CHECK(tp_mesh_counts(a, &na, &fa, &ia) == TP_OK);
+  CHECK(tp_mesh_counts(b, &nb, &fb, &ib) == TP_OK);
+  if (na != nb || fa != fb || ia != ib) return 0;
+  double *va = (double *)malloc(3 * na * sizeof(double)), *vb = (double *)malloc(3 * nb * sizeof(double));
+  CHECK(tp_mesh_copy_vertices(a, va, 3 * na) == TP_OK);
+  CHECK(tp_mesh_copy_vertices(b, vb, 3 * nb) == TP_OK);
+  int same = memcmp(va, vb, 3 * na * sizeof(double)) == 0;
+  free(va);
+  free(vb);
+  return same;
+}
+
+static void test_renormalisation(void) {
+  /* A spherical cap of radius 2 over a disk of radius 1.3: a centre, 12 rings of 48. */
+  enum { RINGS = 12, SECTORS = 48 };
+  const double pi = 3.14159265358979323846;
+  size_t nv = 1 + RINGS * SECTORS, nf = SECTORS + 2 * (RINGS - 1) * SECTORS;
+  double *v = (double *)malloc(3 * nv * sizeof(double));
+  uint32_t *idx = (uint32_t *)malloc(3 * nf * sizeof(uint32_t)), *sz = (uint32_t *)malloc(nf * sizeof(uint32_t));
+  v[0] = 0.0;
+  v[1] = 0.0;
+  v[2] = 2.0;
+  for (size_t i = 1; i <= RINGS; i++)
+    for (size_t j = 0; j < SECTORS; j++) {
+      double r = 1.3 * (double)i / RINGS, a = 2.0 * pi * (double)j / SECTORS;
+      double *p = v + 3 * (1 + (i - 1) * SECTORS + j);
+      p[0] = r * cos(a);
+      p[1] = r * sin(a);
+      p[2] = sqrt(4.0 - r * r);
+    }
+#define ID(i, j) ((uint32_t)((i) == 0 ? 0 : 1 + ((i) - 1) * SECTORS + ((j) % SECTORS)))
+  size_t f = 0;
+  for (size_t j = 0; j < SECTORS; j++) {
+    uint32_t *t = idx + 3 * f++;
+    t[0] = 0, t[1] = ID(1, j), t[2] = ID(1, j + 1);
+  }
+  for (size_t i = 1; i < RINGS; i++)
+    for (size_t j = 0; j < SECTORS; j++) {
+      uint32_t a = ID(i, j), b = ID(i + 1, j), c = ID(i + 1, j + 1), d = ID(i, j + 1);
+      uint32_t *t = idx + 3 * f++;
+      t[0] = a, t[1] = b, t[2] = c;
+      t = idx + 3 * f++;
+      t[0] = a, t[1] = c, t[2] = d;
+    }
+#undef ID
+  for (size_t k = 0; k < nf; k++) sz[k] = 3;
+  TpMesh *dome = NULL;
+  CHECK(tp_mesh_new(v, nv, idx, 3 * nf, sz, nf, &dome) == TP_OK);
+  free(v);
+  free(idx);
+  free(sz);
+
+  TpRemeshOptions ro;
+  CHECK(tp_remesh_options_init(&ro, sizeof ro) == TP_OK);
+  CHECK(ro.renormalisation == 0.5);
+  TpMesh *half = NULL, *twice = NULL, *old = NULL, *none = NULL;
+  CHECK(tp_remesh(dome, &ro, NULL, NULL, &half) == TP_OK);
+  ro.renormalisation = 1.0;
+  CHECK(tp_remesh(dome, &ro, NULL, NULL, &twice) == TP_OK);
+  ro.renormalisation = 0.0;
+  CHECK(tp_remesh(dome, &ro, NULL, NULL, &none) == TP_OK);
+  /* An ABI 7 caller: `renormalisation` lies past its struct, the default holds. */
+  ro.struct_size = (uint32_t)offsetof(TpRemeshOptions, renormalisation);
+  ro.renormalisation = 1.0;
+  CHECK(tp_remesh(dome, &ro, NULL, NULL, &old) == TP_OK);
+  CHECK(!same_quads(half, twice));
+  CHECK(same_quads(half, old));
+  ro.struct_size = sizeof ro;
+  TpMesh *bad = NULL;
+  ro.renormalisation = -1.0;
+  CHECK(tp_remesh(dome, &ro, NULL, NULL, &bad) == TP_INVALID_ARGUMENT);
+  CHECK(last_error_contains("renormalisation"));
+  ro.renormalisation = NAN;
+  CHECK(tp_remesh(dome, &ro, NULL, NULL, &bad) == TP_INVALID_ARGUMENT);
+  CHECK(bad == NULL);
+  printf("renormalisation: 0.5 and 1 give other quads, an ABI 7 caller gets 0.5, -1 and NaN refused\n");
+  tp_mesh_free(half);
+  tp_mesh_free(twice);
+  tp_mesh_free(none);
+  tp_mesh_free(old);
+  tp_mesh_free(dome);
+}
+
 int main(void) {
   test_version();
   test_mesh();
@@ -1209,6 +1297,7 @@ int main(void) {
   test_bonds();
   test_zones();
   test_creases();
+  test_renormalisation();
   test_panic_boundary();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
