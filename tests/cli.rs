@@ -302,6 +302,20 @@ fn match_stops_at_the_gap_it_is_given() {
 }
 
 /// A triangulated saddle z = (x^2 - y^2) / 4 over [-1, 1]^2, as OBJ text.
+/// `run SURFACE --tile 280x140x15 --joint 10 --out OUT`.
+fn run_args<'a>(surface: &'a std::path::Path, out: &'a std::path::Path) -> Vec<&'a str> {
+    vec![
+        "run",
+        s(surface),
+        "--tile",
+        "280x140x15",
+        "--joint",
+        "10",
+        "--out",
+        s(out),
+    ]
+}
+
 fn saddle_obj() -> String {
     saddle_obj_of(24)
 }
@@ -368,19 +382,7 @@ fn run_gives_the_same_tiles_and_report_on_one_thread_and_on_several() {
     std::fs::write(&surface, saddle_obj_of(48)).unwrap();
     let run = |threads: &str| {
         let out_dir = dir.join(format!("out-{threads}"));
-        tilepattern_on_threads(
-            threads,
-            &[
-                "run",
-                s(&surface),
-                "--tile",
-                "280x140x15",
-                "--joint",
-                "10",
-                "--out",
-                s(&out_dir),
-            ],
-        );
+        tilepattern_on_threads(threads, &run_args(&surface, &out_dir));
         let mut report = json(&out_dir.join("report.json"));
         fn drop_seconds(value: &mut serde_json::Value) {
             match value {
@@ -496,16 +498,7 @@ fn run_tries_three_quad_meshes_and_says_which_tiles_it_kept() {
     let surface = dir.join("saddle.obj");
     std::fs::write(&surface, saddle_obj()).unwrap();
     let run = |extra: &[&str], out_dir: &std::path::Path| {
-        let mut args = vec![
-            "run",
-            s(&surface),
-            "--tile",
-            "280x140x15",
-            "--joint",
-            "10",
-            "--out",
-            s(out_dir),
-        ];
+        let mut args = run_args(&surface, out_dir);
         args.extend_from_slice(extra);
         tilepattern(&args)
     };

@@ -62,17 +62,23 @@ static void grid(uint32_t nx, uint32_t ny, double **vertices, size_t *vertex_cou
     }
 }
 
-static TpMesh *grid_mesh(uint32_t nx, uint32_t ny) {
-  double *v;
-  uint32_t *idx, *sz;
-  size_t nv, nf;
+/* A mesh made from arrays the caller allocated with malloc, which it hands over (freed here);
+ * NULL when tp_mesh_new refuses them. */
+static TpMesh *mesh_taking(double *v, size_t nv, uint32_t *idx, size_t ni, uint32_t *sz, size_t nf) {
   TpMesh *mesh = NULL;
-  grid(nx, ny, &v, &nv, &idx, &sz, &nf);
-  TpStatus s = tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &mesh);
+  TpStatus s = tp_mesh_new(v, nv, idx, ni, sz, nf, &mesh);
   free(v);
   free(idx);
   free(sz);
   return s == TP_OK ? mesh : NULL;
+}
+
+static TpMesh *grid_mesh(uint32_t nx, uint32_t ny) {
+  double *v;
+  uint32_t *idx, *sz;
+  size_t nv, nf;
+  grid(nx, ny, &v, &nv, &idx, &sz, &nf);
+  return mesh_taking(v, nv, idx, 4 * nf, sz, nf);
 }
 
 /* An nx x ny grid of unit squares lifted to z = rise * y (rise > 0: level lines along x) or,
@@ -81,17 +87,12 @@ static TpMesh *lifted_grid_mesh(uint32_t nx, uint32_t ny, double rise, int bump)
   double *v;
   uint32_t *idx, *sz;
   size_t nv, nf;
-  TpMesh *mesh = NULL;
   grid(nx, ny, &v, &nv, &idx, &sz, &nf);
   for (size_t k = 0; k < nv; k++) {
     double x = v[3 * k], y = v[3 * k + 1];
     v[3 * k + 2] = bump ? 0.8 * sin(x / 3.0) * sin(y / 2.5) : rise * y;
   }
-  TpStatus s = tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &mesh);
-  free(v);
-  free(idx);
-  free(sz);
-  return s == TP_OK ? mesh : NULL;
+  return mesh_taking(v, nv, idx, 4 * nf, sz, nf);
 }
 
 static void test_version(void) {
@@ -1156,11 +1157,8 @@ static void test_creases(void) {
     v[3 * k + 1] *= 0.1;
     v[3 * k + 2] = 0.4 * fabs(x);
   }
-  TpMesh *plate = NULL;
-  CHECK(tp_mesh_new(v, nv, idx, 4 * nf, sz, nf, &plate) == TP_OK);
-  free(v);
-  free(idx);
-  free(sz);
+  TpMesh *plate = mesh_taking(v, nv, idx, 4 * nf, sz, nf);
+  CHECK(plate != NULL);
 
   TpRemeshOptions ro;
   CHECK(tp_remesh_options_init(&ro, sizeof ro) == TP_OK);
@@ -1247,11 +1245,8 @@ static void test_renormalisation(void) {
     }
 #undef ID
   for (size_t k = 0; k < nf; k++) sz[k] = 3;
-  TpMesh *dome = NULL;
-  CHECK(tp_mesh_new(v, nv, idx, 3 * nf, sz, nf, &dome) == TP_OK);
-  free(v);
-  free(idx);
-  free(sz);
+  TpMesh *dome = mesh_taking(v, nv, idx, 3 * nf, sz, nf);
+  CHECK(dome != NULL);
 
   TpRemeshOptions ro;
   CHECK(tp_remesh_options_init(&ro, sizeof ro) == TP_OK);
