@@ -180,11 +180,10 @@ fn coverage(report: &Report) -> f64 {
     report.cutting.as_ref().map_or(1.0, |c| c.coverage)
 }
 
-/// Tiles cut to fit and pieces cut inside the fit's holes, per full and half tile.
+/// Tiles cut by the fit ([`Report::fit_cut_count`]) per full and half tile.
 fn cut_share(report: &Report) -> f64 {
     let tiles = (report.full_tiles + report.half_tiles).max(1) as f64;
-    let tear_cuts = report.cutting.as_ref().map_or(0, |c| c.tear_cuts);
-    (report.joints.fit_cuts + tear_cuts) as f64 / tiles
+    report.fit_cut_count() as f64 / tiles
 }
 
 /// Whether the report warns that the joints stray (`wide_joints`: p95 beyond

@@ -164,6 +164,12 @@ pub struct CuttingSummary {
 }
 
 impl Report {
+    /// Tiles cut by the fit: tiles cut to fit and pieces cut to the room inside the holes it
+    /// opened (`cutting.tear_cuts`), the cuts the method exists to avoid.
+    pub fn fit_cut_count(&self) -> usize {
+        self.joints.fit_cuts + self.cutting.as_ref().map_or(0, |c| c.tear_cuts)
+    }
+
     /// Summarises a tiling built from `pattern` on `mesh`, in metres (see [`Report::measured`]).
     pub fn new(mesh: &PolyMesh, pattern: &Pattern, tiles: &[Tile], spec: &TileSpec) -> Self {
         Self::measured(

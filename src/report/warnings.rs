@@ -153,12 +153,12 @@ pub fn joint_checks(report: &Report) -> Vec<Warning> {
     let tiles = report.full_tiles + report.half_tiles;
     // Pieces cut to fill the fit's tears away from the edge are cuts of the fit too.
     let tear_cuts = report.cutting.as_ref().map_or(0, |c| c.tear_cuts);
-    let cut = j.fit_cuts + tear_cuts;
+    let cut = report.fit_cut_count();
     if tiles > 0 && cut as f64 > MAX_FIT_CUT_SHARE * tiles as f64 {
         out.push(Warning::new(
             WarningCode::FitCuts,
             format!(
-                "{} tiles had to be cut to fit (cut list: C labels) and {tear_cuts} pieces cut to fill the holes it opened (cutting.tear_cuts): {:.1} % of the {tiles} full and half tiles; courses converge or diverge here (a dome's crown, a bend, around the quad mesh's singularities) and rigid tiles cannot meet; look at gaps.svg, and try another field direction (--direction, --field) or lay those parts by hand (--exclude)",
+                "{} tiles had to be cut to fit (cut list: C labels) and {tear_cuts} pieces cut to fill the holes it opened (cutting.tear_cuts): {:.1} % of the {tiles} full and half tiles; courses converge or diverge here (a dome's crown, a bend, around the quad mesh's singularities) and rigid tiles cannot meet; look at gaps.svg, and try another field direction (--direction, --field) or another placement of its cones (--renormalisation 1 or 0.25; run tries both unless told --tries 1), or lay those parts by hand (--exclude)",
                 j.fit_cuts,
                 100.0 * cut as f64 / tiles as f64
             ),
