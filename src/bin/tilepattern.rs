@@ -1342,7 +1342,7 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
                         x.failed.as_deref().unwrap_or("no tiles")
                     ),
                     Some(score) => format!(
-                        "\n  try {} (renormalisation {}): {} quads, {} irregular, p95 {:.1} mm{}, {:.1} % cut, coverage {:.3}, score {:.2}, {:.1} s{kept}",
+                        "\n  try {} (renormalisation {}): {} quads, {} irregular, p95 {:.1} mm{}, {:.1} % cut, coverage {:.3}, score {:.2}, {:.1} s{}{kept}",
                         k + 1,
                         x.renormalisation,
                         x.quads,
@@ -1352,14 +1352,18 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
                         100.0 * x.cut_share,
                         x.coverage,
                         score,
-                        x.seconds
+                        x.seconds,
+                        x.limit_reached.map_or(String::new(), |stage| format!(
+                            "; the {stage} stage reached its time limit, so its tiles depend on the machine's speed and no further try is made"
+                        ))
                     ),
                 }
             })
             .collect();
         format!(
-            "\n{} tries, the tiles of try {} kept (joints not flagged wide first, then the lowest score: % cut + p95 per half joint + % uncovered):{}",
+            "\n{} {}, the tiles of try {} kept (joints not flagged wide first, then the lowest score: % cut + p95 per half joint + % uncovered):{}",
             lines.len(),
+            if lines.len() == 1 { "try" } else { "tries" },
             chosen + 1,
             lines.concat()
         )

@@ -23,11 +23,11 @@
 use super::{Error, Tiling, tile_surface};
 use crate::control::{Control, Figures};
 use crate::mesh::PolyMesh;
-use crate::pattern::PatternOptions;
+use crate::pattern::{PatternOptions, SolveStatus};
 use crate::remesh::{RemeshError, RemeshOptions, Remeshed};
 use crate::report::warnings::WarningCode;
 use crate::report::{Report, TryFigures};
-use crate::tiles::{FinishOptions, TileSpec};
+use crate::tiles::{FinishOptions, FitStatus, TileSpec};
 
 /// How many quad meshes [`tile_surface_tries`] carries through to tiles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -93,10 +93,14 @@ pub fn score(report: &Report) -> f64 {
 /// try (`tries`) and which was kept (`chosen_try`). `control` hears each try as an equal
 /// share of `0..1` and can cancel any.
 ///
+/// A try whose pattern stage or fit reaches its time limit ends the tries: its tiles depend
+/// on the machine's speed, and each further try would take as long. The first try is kept
+/// all the same; a later one is listed but not kept (`limit_reached`).
+///
 /// # Errors
 /// As [`tile_surface`] for the first try, and [`RemeshError::Cancelled`] (or the pattern
-/// stage's cancel) from any; a later try that fails otherwise (its time limit, nothing
-/// extracted) is listed and skipped.
+/// stage's cancel) from any; a later try that fails otherwise (nothing extracted) is listed
+/// and skipped.
 pub fn tile_surface_tries(
     surface: &PolyMesh,
     remesh: &RemeshOptions,
@@ -135,6 +139,7 @@ pub fn tile_surface_tries(
             Ok((remeshed, tiling)) => {
                 let r = &tiling.report;
                 let value = score(r);
+                let limit = limit_reached(r);
                 listed.push(TryFigures {
                     renormalisation: options_k.renormalisation,
                     quads: remeshed.quads.face_count(),
@@ -145,11 +150,18 @@ pub fn tile_surface_tries(
                     wide_joints: wide_joints(r),
                     score: Some(value),
                     seconds,
+                    limit_reached: limit,
                     failed: None,
                 });
+                // A try stopped by a time limit gave tiles that depend on the machine's
+                // speed: the first is kept all the same (it is what one run gives), a later
+                // one is not compared; and no further try is made, each would take as long.
                 let rank = (wide_joints(r), value);
-                if best.as_ref().is_none_or(|(b, ..)| rank < *b) {
+                if (k == 0 || limit.is_none()) && best.as_ref().is_none_or(|(b, ..)| rank < *b) {
                     best = Some((rank, k, remeshed, tiling));
+                }
+                if limit.is_some() {
+                    break;
                 }
             }
             Err(e) if k == 0 || is_cancel(&e) => return Err(e),
@@ -163,12 +175,14 @@ pub fn tile_surface_tries(
                 wide_joints: false,
                 score: None,
                 seconds,
+                limit_reached: None,
                 failed: Some(e.to_string()),
             }),
         }
     }
     let (_, chosen, remeshed, mut tiling) = best.expect("the first try succeeded or returned");
     if count > 1 {
+        // Listed even when the first try's time limit left it alone: the report says why.
         tiling.report.tries = listed;
         tiling.report.chosen_try = Some(chosen);
     }
@@ -184,6 +198,22 @@ fn coverage(report: &Report) -> f64 {
 fn cut_share(report: &Report) -> f64 {
     let tiles = (report.full_tiles + report.half_tiles).max(1) as f64;
     report.fit_cut_count() as f64 / tiles
+}
+
+/// The stage whose time limit a try reached, if any: the pattern stage's search, or the
+/// fit's placement (or its tear fill).
+fn limit_reached(report: &Report) -> Option<&'static str> {
+    if report.status == SolveStatus::TimeLimit {
+        Some("pattern")
+    } else if report
+        .fit
+        .as_ref()
+        .is_some_and(|f| f.status == FitStatus::TimeLimit)
+    {
+        Some("fit")
+    } else {
+        None
+    }
 }
 
 /// Whether the report warns that the joints stray (`wide_joints`: p95 beyond
@@ -283,5 +313,40 @@ mod tests {
         .unwrap();
         assert_eq!(score(&one.report), ranks[0].1);
         assert!(one.report.tries.is_empty() && one.report.chosen_try.is_none());
+    }
+
+    #[test]
+    fn a_try_stopped_by_its_time_limit_ends_the_tries() {
+        // No time for the pattern stage: its greedy start, stopped by the limit, on every try.
+        let surface = generate::spherical_cap(1.2, 0.4, 0.06);
+        let spec = TileSpec {
+            length: 0.28,
+            width: 0.14,
+            thickness: 0.015,
+            joint: 0.01,
+        };
+        let remesh = RemeshOptions {
+            target_edge: spec.quad_edge(false),
+            ..RemeshOptions::default()
+        };
+        let options = PatternOptions {
+            time_limit: std::time::Duration::ZERO,
+            ..PatternOptions::default()
+        };
+        let (_, tiling) = tile_surface_tries(
+            &surface,
+            &remesh,
+            &options,
+            &spec,
+            &FinishOptions::for_spec(&spec),
+            Tries::Count(3),
+            &mut Control::none(),
+        )
+        .unwrap();
+        let r = &tiling.report;
+        assert_eq!(r.status, SolveStatus::TimeLimit);
+        assert_eq!(r.tries.len(), 1, "{:?}", r.tries);
+        assert_eq!(r.tries[0].limit_reached, Some("pattern"));
+        assert_eq!(r.chosen_try, Some(0));
     }
 }
