@@ -238,6 +238,7 @@ fn is_cancel(e: &Error) -> bool {
 mod tests {
     use super::*;
     use crate::mesh::generate;
+    use crate::pattern::Courses;
 
     #[test]
     fn auto_tries_three_on_a_shell_of_some_thousand_quads_and_one_on_a_large_one() {
@@ -251,37 +252,50 @@ mod tests {
         assert_eq!(Tries::Auto.count(f64::NAN, t), 1);
     }
 
-    #[test]
-    fn the_kept_tiles_are_the_try_with_the_lowest_score_and_the_first_try_is_one_run() {
-        // A small dome: umbilic, so where its field's cones sit is up to the renormalisation.
-        let surface = generate::spherical_cap(1.2, 0.4, 0.06);
+    /// A small dome (umbilic, so where its field's cones sit is up to the renormalisation)
+    /// with the 280 x 140 x 15 mm tile and a 10 mm joint, in metres.
+    fn small_dome() -> (PolyMesh, TileSpec) {
         let spec = TileSpec {
             length: 0.28,
             width: 0.14,
             thickness: 0.015,
             joint: 0.01,
         };
+        (generate::spherical_cap(1.2, 0.4, 0.06), spec)
+    }
+
+    /// The small dome's tiles from three tries with `options`, its remesh options for them
+    /// and the finish options.
+    fn three_tries(
+        options: &PatternOptions,
+    ) -> (PolyMesh, TileSpec, RemeshOptions, Remeshed, Tiling) {
+        let (surface, spec) = small_dome();
         let remesh = RemeshOptions {
-            target_edge: spec.quad_edge(true),
+            target_edge: spec.quad_edge(options.courses != Courses::Free),
             ..RemeshOptions::default()
         };
-        let options = PatternOptions {
-            courses: crate::pattern::Courses::Level {
-                up: [0.0, 0.0, 1.0],
-            },
-            ..PatternOptions::default()
-        };
-        let finish = FinishOptions::for_spec(&spec);
         let (quads, tiling) = tile_surface_tries(
             &surface,
             &remesh,
-            &options,
+            options,
             &spec,
-            &finish,
+            &FinishOptions::for_spec(&spec),
             Tries::Count(3),
             &mut Control::none(),
         )
         .unwrap();
+        (surface, spec, remesh, quads, tiling)
+    }
+
+    #[test]
+    fn the_kept_tiles_are_the_try_with_the_lowest_score_and_the_first_try_is_one_run() {
+        let options = PatternOptions {
+            courses: Courses::Level {
+                up: [0.0, 0.0, 1.0],
+            },
+            ..PatternOptions::default()
+        };
+        let (surface, spec, remesh, quads, tiling) = three_tries(&options);
         let r = &tiling.report;
         assert_eq!(r.tries.len(), 3);
         let ranks: Vec<(bool, f64)> = r
@@ -307,7 +321,7 @@ mod tests {
             &remesh,
             &options,
             &spec,
-            &finish,
+            &FinishOptions::for_spec(&spec),
             &mut Control::none(),
         )
         .unwrap();
@@ -318,31 +332,11 @@ mod tests {
     #[test]
     fn a_try_stopped_by_its_time_limit_ends_the_tries() {
         // No time for the pattern stage: its greedy start, stopped by the limit, on every try.
-        let surface = generate::spherical_cap(1.2, 0.4, 0.06);
-        let spec = TileSpec {
-            length: 0.28,
-            width: 0.14,
-            thickness: 0.015,
-            joint: 0.01,
-        };
-        let remesh = RemeshOptions {
-            target_edge: spec.quad_edge(false),
-            ..RemeshOptions::default()
-        };
         let options = PatternOptions {
             time_limit: std::time::Duration::ZERO,
             ..PatternOptions::default()
         };
-        let (_, tiling) = tile_surface_tries(
-            &surface,
-            &remesh,
-            &options,
-            &spec,
-            &FinishOptions::for_spec(&spec),
-            Tries::Count(3),
-            &mut Control::none(),
-        )
-        .unwrap();
+        let (.., tiling) = three_tries(&options);
         let r = &tiling.report;
         assert_eq!(r.status, SolveStatus::TimeLimit);
         assert_eq!(r.tries.len(), 1, "{:?}", r.tries);
