@@ -3,7 +3,9 @@
 
 mod tries;
 
-pub use tries::{AUTO_TRIES_QUADS, MAX_TRIES, Tries, score, tile_surface_tries};
+pub use tries::{
+    AUTO_TRIES_QUADS, LATER_PATTERN_SECONDS, MAX_TRIES, Tries, score, tile_surface_tries,
+};
 
 use std::time::Instant;
 

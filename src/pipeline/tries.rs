@@ -66,6 +66,13 @@ pub const MAX_TRIES: usize = 3;
 /// [`MAX_TRIES`] quad meshes: the shared dome's 6,300 quads run in about 5 s on 2 cores.
 pub const AUTO_TRIES_QUADS: f64 = 10_000.0;
 
+/// Time limit of a later try's pattern stage (the first has the caller's): ten times what
+/// the level-course program of the largest surface tried takes to be proven here (the
+/// shared dome's 6,300 quads, under a second). A later try whose pattern is not proven in
+/// it is listed and not kept; one whose proof takes about this long may be kept on one
+/// machine and not on a slower one.
+pub const LATER_PATTERN_SECONDS: std::time::Duration = std::time::Duration::from_secs(10);
+
 /// Strength factors of the tries, in order.
 const FACTORS: [f64; MAX_TRIES] = [1.0, 2.0, 0.5];
 
@@ -126,10 +133,21 @@ pub fn tile_surface_tries(
             }
             control.keep_going(share(fraction))
         };
+        // A later try's pattern stage gets at most LATER_PATTERN_SECONDS: a quad mesh whose
+        // pattern is not proven by then is not kept anyway (below), and would cost the
+        // whole limit (a minute by default) for nothing.
+        let pattern_k = PatternOptions {
+            time_limit: if k == 0 {
+                options.time_limit
+            } else {
+                options.time_limit.min(LATER_PATTERN_SECONDS)
+            },
+            ..options.clone()
+        };
         let found = tile_surface(
             surface,
             &options_k,
-            options,
+            &pattern_k,
             spec,
             finish,
             &mut Control::with_figures(&mut part),
