@@ -219,14 +219,16 @@ fn cut_share(report: &Report) -> f64 {
 }
 
 /// The stage whose time limit a try reached, if any: the pattern stage's search, or the
-/// fit's placement (or its tear fill).
+/// fit's placement (or its tear fill). A fit the caller cancelled counts too: it keeps its
+/// placement so far rather than failing (the other stages fail), and no further try is
+/// made either.
 fn limit_reached(report: &Report) -> Option<&'static str> {
     if report.status == SolveStatus::TimeLimit {
         Some("pattern")
     } else if report
         .fit
         .as_ref()
-        .is_some_and(|f| f.status == FitStatus::TimeLimit)
+        .is_some_and(|f| matches!(f.status, FitStatus::TimeLimit | FitStatus::Cancelled))
     {
         Some("fit")
     } else {

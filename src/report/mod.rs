@@ -52,9 +52,10 @@ pub struct TryFigures {
     pub score: Option<f64>,
     /// Seconds of this try, all stages.
     pub seconds: f64,
-    /// The stage whose time limit this try reached, if one did (`"pattern"` or `"fit"`):
-    /// its tiles then depend on the machine's speed, so no further try is made, and a later
-    /// try that reaches one is not kept.
+    /// The stage whose time limit this try reached, if one did (`"pattern"` or `"fit"`; a
+    /// fit the caller cancelled counts as the fit's): its tiles then depend on the
+    /// machine's speed, so no further try is made, and a later try that reaches one is not
+    /// kept.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub limit_reached: Option<&'static str>,
     /// Why the try gave no tiles (its figures are then 0 and it is not kept), if it failed.
