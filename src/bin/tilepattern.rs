@@ -136,13 +136,8 @@ enum Command {
         /// stage's).
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
         remesh_time_limit: f64,
-        /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints
-        /// closest to the nominal one, most of the surface covered; report.json lists each
-        /// try): 1 to 3, the field's cones placed by a renormalisation at the default
-        /// strength, twice and half of it. Default: 3 on surfaces of at most 10,000 quads, 1
-        /// on larger ones. Each try has the stages' time limits.
-        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=3))]
-        tries: Option<u64>,
+        #[command(flatten)]
+        tries: TriesArg,
         /// Output folder for quads.obj, tiles.obj, report.json, pattern.svg, cutlist.csv,
         /// cutlist.json, sequence.json, gaps.svg.
         #[arg(long)]
@@ -163,13 +158,8 @@ enum Command {
         /// Keep the paper's placement (section 3.5): no fit stage.
         #[arg(long)]
         no_fit: bool,
-        /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints
-        /// closest to the nominal one, most of the surface covered; report.json lists each
-        /// try): 1 to 3, the field's cones placed by a renormalisation at the default
-        /// strength, twice and half of it. Default: 3 on surfaces of at most 10,000 quads, 1
-        /// on larger ones. Each try has the stages' time limits.
-        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=3))]
-        tries: Option<u64>,
+        #[command(flatten)]
+        tries: TriesArg,
     },
 }
 
@@ -253,6 +243,24 @@ impl FieldArgs {
             o.renormalisation = self.renormalisation;
             o
         })
+    }
+}
+
+#[derive(clap::Args)]
+struct TriesArg {
+    /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints closest
+    /// to the nominal one, most of the surface covered; report.json lists each try): 1 to 3,
+    /// the field's cones placed by a renormalisation at --renormalisation's strength (run;
+    /// the default for demo), twice and half of it. Default: 3 on surfaces of at most 10,000
+    /// quads, 1 on larger ones. Each try has the stages' time limits.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=3))]
+    tries: Option<u64>,
+}
+
+impl TriesArg {
+    /// The pipeline's tries (none given: [`Tries::Auto`]).
+    fn tries(&self) -> Tries {
+        self.tries.map_or(Tries::Auto, |n| Tries::Count(n as usize))
     }
 }
 
@@ -547,7 +555,7 @@ fn run(cli: Cli) -> Result<()> {
                 &options,
                 &spec,
                 &finish,
-                tries_of(tries),
+                tries.tries(),
                 &mut Control::with_figures(&mut |fraction, figures| {
                     line.update_run(fraction, figures)
                 }),
@@ -581,13 +589,8 @@ fn run(cli: Cli) -> Result<()> {
             pattern,
             no_fit,
             tries,
-        } => demo(&out, span, &pattern, no_fit, tries_of(tries)),
+        } => demo(&out, span, &pattern, no_fit, tries.tries()),
     }
-}
-
-/// The pipeline's tries from `--tries` (none given: [`Tries::Auto`]).
-fn tries_of(tries: Option<u64>) -> Tries {
-    tries.map_or(Tries::Auto, |n| Tries::Count(n as usize))
 }
 
 fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool, tries: Tries) -> Result<()> {

@@ -158,6 +158,7 @@ pub fn tile_surface_tries(
                 let r = &tiling.report;
                 let value = score(r);
                 let limit = limit_reached(r);
+                let wide = wide_joints(r);
                 listed.push(TryFigures {
                     renormalisation: options_k.renormalisation,
                     quads: remeshed.quads.face_count(),
@@ -165,7 +166,7 @@ pub fn tile_surface_tries(
                     p95_deviation: r.joints.p95_deviation,
                     cut_share: cut_share(r),
                     coverage: coverage(r),
-                    wide_joints: wide_joints(r),
+                    wide_joints: wide,
                     score: Some(value),
                     seconds,
                     limit_reached: limit,
@@ -174,7 +175,7 @@ pub fn tile_surface_tries(
                 // A try stopped by a time limit gave tiles that depend on the machine's
                 // speed: the first is kept all the same (it is what one run gives), a later
                 // one is not compared; and no further try is made, each would take as long.
-                let rank = (wide_joints(r), value);
+                let rank = (wide, value);
                 if (k == 0 || limit.is_none()) && best.as_ref().is_none_or(|(b, ..)| rank < *b) {
                     best = Some((rank, k, remeshed, tiling));
                 }
