@@ -30,8 +30,10 @@
  * on by default); callers built against ABI 4 to 6 keep working unchanged (and get it on).
  * 8: `TpRemeshOptions` grew (`renormalisation`: the strength that places the field's cones,
  * default 0.5); callers built against ABI 4 to 7 keep working unchanged (and get 0.5).
+ * 9: `tp_run` (the whole pipeline, with tries), `TpRunOptions` and `TP_STAGE_RUN` added;
+ * nothing existing changed, callers built against ABI 4 to 8 keep working unchanged.
  */
-#define TP_ABI_VERSION 8
+#define TP_ABI_VERSION 9
 
 /**
  * Stage numbers passed to a progress callback.
@@ -47,6 +49,11 @@
  * The tile stage (placing, the fit of joints, cutting).
  */
 #define TP_STAGE_TILES 3
+
+/**
+ * The whole pipeline of [`tp_run`]: every stage of every try (since ABI 9).
+ */
+#define TP_STAGE_RUN 4
 
 /**
  * `bond`: maximum matching, the paper's eq. (1).
@@ -566,6 +573,24 @@ typedef struct TpRemeshOptions {
 } TpRemeshOptions;
 
 /**
+ * Options of [`tp_run`] beyond those of the three stages. Initialise with
+ * [`tp_run_options_default`] or [`tp_run_options_init`]. Since ABI 9.
+ */
+typedef struct TpRunOptions {
+  /**
+   * `sizeof(TpRunOptions)` as compiled by the caller; set by the default initialiser.
+   */
+  uint32_t struct_size;
+  /**
+   * How many quad meshes to carry through to tiles: 0 (default) for the command line's
+   * choice (3 when the surface needs at most 10,000 quads of `target_edge`, otherwise 1),
+   * or 1 to 3: the remesh options' `renormalisation`, then twice and half of it. The tiles
+   * that fit best are kept (README, *Tries*).
+   */
+  uint32_t tries;
+} TpRunOptions;
+
+/**
  * Tile dimensions in model units. Initialise with [`tp_tile_options_default`].
  */
 typedef struct TpTileOptions {
@@ -845,6 +870,53 @@ TpStatus tp_remesh(const struct TpMesh *mesh,
                    TpProgressCallback progress,
                    void *user,
                    struct TpMesh **out);
+
+/**
+ * The default run options.
+ */
+struct TpRunOptions tp_run_options_default(void);
+
+/**
+ * Fills `*options`, a `TpRunOptions` of `size` bytes (pass `sizeof *options`), with the
+ * defaults; it never writes more than `size` bytes.
+ *
+ * # Safety
+ * `options` must point to `size` writable bytes.
+ */
+TpStatus tp_run_options_init(struct TpRunOptions *options, size_t size);
+
+/**
+ * Tiles a triangle or polygon surface in one call, as the command line's `run`: quadrangulates
+ * it (`remesh`), matches the quads (`pattern`) and places, fits and cuts the tiles (`tiles`),
+ * on up to three quad meshes (`run->tries`), and keeps the tiles that fit best. Their report
+ * (`tp_tiles_report_json`) lists every try (`tries`) and the one kept (`chosen_try`).
+ *
+ * `*out_tiles` gets the kept tiles; `*out_quads` and `*out_pattern` (each may be NULL when
+ * not wanted) the quad mesh and the pattern they were made from, read with the `tp_mesh_*`
+ * and `tp_pattern_*` functions. Nothing is written to them on failure.
+ *
+ * The pattern options' `zones` are given per face of `surface` (each quad takes the zone
+ * of the surface face closest to it); forced pairs and excluded faces name quads, which do
+ * not exist before the call, so they are refused here (use the stages one by one).
+ * `progress` (may be NULL) is called with `TP_STAGE_RUN` and the share of the whole run
+ * done, each try an equal share; a non-zero return cancels the run, which returns
+ * `TP_CANCELLED` without tiles. Each stage keeps its own time limit; a try whose pattern or
+ * fit reaches it ends the tries (the report's `tries[].limit_reached`).
+ *
+ * # Safety
+ * `surface` must be a live mesh; the four options valid, their arrays holding their stated
+ * counts; `out_tiles` writable, `out_quads` and `out_pattern` NULL or writable.
+ */
+TpStatus tp_run(const struct TpMesh *surface,
+                const struct TpRemeshOptions *remesh,
+                const struct TpPatternOptions *pattern,
+                const struct TpTileOptions *tiles,
+                const struct TpRunOptions *run,
+                TpProgressCallback progress,
+                void *user,
+                struct TpMesh **out_quads,
+                struct TpPattern **out_pattern,
+                struct TpTiles **out_tiles);
 
 /**
  * Copies the message of this thread's last failed call (empty after a success) into `buf`

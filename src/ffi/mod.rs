@@ -20,12 +20,14 @@
 mod mesh;
 mod pattern;
 mod remesh;
+mod run;
 mod status;
 mod tiles;
 
 pub use mesh::*;
 pub use pattern::*;
 pub use remesh::*;
+pub use run::*;
 pub use status::{TpStatus, tp_last_error_message};
 pub use tiles::*;
 
@@ -49,7 +51,9 @@ use status::{Failure, TpStatus::*};
 /// on by default); callers built against ABI 4 to 6 keep working unchanged (and get it on).
 /// 8: `TpRemeshOptions` grew (`renormalisation`: the strength that places the field's cones,
 /// default 0.5); callers built against ABI 4 to 7 keep working unchanged (and get 0.5).
-pub const TP_ABI_VERSION: u32 = 8;
+/// 9: `tp_run` (the whole pipeline, with tries), `TpRunOptions` and `TP_STAGE_RUN` added;
+/// nothing existing changed, callers built against ABI 4 to 8 keep working unchanged.
+pub const TP_ABI_VERSION: u32 = 9;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;
@@ -57,6 +61,8 @@ pub const TP_STAGE_REMESH: u32 = 1;
 pub const TP_STAGE_PATTERN: u32 = 2;
 /// The tile stage (placing, the fit of joints, cutting).
 pub const TP_STAGE_TILES: u32 = 3;
+/// The whole pipeline of [`tp_run`]: every stage of every try (since ABI 9).
+pub const TP_STAGE_RUN: u32 = 4;
 
 /// A progress callback: `fraction` in `[0, 1]` of `stage` (a `TP_STAGE_*`) is done; return
 /// non-zero to cancel. Called on the thread that called the stage.

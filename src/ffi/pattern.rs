@@ -223,7 +223,7 @@ pub unsafe extern "C" fn tp_pattern_solve(
 }
 
 /// Converts C options into the library's, checking every value.
-fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
+pub(super) fn pattern_options(raw: &TpPatternOptions) -> Result<PatternOptions, Failure> {
     let invalid = |what: String| Failure::new(TP_INVALID_ARGUMENT, what);
     let bond = bond_of(raw.bond, raw.weight)
         .ok_or_else(|| invalid(format!("bond {} is not one of {BOND_NAMES}", raw.bond)))?;

@@ -140,43 +140,11 @@ pub unsafe extern "C" fn tp_remesh(
                 read_options(options, tp_remesh_options_default(), "options")?,
             )
         };
-        let direction = match raw.direction {
-            TP_DIRECTION_CURVATURE => FieldDirection::Curvature,
-            TP_DIRECTION_VECTOR => FieldDirection::Vector(raw.direction_vector),
-            TP_DIRECTION_ANGLE => FieldDirection::Angle(raw.angle_degrees),
-            other => {
-                return Err(Failure::new(
-                    TP_INVALID_ARGUMENT,
-                    format!(
-                        "direction {other} is not one of TP_DIRECTION_CURVATURE, TP_DIRECTION_VECTOR, TP_DIRECTION_ANGLE"
-                    ),
-                ));
-            }
-        };
-        let time_limit = RemeshOptions::time_limit_from_secs(raw.time_limit_seconds)?;
-        // SAFETY: the caller's promise on field_vectors.
-        let user_field = unsafe { read_field(surface, &raw) }?;
-        // SAFETY: the caller's promise on guide_points and guide_curve_sizes.
-        let guides = unsafe { read_guides(&raw) }?;
-        let options = RemeshOptions {
-            target_edge: raw.target_edge,
-            direction,
-            user_field,
-            guides,
-            shapeup: raw.shapeup != 0,
-            creases: raw.creases != 0,
-            time_limit,
-            renormalisation: raw.renormalisation,
-            ..RemeshOptions::default()
-        };
+        // SAFETY: the arrays hold their stated counts by the caller's promise.
+        let options = unsafe { remesh_options(surface, &raw) }?;
         let mut report = progress_reporter(progress, user, TP_STAGE_REMESH);
         let remeshed =
-            remesh::remesh_with(surface, &options, &mut Control::with_progress(&mut report))
-                .map_err(|e| match e {
-                    RemeshError::Cancelled => Failure::new(TP_CANCELLED, e.to_string()),
-                    RemeshError::TimeLimit { .. } => Failure::new(TP_TIME_LIMIT, e.to_string()),
-                    other => other.into(),
-                })?;
+            remesh::remesh_with(surface, &options, &mut Control::with_progress(&mut report))?;
         // SAFETY: checked non-null above.
         unsafe {
             hand_over(
@@ -187,6 +155,46 @@ pub unsafe extern "C" fn tp_remesh(
                 "out",
             )
         }
+    })
+}
+
+/// The library's remesh options from the C ones, every value checked (the field and guide
+/// arrays read against `surface`).
+///
+/// # Safety
+/// `raw`'s arrays must hold their stated counts (see [`read_field`], [`read_guides`]).
+pub(super) unsafe fn remesh_options(
+    surface: &crate::mesh::PolyMesh,
+    raw: &TpRemeshOptions,
+) -> Result<RemeshOptions, Failure> {
+    let direction = match raw.direction {
+        TP_DIRECTION_CURVATURE => FieldDirection::Curvature,
+        TP_DIRECTION_VECTOR => FieldDirection::Vector(raw.direction_vector),
+        TP_DIRECTION_ANGLE => FieldDirection::Angle(raw.angle_degrees),
+        other => {
+            return Err(Failure::new(
+                TP_INVALID_ARGUMENT,
+                format!(
+                    "direction {other} is not one of TP_DIRECTION_CURVATURE, TP_DIRECTION_VECTOR, TP_DIRECTION_ANGLE"
+                ),
+            ));
+        }
+    };
+    let time_limit = RemeshOptions::time_limit_from_secs(raw.time_limit_seconds)?;
+    // SAFETY: the caller's promise on field_vectors.
+    let user_field = unsafe { read_field(surface, raw) }?;
+    // SAFETY: the caller's promise on guide_points and guide_curve_sizes.
+    let guides = unsafe { read_guides(raw) }?;
+    Ok(RemeshOptions {
+        target_edge: raw.target_edge,
+        direction,
+        user_field,
+        guides,
+        shapeup: raw.shapeup != 0,
+        creases: raw.creases != 0,
+        time_limit,
+        renormalisation: raw.renormalisation,
+        ..RemeshOptions::default()
     })
 }
 

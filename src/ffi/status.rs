@@ -116,6 +116,8 @@ impl From<RemeshError> for Failure {
             RemeshError::Mesh(_)
             | RemeshError::UnsupportedInput(_)
             | RemeshError::NothingExtracted(_) => TpStatus::TP_INVALID_MESH,
+            RemeshError::Cancelled => TpStatus::TP_CANCELLED,
+            RemeshError::TimeLimit { .. } => TpStatus::TP_TIME_LIMIT,
             _ => TpStatus::TP_INVALID_ARGUMENT,
         };
         Self::new(status, e.to_string())

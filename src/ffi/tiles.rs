@@ -81,7 +81,7 @@ pub struct TpTileOptions {
 }
 
 impl TpTileOptions {
-    fn spec(&self) -> TileSpec {
+    pub(super) fn spec(&self) -> TileSpec {
         TileSpec {
             length: self.length,
             width: self.width,
@@ -92,7 +92,7 @@ impl TpTileOptions {
 
     /// The finishing options, negative values replaced by their defaults for the tile; the fit
     /// keeps `bond`.
-    fn finish(&self, bond: Bond) -> FinishOptions {
+    pub(super) fn finish(&self, bond: Bond) -> FinishOptions {
         let auto = FinishOptions::for_spec(&self.spec());
         let or_auto = |value: f64, default: f64| if value < 0.0 { default } else { value };
         let fit = auto.fit.filter(|_| self.fit != 0).map(|fit| FitOptions {
@@ -118,7 +118,7 @@ impl TpTileOptions {
 
 /// Placed tiles and their report (opaque).
 pub struct TpTiles {
-    tiling: Tiling,
+    pub(super) tiling: Tiling,
 }
 
 /// The default tile options (280 x 140 x 15 mm tiles, 10 mm joint, in metres).

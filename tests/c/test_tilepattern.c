@@ -1211,7 +1211,9 @@ static int same_quads(const TpMesh *a, const TpMesh *b) {
   return same;
 }
 
-static void test_renormalisation(void) {
+/* A spherical cap of radius 2 over a disk of radius 1.3, in triangles: round, so its field's
+   cones are free. */
+static TpMesh *round_dome(void) {
   /* A spherical cap of radius 2 over a disk of radius 1.3: a centre, 12 rings of 48. */
   enum { RINGS = 12, SECTORS = 48 };
   const double pi = 3.14159265358979323846;
@@ -1247,7 +1249,11 @@ static void test_renormalisation(void) {
   for (size_t k = 0; k < nf; k++) sz[k] = 3;
   TpMesh *dome = mesh_taking(v, nv, idx, 3 * nf, sz, nf);
   CHECK(dome != NULL);
+  return dome;
+}
 
+static void test_renormalisation(void) {
+  TpMesh *dome = round_dome();
   TpRemeshOptions ro;
   CHECK(tp_remesh_options_init(&ro, sizeof ro) == TP_OK);
   CHECK(ro.renormalisation == 0.5);
@@ -1279,6 +1285,124 @@ static void test_renormalisation(void) {
   tp_mesh_free(dome);
 }
 
+struct run_progress {
+  int calls, other_stage, backwards, cancel_at;
+  double last;
+};
+
+static int32_t run_heard(void *user, uint32_t stage, double fraction) {
+  struct run_progress *p = (struct run_progress *)user;
+  p->calls++;
+  if (stage != TP_STAGE_RUN) p->other_stage++;
+  if (fraction < p->last || fraction > 1.0) p->backwards++;
+  p->last = fraction;
+  return p->cancel_at > 0 && p->calls >= p->cancel_at;
+}
+
+/* tp_run (ABI 9): one try gives the tiles of the three stages called one by one; three tries
+   list every try in the report and keep one; progress is the whole run's; cancel returns
+   without tiles; bad tries, quads named before they exist and a NULL out are refused. */
+static void test_run(void) {
+  TpMesh *dome = round_dome();
+  TpRemeshOptions ro;
+  TpPatternOptions po;
+  TpTileOptions to;
+  TpRunOptions run;
+  CHECK(tp_remesh_options_init(&ro, sizeof ro) == TP_OK);
+  CHECK(tp_pattern_options_init(&po, sizeof po) == TP_OK);
+  CHECK(tp_tile_options_init(&to, sizeof to) == TP_OK);
+  CHECK(tp_run_options_init(&run, sizeof run) == TP_OK);
+  CHECK(run.tries == 0);
+  po.courses = TP_COURSES_LEVEL;
+  ro.target_edge = 0.15; /* as `tilepattern run` for 280 x 140 tiles in level courses */
+
+  /* The stages one by one. */
+  TpMesh *quads = NULL;
+  TpPattern *pattern = NULL;
+  TpTiles *tiles = NULL;
+  CHECK(tp_remesh(dome, &ro, NULL, NULL, &quads) == TP_OK);
+  CHECK(tp_pattern_solve(quads, &po, NULL, NULL, &pattern) == TP_OK);
+  CHECK(tp_tiles_build_on_surface(quads, pattern, dome, &to, &tiles) == TP_OK);
+
+  /* One try: the same quads and tiles. */
+  run.tries = 1;
+  TpMesh *run_quads = NULL;
+  TpPattern *run_pattern = NULL;
+  TpTiles *one = NULL;
+  struct run_progress heard = {0, 0, 0, 0, 0.0};
+  CHECK(tp_run(dome, &ro, &po, &to, &run, run_heard, &heard, &run_quads, &run_pattern, &one) == TP_OK);
+  CHECK(heard.calls > 0 && heard.other_stage == 0 && heard.backwards == 0);
+  CHECK(same_quads(quads, run_quads));
+  size_t n1 = 0, n0 = 0;
+  CHECK(tp_tiles_count(tiles, &n0) == TP_OK && tp_tiles_count(one, &n1) == TP_OK);
+  CHECK(n0 > 100 && n0 == n1);
+  if (n0 == n1 && n0 > 0) {
+    double *c0 = (double *)malloc(24 * n0 * sizeof(double)), *c1 = (double *)malloc(24 * n1 * sizeof(double));
+    CHECK(tp_tiles_copy_corners(tiles, c0, 24 * n0) == TP_OK);
+    CHECK(tp_tiles_copy_corners(one, c1, 24 * n1) == TP_OK);
+    CHECK(memcmp(c0, c1, 24 * n0 * sizeof(double)) == 0);
+    free(c0);
+    free(c1);
+  }
+  TpPatternSummary a, b;
+  CHECK(tp_pattern_summary(pattern, &a) == TP_OK && tp_pattern_summary(run_pattern, &b) == TP_OK);
+  CHECK(a.pairs == b.pairs && a.objective == b.objective);
+
+  /* Three tries: each listed, one kept, the quads and pattern handed out those of the kept. */
+  run.tries = 3;
+  TpMesh *best_quads = NULL;
+  TpTiles *best = NULL;
+  CHECK(tp_run(dome, &ro, &po, &to, &run, NULL, NULL, &best_quads, NULL, &best) == TP_OK);
+  size_t needed = 0;
+  CHECK(tp_tiles_report_json(best, NULL, 0, &needed) == TP_BUFFER_TOO_SMALL);
+  char *json = (char *)malloc(needed + 1);
+  CHECK(tp_tiles_report_json(best, json, needed + 1, NULL) == TP_OK);
+  int listed = 0;
+  for (const char *at = json; (at = strstr(at, "\"renormalisation\"")) != NULL; at++) listed++;
+  CHECK(listed == 3);
+  CHECK(strstr(json, "\"chosen_try\"") != NULL);
+  const char *chosen = strstr(json, "\"chosen_try\"");
+  int k = chosen != NULL ? atoi(strchr(chosen, ':') + 1) : -1;
+  CHECK(k >= 0 && k < 3);
+  /* The kept try's quads are the first try's exactly when the first was kept. */
+  CHECK(same_quads(best_quads, quads) == (k == 0));
+  printf("run: one try = the stages one by one (%zu tiles); three tries listed, try %d kept\n", n0, k);
+  free(json);
+
+  /* Cancel: nothing handed out. */
+  TpTiles *none = NULL;
+  TpMesh *no_quads = NULL;
+  struct run_progress stop = {0, 0, 0, 2, 0.0};
+  CHECK(tp_run(dome, &ro, &po, &to, &run, run_heard, &stop, &no_quads, NULL, &none) == TP_CANCELLED);
+  CHECK(none == NULL && no_quads == NULL && last_error_contains("cancel"));
+
+  /* Bad input, refused by name. */
+  run.tries = 4;
+  CHECK(tp_run(dome, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, &none) == TP_INVALID_ARGUMENT);
+  CHECK(none == NULL && last_error_contains("tries"));
+  run.tries = 1;
+  uint32_t pair[2] = {0, 1};
+  po.forced_pairs = pair;
+  po.forced_pair_count = 1;
+  CHECK(tp_run(dome, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, &none) == TP_INVALID_ARGUMENT);
+  CHECK(none == NULL && last_error_contains("forced_pair_count"));
+  po.forced_pairs = NULL;
+  po.forced_pair_count = 0;
+  CHECK(tp_run(dome, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, NULL) == TP_NULL_POINTER);
+  CHECK(tp_run(NULL, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, &none) == TP_NULL_POINTER);
+  CHECK(tp_run(dome, &ro, &po, &to, NULL, NULL, NULL, NULL, NULL, &none) == TP_NULL_POINTER);
+
+  tp_tiles_free(best);
+  tp_mesh_free(best_quads);
+  tp_tiles_free(one);
+  tp_pattern_free(run_pattern);
+  tp_mesh_free(run_quads);
+  tp_tiles_free(tiles);
+  tp_pattern_free(pattern);
+  tp_mesh_free(quads);
+  tp_mesh_free(dome);
+}
+
 int main(void) {
   test_version();
   test_mesh();
@@ -1293,6 +1417,7 @@ int main(void) {
   test_zones();
   test_creases();
   test_renormalisation();
+  test_run();
   test_panic_boundary();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
