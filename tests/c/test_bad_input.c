@@ -520,6 +520,55 @@ int main(void) {
   expect("no remesh handle after failures", r == NULL);
 
   {
+    /* tp_run: every stage's options checked before anything runs; nothing handed out. */
+    TpRemeshOptions rro;
+    TpPatternOptions rpo;
+    TpTileOptions rto;
+    TpRunOptions run;
+    tp_remesh_options_init(&rro, sizeof rro);
+    tp_pattern_options_init(&rpo, sizeof rpo);
+    tp_tile_options_init(&rto, sizeof rto);
+    row("run options init", tp_run_options_init(&run, sizeof run), TP_OK, NULL);
+    expect("run tries default 0 (automatic)", run.tries == 0);
+    TpTiles *rt = NULL;
+    TpMesh *rq = NULL;
+    run.tries = 99;
+    row("run: 99 tries", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
+        "run->tries is 99");
+    run.tries = 1;
+    uint32_t excluded[1] = {0};
+    rpo.excluded_faces = excluded;
+    rpo.excluded_face_count = 1;
+    row("run: excluded faces", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
+        "excluded_face_count is 1");
+    rpo.excluded_faces = NULL;
+    rpo.excluded_face_count = 0;
+    rro.target_edge = NAN;
+    row("run: NaN target edge", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
+        "target edge");
+    rro.target_edge = 0.145;
+    rto.length = -1.0;
+    row("run: negative tile length", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt),
+        TP_INVALID_ARGUMENT, "length");
+    rto.length = 0.28;
+    rpo.bond = 99;
+    row("run: unknown bond", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
+        "bond 99");
+    rpo.bond = TP_BOND_STAGGERED;
+    run.struct_size = 0;
+    row("run: struct_size 0", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
+        "struct_size");
+    run.struct_size = sizeof run;
+    row("run: NULL surface", tp_run(NULL, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_NULL_POINTER,
+        "surface");
+    row("run: NULL out_tiles", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, NULL), TP_NULL_POINTER,
+        "out_tiles");
+    row("run: NULL tile options", tp_run(quads, &rro, &rpo, NULL, &run, NULL, NULL, &rq, NULL, &rt), TP_NULL_POINTER,
+        "tiles");
+    expect("no run handles after failures", rt == NULL && rq == NULL);
+  }
+
+  {
     /* A closed cube of side 2, each side 2 x 2 unit quads (graceful: tiled, with warnings a
        caller can read: closed surface, no support). */
     double cube[3 * 26];
