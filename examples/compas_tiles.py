@@ -4,7 +4,9 @@ Loads a surface (an OBJ file, or COMPAS's sample hypar: 64 quads of 625 mm), qua
 it unless it already is a mesh of quads of half a tile (as the remesher makes them), matches the quads into tiles (staggered bond by default),
 fits them so that the joints come close to the mortar joint (cutting what cannot fit), cuts
 them to the surface's boundary, prints the report, and writes a Rhino file (layers
-tiles::full, tiles::half, tiles::cuts) and, with --json, the tiles as COMPAS boxes.
+tiles::full, tiles::half, tiles::cuts) and, with --json, the tiles as COMPAS boxes. A surface
+it remeshes goes through all three stages in one call (tilepattern.compas.run): on up to 3
+quad meshes on surfaces of up to 10,000 quads, keeping the tiles that fit best.
 
     python examples/compas_tiles.py [MESH.obj] [--units m] [--tile 280x140x15] [--joint 10]
                                     [--bond staggered] [--courses level] [--no-fit]
@@ -102,25 +104,30 @@ def main():
 
     start = time.perf_counter()
     edge = tp.quad_edge(length, width, joint, courses=args.courses)
+    tile = dict(length=length, width=width, thickness=thickness, joint=joint, fit=not args.no_fit, units_per_mm=per_mm)
+    pattern_options = dict(bond=args.bond, courses=args.courses, time_limit=args.time_limit)
     reason = half_tile_quads(surface, edge)
     if reason is None:
-        quads = surface
         print("the surface's quads are half a tile: matched as they are")
+        pattern = tpc.match(surface, progress=Progress(), **pattern_options)
+        progress = Progress()
+        boxes = tpc.tiles(surface, pattern, surface=surface, progress=progress, **tile)
+        progress.done()
     else:
+        # All three stages in one call, on up to 3 quad meshes (the field's cones placed by
+        # other strengths), keeping the tiles that fit best, as the command line's `run`.
         print("remeshing: " + reason)
-        quads = tpc.remesh(surface, target_edge=edge, progress=Progress())
-        print("remeshed into %d quads" % quads.number_of_faces())
+        progress = Progress()
+        quads, pattern, boxes = tpc.run(surface, target_edge=edge, progress=progress, **pattern_options, **tile)
+        progress.done()
+        tries = boxes.report.get("tries", [])
+        kept = " (try %d of %d kept)" % (boxes.report["chosen_try"] + 1, len(tries)) if tries else ""
+        print("remeshed into %d quads%s" % (quads.number_of_faces(), kept))
 
-    pattern = tpc.match(quads, bond=args.bond, courses=args.courses, time_limit=args.time_limit, progress=Progress())
     print(
         "pattern: %d pairs, %d unpaired quads, %d continuous joints; objective %.1f, bound %.1f (%s)"
         % (len(pattern.pairs), len(pattern.unpaired), pattern.continuous_joints, pattern.objective, pattern.bound, pattern.status)
     )
-
-    progress = Progress()
-    boxes = tpc.tiles(quads, pattern, surface=surface, length=length, width=width, thickness=thickness, joint=joint,
-                      fit=not args.no_fit, units_per_mm=per_mm, progress=progress)
-    progress.done()
     report = tpc.report(boxes)
     cutting, joints = report["cutting"], report["joints"]
     print("tiles: %d full, %d half, %d cut to the boundary in %d shapes, %d filler pieces; coverage %.3f" % (

@@ -116,3 +116,52 @@ def test_face_keys_are_translated():
         tpc.match(mesh, zones={removed: "stack"})
     zoned = tpc.match(mesh, zones={k: "herringbone" for k in keys[:10]}, time_limit=2)
     assert set(zoned.pairs.ravel().tolist()) | set(zoned.unpaired.tolist()) <= set(keys)
+
+
+def test_run_on_a_compas_surface():
+    """tpc.run: the array API's run on the same surface, as a COMPAS quad mesh, the pattern
+    and boxes; zones keyed by the surface's face keys."""
+    surface = sample("hypar.obj")
+    tile = tile_for(surface, scale=0.5)
+    surface.quads_to_triangles()
+    result = tpc.run(surface, courses="level", tries=3, time_limit=10, **tile)
+    quads, pattern, boxes = result
+    assert isinstance(quads, Mesh) and isinstance(pattern, tp.Pattern) and isinstance(boxes, tpc.TileBoxes)
+    assert all(len(quads.face_vertices(f)) == 4 for f in quads.faces())
+    assert len(result.tries) == 3 and result.chosen_try in (0, 1, 2) and tpc.report(result) == boxes.report
+    # The same as tilepattern.run on the surface's arrays.
+    vertices, faces = surface.to_vertices_and_faces()
+    arrays = tp.run(vertices, faces, courses="level", tries=3, time_limit=10, **tile)
+    qv, qf = quads.to_vertices_and_faces()
+    assert np.array_equal(np.array(qv), arrays.vertices) and np.array_equal(np.array(qf), arrays.faces)
+    assert np.array_equal(pattern.pairs, arrays.pattern.pairs) and arrays.chosen_try == result.chosen_try
+    assert_boxes_match_tiles(boxes, arrays.tiles)
+
+
+def test_run_takes_zones_by_surface_face_key():
+    surface = sample("hypar.obj")
+    tile = tile_for(surface, scale=0.5)
+    surface.quads_to_triangles()
+    removed = next(iter(surface.faces()))  # a corner triangle; keys then run from 65, not 0
+    surface.delete_face(removed)
+    surface.remove_unused_vertices()
+    keys = list(surface.faces())
+    assert keys != list(range(len(keys)))
+    options = dict(courses="level", tries=1, time_limit=10, **tile)
+    stack = tpc.run(surface, bond="stack", **options)
+    zoned = tpc.run(surface, zones={k: "stack" for k in keys}, **options)
+    assert np.array_equal(zoned.pattern.pairs, stack.pattern.pairs)
+    assert zoned.pattern.objective == stack.pattern.objective
+    # Half the surface by key (a dict) = the same zones in mesh.faces() order (a sequence),
+    # and not the other half.
+    half = len(keys) // 2
+    by_key = tpc.run(surface, zones={k: "stack" for k in keys[:half]}, **options)
+    in_order = tpc.run(surface, zones=["stack"] * half + [None] * (len(keys) - half), **options)
+    other = tpc.run(surface, zones=[None] * half + ["stack"] * (len(keys) - half), **options)
+    assert np.array_equal(by_key.pattern.pairs, in_order.pattern.pairs)
+    assert not np.array_equal(by_key.pattern.pairs, other.pattern.pairs)
+    # A herringbone zone reaches the library (level courses refuse it); an unknown key is refused.
+    with pytest.raises(tp.InvalidArgumentError, match="courses free"):
+        tpc.run(surface, zones={keys[-1]: "herringbone"}, **options)
+    with pytest.raises(tp.InvalidArgumentError, match="zones: the mesh has no face %d" % removed):
+        tpc.run(surface, zones={removed: "stack"}, **options)

@@ -11,6 +11,8 @@ arrays and small result objects::
     placed = tp.tiles(QV, QF, pattern, surface=(V, F))      # pairs -> boxes (Tiles)
     placed.report["full_tiles"], placed.corners.shape      # (N, 8, 3)
 
+    QV, QF, pattern, placed = tp.run(V, F, courses="level")   # all three on up to 3 quad meshes, best tiles kept
+
 :mod:`tilepattern.compas` works on COMPAS meshes and returns COMPAS boxes;
 :func:`tilepattern.rhino.export_3dm` writes tiles to a Rhino file. Failures raise
 :class:`TilePatternError` (one subclass per status code of the C library).
@@ -37,7 +39,7 @@ from ._native import (
     library_path,
     version,
 )
-from .core import Pattern, TilePatternWarning, Tiles, match, quad_edge, remesh, tiles
+from .core import Pattern, RunResult, TilePatternWarning, Tiles, match, quad_edge, remesh, run, tiles
 
 __version__ = "0.1.0"
 
@@ -45,9 +47,11 @@ __all__ = [
     "remesh",
     "match",
     "tiles",
+    "run",
     "quad_edge",
     "Pattern",
     "Tiles",
+    "RunResult",
     "TilePatternWarning",
     "TilePatternError",
     "NullPointerError",

@@ -1,4 +1,4 @@
-"""Low-level ctypes binding of ``include/tilepattern.h`` (ABI 6).
+"""Low-level ctypes binding of ``include/tilepattern.h`` (ABI 9).
 
 This module mirrors the C header one to one: the constants, the status codes (as
 exception classes), the option and summary structs, the progress callback type and the
@@ -16,7 +16,9 @@ Options structs are filled with the ``tp_*_options_init`` functions, never with 
 ``tp_*_options_default`` functions that return a struct by value: a library whose struct
 grew (the ``struct_size`` scheme allows that without a new ABI version) would write past
 the end of a shorter return buffer. The ``_default`` functions are still bound, with a
-return type padded by :data:`RETURN_PADDING` bytes so that calling them stays safe.
+return type padded by :data:`RETURN_PADDING` bytes so that calling them stays safe; all but
+``tp_run_options_default``, whose 8-byte ``TpRunOptions`` is returned in registers and is
+bound with its exact type (the package never calls it; the tests compare its size).
 """
 
 from __future__ import annotations
@@ -47,11 +49,13 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 8
+ABI_VERSION = 9
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
 TP_STAGE_TILES = 3
+#: The whole pipeline of ``tp_run``: every stage of every try (since ABI 9).
+TP_STAGE_RUN = 4
 
 TP_BOND_STACK = 0
 TP_BOND_STAGGERED = 1
@@ -158,7 +162,7 @@ STATUS_NAMES = {
     TP_PANIC: "TP_PANIC",
 }
 
-STAGE_NAMES = {TP_STAGE_REMESH: "remesh", TP_STAGE_PATTERN: "pattern", TP_STAGE_TILES: "tiles"}
+STAGE_NAMES = {TP_STAGE_REMESH: "remesh", TP_STAGE_PATTERN: "pattern", TP_STAGE_TILES: "tiles", TP_STAGE_RUN: "run"}
 SOLVE_STATUS_NAMES = {TP_SOLVE_OPTIMAL: "optimal", TP_SOLVE_TIME_LIMIT: "time_limit", TP_SOLVE_FEASIBLE: "feasible"}
 BOUND_SOURCE_NAMES = {TP_BOUND_MATCHING: "matching", TP_BOUND_PATCHES: "patches", TP_BOUND_WHOLE_PROGRAM: "whole_program", TP_BOUND_LINEAR_RELAXATION: "linear_relaxation"}
 TILE_KIND_NAMES = {TP_TILE_FULL: "full", TP_TILE_HALF: "half", TP_TILE_BOUNDARY: "boundary", TP_TILE_FIT_CUT: "fit_cut"}
@@ -447,6 +451,15 @@ class TpTileOptions(Structure):
     ]
 
 
+class TpRunOptions(Structure):
+    """``TpRunOptions`` (since ABI 9); create filled with defaults by :func:`run_options`."""
+
+    _fields_ = [
+        ("struct_size", c_uint32),
+        ("tries", c_uint32),
+    ]
+
+
 #: Spare bytes after the return value of the ``tp_*_options_default`` functions.
 RETURN_PADDING = 256
 
@@ -462,6 +475,10 @@ def _padded(struct):
 TpPatternOptionsReturn = _padded(TpPatternOptions)
 TpRemeshOptionsReturn = _padded(TpRemeshOptions)
 TpTileOptionsReturn = _padded(TpTileOptions)
+# Not TpRunOptions: at 8 bytes it comes back in registers (x86-64, AArch64, Windows x64), and
+# a padded return type would make ctypes expect it through a caller's buffer instead.
+# ``tp_run_options_default`` is bound with its exact type; the package fills run options with
+# ``tp_run_options_init`` like the others (:func:`run_options`).
 
 #: ``TpProgressCallback``: ``int32_t (*)(void *user, uint32_t stage, double fraction)``.
 TpProgressCallback = CFUNCTYPE(c_int32, c_void_p, c_uint32, c_double)
@@ -493,6 +510,23 @@ PROTOTYPES = {
     "tp_remesh_options_default": (TpRemeshOptionsReturn, []),
     "tp_remesh_options_init": (TpStatus, [POINTER(TpRemeshOptions), c_size_t]),
     "tp_remesh": (TpStatus, [TpMeshP, POINTER(TpRemeshOptions), TpProgressCallback, c_void_p, POINTER(TpMeshP)]),
+    "tp_run_options_default": (TpRunOptions, []),
+    "tp_run_options_init": (TpStatus, [POINTER(TpRunOptions), c_size_t]),
+    "tp_run": (
+        TpStatus,
+        [
+            TpMeshP,
+            POINTER(TpRemeshOptions),
+            POINTER(TpPatternOptions),
+            POINTER(TpTileOptions),
+            POINTER(TpRunOptions),
+            TpProgressCallback,
+            c_void_p,
+            POINTER(TpMeshP),
+            POINTER(TpPatternP),
+            POINTER(TpTilesP),
+        ],
+    ),
     "tp_last_error_message": (c_size_t, [_charp, c_size_t]),
     "tp_tile_options_default": (TpTileOptionsReturn, []),
     "tp_tile_options_init": (TpStatus, [POINTER(TpTileOptions), c_size_t]),
@@ -711,6 +745,11 @@ def tile_options():
     return _options(TpTileOptions, "tp_tile_options_init")
 
 
+def run_options():
+    """A :class:`TpRunOptions` filled with the library's defaults (``_init``)."""
+    return _options(TpRunOptions, "tp_run_options_init")
+
+
 def native_struct_size(default_name):
     """The ``struct_size`` the library puts in its own defaults, e.g. for
     ``"tp_remesh_options_default"``: ``sizeof`` the struct as the library was compiled.
@@ -744,8 +783,9 @@ def _text(function, pointer):
 class ProgressBridge:
     """A Python callable as a ``TpProgressCallback``.
 
-    ``progress(stage, fraction)`` gets the stage name (``"remesh"``, ``"pattern"`` or
-    ``"tiles"``) and the fraction done; a true return value cancels the stage. An
+    ``progress(stage, fraction)`` gets the stage name (``"remesh"``, ``"pattern"``,
+    ``"tiles"``, or ``"run"`` for the whole pipeline of ``tp_run``) and the fraction done; a
+    true return value cancels the stage. An
     exception raised by ``progress`` (``KeyboardInterrupt`` included) never reaches C: it
     is stored, the stage is cancelled, and :meth:`finish` raises it again once the native
     call returned. The bridge is installed even without ``progress``, so that Ctrl-C
@@ -943,6 +983,54 @@ class MeshHandle(Handle):
                 lib().tp_pattern_free(out)
         bridge.finish(status)
         return result
+
+
+    def run(self, remesh, pattern, tiles, run, progress=None):
+        """``tp_run`` on this surface: the whole pipeline on up to three quad meshes,
+        keeping the tiles that fit best.
+
+        Parameters
+        ----------
+        remesh, pattern, tiles, run : TpRemeshOptions, TpPatternOptions, TpTileOptions, TpRunOptions
+        progress : callable, optional
+            Hears ``"run"`` and the share of the whole run; may cancel it
+            (:class:`CancelledError`, nothing handed out).
+
+        Returns
+        -------
+        tuple of (MeshHandle, PatternHandle, TilesHandle)
+            The kept quad mesh, its pattern and the tiles.
+        """
+        quads, solved, placed = TpMeshP(), TpPatternP(), TpTilesP()
+        bridge = ProgressBridge(progress)
+        status = lib().tp_run(
+            self.pointer,
+            ctypes.byref(remesh),
+            ctypes.byref(pattern),
+            ctypes.byref(tiles),
+            ctypes.byref(run),
+            bridge.callback,
+            None,
+            ctypes.byref(quads),
+            ctypes.byref(solved),
+            ctypes.byref(placed),
+        )
+        # Own whatever was handed out (all three on success, nothing on failure) before
+        # anything can raise, so that each is freed exactly once.
+        handles = [
+            cls(pointer) if pointer else None
+            for cls, pointer in ((MeshHandle, quads), (PatternHandle, solved), (TilesHandle, placed))
+        ]
+        try:
+            bridge.finish(status)
+            if None in handles:  # never expected: TP_OK hands out all three
+                raise error(TP_PANIC, "tp_run returned TP_OK without its results")
+        except BaseException:
+            for handle in handles:
+                if handle is not None:
+                    handle.close()
+            raise
+        return tuple(handles)
 
 
 class PatternHandle(Handle):

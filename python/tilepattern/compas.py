@@ -42,7 +42,7 @@ import numpy as np
 from . import core
 from ._native import TP_INVALID_ARGUMENT, InvalidArgumentError
 
-__all__ = ["remesh", "match", "tiles", "boxes", "report", "TileBoxes", "mesh_vertices_faces", "box_from_frame"]
+__all__ = ["remesh", "match", "tiles", "run", "boxes", "report", "TileBoxes", "RunResult", "mesh_vertices_faces", "box_from_frame"]
 
 
 def _compas():
@@ -127,10 +127,14 @@ def remesh(mesh, target_edge=0.145, **options):
     >>> all(len(quads.face_vertices(f)) == 4 for f in quads.faces())
     True
     """
-    Mesh, _, _ = _compas()
     vertices, faces, _ = mesh_vertices_faces(mesh)
-    qv, qf = core.remesh(vertices, faces, target_edge=target_edge, **options)
-    return Mesh.from_vertices_and_faces(qv.tolist(), qf.tolist() if isinstance(qf, np.ndarray) else qf)
+    return _quad_mesh(*core.remesh(vertices, faces, target_edge=target_edge, **options))
+
+
+def _quad_mesh(vertices, faces):
+    """A COMPAS mesh of the quads :func:`tilepattern.remesh` returns (face keys ``0 .. F-1``)."""
+    Mesh, _, _ = _compas()
+    return Mesh.from_vertices_and_faces(vertices.tolist(), faces.tolist() if isinstance(faces, np.ndarray) else faces)
 
 
 def _zones(zones, keys):
@@ -313,13 +317,110 @@ def tiles(mesh, pattern, surface=None, **options):
     return boxes(placed)
 
 
+@dataclasses.dataclass(eq=False)
+class RunResult:
+    """What :func:`run` keeps, on COMPAS: it unpacks as ``quads, pattern, boxes = run(mesh)``.
+
+    Attributes
+    ----------
+    quads : compas.datastructures.Mesh
+        The kept quad mesh; its face keys are ``0 .. F-1``.
+    pattern : tilepattern.Pattern
+        Its pattern; ``pairs`` and ``unpaired`` hold face keys of ``quads``.
+    boxes : TileBoxes
+        The tiles as COMPAS boxes, with ``.tiles`` and ``.report`` (which lists the tries
+        and the one kept when more than one was made).
+    """
+
+    quads: object
+    pattern: core.Pattern
+    boxes: TileBoxes
+
+    def __iter__(self):
+        return iter((self.quads, self.pattern, self.boxes))
+
+    @property
+    def tiles(self):
+        """The kept :class:`tilepattern.Tiles` (``boxes.tiles``)."""
+        return self.boxes.tiles
+
+    @property
+    def report(self):
+        """The kept tiles' report."""
+        return self.boxes.report
+
+    @property
+    def tries(self):
+        """Each try's figures, in order; empty when one try was made."""
+        return list(self.boxes.report.get("tries", []))
+
+    @property
+    def chosen_try(self):
+        """Which of :attr:`tries` was kept, from 0; ``None`` when one try was made."""
+        return self.boxes.report.get("chosen_try")
+
+    def close(self):
+        """Releases the pattern's native object."""
+        self.pattern.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        self.close()
+
+
+def run(mesh, zones=None, **options):
+    """Tile a COMPAS surface in one call, keeping the best of a few quad meshes.
+
+    :func:`tilepattern.run` on a COMPAS mesh: remesh, match and tiles (fitted, cut to the
+    surface), on up to three quad meshes (``tries``), the tiles that fit best kept.
+
+    Parameters
+    ----------
+    mesh : compas.datastructures.Mesh
+        The surface (triangles or polygons).
+    zones : dict or sequence, optional
+        A bond per face of ``mesh`` (the surface): a dict ``{face key: bond}`` (faces it does
+        not name take ``bond``) or one bond per face in ``mesh.faces()`` order, bonds as
+        :func:`match` takes them; each quad takes the zone of the surface face closest to it.
+    **options
+        ``tries``, ``progress``, ``target_edge`` (default ``quad_edge`` of the tile and
+        courses), ``remesh_time_limit``, ``time_limit`` (the pattern stage's), ``bond``,
+        ``courses``, ``length``, ``width``, ``thickness``, ``joint``, ``fit``,
+        ``units_per_mm``...: see :func:`tilepattern.run`. Lengths are in the mesh's units.
+
+    Returns
+    -------
+    RunResult
+        ``quads`` (a COMPAS quad mesh), ``pattern`` (:class:`tilepattern.Pattern`, face keys
+        of ``quads``) and ``boxes`` (:class:`TileBoxes`, as :func:`tiles` returns them).
+
+    Examples
+    --------
+    >>> import compas
+    >>> from compas.datastructures import Mesh
+    >>> import tilepattern.compas as tpc
+    >>> surface = Mesh.from_obj(compas.get("hypar.obj"))
+    >>> surface.quads_to_triangles()
+    >>> result = tpc.run(surface, length=0.58, width=0.29, thickness=0.04, joint=0.02, courses="level", time_limit=10)
+    >>> quads, pattern, boxes = result
+    >>> all(len(quads.face_vertices(f)) == 4 for f in quads.faces()), len(result.tries), boxes[0].name
+    (True, 3, 'F')
+    """
+    vertices, faces, keys = mesh_vertices_faces(mesh)
+    result = core.run(vertices, faces, zones=_zones(zones, keys), **options)
+    return RunResult(_quad_mesh(result.vertices, result.faces), result.pattern, boxes(result.tiles))
+
+
 def report(result):
     """The tile report as a dict.
 
     Parameters
     ----------
-    result : TileBoxes or tilepattern.Tiles
-        What :func:`tiles` or :func:`tilepattern.tiles` returned.
+    result : TileBoxes, tilepattern.Tiles or a run's result
+        What :func:`tiles`, :func:`tilepattern.tiles`, :func:`run` or
+        :func:`tilepattern.run` returned.
 
     Returns
     -------
@@ -331,5 +432,5 @@ def report(result):
     """
     placed = getattr(result, "tiles", result)
     if not isinstance(placed, core.Tiles):
-        raise TypeError("report() takes what tiles() returned, got %s" % type(result).__name__)
+        raise TypeError("report() takes what tiles() or run() returned, got %s" % type(result).__name__)
     return dict(placed.report)

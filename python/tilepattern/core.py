@@ -1,5 +1,6 @@
 """The three stages on plain arrays, in the style of compas_cgal and compas_libigl:
-``(vertices, faces)`` in, numpy arrays and small result objects out.
+``(vertices, faces)`` in, numpy arrays and small result objects out; :func:`run` makes all
+three in one call, on up to three quad meshes, keeping the tiles that fit best.
 
 ``vertices`` is anything ``numpy.asarray`` turns into a ``(V, 3)`` float array (a list of
 ``[x, y, z]``, COMPAS points, an array). ``faces`` is a list of vertex-index lists, which
@@ -25,9 +26,11 @@ from ._native import InvalidArgumentError, InvalidMeshError
 __all__ = [
     "Pattern",
     "Tiles",
+    "RunResult",
     "remesh",
     "match",
     "tiles",
+    "run",
     "mesh_handle",
     "mesh_arrays",
     "quad_edge",
@@ -301,6 +304,18 @@ def remesh(
     >>> QF.shape[1], 40 < len(QF) < 90
     (4, True)
     """
+    # `keep`: the arrays the options point into, referenced until the native call returns.
+    options, keep = _remesh_options(
+        target_edge, direction, angle, shapeup, time_limit, field, field_weight, guides, guide_weight, creases, renormalisation
+    )
+    with mesh_handle(vertices, faces) as surface:
+        with surface.remesh(options, progress) as quads:
+            return mesh_arrays(quads)
+
+
+def _remesh_options(target_edge, direction, angle, shapeup, time_limit, field, field_weight, guides, guide_weight, creases, renormalisation):
+    """The ``TpRemeshOptions`` of :func:`remesh` (and :func:`run`) from its arguments, and the
+    arrays they point into: keep those referenced until the native call returns."""
     if direction is not None and angle is not None:
         raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "give either direction or angle, not both")
     options = nat.remesh_options()
@@ -341,9 +356,7 @@ def remesh(
         options.guide_curve_sizes = sizes.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32))
         options.guide_count = len(sizes)
     options.guide_weight = float(guide_weight)
-    with mesh_handle(vertices, faces) as surface:
-        with surface.remesh(options, progress) as quads:
-            return mesh_arrays(quads)
+    return options, (keep, keep_guides)
 
 
 def _guides_in(guides) -> Tuple[np.ndarray, np.ndarray]:
@@ -676,6 +689,16 @@ def match(
     >>> all(b == a + 1 for a, b in pattern.pairs.tolist())
     True
     """
+    # `keep`: the arrays the options point into, referenced until the native call returns.
+    options, keep = _pattern_options(bond, weight, time_limit, method, formulation, forced_pairs, excluded_faces, courses, up, gap, zones)
+    with mesh_handle(vertices, faces) as mesh:
+        handle = mesh.solve(options, progress)
+    return _pattern_from(handle)
+
+
+def _pattern_options(bond, weight, time_limit, method, formulation, forced_pairs, excluded_faces, courses, up, gap, zones):
+    """The ``TpPatternOptions`` of :func:`match` (and :func:`run`) from its arguments, and the
+    arrays they point into: keep those referenced until the native call returns."""
     options = nat.pattern_options()
     options.bond = _choice(bond, BONDS, "bond")
     options.method = _choice(method, METHODS, "method")
@@ -690,15 +713,17 @@ def match(
         raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "forced_pairs must be pairs of face indices")
     excluded = _index_array(excluded_faces, "excluded_faces")
     zone_codes = _zone_codes(zones)
-    # The arrays stay referenced by these locals for the whole native call.
     options.forced_pairs = nat.as_pointer(forced, nat.c_uint32)
     options.forced_pair_count = forced.size // 2
     options.excluded_faces = nat.as_pointer(excluded, nat.c_uint32)
     options.excluded_face_count = excluded.size
     options.zones = nat.as_pointer(zone_codes, nat.c_int32)
     options.zone_count = 0 if zone_codes is None else zone_codes.size
-    with mesh_handle(vertices, faces) as mesh:
-        handle = mesh.solve(options, progress)
+    return options, (forced, excluded, zone_codes)
+
+
+def _pattern_from(handle) -> Pattern:
+    """A :class:`Pattern` owning ``handle`` (closed if reading it fails)."""
     try:
         return Pattern._from_handle(handle)
     except BaseException:
@@ -959,6 +984,25 @@ def tiles(
         raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "pattern must be the Pattern returned by match(), got %s" % type(pattern).__name__)
     if pattern.handle is None:
         raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "this Pattern has no native pattern; pass the result of match()")
+    options = _tile_options(
+        length, width, thickness, joint, cut_tolerance, min_kept_width, up, support_band, fit, fit_time_limit,
+        overlap_tolerance, bond_tolerance, units_per_mm, creases,
+    )
+    pattern_pointer = pattern.handle  # raises ValueError below if closed
+    with mesh_handle(vertices, faces) as quads:
+        if surface is None:
+            built = pattern_pointer.build_tiles(quads, options, progress=progress)
+        else:
+            with mesh_handle(*surface) as reference:
+                built = pattern_pointer.build_tiles(quads, options, reference, progress=progress)
+    return _tiles_from(built, stacklevel=3)
+
+
+def _tile_options(
+    length, width, thickness, joint, cut_tolerance, min_kept_width, up, support_band, fit, fit_time_limit,
+    overlap_tolerance, bond_tolerance, units_per_mm, creases,
+):
+    """The ``TpTileOptions`` of :func:`tiles` (and :func:`run`) from its arguments."""
     options = nat.tile_options()
     options.length = float(length)
     options.width = float(width)
@@ -974,17 +1018,17 @@ def tiles(
     options.fit_bond_tolerance = _optional(bond_tolerance)
     options.units_per_mm = float(units_per_mm)
     options.creases = 1 if creases else 0
-    pattern_pointer = pattern.handle  # raises ValueError below if closed
-    with mesh_handle(vertices, faces) as quads:
-        if surface is None:
-            built = pattern_pointer.build_tiles(quads, options, progress=progress)
-        else:
-            with mesh_handle(*surface) as reference:
-                built = pattern_pointer.build_tiles(quads, options, reference, progress=progress)
-    with built:
-        placed = _read_tiles(built)
+    return options
+
+
+def _tiles_from(handle, stacklevel) -> Tiles:
+    """The :class:`Tiles` of a native tiles handle, which is closed; each warning is issued
+    as a :class:`TilePatternWarning` pointing ``stacklevel`` frames up (at the caller of the
+    public function that calls this)."""
+    with handle:
+        placed = _read_tiles(handle)
     for w in placed.warnings:
-        warnings.warn(f"[{w['code']}] {w['message']}", TilePatternWarning, stacklevel=2)
+        warnings.warn(f"[{w['code']}] {w['message']}", TilePatternWarning, stacklevel=stacklevel)
     return placed
 
 
@@ -1015,3 +1059,267 @@ def quad_edge(length=0.28, width=0.14, joint=0.01, courses="free"):
     code = _choice(courses, COURSES, "courses")
     edge = (float(length) + float(joint)) / 2.0
     return max(edge, float(width) + float(joint)) if code == nat.TP_COURSES_LEVEL else edge
+
+
+# ---------------------------------------------------------------------------------------
+# The whole pipeline, with tries
+# ---------------------------------------------------------------------------------------
+
+
+@dataclass(eq=False)
+class RunResult:
+    """What :func:`run` keeps: the quad mesh, its pattern and its tiles.
+
+    It unpacks as a tuple, ``QV, QF, pattern, placed = run(V, F)``. ``close()`` (or a
+    ``with`` block) releases the pattern's native object early, as :meth:`Pattern.close`.
+
+    Attributes
+    ----------
+    vertices : ndarray (V, 3) float64
+        The kept quad mesh's vertices, as :func:`remesh` returns them.
+    faces : ndarray (F, 4) int64
+        Its faces (a list of lists in the unlikely case that not all are quads).
+    pattern : Pattern
+        The pattern solved on that quad mesh, as :func:`match` returns it: pairs and
+        unpaired faces index ``faces``.
+    tiles : Tiles
+        The tiles, as :func:`tiles` returns them; faces index ``faces``, and the report
+        lists the tries (``report["tries"]``) and the one kept (``report["chosen_try"]``)
+        when more than one was made.
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    pattern: Pattern
+    tiles: Tiles
+
+    def __iter__(self):
+        return iter((self.vertices, self.faces, self.pattern, self.tiles))
+
+    @property
+    def report(self) -> dict:
+        """The kept tiles' report (``tiles.report``)."""
+        return self.tiles.report
+
+    @property
+    def tries(self) -> List[dict]:
+        """Each try's figures, in order (``renormalisation``, ``quads``, ``p95_deviation``,
+        ``cut_share``, ``coverage``, ``wide_joints``, ``score``, ``seconds``, and
+        ``limit_reached`` or ``failed`` where they apply); empty when one try was made."""
+        return list(self.tiles.report.get("tries", []))
+
+    @property
+    def chosen_try(self) -> Optional[int]:
+        """Which of :attr:`tries` was kept, from 0; ``None`` when one try was made."""
+        return self.tiles.report.get("chosen_try")
+
+    def close(self):
+        """Releases the pattern's native object; the arrays stay."""
+        self.pattern.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        self.close()
+
+
+#: Most quad meshes :func:`run` tries (the library's ``pipeline::MAX_TRIES``).
+MAX_TRIES = 3
+
+
+def _tries(tries) -> int:
+    """``tries`` of :func:`run`, checked: 0 (automatic) or 1 to :data:`MAX_TRIES`."""
+    if isinstance(tries, bool) or not isinstance(tries, (int, np.integer)) or not 0 <= tries <= MAX_TRIES:
+        raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "tries is %r: give 0 (automatic) or 1 to %d" % (tries, MAX_TRIES))
+    return int(tries)
+
+
+def _no_quads_named(options):
+    """Refuses pattern options naming quads, which :func:`run` makes itself."""
+    for name, count in (("forced_pairs", options.forced_pair_count), ("excluded_faces", options.excluded_face_count)):
+        if count:
+            raise InvalidArgumentError(
+                nat.TP_INVALID_ARGUMENT,
+                "%s names %d quad%s, but run() makes the quads itself, so none can be named before it: leave %s "
+                "None, or call remesh(), match() and tiles() one by one" % (name, count, "" if count == 1 else "s", name),
+            )
+
+
+def run(
+    vertices,
+    faces,
+    *,
+    tries: int = 0,
+    progress: Optional[Progress] = None,
+    # remesh
+    target_edge: Optional[float] = None,
+    direction: Optional[Sequence[float]] = None,
+    angle: Optional[float] = None,
+    shapeup: bool = False,
+    remesh_time_limit: float = 60.0,
+    field=None,
+    field_weight: float = 1.0,
+    guides=None,
+    guide_weight: float = 1.0,
+    creases: bool = True,
+    renormalisation: float = 0.5,
+    # match
+    bond: str = "staggered",
+    weight: float = 0.5,
+    time_limit: float = 60.0,
+    method: str = "auto",
+    formulation: str = "strengthened",
+    forced_pairs=None,
+    excluded_faces=None,
+    courses: str = "free",
+    up: Sequence[float] = (0.0, 0.0, 1.0),
+    gap: float = 0.0,
+    zones=None,
+    # tiles
+    length: float = 0.28,
+    width: float = 0.14,
+    thickness: float = 0.015,
+    joint: float = 0.01,
+    cut_tolerance: Optional[float] = None,
+    min_kept_width: Optional[float] = None,
+    support_band: Optional[float] = None,
+    fit: bool = True,
+    fit_time_limit: float = 10.0,
+    overlap_tolerance: Optional[float] = None,
+    bond_tolerance: Optional[float] = None,
+    units_per_mm: float = 0.001,
+) -> RunResult:
+    """Tile a surface in one call, keeping the best of a few quad meshes (all three stages).
+
+    As the command line's ``tilepattern run``: the surface is quadrangulated (:func:`remesh`),
+    the quads matched (:func:`match`) and the tiles placed, fitted and cut to the surface
+    (:func:`tiles`), on up to three quad meshes, the field's cones placed by a
+    renormalisation at ``renormalisation``, then at twice and half of it (other strengths
+    give other, equally valid quads, which decide where courses end). The tiles that fit
+    best are kept: joints the report does not flag (``wide_joints``) first, then the fewest
+    tiles cut to fit, joints closest to ``joint`` and most of the surface covered. One try
+    gives exactly what :func:`remesh`, :func:`match` and :func:`tiles` give called one by one
+    with the same options and ``surface=(vertices, faces)``.
+
+    Every option of the three stages is taken under its own name (all keyword-only), with
+    the same meaning and default, except these:
+
+    Parameters
+    ----------
+    vertices : array_like (V, 3)
+        The surface's vertices.
+    faces : list of list of int or array_like (F, k)
+        Its faces: triangles, quads or n-gons, mixed if need be.
+    tries : int, optional
+        How many quad meshes to carry through to tiles: 0 (default) for the command line's
+        choice, 3 when the surface needs at most 10,000 quads of ``target_edge`` (its area
+        over ``target_edge`` squared) and 1 otherwise; or 1 to 3. Anything else raises
+        :class:`~tilepattern.InvalidArgumentError` naming ``tries``. Each try has the
+        stages' own time limits (a later try's pattern stage at most 10 s); a try whose
+        pattern stage or fit reaches its limit ends the tries (its tiles depend on the
+        machine's speed), and a later one that does is listed but not kept.
+    progress : callable, optional
+        ``progress(stage, fraction)`` with ``stage == "run"`` and the share of the whole run
+        done (each try an equal share), about every 10 ms; return True to cancel
+        (:class:`~tilepattern.CancelledError`, nothing returned). An exception raised in it
+        cancels the run and is raised again by ``run``.
+    target_edge : float, optional
+        Quad edge in model units. Default ``quad_edge(length, width, joint, courses)``, the
+        command line's choice for the tile given: ``(length + joint) / 2`` in free courses
+        and ``max((length + joint) / 2, width + joint)`` in level courses; for the default
+        tile in metres 0.145 (:func:`remesh`'s default, but as computed in floating point,
+        one unit in the last place above the literal: pass ``target_edge=0.145`` for
+        :func:`remesh`'s default quads bit for bit) and 0.15.
+    remesh_time_limit : float, optional
+        Wall-clock seconds of each remesh (default 60), :func:`remesh`'s ``time_limit``.
+    time_limit : float, optional
+        Wall-clock seconds of each pattern stage (default 60), :func:`match`'s.
+    up : array_like (3,), optional
+        Up direction of level courses (:func:`match`) and of the laying order
+        (:func:`tiles`), one for both as on the command line; default ``(0, 0, 1)``.
+    creases : bool, optional
+        Quads of their own on each sheet between the surface's creases (:func:`remesh`) and
+        tiles cut to them (:func:`tiles`); default True.
+    zones : sequence (F,) of str, int or None, optional
+        A bond per face of the surface (``faces``, not of the quads), spelt as for
+        :func:`match`; each quad takes the zone of the surface face closest to its
+        centroid. A wrong count raises :class:`~tilepattern.InvalidArgumentError` before
+        any work.
+    forced_pairs, excluded_faces : optional
+        Refused unless None or empty (:class:`~tilepattern.InvalidArgumentError` naming
+        them): they name quads, which do not exist before the call. Call :func:`remesh`,
+        :func:`match` and :func:`tiles` one by one to use them.
+    direction, angle, shapeup, field, field_weight, guides, guide_weight, renormalisation
+        As for :func:`remesh` (``field`` one vector per vertex or face of the surface).
+    bond, weight, method, formulation, courses, gap
+        As for :func:`match`; ``courses`` defaults to ``"free"`` as there (the command
+        line's ``run`` lays level courses by default: pass ``courses="level"`` for tiles
+        that fit far better).
+    length, width, thickness, joint, cut_tolerance, min_kept_width, support_band, fit, fit_time_limit, overlap_tolerance, bond_tolerance, units_per_mm
+        As for :func:`tiles`. Lengths are in model units throughout (default 280 x 140 x 15
+        mm tiles with 10 mm joints, in metres; ``units_per_mm`` only scales the report's
+        millimetre figures): give the tile in the surface's units.
+
+    Returns
+    -------
+    RunResult
+        ``vertices``, ``faces`` (the kept quad mesh, as :func:`remesh` returns it),
+        ``pattern`` (a :class:`Pattern`) and ``tiles`` (a :class:`Tiles`, whose
+        ``report["tries"]`` lists every try and ``report["chosen_try"]`` the one kept when
+        more than one was made); it unpacks as ``QV, QF, pattern, placed``. Each warning of
+        the kept tiles is also issued as a :class:`TilePatternWarning`.
+
+    Raises
+    ------
+    TilePatternError
+        ``InvalidMeshError`` for a bad surface, ``InvalidArgumentError`` for bad options
+        (``tries``, zones, forced pairs, excluded faces, ...), ``CancelledError``,
+        ``TimeLimitError`` (the first remesh had no quads in its time limit).
+
+    Examples
+    --------
+    A gently curved 2 x 2 square of 800 triangles, tiled in level courses:
+
+    >>> import numpy as np
+    >>> from tilepattern import run
+    >>> n = 21
+    >>> x, y = np.meshgrid(np.linspace(0, 2, n), np.linspace(0, 2, n))
+    >>> V = np.c_[x.ravel(), y.ravel(), 0.1 * x.ravel() * y.ravel()]
+    >>> at = lambda i, j: i + n * j
+    >>> F = [[at(i, j), at(i + 1, j), at(i + 1, j + 1)] for j in range(n - 1) for i in range(n - 1)]
+    >>> F += [[at(i, j), at(i + 1, j + 1), at(i, j + 1)] for j in range(n - 1) for i in range(n - 1)]
+    >>> result = run(V, F, courses="level", up=(0, 1, 0), tries=2, time_limit=10)
+    >>> QV, QF, pattern, placed = result
+    >>> QF.shape[1], len(result.tries), result.chosen_try in (0, 1)
+    (4, 2, True)
+    >>> placed.report["full_tiles"] == len(pattern.pairs)
+    True
+    """
+    run_options = nat.run_options()
+    run_options.tries = _tries(tries)
+    if target_edge is None:
+        target_edge = quad_edge(length, width, joint, courses)
+    # `keep_*`: the arrays the options point into, referenced until the native call returns.
+    remesh_options, keep_remesh = _remesh_options(
+        target_edge, direction, angle, shapeup, remesh_time_limit, field, field_weight, guides, guide_weight, creases, renormalisation
+    )
+    pattern_options, keep_pattern = _pattern_options(
+        bond, weight, time_limit, method, formulation, forced_pairs, excluded_faces, courses, up, gap, zones
+    )
+    _no_quads_named(pattern_options)
+    tile_options = _tile_options(
+        length, width, thickness, joint, cut_tolerance, min_kept_width, up, support_band, fit, fit_time_limit,
+        overlap_tolerance, bond_tolerance, units_per_mm, creases,
+    )
+    with mesh_handle(vertices, faces) as surface:
+        quads, solved, placed = surface.run(remesh_options, pattern_options, tile_options, run_options, progress)
+    try:
+        with quads:
+            quad_vertices, quad_faces = mesh_arrays(quads)
+        tiles_kept = _tiles_from(placed, stacklevel=3)
+    except BaseException:
+        solved.close()
+        placed.close()
+        raise
+    return RunResult(quad_vertices, quad_faces, _pattern_from(solved), tiles_kept)

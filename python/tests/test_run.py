@@ -1,0 +1,203 @@
+"""tilepattern.run (tp_run, ABI 9): the whole pipeline in one call, on up to three quad
+meshes, keeping the tiles that fit best. One try is the stages called one by one; three
+tries are listed in the report with the one kept; the progress callback hears the whole run
+and can cancel it; bad tries, quads named before they exist and zones not one per surface
+face are refused by name."""
+
+import json
+import warnings
+
+import numpy as np
+import pytest
+
+import tilepattern as tp
+from tilepattern import _native as nat
+from tilepattern.core import mesh_handle
+
+from meshes import grid, triangulated
+from test_renormalisation import round_dome
+
+#: As the C test: 280 x 140 mm tiles in level courses, quads of a course's height.
+LEVEL = dict(courses="level", target_edge=0.15)
+
+
+@pytest.fixture(scope="module")
+def dome():
+    """A spherical cap of radius 2 over a disk of radius 1.3 in 1104 triangles (268 quads of
+    0.15): round, so its field's cones are free and other tries give other quads."""
+    return round_dome()
+
+
+@pytest.fixture(scope="module")
+def stages(dome):
+    """remesh -> match -> tiles called one by one, with the options of LEVEL."""
+    V, F = dome
+    QV, QF = tp.remesh(V, F, target_edge=0.15)
+    pattern = tp.match(QV, QF, courses="level")
+    placed = tp.tiles(QV, QF, pattern, surface=(V, F))
+    return QV, QF, pattern, placed
+
+
+def test_one_try_is_the_stages_one_by_one(dome, stages):
+    V, F = dome
+    QV, QF, pattern, placed = stages
+    heard = []
+    result = tp.run(V, F, tries=1, progress=lambda stage, fraction: heard.append((stage, fraction)), **LEVEL)
+    assert isinstance(result, tp.RunResult)
+    # The same quads ...
+    assert np.array_equal(result.vertices, QV) and np.array_equal(result.faces, QF)
+    # ... the same pattern ...
+    assert isinstance(result.pattern, tp.Pattern) and pattern.optimal and result.pattern.optimal
+    assert np.array_equal(result.pattern.pairs, pattern.pairs) and result.pattern.objective == pattern.objective
+    # ... and the same tiles, to the bit.
+    assert isinstance(result.tiles, tp.Tiles) and len(placed) > 100
+    assert np.array_equal(result.tiles.corners, placed.corners)
+    assert result.tiles.labels == placed.labels and result.tiles.kinds.tolist() == placed.kinds.tolist()
+    # One try lists no tries.
+    assert result.tries == [] and result.chosen_try is None and "tries" not in result.report
+    # Progress: the whole run's, from 0 to 1 without going back.
+    assert len(heard) > 2 and {stage for stage, _ in heard} == {"run"}
+    fractions = [f for _, f in heard]
+    assert fractions == sorted(fractions) and 0.0 <= fractions[0] and fractions[-1] <= 1.0
+    # It unpacks as the four results.
+    qv, qf, p, t = result
+    assert qv is result.vertices and qf is result.faces and p is result.pattern and t is result.tiles
+
+
+def test_the_default_target_edge_is_the_quad_edge_of_the_tile(dome):
+    V, F = dome
+    # Level courses: quad_edge(0.28, 0.14, 0.01, "level"), a course's height (0.14 + 0.01).
+    edge = tp.quad_edge(courses="level")
+    assert edge == pytest.approx(0.15)
+    result = tp.run(V, F, tries=1, courses="level", time_limit=0)
+    QV, QF = tp.remesh(V, F, target_edge=edge)
+    assert np.array_equal(result.vertices, QV) and np.array_equal(result.faces, QF)
+    # Free courses (the default, as match's): (0.28 + 0.01) / 2, remesh's default 0.145 as
+    # computed in floating point (one unit in the last place above the literal).
+    assert tp.quad_edge() == pytest.approx(0.145)
+    free = tp.run(V, F, tries=1, time_limit=0)
+    QV, QF = tp.remesh(V, F, target_edge=tp.quad_edge())
+    assert np.array_equal(free.vertices, QV) and np.array_equal(free.faces, QF)
+    # Given, it is used as given.
+    given = tp.run(V, F, tries=1, target_edge=0.2, time_limit=0)
+    QV, QF = tp.remesh(V, F, target_edge=0.2)
+    assert np.array_equal(given.vertices, QV) and np.array_equal(given.faces, QF)
+
+
+def test_the_pattern_and_quads_handed_out_are_those_of_the_kept_tiles(dome):
+    V, F = dome
+    with tp.run(V, F, tries=3, **LEVEL) as result:
+        # The pattern handed out makes the kept tiles again on the quads handed out.
+        again = tp.tiles(result.vertices, result.faces, result.pattern, surface=(V, F))
+        assert np.array_equal(again.corners, result.tiles.corners)
+        assert result.tiles.faces.max() < len(result.faces) and result.pattern.pairs.max() < len(result.faces)
+    assert result.pattern.closed  # the with block released the native pattern
+    with pytest.raises(ValueError):
+        tp.tiles(result.vertices, result.faces, result.pattern, surface=(V, F))
+
+
+def test_three_tries_are_listed_and_the_best_is_kept(dome, stages):
+    V, F = dome
+    QV = stages[0]
+    result = tp.run(V, F, tries=3, **LEVEL)
+    tries, chosen = result.tries, result.chosen_try
+    assert len(tries) == 3 and chosen in (0, 1, 2)
+    assert [t["renormalisation"] for t in tries] == pytest.approx([0.5, 1.0, 0.25])
+    # The kept try is the best by the run's rank: joints not flagged first, then the score
+    # (the first of equals).
+    ranks = [(t["wide_joints"], t["score"]) for t in tries]
+    assert all(t["score"] is not None and "limit_reached" not in t for t in tries)
+    assert chosen == ranks.index(min(ranks))
+    assert tries[chosen]["quads"] == len(result.faces)
+    # The kept quads are the first try's (the stages' with the default strength) exactly
+    # when the first was kept.
+    assert (result.vertices.shape == QV.shape and np.array_equal(result.vertices, QV)) == (chosen == 0)
+    # The report as plain data and as JSON says the same.
+    report = json.loads(json.dumps(result.tiles.to_dict()))["report"]
+    assert len(report["tries"]) == 3 and report["chosen_try"] == chosen
+    # 0 (automatic) makes 3 tries on this surface (268 quads, at most 10,000), the same tiles.
+    auto = tp.run(V, F, **LEVEL)
+    assert len(auto.tries) == 3 and auto.chosen_try == chosen
+    assert np.array_equal(auto.tiles.corners, result.tiles.corners)
+
+
+def test_cancel_from_the_progress_callback(dome):
+    V, F = dome
+    calls = []
+
+    def stop_at_the_second_call(stage, fraction):
+        calls.append((stage, fraction))
+        return len(calls) >= 2
+
+    with pytest.raises(tp.CancelledError) as caught:
+        tp.run(V, F, tries=3, progress=stop_at_the_second_call, **LEVEL)
+    assert caught.value.status == nat.TP_CANCELLED and "cancel" in caught.value.message
+    assert len(calls) == 2
+
+    class Stop(Exception):
+        pass
+
+    def raising(stage, fraction):
+        raise Stop(stage)
+
+    # An exception raised in the callback cancels the run and is raised again.
+    with pytest.raises(Stop, match="run"):
+        tp.run(V, F, tries=1, progress=raising, **LEVEL)
+    # The next run in the process is unaffected.
+    assert len(tp.run(V, F, tries=1, **LEVEL).tiles) > 100
+
+
+@pytest.mark.parametrize("tries", [4, -1, 2.0, "2", True, None])
+def test_bad_tries_are_refused_by_name(dome, tries):
+    V, F = dome
+    with pytest.raises(tp.InvalidArgumentError, match=r"^TP_INVALID_ARGUMENT \(2\): tries is .*0 \(automatic\) or 1 to 3"):
+        tp.run(V, F, tries=tries, **LEVEL)
+
+
+def test_the_library_refuses_bad_tries_and_named_quads_too(dome):
+    """Past the Python checks, tp_run itself refuses them (the binding passes them on)."""
+    V, F = dome
+    remesh, pattern, tiles, run = nat.remesh_options(), nat.pattern_options(), nat.tile_options(), nat.run_options()
+    with mesh_handle(V, F) as surface:
+        run.tries = 4
+        with pytest.raises(tp.InvalidArgumentError, match="tries is 4"):
+            surface.run(remesh, pattern, tiles, run)
+        run.tries = 1
+        pair = np.array([0, 1], dtype=np.uint32)
+        pattern.forced_pairs = nat.as_pointer(pair, nat.c_uint32)
+        pattern.forced_pair_count = 1
+        with pytest.raises(tp.InvalidArgumentError, match="forced_pair_count"):
+            surface.run(remesh, pattern, tiles, run)
+
+
+def test_forced_pairs_and_excluded_faces_are_refused(dome):
+    V, F = dome
+    with pytest.raises(tp.InvalidArgumentError, match="forced_pairs names 1 quad.*remesh\\(\\), match\\(\\) and tiles\\(\\)"):
+        tp.run(V, F, tries=1, forced_pairs=[[0, 1]], **LEVEL)
+    with pytest.raises(tp.InvalidArgumentError, match="excluded_faces names 2 quads"):
+        tp.run(V, F, tries=1, excluded_faces=[3, 4], **LEVEL)
+    # Empty is no pair: accepted.
+    assert len(tp.run(V, F, tries=1, forced_pairs=[], excluded_faces=[], **LEVEL).tiles) > 100
+
+
+def test_zones_are_per_surface_face(dome):
+    V, F = dome
+    stack = tp.run(V, F, tries=1, bond="stack", **LEVEL)
+    staggered = tp.run(V, F, tries=1, **LEVEL)
+    # Every surface face (1104 triangles, not the 268 quads) in stack: the stack bond's pattern.
+    zoned = tp.run(V, F, tries=1, zones=["stack"] * len(F), **LEVEL)
+    assert np.array_equal(zoned.pattern.pairs, stack.pattern.pairs)
+    assert zoned.pattern.objective == stack.pattern.objective != staggered.pattern.objective
+    with pytest.raises(tp.InvalidArgumentError, match="zones give 268 bonds for a mesh of 1104 faces"):
+        tp.run(V, F, tries=1, zones=["stack"] * 268, **LEVEL)
+
+
+def test_warnings_are_issued_at_the_caller():
+    V, F = triangulated(*grid(8, 6))  # level: no tile needs a prop
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = tp.run(V, F, tries=1, time_limit=10)
+    codes = [w["code"] for w in result.tiles.warnings]
+    assert "no_support" in codes
+    issued = [w for w in caught if issubclass(w.category, tp.TilePatternWarning)]
+    assert len(issued) == len(codes) and all(w.filename == __file__ for w in issued)
