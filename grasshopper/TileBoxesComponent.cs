@@ -7,29 +7,12 @@ using System;
 using System.Collections.Generic;
 using System.Drawing;
 using Grasshopper.Kernel;
-using Rhino.Display;
 using Rhino.Geometry;
 
 namespace TilePattern.Gh
 {
-    /// <summary>What a Tile Boxes solve makes on its worker: the tiling and its tiles as Breps.</summary>
-    public sealed class TileBoxesResult
+    public class TileBoxesComponent : TileComponentBase<TilesResult>
     {
-        public Tiling Tiling;
-        public TileOutputs<Brep> Outputs;
-    }
-
-    public class TileBoxesComponent : BackgroundComponent<TileBoxesResult>
-    {
-        static readonly DisplayMaterial FullMaterial = new DisplayMaterial(Color.FromArgb(200, 96, 48));
-        static readonly DisplayMaterial HalfMaterial = new DisplayMaterial(Color.FromArgb(60, 120, 200));
-        static readonly DisplayMaterial BoundaryMaterial = new DisplayMaterial(Color.FromArgb(230, 190, 40));
-        static readonly DisplayMaterial FitCutMaterial = new DisplayMaterial(Color.FromArgb(200, 40, 120));
-
-        // What the preview draws: the breps of the last solution, by kind (UI thread only).
-        readonly List<KeyValuePair<Brep, string>> preview = new List<KeyValuePair<Brep, string>>();
-        BoundingBox previewBox = BoundingBox.Empty;
-
         public TileBoxesComponent()
             : base("Tile Boxes", "TBoxes",
                 "Builds the tiles of a pattern: a box per matched pair (full tile), a half tile per unpaired quad, moved on the surface so that every joint comes close to the mortar joint (the fit; what cannot fit is cut), cut to the surface's boundary (every piece); one list of tiles with their cut-list labels, frames, laying order, kinds and joint deviations. Preview: full tiles terracotta, half tiles blue, tiles cut to the boundary yellow, tiles cut to fit magenta. Solves in the background; right-click to cancel.",
@@ -62,21 +45,7 @@ namespace TilePattern.Gh
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
         {
-            pManager.AddBrepParameter("Tiles", "T", "Every tile as a solid, in tile order; a cut tile that splits is one Brep holding all its pieces; null where the solid could not be made (see the warnings)", GH_ParamAccess.list);
-            pManager.AddTextParameter("Labels", "Lb", "Cut-list label of every tile (F, H, B1, ...), parallel to Tiles", GH_ParamAccess.list);
-            pManager.AddPlaneParameter("Planes", "Pl", "Frame of every tile (origin, length axis x, width axis y), parallel to Tiles", GH_ParamAccess.list);
-            pManager.AddIntegerParameter("Steps", "N", "Laying order of every tile, from 0, parallel to Tiles", GH_ParamAccess.list);
-            pManager.AddTextParameter("Kinds", "K", "full, half, boundary (cut to the boundary) or fit_cut (cut where it could not be fitted), parallel to Tiles", GH_ParamAccess.list);
-            pManager.AddGenericParameter("Tiling", "Tg", "All tiles and the report, for Tile Report", GH_ParamAccess.item);
-            // Appended outputs keep the indices above.
-            pManager.AddNumberParameter("Deviation", "D", "Worst joint of every tile: the largest |gap - joint| to its neighbours, in model units, parallel to Tiles (e.g. through Bounds and Gradient into Custom Preview to colour the tiles by their joints)", GH_ParamAccess.list);
-        }
-
-        protected override void BeforeSolveInstance()
-        {
-            preview.Clear();
-            previewBox = BoundingBox.Empty;
-            base.BeforeSolveInstance();
+            RegisterTileOutputs(pManager);
         }
 
         protected override void SolveInstance(IGH_DataAccess DA)
@@ -121,69 +90,13 @@ namespace TilePattern.Gh
                 flatPairs.Add(pair.A);
                 flatPairs.Add(pair.B);
             }
-            var key = new InputKey().AddIdentity(pattern).Add(pattern.QuadMesh).Add(flatPairs).Add(pattern.Unpaired).Add(quads).Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(tolerance).Add(fit).Add(options.UnitsPerMm);
-            TileBoxesResult result = Solve(DA, key, (token, progress) =>
-            {
+            var key = new InputKey().AddIdentity(pattern).Add(pattern.QuadMesh).Add(flatPairs).Add(pattern.Unpaired).Add(quads).Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(tolerance).Add(fit).Add(options.UnitsPerMm).Add(creases);
+            TilesResult result = Solve(DA, key, (token, progress) =>
                 // The fit reports its progress and stops when the job is cancelled.
-                Tiling tiling = quads != null ? TilePatternEngine.Tiles(quads, pattern, options, surface, progress, token)
-                    : TilePatternEngine.Tiles(pattern, options, surface, progress, token);
-                token.ThrowIfCancellationRequested();
-                return new TileBoxesResult
-                {
-                    Tiling = tiling,
-                    Outputs = TileOutputs<Brep>.Build(tiling, (tile, pieces) =>
-                    {
-                        token.ThrowIfCancellationRequested();
-                        return RhinoConvert.ToBrep(tile, pieces, tolerance);
-                    }),
-                };
-            });
-            if (result == null)
-                return;
-
-            TileOutputs<Brep> tiles = result.Outputs;
-            foreach (string warning in tiles.Warnings)
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "The solid of " + warning);
-            var planes = new List<Plane>(tiles.Count);
-            for (int i = 0; i < tiles.Count; i++)
-            {
-                planes.Add(RhinoConvert.ToPlane(tiles.Frames[i]));
-                Brep brep = tiles.Geometry[i];
-                if (brep != null)
-                {
-                    preview.Add(new KeyValuePair<Brep, string>(brep, tiles.Kinds[i]));
-                    previewBox.Union(brep.GetBoundingBox(false));
-                }
-            }
-            Report report = result.Tiling.Report;
-            foreach (UserMessage message in UserMessage.ForJoints(report))
-                Show(message);
-            // The library's checks (closed or split surface, tile shape, coverage, dropped tiles
-            // and slivers, no support, ...): each stays visible on the component.
-            if (report.Warnings != null)
-                foreach (TilingWarning warning in report.Warnings)
-                    AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, warning.ToString());
-            DA.SetDataList(0, tiles.Geometry);
-            DA.SetDataList(1, tiles.Labels);
-            DA.SetDataList(2, planes);
-            DA.SetDataList(3, tiles.Steps);
-            DA.SetDataList(4, tiles.Kinds);
-            DA.SetData(5, result.Tiling);
-            DA.SetDataList(6, tiles.Deviations);
-        }
-
-        public override BoundingBox ClippingBox { get { return previewBox; } }
-
-        /// <summary>Full, half, boundary-cut and fit-cut tiles in their own colours (instead of
-        /// the default preview).</summary>
-        public override void DrawViewportMeshes(IGH_PreviewArgs args)
-        {
-            foreach (var item in preview)
-            {
-                DisplayMaterial material = item.Value == "full" ? FullMaterial : item.Value == "half" ? HalfMaterial
-                    : item.Value == "fit_cut" ? FitCutMaterial : BoundaryMaterial;
-                args.Display.DrawBrepShaded(item.Key, material);
-            }
+                TilesResult.Make(quads != null ? TilePatternEngine.Tiles(quads, pattern, options, surface, progress, token)
+                    : TilePatternEngine.Tiles(pattern, options, surface, progress, token), tolerance, token));
+            if (result != null)
+                SetTileOutputs(DA, result);
         }
     }
 }

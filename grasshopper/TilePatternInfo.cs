@@ -14,7 +14,7 @@ namespace TilePattern.Gh
 
         public override string Description
         {
-            get { return "Tile laying patterns for free-form shells that need as little cutting as possible (Du, Van Mele, Block, IASS 2023): quad remeshing, tile matching, tile boxes and their report."; }
+            get { return "Tile laying patterns for free-form shells that need as little cutting as possible (Du, Van Mele, Block, IASS 2023): quad remeshing, tile matching, tile boxes and their report, or all three in one step keeping the best of up to three quad meshes."; }
         }
 
         /// <summary>The plug-in's id; NativeSetup looks the .gha up by it.</summary>

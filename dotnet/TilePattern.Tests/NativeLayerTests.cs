@@ -171,6 +171,8 @@ namespace TilePattern.Tests
             AssertMirror(typeof(TpPatternSummary), "TpPatternSummary", same);
             AssertMirror(typeof(TpTileOptions), "TpTileOptions", up);
             AssertMirror(typeof(TpRemeshOptions), "TpRemeshOptions", n => n.StartsWith("direction_vector[") ? "direction_" + "xyz"[n[17] - '0'] : n);
+            AssertMirror(typeof(TpRunOptions), "TpRunOptions", same);
+            Assert.AreEqual(8, Marshal.SizeOf(typeof(TpRunOptions)));
             Assert.AreEqual(120, Marshal.SizeOf(typeof(TpPatternOptions)));
             Assert.AreEqual(96, Marshal.SizeOf(typeof(TpPatternSummary)));
             Assert.AreEqual(152, Marshal.SizeOf(typeof(TpRemeshOptions)));
@@ -219,12 +221,24 @@ namespace TilePattern.Tests
         }
 
         [Test]
+        public void RunOptionsStructSizeEqualsTheLibrarys()
+        {
+            // Returned by value in a register (8 bytes), read back whole.
+            TpRunOptions d = NativeMethods.tp_run_options_default();
+            AssertLibrarySize("TpRunOptions", d.struct_size, typeof(TpRunOptions));
+            Assert.AreEqual(0u, d.tries, "automatic by default");
+            Assert.AreEqual(0, new RunOptions().Tries);
+        }
+
+        [Test]
         public void OptionsAreSentWithTheWrappersStructSize()
         {
             uint[] forced, excluded;
             Assert.AreEqual((uint)Marshal.SizeOf(typeof(TpPatternOptions)), new PatternOptions().ToNative(out forced, out excluded).struct_size);
             Assert.AreEqual((uint)Marshal.SizeOf(typeof(TpRemeshOptions)), new RemeshOptions().ToNative().struct_size);
             Assert.AreEqual((uint)Marshal.SizeOf(typeof(TpTileOptions)), new TileOptions().ToNative().struct_size);
+            Assert.AreEqual((uint)Marshal.SizeOf(typeof(TpRunOptions)), new RunOptions { Tries = 2 }.ToNative().struct_size);
+            Assert.AreEqual(2u, new RunOptions { Tries = 2 }.ToNative().tries);
         }
 
         [DllImport("tilepattern", CallingConvention = CallingConvention.Cdecl, EntryPoint = "tp_pattern_summary")]

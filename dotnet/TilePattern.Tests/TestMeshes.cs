@@ -87,6 +87,34 @@ namespace TilePattern.Tests
             return PolyMesh.FromFaces(quads.Vertices, faces);
         }
 
+        /// <summary>The C tests' round dome: a spherical cap of radius 2 over a disk of radius 1.3
+        /// (metres), as triangles: a centre and 12 rings of 48 vertices (1,104 faces).</summary>
+        public static PolyMesh RoundDome()
+        {
+            const int rings = 12, sectors = 48;
+            var v = new List<double> { 0.0, 0.0, 2.0 };
+            for (int i = 1; i <= rings; i++)
+                for (int j = 0; j < sectors; j++)
+                {
+                    double r = 1.3 * i / rings, a = 2.0 * Math.PI * j / sectors;
+                    v.Add(r * Math.Cos(a));
+                    v.Add(r * Math.Sin(a));
+                    v.Add(Math.Sqrt(4.0 - r * r));
+                }
+            Func<int, int, int> id = (i, j) => i == 0 ? 0 : 1 + (i - 1) * sectors + j % sectors;
+            var faces = new List<int[]>();
+            for (int j = 0; j < sectors; j++)
+                faces.Add(new[] { 0, id(1, j), id(1, j + 1) });
+            for (int i = 1; i < rings; i++)
+                for (int j = 0; j < sectors; j++)
+                {
+                    int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+                    faces.Add(new[] { a, b, c });
+                    faces.Add(new[] { a, c, d });
+                }
+            return PolyMesh.FromFaces(v.ToArray(), faces);
+        }
+
         /// <summary>A doubly curved shell patch, side <paramref name="span"/> (metres), as
         /// 2 n^2 triangles: z = rise * (1 - (2x/span)^2) * (1 - (2y/span)^2) / ... a dome-like cap.</summary>
         public static PolyMesh CurvedTriangles(int n, double span, double rise)

@@ -109,6 +109,42 @@ namespace TilePattern
             return messages.ToArray();
         }
 
+        /// <summary>What a host should say about the tries of <see cref="TilePatternEngine.Run"/>
+        /// (a remark): which try's tiles were kept, with its p95 |gap - joint| (model units),
+        /// share of tiles cut, coverage and score (lower is better; tries whose joints are not
+        /// flagged wide come first), then every other try's, and any try that reached a time
+        /// limit (no further try made) or failed. With no tries listed (one quad mesh tried): a
+        /// remark saying so.</summary>
+        public static UserMessage ForTries(Report report)
+        {
+            if (report == null)
+                throw new ArgumentNullException("report");
+            var culture = System.Globalization.CultureInfo.InvariantCulture;
+            TryReport[] tries = report.Tries ?? new TryReport[0];
+            int chosen = report.ChosenTry;
+            if (tries.Length == 0 || chosen < 0 || chosen >= tries.Length)
+                return new UserMessage(MessageLevel.Remark, "One quad mesh tried (Tries 1, or 0 on a surface of more than 10,000 quads).");
+            Func<int, string> head = k => string.Format(culture, "try {0} (renormalisation {1:G3})", k + 1, tries[k].Renormalisation);
+            Func<int, string> figures = k =>
+            {
+                TryReport t = tries[k];
+                if (t.Failed != null)
+                    return "failed: " + t.Failed;
+                string text = string.Format(culture, "p95 |gap - joint| {0:G3}{1}, {2:0.#} % of tiles cut, coverage {3:0.###}, score {4:0.##}", t.P95Deviation,
+                    t.WideJoints ? " (wide joints)" : "", 100 * t.CutShare, t.Coverage, t.Score);
+                if (t.LimitReached != null)
+                    text += ", its " + t.LimitReached + " stage reached its time limit, so no further try was made" + (k == chosen ? "" : " and it is not kept");
+                return text;
+            };
+            var others = new System.Collections.Generic.List<string>();
+            for (int k = 0; k < tries.Length; k++)
+                if (k != chosen)
+                    others.Add(head(k) + ": " + figures(k));
+            string rest = others.Count == 0 ? "" : " " + char.ToUpperInvariant(others[0][0]) + string.Join("; ", others.ToArray()).Substring(1) + ".";
+            return new UserMessage(MessageLevel.Remark, string.Format(culture, "{0} {1}: the tiles of {2} are kept: {3}.{4}",
+                tries.Length, tries.Length == 1 ? "try" : "tries", head(chosen), figures(chosen), rest));
+        }
+
         static string Where()
         {
             try

@@ -1,5 +1,6 @@
-// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 8: the
-// field's renormalisation strength; 7 the creases switch; 6 guide curves and zones; 5 the designer's field, 4 the gap, 3 the fit stage and level courses; 2
+// P/Invoke declarations for every export of include/tilepattern.h (TP_ABI_VERSION 9: tp_run,
+// the whole pipeline with tries, and TpRunOptions; 8 the field's renormalisation strength; 7
+// the creases switch; 6 guide curves and zones; 5 the designer's field, 4 the gap, 3 the fit stage and level courses; 2
 // added boundary tiles and the tp_*_options_init functions), and
 // mirrors of its structs. Nothing here is public: the public API is TilePatternEngine.
 //
@@ -119,6 +120,15 @@ namespace TilePattern
         public int creases;
     }
 
+    /// <summary>Mirror of TpRunOptions (8 bytes; since ABI 9): the options of tp_run beyond
+    /// those of the three stages.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct TpRunOptions
+    {
+        public uint struct_size;
+        public uint tries;
+    }
+
     // Return buffers of the tp_*_options_default() functions. These return their struct by
     // value, which every 64-bit C ABI does through a caller-allocated buffer (the structs are
     // larger than 16 bytes and start with a uint32, so they are never returned in registers).
@@ -148,10 +158,11 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 8;
+        internal const int TP_ABI_VERSION = 9;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const uint TP_STAGE_TILES = 3;
+        internal const uint TP_STAGE_RUN = 4;
         internal const int TP_BOND_STACK = 0;
         internal const int TP_BOND_STAGGERED = 1;
         internal const int TP_BOND_RUNNING = 2;
@@ -248,6 +259,21 @@ namespace TilePattern
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern UIntPtr tp_last_error_message([Out] byte[] buffer, UIntPtr length);
 
+        // TpRunOptions is 8 bytes, which the 64-bit C ABIs return in a register, not through
+        // a caller's buffer: a 512-byte return buffer as above would be the wrong calling
+        // convention, so this one returns the struct itself. The wrapper never calls it (only
+        // the layout tests do): it initialises with tp_run_options_init, which is safe whatever
+        // the loaded library's struct size.
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern TpRunOptions tp_run_options_default();
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_run_options_init(ref TpRunOptions options, UIntPtr size);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_run(MeshHandle surface, ref TpRemeshOptions remesh, ref TpPatternOptions pattern, ref TpTileOptions tiles,
+            ref TpRunOptions run, TpProgressCallback progress, IntPtr user, out MeshHandle out_quads, out PatternHandle out_pattern, out TilesHandle out_tiles);
+
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern TpTileOptionsReturn tp_tile_options_default();
 
@@ -277,6 +303,14 @@ namespace TilePattern
         {
             var o = new TpTileOptions();
             Initialised(tp_tile_options_init(ref o, (UIntPtr)Marshal.SizeOf(typeof(TpTileOptions))));
+            return o;
+        }
+
+        [System.Runtime.CompilerServices.MethodImpl(System.Runtime.CompilerServices.MethodImplOptions.NoInlining)]
+        internal static TpRunOptions RunDefaults()
+        {
+            var o = new TpRunOptions();
+            Initialised(tp_run_options_init(ref o, (UIntPtr)Marshal.SizeOf(typeof(TpRunOptions))));
             return o;
         }
 

@@ -536,6 +536,51 @@ namespace TilePattern
         }
     }
 
+    /// <summary>Options of <see cref="TilePatternEngine.Run"/> beyond those of the three stages
+    /// (tp_run's TpRunOptions).</summary>
+    public sealed class RunOptions
+    {
+        /// <summary>The most quad meshes a run carries through to tiles: the remesh options'
+        /// <see cref="RemeshOptions.Renormalisation"/>, twice and half of it.</summary>
+        public const int MaxTries = 3;
+
+        /// <summary>The library's defaults: <see cref="Tries"/> 0 (automatic).</summary>
+        public RunOptions()
+        {
+            Native.EnsureReady();
+            LoadDefaults();
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        void LoadDefaults()
+        {
+            TpRunOptions d = NativeMethods.RunDefaults();
+            Tries = checked((int)d.tries);
+        }
+
+        /// <summary>How many quad meshes of the surface to carry through the pattern, the tiles
+        /// and the fit, keeping the tiles that fit best: 0 (default) for the command line's
+        /// choice (3 when the surface needs at most 10,000 quads of
+        /// <see cref="RemeshOptions.TargetEdge"/>, else 1), or 1 to <see cref="MaxTries"/>
+        /// (the strengths <see cref="RemeshOptions.Renormalisation"/>, twice and half of it, in
+        /// this order). 1 gives what <see cref="TilePatternEngine.Remesh"/>,
+        /// <see cref="TilePatternEngine.Match"/> and <see cref="TilePatternEngine.Tiles(Pattern, TileOptions, PolyMesh)"/>
+        /// give one by one. Anything else throws <see cref="ArgumentOutOfRangeException"/>
+        /// when the run starts.</summary>
+        public int Tries { get; set; }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        internal TpRunOptions ToNative()
+        {
+            if (Tries < 0 || Tries > MaxTries)
+                throw new ArgumentOutOfRangeException("Tries", Tries, "Tries is 0 (automatic: 3 on a surface of at most 10,000 quads, else 1) or 1 to " + MaxTries + ", not " + Tries);
+            TpRunOptions o = NativeMethods.RunDefaults();
+            o.struct_size = (uint)Marshal.SizeOf(typeof(TpRunOptions));
+            o.tries = (uint)Tries;
+            return o;
+        }
+    }
+
     /// <summary>Vectors given as xyz arrays.</summary>
     internal static class Xyz
     {

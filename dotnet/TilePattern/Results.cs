@@ -1,5 +1,5 @@
 // What the stages return: a Pattern (keeps its native handle for the tile stage), Tiles and
-// the Report (plain data, copied out of the library).
+// the Report (plain data, copied out of the library); and what a whole run keeps (RunResult).
 using System;
 using System.Collections.Generic;
 using System.Linq;
@@ -135,6 +135,37 @@ namespace TilePattern
             return string.Format(System.Globalization.CultureInfo.InvariantCulture,
                 "{0} pairs, {1} unpaired, {2} continuous joints, objective {3}, bound {4}, {5}",
                 Pairs.Length, Unpaired.Length, ContinuousJoints, Objective, Bound, Status);
+        }
+    }
+
+    /// <summary>What <see cref="TilePatternEngine.Run"/> keeps: the quad mesh, the pattern and
+    /// the tiles of the try that fit best (the tiling's <see cref="Report.Tries"/> lists every
+    /// try, <see cref="Report.ChosenTry"/> the one kept). <see cref="Pattern"/> owns native memory
+    /// (the pattern and the quad mesh, for another <c>TilePatternEngine.Tiles</c>); Dispose
+    /// releases it (a forgotten Dispose is caught by the SafeHandles' finalizers). The quads and
+    /// the tiling are plain data, readable at any time.</summary>
+    public sealed class RunResult : IDisposable
+    {
+        internal RunResult(PolyMesh quads, Pattern pattern, Tiling tiling)
+        {
+            Quads = quads;
+            Pattern = pattern;
+            Tiling = tiling;
+        }
+
+        /// <summary>The kept try's quad mesh (the same as <see cref="TilePattern.Pattern.QuadMesh"/>).</summary>
+        public PolyMesh Quads { get; private set; }
+
+        /// <summary>The kept try's pattern, solved on <see cref="Quads"/>; owns native memory.</summary>
+        public Pattern Pattern { get; private set; }
+
+        /// <summary>The kept tiles, cut to the surface's boundary, and their report.</summary>
+        public Tiling Tiling { get; private set; }
+
+        /// <summary>Releases the pattern's native memory; safe to call more than once.</summary>
+        public void Dispose()
+        {
+            Pattern.Dispose();
         }
     }
 
@@ -573,6 +604,56 @@ namespace TilePattern
         public int Unsupported { get; internal set; }
     }
 
+    /// <summary>One try of <see cref="TilePatternEngine.Run"/> (report.json's <c>tries</c>):
+    /// the tiles laid on one quad mesh of the surface, and how well they fit.</summary>
+    public sealed class TryReport
+    {
+        /// <summary>The field's renormalisation strength of this try's quad mesh.</summary>
+        public double Renormalisation { get; internal set; }
+        /// <summary>Faces of its quad mesh (0 when it failed).</summary>
+        public int Quads { get; internal set; }
+        /// <summary>Interior irregular vertices of its quad mesh.</summary>
+        public int InteriorIrregularVertices { get; internal set; }
+        /// <summary>Its joints' p95 |gap - joint| after the fit (model units).</summary>
+        public double P95Deviation { get; internal set; }
+        /// <summary>Tiles cut to fit and pieces cut inside the fit's holes, per full and half tile (0 to 1).</summary>
+        public double CutShare { get; internal set; }
+        /// <summary>Share of the surface its tiles cover.</summary>
+        public double Coverage { get; internal set; }
+        /// <summary>Whether its report warned that the joints stray (wide_joints); tries without
+        /// the warning are kept before tries with it.</summary>
+        public bool WideJoints { get; internal set; }
+        /// <summary>percent of tiles cut + p95 per half joint + percent uncovered: lower is
+        /// better; NaN when the try failed.</summary>
+        public double Score { get; internal set; }
+        /// <summary>Seconds of this try, all stages.</summary>
+        public double Seconds { get; internal set; }
+        /// <summary>"pattern" or "fit" when that stage reached its time limit in this try (its
+        /// tiles then depend on the machine's speed, and no further try was made); null otherwise.</summary>
+        public string LimitReached { get; internal set; }
+        /// <summary>Why the try gave no tiles, or null.</summary>
+        public string Failed { get; internal set; }
+
+        internal static TryReport Parse(Dictionary<string, object> t)
+        {
+            object wide;
+            return new TryReport
+            {
+                Renormalisation = JsonAccess.Number(t, "renormalisation"),
+                Quads = JsonAccess.Integer(t, "quads"),
+                InteriorIrregularVertices = JsonAccess.Integer(t, "interior_irregular_vertices"),
+                P95Deviation = JsonAccess.Number(t, "p95_deviation"),
+                CutShare = JsonAccess.Number(t, "cut_share"),
+                Coverage = JsonAccess.Number(t, "coverage"),
+                WideJoints = t != null && t.TryGetValue("wide_joints", out wide) && wide is bool && (bool)wide,
+                Score = JsonAccess.Number(t, "score"),
+                Seconds = JsonAccess.Number(t, "seconds"),
+                LimitReached = JsonAccess.Text(t, "limit_reached"),
+                Failed = JsonAccess.Text(t, "failed"),
+            };
+        }
+    }
+
     /// <summary>The report of tp_tiles_report_json (the CLI's report.json without units).</summary>
     public sealed class Report
     {
@@ -631,6 +712,14 @@ namespace TilePattern
         /// <summary>Odd input and results to look at twice (tp_tiles_copy_warning_codes and
         /// tp_tiles_warnings; report.json's "warnings"); empty when all is well.</summary>
         public TilingWarning[] Warnings { get; internal set; }
+
+        /// <summary>Every try of <see cref="TilePatternEngine.Run"/>, in order (report.json's
+        /// <c>tries</c>); empty when one quad mesh was tried, and for the stages called one by one.</summary>
+        public TryReport[] Tries { get; private set; }
+
+        /// <summary>Which of <see cref="Tries"/> these tiles are, from 0 (report.json's
+        /// <c>chosen_try</c>); -1 when <see cref="Tries"/> is empty.</summary>
+        public int ChosenTry { get; private set; }
 
         /// <summary>Reads a report from its JSON (FormatException if it is not JSON).</summary>
         public static Report Parse(string json)
@@ -712,6 +801,9 @@ namespace TilePattern
                     parsed.Add(new TilingWarning { Code = code, Name = name, Message = JsonAccess.Text(w, "message") ?? "" });
                 }
             r.Warnings = parsed.ToArray();
+            var tries = root.ContainsKey("tries") ? root["tries"] as List<object> : null;
+            r.Tries = tries == null ? new TryReport[0] : tries.Select(t => TryReport.Parse(t as Dictionary<string, object>)).ToArray();
+            r.ChosenTry = root.ContainsKey("chosen_try") ? JsonAccess.Integer(root, "chosen_try") : -1;
             return r;
         }
     }

@@ -1,4 +1,4 @@
-// The public entry points: remesh -> match -> tiles (+ report).
+// The public entry points: remesh -> match -> tiles (+ report), and the three in one run with tries.
 using System;
 using System.Collections.Generic;
 using System.Runtime.CompilerServices;
@@ -97,23 +97,9 @@ namespace TilePattern
             options.FlatGuides(out guidePoints, out guideSizes);
             var bridge = new ProgressBridge(progress, cancellationToken);
             bridge.ThrowIfCancelled();
-            GCHandle pinned = field == null ? default(GCHandle) : GCHandle.Alloc(field, GCHandleType.Pinned);
-            GCHandle pinnedPoints = guidePoints == null ? default(GCHandle) : GCHandle.Alloc(guidePoints, GCHandleType.Pinned);
-            GCHandle pinnedSizes = guideSizes == null ? default(GCHandle) : GCHandle.Alloc(guideSizes, GCHandleType.Pinned);
-            try
+            using (var pins = new Pins())
             {
-                if (field != null)
-                {
-                    native.field_vectors = pinned.AddrOfPinnedObject();
-                    native.field_count = (UIntPtr)(field.Length / 3);
-                }
-                if (guideSizes != null)
-                {
-                    native.guide_points = pinnedPoints.AddrOfPinnedObject();
-                    native.guide_point_count = (UIntPtr)(guidePoints.Length / 3);
-                    native.guide_curve_sizes = pinnedSizes.AddrOfPinnedObject();
-                    native.guide_count = (UIntPtr)guideSizes.Length;
-                }
+                pins.Remesh(ref native, field, guidePoints, guideSizes);
                 using (MeshHandle input = surface.CreateHandle())
                 {
                     MeshHandle quads;
@@ -124,15 +110,6 @@ namespace TilePattern
                         return PolyMesh.FromHandle(quads);
                     }
                 }
-            }
-            finally
-            {
-                if (pinned.IsAllocated)
-                    pinned.Free();
-                if (pinnedPoints.IsAllocated)
-                    pinnedPoints.Free();
-                if (pinnedSizes.IsAllocated)
-                    pinnedSizes.Free();
             }
         }
 
@@ -158,35 +135,22 @@ namespace TilePattern
             bridge.ThrowIfCancelled();
             MeshHandle mesh = quads.CreateHandle();
             PatternHandle pattern = null;
-            GCHandle forcedPin = GCHandle.Alloc(forced, GCHandleType.Pinned);
-            GCHandle excludedPin = GCHandle.Alloc(excluded, GCHandleType.Pinned);
-            GCHandle zonesPin = zones == null ? default(GCHandle) : GCHandle.Alloc(zones, GCHandleType.Pinned);
-            try
+            using (var pins = new Pins())
             {
-                native.forced_pairs = forced.Length == 0 ? IntPtr.Zero : forcedPin.AddrOfPinnedObject();
-                native.excluded_faces = excluded.Length == 0 ? IntPtr.Zero : excludedPin.AddrOfPinnedObject();
-                if (zones != null)
+                try
                 {
-                    native.zones = zonesPin.AddrOfPinnedObject();
-                    native.zone_count = (UIntPtr)zones.Length;
+                    pins.Pattern(ref native, forced, excluded, zones);
+                    int status = NativeMethods.tp_pattern_solve(mesh, ref native, bridge.Callback, IntPtr.Zero, out pattern);
+                    bridge.Finish(status);
+                    return new Pattern(quads, mesh, pattern);
                 }
-                int status = NativeMethods.tp_pattern_solve(mesh, ref native, bridge.Callback, IntPtr.Zero, out pattern);
-                bridge.Finish(status);
-                return new Pattern(quads, mesh, pattern);
-            }
-            catch
-            {
-                if (pattern != null)
-                    pattern.Dispose();
-                mesh.Dispose();
-                throw;
-            }
-            finally
-            {
-                forcedPin.Free();
-                excludedPin.Free();
-                if (zonesPin.IsAllocated)
-                    zonesPin.Free();
+                catch
+                {
+                    if (pattern != null)
+                        pattern.Dispose();
+                    mesh.Dispose();
+                    throw;
+                }
             }
         }
 
@@ -265,6 +229,151 @@ namespace TilePattern
             {
                 if (own != null)
                     own.Dispose();
+            }
+        }
+
+        /// <summary>The whole pipeline in one call, as the command line's <c>run</c>: remeshes
+        /// <paramref name="surface"/> (a triangle or polygon mesh), matches the quads and lays,
+        /// fits and cuts the tiles to the surface's boundary, on up to three quad meshes
+        /// (<see cref="RunOptions.Tries"/>: the strengths <see cref="RemeshOptions.Renormalisation"/>,
+        /// twice and half of it), and keeps the tiles that fit best: first those whose joints
+        /// the report does not flag (<see cref="TilingWarningCode.WideJoints"/>), then the lowest
+        /// score (percent of tiles cut + p95 joint deviation per half joint + percent of the
+        /// surface uncovered). The kept tiling's <see cref="Report.Tries"/> lists every try and
+        /// <see cref="Report.ChosenTry"/> the one kept (neither with one try).
+        /// <para>Null options take the library's defaults. Remesh for the courses as the stages
+        /// would (<see cref="RemeshOptions.ForTile(TileOptions, Courses)"/>). The pattern
+        /// options' <see cref="PatternOptions.Zones"/> give a bond per face of
+        /// <paramref name="surface"/> (each quad takes the zone of the surface face closest to
+        /// it); <see cref="PatternOptions.ForcedPairs"/> and <see cref="PatternOptions.ExcludedFaces"/>
+        /// must be empty (<see cref="ArgumentException"/>), since the quads they would name do
+        /// not exist yet: call <see cref="Remesh"/>, <see cref="Match"/> and
+        /// <see cref="Tiles(Pattern, TileOptions, PolyMesh)"/> one by one for them.</para>
+        /// <para><paramref name="progress"/> hears the share of the whole run on the calling
+        /// thread, each try an equal share; cancelling <paramref name="cancellationToken"/>
+        /// stops the run soon after and throws <see cref="TilePatternCanceledException"/> (no
+        /// tiles). Each stage keeps its own time limit; a try whose pattern stage or fit reaches
+        /// it ends the tries (<see cref="TryReport.LimitReached"/>). The result owns native
+        /// memory (its <see cref="RunResult.Pattern"/>): dispose it when done.</para></summary>
+        public static RunResult Run(PolyMesh surface, RemeshOptions remesh = null, PatternOptions pattern = null, TileOptions tiles = null,
+            RunOptions run = null, IProgress<double> progress = null, CancellationToken cancellationToken = default(CancellationToken))
+        {
+            if (surface == null)
+                throw new ArgumentNullException("surface");
+            Native.EnsureReady();
+            return RunCore(surface, remesh ?? new RemeshOptions(), pattern ?? new PatternOptions(), tiles ?? new TileOptions(), run ?? new RunOptions(),
+                progress, cancellationToken);
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        static RunResult RunCore(PolyMesh surface, RemeshOptions remesh, PatternOptions pattern, TileOptions tiles, RunOptions run,
+            IProgress<double> progress, CancellationToken cancellationToken)
+        {
+            int forcedCount = pattern.ForcedPairs == null ? 0 : pattern.ForcedPairs.Count;
+            int excludedCount = pattern.ExcludedFaces == null ? 0 : pattern.ExcludedFaces.Count;
+            if (forcedCount > 0 || excludedCount > 0)
+                throw new ArgumentException("PatternOptions.ForcedPairs and ExcludedFaces must be empty for Run (ForcedPairs lists " + forcedCount
+                    + ", ExcludedFaces " + excludedCount + "): Run makes the quads itself, so no quad can be named before it;"
+                    + " call Remesh, Match and Tiles one by one to force pairs or exclude faces", "pattern");
+            TpRemeshOptions remeshNative = remesh.ToNative();
+            double[] field = remesh.FlatField();
+            double[] guidePoints;
+            uint[] guideSizes;
+            remesh.FlatGuides(out guidePoints, out guideSizes);
+            uint[] forced, excluded;
+            TpPatternOptions patternNative = pattern.ToNative(out forced, out excluded);
+            int[] zones = pattern.ZoneCodes();
+            TpTileOptions tileNative = tiles.ToNative();
+            TpRunOptions runNative = run.ToNative();
+            var bridge = new ProgressBridge(progress, cancellationToken);
+            bridge.ThrowIfCancelled();
+            MeshHandle quads = null;
+            PatternHandle patternHandle = null;
+            TilesHandle tilesHandle = null;
+            using (var pins = new Pins())
+            {
+                try
+                {
+                    pins.Remesh(ref remeshNative, field, guidePoints, guideSizes);
+                    pins.Pattern(ref patternNative, forced, excluded, zones);
+                    int status;
+                    using (MeshHandle input = surface.CreateHandle())
+                        status = NativeMethods.tp_run(input, ref remeshNative, ref patternNative, ref tileNative, ref runNative,
+                            bridge.Callback, IntPtr.Zero, out quads, out patternHandle, out tilesHandle);
+                    bridge.Finish(status);
+                    Tiling tiling = ReadTiles(tilesHandle);
+                    PolyMesh quadMesh = PolyMesh.FromHandle(quads);
+                    return new RunResult(quadMesh, new Pattern(quadMesh, quads, patternHandle), tiling);
+                }
+                catch
+                {
+                    if (patternHandle != null)
+                        patternHandle.Dispose();
+                    if (quads != null)
+                        quads.Dispose();
+                    throw;
+                }
+                finally
+                {
+                    // The tiles are copied out (plain data): the native ones go at once.
+                    if (tilesHandle != null)
+                        tilesHandle.Dispose();
+                }
+            }
+        }
+
+        /// <summary>Arrays pinned for one native call (the options' pointers point into them),
+        /// released together when the call is over.</summary>
+        sealed class Pins : IDisposable
+        {
+            readonly List<GCHandle> handles = new List<GCHandle>();
+
+            /// <summary>Pins <paramref name="array"/> until Dispose; IntPtr.Zero for null.</summary>
+            IntPtr Pin(Array array)
+            {
+                if (array == null)
+                    return IntPtr.Zero;
+                GCHandle handle = GCHandle.Alloc(array, GCHandleType.Pinned);
+                handles.Add(handle);
+                return handle.AddrOfPinnedObject();
+            }
+
+            /// <summary>The remesh options' field and guide curves (null: none).</summary>
+            public void Remesh(ref TpRemeshOptions native, double[] field, double[] guidePoints, uint[] guideSizes)
+            {
+                if (field != null)
+                {
+                    native.field_vectors = Pin(field);
+                    native.field_count = (UIntPtr)(field.Length / 3);
+                }
+                if (guideSizes != null)
+                {
+                    native.guide_points = Pin(guidePoints);
+                    native.guide_point_count = (UIntPtr)(guidePoints.Length / 3);
+                    native.guide_curve_sizes = Pin(guideSizes);
+                    native.guide_count = (UIntPtr)guideSizes.Length;
+                }
+            }
+
+            /// <summary>The pattern options' forced pairs and excluded faces (NULL when empty;
+            /// ToNative set their counts) and zones (null: none).</summary>
+            public void Pattern(ref TpPatternOptions native, uint[] forced, uint[] excluded, int[] zones)
+            {
+                native.forced_pairs = forced.Length == 0 ? IntPtr.Zero : Pin(forced);
+                native.excluded_faces = excluded.Length == 0 ? IntPtr.Zero : Pin(excluded);
+                if (zones != null)
+                {
+                    native.zones = Pin(zones);
+                    native.zone_count = (UIntPtr)zones.Length;
+                }
+            }
+
+            public void Dispose()
+            {
+                foreach (GCHandle handle in handles)
+                    if (handle.IsAllocated)
+                        handle.Free();
+                handles.Clear();
             }
         }
 

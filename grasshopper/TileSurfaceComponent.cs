@@ -1,0 +1,162 @@
+// The three stages in one, as the command line's run: a surface mesh to fitted tiles cut to its
+// boundary, on up to three quad meshes (the field's renormalisation strength, twice and half of
+// it), keeping the tiles that fit best (TilePatternEngine.Run).
+using System;
+using Grasshopper.Kernel;
+using Grasshopper.Kernel.Parameters;
+using Rhino.Geometry;
+
+namespace TilePattern.Gh
+{
+    /// <summary>What a Tile Surface solve makes on its worker: the kept quads, pattern and tiles,
+    /// and the tiles as Breps.</summary>
+    public sealed class TileSurfaceResult
+    {
+        /// <summary>The kept quad mesh, pattern and tiles (the report lists every try).</summary>
+        public RunResult Run;
+
+        /// <summary>The kept tiles as Breps.</summary>
+        public TilesResult Tiles;
+    }
+
+    /// <summary>Tile Surface: the three stages in one step with tries (TilePatternEngine.Run);
+    /// outputs 0 to 6 as Tile Boxes', then the kept quad mesh and pattern.</summary>
+    public class TileSurfaceComponent : TileComponentBase<TileSurfaceResult>
+    {
+        public TileSurfaceComponent()
+            : base("Tile Surface", "TSurface",
+                "Tiles a surface mesh in one step, as the command line's run: quad remeshing, the pattern and the tiles with the fit of the joints, cut to the surface's boundary, on up to three quad meshes of the surface (Tries), keeping the tiles that fit best (joints not flagged wide first, then the fewest cuts and the closest joints); the same outputs as Tile Boxes, and the kept quad mesh and pattern. A remark says which try was kept. Solves in the background; right-click to cancel.",
+                "3 Tiles")
+        {
+        }
+
+        public override Guid ComponentGuid { get { return new Guid("06d6afc0-41d9-4888-aa3c-315f4e6778f4"); } }
+
+        protected override System.Drawing.Bitmap Icon { get { return Icons.Load("TileSurface"); } }
+
+        public override GH_Exposure Exposure { get { return GH_Exposure.primary; } }
+
+        protected override void RegisterInputParams(GH_InputParamManager pManager)
+        {
+            pManager.AddMeshParameter("Mesh", "M", "The shell's surface: a triangle, quad or mixed mesh, in model units; the tiles are cut to its boundary", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Length", "L", "Tile length in model units (default: 280 mm in the document's units)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Width", "W", "Tile width in model units (default: 140 mm)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Thickness", "T", "Tile thickness in model units (default: 15 mm)", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Joint", "J", "Mortar joint in model units (default: 10 mm)", GH_ParamAccess.item);
+            pManager.AddIntegerParameter("Bond", "B", "0 = stack (maximum matching), 1 = staggered, 2 = running bond, 3 = herringbone, 4 = basket weave (3 and 4 lay tiles both ways: always in free courses)", GH_ParamAccess.item, (int)Bond.Staggered);
+            pManager.AddIntegerParameter("Courses", "C", "1 = level: every tile along level courses (horizontal in the world's z) on quads of max((length + joint) / 2, width + joint), which the fit closes far better (default); 0 = free: tiles either way across quads of (length + joint) / 2 (the paper's model)", GH_ParamAccess.item, (int)Courses.Level);
+            pManager.AddBooleanParameter("Fit", "F", "Move the tiles on the surface so that every joint comes close to the mortar joint, keeping the bond, and cut what cannot fit (default true); false keeps the paper's placement", GH_ParamAccess.item, true);
+            pManager.AddIntegerParameter("Tries", "Tr", "How many quad meshes to lay tiles on, keeping the tiles that fit best: 0 = automatic (3 on a surface of at most 10,000 quads, else 1; default), or 1 to 3 (renormalisation 0.5, then 1, then 0.25). 1 gives what Quad Remesh, Tile Pattern and Tile Boxes give one by one", GH_ParamAccess.item, 0);
+            pManager.AddNumberParameter("Time limit", "TL", "Seconds of the pattern stage (default 10; a later try has at most 10); when a try's pattern stage or fit reaches its time limit no further try is made", GH_ParamAccess.item, 10.0);
+            pManager.AddBooleanParameter("Creases", "Cr", "Split the mesh where its faces turn sharply (a groin vault's groins, a fold): each part gets quads of its own and the tiles are cut to the creases, half a joint short on each side (default true)", GH_ParamAccess.item, true);
+            for (int i = 1; i <= 4; i++)
+                pManager[i].Optional = true;
+            var bond = (Param_Integer)pManager[5];
+            bond.AddNamedValue("Stack", (int)Bond.Stack);
+            bond.AddNamedValue("Staggered", (int)Bond.Staggered);
+            bond.AddNamedValue("Running bond", (int)Bond.RunningBond);
+            bond.AddNamedValue("Herringbone", (int)Bond.Herringbone);
+            bond.AddNamedValue("Basket weave", (int)Bond.BasketWeave);
+            var courses = (Param_Integer)pManager[6];
+            courses.AddNamedValue("Level", (int)Courses.Level);
+            courses.AddNamedValue("Free", (int)Courses.Free);
+            var tries = (Param_Integer)pManager[8];
+            tries.AddNamedValue("Automatic", 0);
+            tries.AddNamedValue("One try", 1);
+            tries.AddNamedValue("Two tries", 2);
+            tries.AddNamedValue("Three tries", 3);
+        }
+
+        protected override void RegisterOutputParams(GH_OutputParamManager pManager)
+        {
+            RegisterTileOutputs(pManager);
+            pManager.AddMeshParameter("Quad mesh", "Q", "The quad mesh the kept tiles were laid on", GH_ParamAccess.item);
+            pManager.AddGenericParameter("Pattern", "P", "The kept pattern (solved on Quad mesh), for Tile Boxes", GH_ParamAccess.item);
+        }
+
+        protected override void SolveInstance(IGH_DataAccess DA)
+        {
+            Mesh mesh = null;
+            if (!DA.GetData(0, ref mesh) || mesh == null)
+                return;
+            TileDefaults defaults = Defaults();
+            double length = defaults.Length, width = defaults.Width, thickness = defaults.Thickness, joint = defaults.Joint, timeLimit = 10.0;
+            int bond = (int)Bond.Staggered, courses = (int)Courses.Level, tries = 0;
+            bool fit = true, creases = true;
+            DA.GetData(1, ref length);
+            DA.GetData(2, ref width);
+            DA.GetData(3, ref thickness);
+            DA.GetData(4, ref joint);
+            DA.GetData(5, ref bond);
+            DA.GetData(6, ref courses);
+            DA.GetData(7, ref fit);
+            DA.GetData(8, ref tries);
+            DA.GetData(9, ref timeLimit);
+            DA.GetData(10, ref creases);
+            if (bond < 0 || bond > 4)
+            {
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Bond is 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), not " + bond + ".");
+                return;
+            }
+            if (courses != (int)Courses.Free && courses != (int)Courses.Level)
+            {
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
+                return;
+            }
+            if (tries < 0 || tries > RunOptions.MaxTries)
+            {
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Tries is 0 (automatic) or 1 to " + RunOptions.MaxTries + ", not " + tries + ".");
+                return;
+            }
+            if ((bond == (int)Bond.Herringbone || bond == (int)Bond.BasketWeave) && courses == (int)Courses.Level)
+            {
+                // Both lay tiles both ways: level courses (the input's default) cannot hold them,
+                // and the quads are then those of free courses, as the command line's run does.
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Herringbone and basket weave lay tiles both ways: laid in free courses.");
+                courses = (int)Courses.Free;
+            }
+            // The quads as Quad Remesh makes them for these courses; UnitsPerMm from the
+            // document's units, for the report's shares of joints within 2 and 5 mm.
+            var remesh = new RemeshOptions { TargetEdge = TileOptions.QuadEdgeOf(length, width, joint, (Courses)courses), Creases = creases };
+            var pattern = new PatternOptions { Bond = (Bond)bond, TimeLimitSeconds = timeLimit, Courses = (Courses)courses };
+            var tile = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm, Creases = creases };
+            var run = new RunOptions { Tries = tries };
+            double tolerance = Tolerance();
+            PolyMesh surface = null;
+            int turned = 0;
+            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned)))
+                return;
+            WarnTurned(turned, "surface");
+            var key = new InputKey().Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(bond).Add(courses).Add(fit).Add(tries)
+                .Add(timeLimit).Add(creases).Add(tolerance).Add(tile.UnitsPerMm);
+            TileSurfaceResult result = Solve(DA, key, (token, progress) =>
+            {
+                // The whole run reports its progress (each try an equal share) and stops when
+                // the job is cancelled.
+                RunResult found = TilePatternEngine.Run(surface, remesh, pattern, tile, run, progress, token);
+                try
+                {
+                    return new TileSurfaceResult { Run = found, Tiles = TilesResult.Make(found.Tiling, tolerance, token) };
+                }
+                catch
+                {
+                    found.Dispose();
+                    throw;
+                }
+            });
+            if (result == null)
+                return;
+
+            SetTileOutputs(DA, result.Tiles);
+            Show(UserMessage.ForTries(result.Run.Tiling.Report));
+            Pattern kept = result.Run.Pattern;
+            if (kept.Status != SolveStatus.Optimal)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "The kept pattern is not proven optimal (" + result.Run.Tiling.Report.StatusText + "): gap "
+                    + (100 * kept.Gap).ToString("0.##", System.Globalization.CultureInfo.InvariantCulture) + " %.");
+            DA.SetData(7, RhinoConvert.ToRhinoMesh(result.Run.Quads));
+            // Not disposed here: the pattern travels downstream; its SafeHandles free the native
+            // memory (announced to the GC) once Grasshopper lets go of it.
+            DA.SetData(8, kept);
+        }
+    }
+}
