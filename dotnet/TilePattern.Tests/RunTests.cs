@@ -106,6 +106,19 @@ namespace TilePattern.Tests
         }
 
         [Test]
+        public void NullOptionsAreTheCommandLinesRun()
+        {
+            // Level courses on quads for them and the default tile, as `tilepattern run`.
+            var tile = new TileOptions();
+            using (RunResult given = TilePatternEngine.Run(Dome, RemeshOptions.ForTile(tile, Courses.Level), Level(), tile, new RunOptions { Tries = 1 }))
+            using (RunResult defaults = TilePatternEngine.Run(Dome, null, null, null, new RunOptions { Tries = 1 }))
+            {
+                Assert.IsTrue(SameMesh(given.Quads, defaults.Quads), "the same quads");
+                AssertSameTiles(given.Tiling, defaults.Tiling, "null options");
+            }
+        }
+
+        [Test]
         public void ThreeTriesAreListedAndOneIsKept()
         {
             StagesOneByOne();

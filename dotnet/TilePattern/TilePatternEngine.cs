@@ -241,8 +241,12 @@ namespace TilePattern
         /// score (percent of tiles cut + p95 joint deviation per half joint + percent of the
         /// surface uncovered). The kept tiling's <see cref="Report.Tries"/> lists every try and
         /// <see cref="Report.ChosenTry"/> the one kept (neither with one try).
-        /// <para>Null options take the library's defaults. Remesh for the courses as the stages
-        /// would (<see cref="RemeshOptions.ForTile(TileOptions, Courses)"/>). The pattern
+        /// <para>Null options are the command line's run's: default tiles, level courses (null
+        /// <paramref name="pattern"/>: a <see cref="PatternOptions"/> with
+        /// <see cref="Courses.Level"/>) and quads for them
+        /// (null <paramref name="remesh"/>: <see cref="RemeshOptions.ForTile(TileOptions, Courses)"/>
+        /// of the tile and the pattern's courses). Options given are used as given: remesh for
+        /// their courses the same way. The pattern
         /// options' <see cref="PatternOptions.Zones"/> give a bond per face of
         /// <paramref name="surface"/> (each quad takes the zone of the surface face closest to
         /// it); <see cref="PatternOptions.ForcedPairs"/> and <see cref="PatternOptions.ExcludedFaces"/>
@@ -261,8 +265,12 @@ namespace TilePattern
             if (surface == null)
                 throw new ArgumentNullException("surface");
             Native.EnsureReady();
-            return RunCore(surface, remesh ?? new RemeshOptions(), pattern ?? new PatternOptions(), tiles ?? new TileOptions(), run ?? new RunOptions(),
-                progress, cancellationToken);
+            // Null options as the command line's run: level courses (free for the bonds that
+            // lay tiles both ways) and quads for them and the tile.
+            tiles = tiles ?? new TileOptions();
+            pattern = pattern ?? new PatternOptions { Courses = Courses.Level };
+            remesh = remesh ?? RemeshOptions.ForTile(tiles, pattern.Courses);
+            return RunCore(surface, remesh, pattern, tiles, run ?? new RunOptions(), progress, cancellationToken);
         }
 
         [MethodImpl(MethodImplOptions.NoInlining)]

@@ -72,12 +72,18 @@ def test_the_default_target_edge_is_the_quad_edge_of_the_tile(dome):
     result = tp.run(V, F, tries=1, courses="level", time_limit=0)
     QV, QF = tp.remesh(V, F, target_edge=edge)
     assert np.array_equal(result.vertices, QV) and np.array_equal(result.faces, QF)
-    # Free courses (the default, as match's): (0.28 + 0.01) / 2, remesh's default 0.145 as
-    # computed in floating point (one unit in the last place above the literal).
+    # Level courses are the default, as the command line's run.
+    default = tp.run(V, F, tries=1, time_limit=0)
+    assert np.array_equal(default.vertices, result.vertices) and np.array_equal(default.faces, result.faces)
+    assert np.array_equal(default.tiles.corners, result.tiles.corners)
+    # Free courses: (0.28 + 0.01) / 2, remesh's default 0.145 as computed in floating point
+    # (one unit in the last place above the literal); herringbone is laid in them by default.
     assert tp.quad_edge() == pytest.approx(0.145)
-    free = tp.run(V, F, tries=1, time_limit=0)
+    free = tp.run(V, F, tries=1, courses="free", time_limit=0)
     QV, QF = tp.remesh(V, F, target_edge=tp.quad_edge())
     assert np.array_equal(free.vertices, QV) and np.array_equal(free.faces, QF)
+    herringbone = tp.run(V, F, tries=1, bond="herringbone", time_limit=0)
+    assert np.array_equal(herringbone.vertices, QV) and np.array_equal(herringbone.faces, QF)
     # Given, it is used as given.
     given = tp.run(V, F, tries=1, target_edge=0.2, time_limit=0)
     QV, QF = tp.remesh(V, F, target_edge=0.2)

@@ -1172,7 +1172,7 @@ def run(
     formulation: str = "strengthened",
     forced_pairs=None,
     excluded_faces=None,
-    courses: str = "free",
+    courses: Optional[str] = None,
     up: Sequence[float] = (0.0, 0.0, 1.0),
     gap: float = 0.0,
     zones=None,
@@ -1252,10 +1252,12 @@ def run(
         :func:`match` and :func:`tiles` one by one to use them.
     direction, angle, shapeup, field, field_weight, guides, guide_weight, renormalisation
         As for :func:`remesh` (``field`` one vector per vertex or face of the surface).
-    bond, weight, method, formulation, courses, gap
-        As for :func:`match`; ``courses`` defaults to ``"free"`` as there (the command
-        line's ``run`` lays level courses by default: pass ``courses="level"`` for tiles
-        that fit far better).
+    courses : {"level", "free"}, optional
+        As for :func:`match`, but by default the command line's ``run``'s choice: level
+        courses, which fit far better, or free courses for ``"herringbone"`` and
+        ``"basket-weave"``, which lay tiles both ways (level ones refuse them).
+    bond, weight, method, formulation, gap
+        As for :func:`match`.
     length, width, thickness, joint, cut_tolerance, min_kept_width, support_band, fit, fit_time_limit, overlap_tolerance, bond_tolerance, units_per_mm
         As for :func:`tiles`. Lengths are in model units throughout (default 280 x 140 x 15
         mm tiles with 10 mm joints, in metres; ``units_per_mm`` only scales the report's
@@ -1298,6 +1300,9 @@ def run(
     """
     run_options = nat.run_options()
     run_options.tries = _tries(tries)
+    if courses is None:
+        both_ways = _choice(bond, BONDS, "bond") in (nat.TP_BOND_HERRINGBONE, nat.TP_BOND_BASKET_WEAVE)
+        courses = "free" if both_ways else "level"
     if target_edge is None:
         target_edge = quad_edge(length, width, joint, courses)
     # `keep_*`: the arrays the options point into, referenced until the native call returns.
