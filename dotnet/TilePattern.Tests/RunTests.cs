@@ -188,6 +188,20 @@ namespace TilePattern.Tests
                 Assert.AreEqual(3, seen.Count, "no progress after the cancel");
                 Assert.Less(seen[2], 1.0 / 3, "cancelled within the first try");
             }
+            using (var late = new CancellationTokenSource())
+            {
+                // Cancelled in the last try's fit: the run is cancelled, not an earlier try kept.
+                var seen = new List<double>();
+                var progress = new SyncProgress(f =>
+                {
+                    seen.Add(f);
+                    if (f >= 0.999)
+                        late.Cancel();
+                });
+                Assert.Throws<TilePatternCanceledException>(() =>
+                    TilePatternEngine.Run(Dome, Remesh(), Level(), null, new RunOptions { Tries = 3 }, progress, late.Token));
+                Assert.GreaterOrEqual(seen[seen.Count - 1], 0.999, "cancelled at the end of the last try");
+            }
             using (var cancelled = new CancellationTokenSource())
             {
                 cancelled.Cancel();

@@ -714,7 +714,8 @@ namespace TilePattern
         public TilingWarning[] Warnings { get; internal set; }
 
         /// <summary>Every try of <see cref="TilePatternEngine.Run"/>, in order (report.json's
-        /// <c>tries</c>); empty when one quad mesh was tried, and for the stages called one by one.</summary>
+        /// <c>tries</c>); empty when one try was asked for, and for the stages called one by one
+        /// (when more were asked for and the first reached a time limit, it lists that one).</summary>
         public TryReport[] Tries { get; private set; }
 
         /// <summary>Which of <see cref="Tries"/> these tiles are, from 0 (report.json's

@@ -240,7 +240,7 @@ namespace TilePattern
         /// the report does not flag (<see cref="TilingWarningCode.WideJoints"/>), then the lowest
         /// score (percent of tiles cut + p95 joint deviation per half joint + percent of the
         /// surface uncovered). The kept tiling's <see cref="Report.Tries"/> lists every try and
-        /// <see cref="Report.ChosenTry"/> the one kept (neither with one try).
+        /// <see cref="Report.ChosenTry"/> the one kept (neither when one try was asked for).
         /// <para>Null options are the command line's run's: default tiles, level courses (null
         /// <paramref name="pattern"/>: a <see cref="PatternOptions"/> with
         /// <see cref="Courses.Level"/>) and quads for them
@@ -256,8 +256,9 @@ namespace TilePattern
         /// <para><paramref name="progress"/> hears the share of the whole run on the calling
         /// thread, each try an equal share; cancelling <paramref name="cancellationToken"/>
         /// stops the run soon after and throws <see cref="TilePatternCanceledException"/> (no
-        /// tiles). Each stage keeps its own time limit; a try whose pattern stage or fit reaches
-        /// it ends the tries (<see cref="TryReport.LimitReached"/>). The result owns native
+        /// tiles), in whichever try and stage it comes. Each stage keeps its own time limit,
+        /// except that a later try's pattern stage has at most 10 s; a try whose pattern stage
+        /// or fit reaches its limit ends the tries (<see cref="TryReport.LimitReached"/>). The result owns native
         /// memory (its <see cref="RunResult.Pattern"/>): dispose it when done.</para></summary>
         public static RunResult Run(PolyMesh surface, RemeshOptions remesh = null, PatternOptions pattern = null, TileOptions tiles = null,
             RunOptions run = null, IProgress<double> progress = null, CancellationToken cancellationToken = default(CancellationToken))

@@ -153,6 +153,20 @@ def test_cancel_from_the_progress_callback(dome):
     assert len(tp.run(V, F, tries=1, **LEVEL).tiles) > 100
 
 
+def test_a_cancel_in_the_last_try_cancels_the_run(dome):
+    """Cancelled in the last try's fit, the run is cancelled: not an earlier try's tiles."""
+    V, F = dome
+    heard = []
+
+    def stop_at_the_end(stage, fraction):
+        heard.append(fraction)
+        return fraction >= 0.999
+
+    with pytest.raises(tp.CancelledError):
+        tp.run(V, F, tries=3, progress=stop_at_the_end, **LEVEL)
+    assert heard[-1] >= 0.999 and heard[0] < 1.0 / 3
+
+
 @pytest.mark.parametrize("tries", [4, -1, 2.0, "2", True, None])
 def test_bad_tries_are_refused_by_name(dome, tries):
     V, F = dome
@@ -196,6 +210,17 @@ def test_zones_are_per_surface_face(dome):
     assert zoned.pattern.objective == stack.pattern.objective != staggered.pattern.objective
     with pytest.raises(tp.InvalidArgumentError, match="zones give 268 bonds for a mesh of 1104 faces"):
         tp.run(V, F, tries=1, zones=["stack"] * 268, **LEVEL)
+
+
+def test_a_zone_laying_tiles_both_ways_makes_the_default_courses_free(dome):
+    V, F = dome
+    zones = ["herringbone"] * 100 + [None] * (len(F) - 100)
+    # As the command line: free courses by default (level ones refuse herringbone).
+    default = tp.run(V, F, tries=1, zones=zones, time_limit=5)
+    free = tp.run(V, F, tries=1, zones=zones, courses="free", time_limit=5)
+    assert np.array_equal(default.tiles.corners, free.tiles.corners)
+    with pytest.raises(tp.InvalidArgumentError, match="herringbone"):
+        tp.run(V, F, tries=1, zones=zones, courses="level", time_limit=5)
 
 
 def test_warnings_are_issued_at_the_caller():

@@ -351,7 +351,7 @@ class RunResult:
 
     @property
     def tries(self):
-        """Each try's figures, in order; empty when one try was made."""
+        """Each try's figures, in order; empty when one try was asked for."""
         return list(self.boxes.report.get("tries", []))
 
     @property

@@ -1105,12 +1105,13 @@ class RunResult:
     def tries(self) -> List[dict]:
         """Each try's figures, in order (``renormalisation``, ``quads``, ``p95_deviation``,
         ``cut_share``, ``coverage``, ``wide_joints``, ``score``, ``seconds``, and
-        ``limit_reached`` or ``failed`` where they apply); empty when one try was made."""
+        ``limit_reached`` or ``failed`` where they apply); empty when one try was asked for (when
+        more were and the first reached a time limit, it lists that one)."""
         return list(self.tiles.report.get("tries", []))
 
     @property
     def chosen_try(self) -> Optional[int]:
-        """Which of :attr:`tries` was kept, from 0; ``None`` when one try was made."""
+        """Which of :attr:`tries` was kept, from 0; ``None`` when one try was asked for."""
         return self.tiles.report.get("chosen_try")
 
     def close(self):
@@ -1254,8 +1255,9 @@ def run(
         As for :func:`remesh` (``field`` one vector per vertex or face of the surface).
     courses : {"level", "free"}, optional
         As for :func:`match`, but by default the command line's ``run``'s choice: level
-        courses, which fit far better, or free courses for ``"herringbone"`` and
-        ``"basket-weave"``, which lay tiles both ways (level ones refuse them).
+        courses, which fit far better, or free courses when ``bond`` or a zone is
+        ``"herringbone"`` or ``"basket-weave"``, which lay tiles both ways (level ones refuse
+        them).
     bond, weight, method, formulation, gap
         As for :func:`match`.
     length, width, thickness, joint, cut_tolerance, min_kept_width, support_band, fit, fit_time_limit, overlap_tolerance, bond_tolerance, units_per_mm
@@ -1301,7 +1303,10 @@ def run(
     run_options = nat.run_options()
     run_options.tries = _tries(tries)
     if courses is None:
-        both_ways = _choice(bond, BONDS, "bond") in (nat.TP_BOND_HERRINGBONE, nat.TP_BOND_BASKET_WEAVE)
+        # As the command line: free courses when the bond or any zone lays tiles both ways.
+        both = (nat.TP_BOND_HERRINGBONE, nat.TP_BOND_BASKET_WEAVE)
+        codes = _zone_codes(zones)
+        both_ways = _choice(bond, BONDS, "bond") in both or (codes is not None and bool(np.isin(codes, both).any()))
         courses = "free" if both_ways else "level"
     if target_edge is None:
         target_edge = quad_edge(length, width, joint, courses)

@@ -62,9 +62,11 @@ pub unsafe extern "C" fn tp_run_options_init(options: *mut TpRunOptions, size: u
 /// of the surface face closest to it); forced pairs and excluded faces name quads, which do
 /// not exist before the call, so they are refused here (use the stages one by one).
 /// `progress` (may be NULL) is called with `TP_STAGE_RUN` and the share of the whole run
-/// done, each try an equal share; a non-zero return cancels the run, which returns
-/// `TP_CANCELLED` without tiles. Each stage keeps its own time limit; a try whose pattern or
-/// fit reaches it ends the tries (the report's `tries[].limit_reached`).
+/// done, each try an equal share; a non-zero return cancels the run, in whichever try and
+/// stage, and the call returns `TP_CANCELLED` without tiles. Each stage keeps its own time
+/// limit, except that a later try's pattern stage has at most 10 s; a try whose pattern
+/// stage or fit reaches its limit ends the tries (the report's `tries[].limit_reached`), so
+/// the progress may end short of 1.
 ///
 /// # Safety
 /// `surface` must be a live mesh; the four options valid, their arrays holding their stated
@@ -125,8 +127,15 @@ pub unsafe extern "C" fn tp_run(
         let options = pattern_options(&raw_pattern)?;
         let bond = options.bond;
         let mut report = progress_reporter(progress, user, TP_STAGE_RUN);
-        let mut heard = |fraction: f64, _: Option<Figures>| report(fraction);
-        let (remeshed, tiling) = pipeline::tile_surface_tries(
+        // A cancel ends the run whichever stage hears it: a fit cancelled in a later try is
+        // not kept and ends the tries, which then return an earlier try's tiles.
+        let mut cancelled = false;
+        let mut heard = |fraction: f64, _: Option<Figures>| {
+            let going = report(fraction);
+            cancelled |= !going;
+            going
+        };
+        let found = pipeline::tile_surface_tries(
             surface,
             &remesh,
             &options,
@@ -134,17 +143,20 @@ pub unsafe extern "C" fn tp_run(
             &raw_tiles.finish(bond),
             tries,
             &mut Control::with_figures(&mut heard),
-        )?;
-        if tiling
-            .report
-            .fit
-            .is_some_and(|f| f.status == FitStatus::Cancelled)
-        {
+        );
+        let cancelled_fit = found.as_ref().is_ok_and(|(_, tiling)| {
+            tiling
+                .report
+                .fit
+                .is_some_and(|f| f.status == FitStatus::Cancelled)
+        });
+        if cancelled || cancelled_fit {
             return Err(Failure::new(
                 TpStatus::TP_CANCELLED,
-                "cancelled by the progress callback during the fit stage",
+                "cancelled by the progress callback",
             ));
         }
+        let (remeshed, tiling) = found?;
         let pattern = TpPattern {
             pattern: tiling.pattern.clone(),
             bond,

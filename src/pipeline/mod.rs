@@ -123,8 +123,8 @@ impl Tiling {
 /// ([`zones_on_quads`]).
 ///
 /// # Errors
-/// The first stage error; pattern options that are bad whatever the mesh
-/// ([`PatternOptions::check`]) and zones not one per face of `surface`
+/// The first stage error; a bad tile or finishing option, pattern options that are bad
+/// whatever the mesh ([`PatternOptions::check`]) and zones not one per face of `surface`
 /// ([`PatternError::ZoneCount`]) fail before the remesh.
 pub fn tile_surface(
     surface: &PolyMesh,
@@ -135,6 +135,7 @@ pub fn tile_surface(
     control: &mut Control<'_>,
 ) -> Result<(Remeshed, Tiling), Error> {
     spec.validate()?;
+    finish.validate()?;
     options.check()?;
     if let Some(zones) = &options.zones {
         pattern::check_zone_count(zones.len(), surface.face_count())?;

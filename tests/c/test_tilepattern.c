@@ -1287,16 +1287,18 @@ static void test_renormalisation(void) {
 
 struct run_progress {
   int calls, other_stage, backwards, cancel_at;
-  double last;
+  double last, cancel_from;
 };
 
+/* Cancels at the `cancel_at`-th call, or at the first fraction of at least `cancel_from`
+   (when positive). */
 static int32_t run_heard(void *user, uint32_t stage, double fraction) {
   struct run_progress *p = (struct run_progress *)user;
   p->calls++;
   if (stage != TP_STAGE_RUN) p->other_stage++;
   if (fraction < p->last || fraction > 1.0) p->backwards++;
   p->last = fraction;
-  return p->cancel_at > 0 && p->calls >= p->cancel_at;
+  return (p->cancel_at > 0 && p->calls >= p->cancel_at) || (p->cancel_from > 0.0 && fraction >= p->cancel_from);
 }
 
 /* tp_run (ABI 9): one try gives the tiles of the three stages called one by one; three tries
@@ -1329,7 +1331,7 @@ static void test_run(void) {
   TpMesh *run_quads = NULL;
   TpPattern *run_pattern = NULL;
   TpTiles *one = NULL;
-  struct run_progress heard = {0, 0, 0, 0, 0.0};
+  struct run_progress heard = {0, 0, 0, 0, 0.0, 0.0};
   CHECK(tp_run(dome, &ro, &po, &to, &run, run_heard, &heard, &run_quads, &run_pattern, &one) == TP_OK);
   CHECK(heard.calls > 0 && heard.other_stage == 0 && heard.backwards == 0);
   CHECK(same_quads(quads, run_quads));
@@ -1369,12 +1371,23 @@ static void test_run(void) {
   printf("run: one try = the stages one by one (%zu tiles); three tries listed, try %d kept\n", n0, k);
   free(json);
 
-  /* Cancel: nothing handed out. */
+  /* Cancel, early or in the last try (its fit included: a fit cancelled there would
+     otherwise end the tries and hand out an earlier try's tiles): nothing handed out. */
   TpTiles *none = NULL;
   TpMesh *no_quads = NULL;
-  struct run_progress stop = {0, 0, 0, 2, 0.0};
+  struct run_progress stop = {0, 0, 0, 2, 0.0, 0.0};
   CHECK(tp_run(dome, &ro, &po, &to, &run, run_heard, &stop, &no_quads, NULL, &none) == TP_CANCELLED);
   CHECK(none == NULL && no_quads == NULL && last_error_contains("cancel"));
+  struct run_progress late = {0, 0, 0, 0, 0.0, 0.999};
+  CHECK(tp_run(dome, &ro, &po, &to, &run, run_heard, &late, &no_quads, NULL, &none) == TP_CANCELLED);
+  CHECK(none == NULL && no_quads == NULL && late.last >= 0.999);
+
+  /* A bad option of the last stage is refused before the first runs. */
+  struct run_progress unheard = {0, 0, 0, 0, 0.0, 0.0};
+  to.units_per_mm = 0.0;
+  CHECK(tp_run(dome, &ro, &po, &to, &run, run_heard, &unheard, NULL, NULL, &none) == TP_INVALID_ARGUMENT);
+  CHECK(none == NULL && unheard.calls == 0 && last_error_contains("units"));
+  to.units_per_mm = 0.001;
 
   /* Bad input, refused by name. */
   run.tries = 4;
