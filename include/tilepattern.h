@@ -899,9 +899,11 @@ TpStatus tp_run_options_init(struct TpRunOptions *options, size_t size);
  * of the surface face closest to it); forced pairs and excluded faces name quads, which do
  * not exist before the call, so they are refused here (use the stages one by one).
  * `progress` (may be NULL) is called with `TP_STAGE_RUN` and the share of the whole run
- * done, each try an equal share; a non-zero return cancels the run, which returns
- * `TP_CANCELLED` without tiles. Each stage keeps its own time limit; a try whose pattern or
- * fit reaches it ends the tries (the report's `tries[].limit_reached`).
+ * done, each try an equal share; a non-zero return cancels the run, in whichever try and
+ * stage, and the call returns `TP_CANCELLED` without tiles. Each stage keeps its own time
+ * limit, except that a later try's pattern stage has at most 10 s; a try whose pattern
+ * stage or fit reaches its limit ends the tries (the report's `tries[].limit_reached`), so
+ * the progress may end short of 1.
  *
  * # Safety
  * `surface` must be a live mesh; the four options valid, their arrays holding their stated
