@@ -2,9 +2,12 @@
 // in the wrapper, TilePattern.UserMessage), the document's units and tolerance, finding the
 // native library, and solving in the background.
 using System;
+using System.Collections.Generic;
+using System.Linq;
 using System.Threading;
 using System.Windows.Forms;
 using Grasshopper.Kernel;
+using Grasshopper.Kernel.Parameters;
 
 namespace TilePattern.Gh
 {
@@ -69,6 +72,53 @@ namespace TilePattern.Gh
         {
             double tolerance = DocumentTolerance();
             return tolerance > 0 ? tolerance : 1e-6;
+        }
+
+        /// <summary>Names the values of a Bond input (0 to 4).</summary>
+        protected static void NameBonds(Param_Integer bond)
+        {
+            bond.AddNamedValue("Stack", (int)Bond.Stack);
+            bond.AddNamedValue("Staggered", (int)Bond.Staggered);
+            bond.AddNamedValue("Running bond", (int)Bond.RunningBond);
+            bond.AddNamedValue("Herringbone", (int)Bond.Herringbone);
+            bond.AddNamedValue("Basket weave", (int)Bond.BasketWeave);
+        }
+
+        /// <summary>Names the values of a Courses input (1 level, 0 free).</summary>
+        protected static void NameCourses(Param_Integer courses)
+        {
+            courses.AddNamedValue("Level", (int)Courses.Level);
+            courses.AddNamedValue("Free", (int)Courses.Free);
+        }
+
+        /// <summary>False, with an error, when <paramref name="bond"/> is not a Bond value.</summary>
+        protected bool CheckBond(int bond)
+        {
+            if (bond >= 0 && bond <= 4)
+                return true;
+            AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Bond is 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), not " + bond + ".");
+            return false;
+        }
+
+        /// <summary>False, with an error, when <paramref name="courses"/> is not a Courses value.</summary>
+        protected bool CheckCourses(int courses)
+        {
+            if (courses == (int)Courses.Free || courses == (int)Courses.Level)
+                return true;
+            AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
+            return false;
+        }
+
+        /// <summary>The courses to lay: free, with a remark, when level ones were asked for but
+        /// the bond or a zone (codes as the Bond input) is herringbone or basket weave, which lay
+        /// tiles both ways (as the command line's run chooses).</summary>
+        protected int CoursesFor(int bond, IEnumerable<int> zones, int courses)
+        {
+            Func<int, bool> bothWays = b => b == (int)Bond.Herringbone || b == (int)Bond.BasketWeave;
+            if (courses != (int)Courses.Level || !(bothWays(bond) || zones.Any(bothWays)))
+                return courses;
+            AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Herringbone and basket weave lay tiles both ways: laid in free courses.");
+            return (int)Courses.Free;
         }
 
         protected static T Unwrap<T>(IGH_DataAccess access, int index) where T : class

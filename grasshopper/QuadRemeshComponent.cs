@@ -49,9 +49,7 @@ namespace TilePattern.Gh
             pManager[12].Optional = true;
             pManager[13].Optional = true;
             ((Param_Number)pManager[4]).AngleParameter = true;
-            var courses = (Param_Integer)pManager[7];
-            courses.AddNamedValue("Level", (int)Courses.Level);
-            courses.AddNamedValue("Free", (int)Courses.Free);
+            NameCourses((Param_Integer)pManager[7]);
         }
 
         /// <summary>Angle tolerance (radians) of the guide curves' polylines: 5 degrees, as
@@ -93,11 +91,8 @@ namespace TilePattern.Gh
             DA.GetData(12, ref creases);
             double renormalisation = 0.5;
             DA.GetData(13, ref renormalisation);
-            if (courses != (int)Courses.Free && courses != (int)Courses.Level)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
+            if (!CheckCourses(courses))
                 return;
-            }
             // An angle parameter gives radians unless the user switched it to degrees.
             if (hasAngle && !((Param_Number)Params.Input[4]).UseDegrees)
                 angle = angle * 180.0 / Math.PI;

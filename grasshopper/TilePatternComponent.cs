@@ -41,15 +41,8 @@ namespace TilePattern.Gh
             pManager[5].Optional = true;
             pManager[7].Optional = true;
             pManager[8].Optional = true;
-            var bond = (Param_Integer)pManager[1];
-            bond.AddNamedValue("Stack", (int)Bond.Stack);
-            bond.AddNamedValue("Staggered", (int)Bond.Staggered);
-            bond.AddNamedValue("Running bond", (int)Bond.RunningBond);
-            bond.AddNamedValue("Herringbone", (int)Bond.Herringbone);
-            bond.AddNamedValue("Basket weave", (int)Bond.BasketWeave);
-            var courses = (Param_Integer)pManager[6];
-            courses.AddNamedValue("Level", (int)Courses.Level);
-            courses.AddNamedValue("Free", (int)Courses.Free);
+            NameBonds((Param_Integer)pManager[1]);
+            NameCourses((Param_Integer)pManager[6]);
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)
@@ -87,29 +80,15 @@ namespace TilePattern.Gh
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Forced pairs needs an even number of face indices (a0, b0, a1, b1, ...).");
                 return;
             }
-            if (bond < 0 || bond > 4)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Bond is 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), not " + bond + ".");
+            if (!CheckBond(bond) || !CheckCourses(courses))
                 return;
-            }
-            if (courses != (int)Courses.Free && courses != (int)Courses.Level)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
-                return;
-            }
             for (int k = 0; k < zones.Count; k++)
                 if (zones[k] < -1 || zones[k] > 4)
                 {
                     AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Zones item " + k + " is " + zones[k] + ": give -1 (the Bond input), 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), one per face.");
                     return;
                 }
-            Func<int, bool> bothWays = b => b == (int)Bond.Herringbone || b == (int)Bond.BasketWeave;
-            if ((bothWays(bond) || zones.Any(bothWays)) && courses == (int)Courses.Level)
-            {
-                // Both lay tiles both ways: level courses (the input's default) cannot hold them.
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Herringbone and basket weave lay tiles both ways: laid in free courses.");
-                courses = (int)Courses.Free;
-            }
+            courses = CoursesFor(bond, zones, courses);
             var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit, Gap = gap, Courses = (Courses)courses };
             if (zones.Count > 0)
                 options.Zones = zones.Select(z => z < 0 ? (Bond?)null : (Bond)z).ToArray();

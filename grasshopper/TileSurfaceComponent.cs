@@ -51,15 +51,8 @@ namespace TilePattern.Gh
             pManager.AddBooleanParameter("Creases", "Cr", "Split the mesh where its faces turn sharply (a groin vault's groins, a fold): each part gets quads of its own and the tiles are cut to the creases, half a joint short on each side (default true)", GH_ParamAccess.item, true);
             for (int i = 1; i <= 4; i++)
                 pManager[i].Optional = true;
-            var bond = (Param_Integer)pManager[5];
-            bond.AddNamedValue("Stack", (int)Bond.Stack);
-            bond.AddNamedValue("Staggered", (int)Bond.Staggered);
-            bond.AddNamedValue("Running bond", (int)Bond.RunningBond);
-            bond.AddNamedValue("Herringbone", (int)Bond.Herringbone);
-            bond.AddNamedValue("Basket weave", (int)Bond.BasketWeave);
-            var courses = (Param_Integer)pManager[6];
-            courses.AddNamedValue("Level", (int)Courses.Level);
-            courses.AddNamedValue("Free", (int)Courses.Free);
+            NameBonds((Param_Integer)pManager[5]);
+            NameCourses((Param_Integer)pManager[6]);
             var tries = (Param_Integer)pManager[8];
             tries.AddNamedValue("Automatic", 0);
             tries.AddNamedValue("One try", 1);
@@ -93,28 +86,15 @@ namespace TilePattern.Gh
             DA.GetData(8, ref tries);
             DA.GetData(9, ref timeLimit);
             DA.GetData(10, ref creases);
-            if (bond < 0 || bond > 4)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Bond is 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), not " + bond + ".");
+            if (!CheckBond(bond) || !CheckCourses(courses))
                 return;
-            }
-            if (courses != (int)Courses.Free && courses != (int)Courses.Level)
-            {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Courses is 1 (level) or 0 (free), not " + courses + ".");
-                return;
-            }
             if (tries < 0 || tries > RunOptions.MaxTries)
             {
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Tries is 0 (automatic) or 1 to " + RunOptions.MaxTries + ", not " + tries + ".");
                 return;
             }
-            if ((bond == (int)Bond.Herringbone || bond == (int)Bond.BasketWeave) && courses == (int)Courses.Level)
-            {
-                // Both lay tiles both ways: level courses (the input's default) cannot hold them,
-                // and the quads are then those of free courses, as the command line's run does.
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, "Herringbone and basket weave lay tiles both ways: laid in free courses.");
-                courses = (int)Courses.Free;
-            }
+            // The quads are then those of free courses too, as the command line's run makes them.
+            courses = CoursesFor(bond, new int[0], courses);
             // The quads as Quad Remesh makes them for these courses; UnitsPerMm from the
             // document's units, for the report's shares of joints within 2 and 5 mm.
             var remesh = new RemeshOptions { TargetEdge = TileOptions.QuadEdgeOf(length, width, joint, (Courses)courses), Creases = creases };

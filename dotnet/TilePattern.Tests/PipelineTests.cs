@@ -415,38 +415,10 @@ namespace TilePattern.Tests
             Assert.AreEqual(0.5, r.Renormalisation);
         }
 
-        /// <summary>A spherical cap of radius 2 over a disk of radius 1.3 (a centre and 12 rings
-        /// of 48 vertices, triangles between them): round, so where its field's cones sit is
-        /// free.</summary>
-        static PolyMesh RoundDome()
-        {
-            const int rings = 12, sectors = 48;
-            var v = new List<double> { 0.0, 0.0, 2.0 };
-            for (int i = 1; i <= rings; i++)
-                for (int j = 0; j < sectors; j++)
-                {
-                    double r = 1.3 * i / rings, a = 2.0 * Math.PI * j / sectors;
-                    v.Add(r * Math.Cos(a));
-                    v.Add(r * Math.Sin(a));
-                    v.Add(Math.Sqrt(4.0 - r * r));
-                }
-            Func<int, int, int> at = (i, j) => i == 0 ? 0 : 1 + (i - 1) * sectors + j % sectors;
-            var faces = new List<int[]>();
-            for (int j = 0; j < sectors; j++)
-                faces.Add(new[] { 0, at(1, j), at(1, j + 1) });
-            for (int i = 1; i < rings; i++)
-                for (int j = 0; j < sectors; j++)
-                {
-                    faces.Add(new[] { at(i, j), at(i + 1, j), at(i + 1, j + 1) });
-                    faces.Add(new[] { at(i, j), at(i + 1, j + 1), at(i, j + 1) });
-                }
-            return PolyMesh.FromFaces(v.ToArray(), faces);
-        }
-
         [Test]
         public void RenormalisationPlacesTheConesOfARoundDomeElsewhere()
         {
-            PolyMesh dome = RoundDome();
+            PolyMesh dome = TestMeshes.RoundDome();
             PolyMesh half = TilePatternEngine.Remesh(dome, new RemeshOptions());
             PolyMesh again = TilePatternEngine.Remesh(dome, new RemeshOptions { Renormalisation = 0.5 });
             PolyMesh twice = TilePatternEngine.Remesh(dome, new RemeshOptions { Renormalisation = 1.0 });

@@ -207,6 +207,13 @@ namespace TilePattern
             return double.IsNaN(v) ? -1 : checked((int)v);
         }
 
+        /// <summary>The boolean at <paramref name="key"/>; false when absent or not a boolean.</summary>
+        public static bool Flag(Dictionary<string, object> o, string key)
+        {
+            object v;
+            return o != null && o.TryGetValue(key, out v) && v is bool && (bool)v;
+        }
+
         public static string Text(Dictionary<string, object> o, string key)
         {
             object v;

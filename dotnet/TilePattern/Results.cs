@@ -146,15 +146,14 @@ namespace TilePattern
     /// the tiling are plain data, readable at any time.</summary>
     public sealed class RunResult : IDisposable
     {
-        internal RunResult(PolyMesh quads, Pattern pattern, Tiling tiling)
+        internal RunResult(Pattern pattern, Tiling tiling)
         {
-            Quads = quads;
             Pattern = pattern;
             Tiling = tiling;
         }
 
-        /// <summary>The kept try's quad mesh (the same as <see cref="TilePattern.Pattern.QuadMesh"/>).</summary>
-        public PolyMesh Quads { get; private set; }
+        /// <summary>The kept try's quad mesh (<see cref="TilePattern.Pattern.QuadMesh"/>).</summary>
+        public PolyMesh Quads { get { return Pattern.QuadMesh; } }
 
         /// <summary>The kept try's pattern, solved on <see cref="Quads"/>; owns native memory.</summary>
         public Pattern Pattern { get; private set; }
@@ -636,7 +635,6 @@ namespace TilePattern
 
         internal static TryReport Parse(Dictionary<string, object> t)
         {
-            object wide;
             return new TryReport
             {
                 Renormalisation = JsonAccess.Number(t, "renormalisation"),
@@ -645,7 +643,7 @@ namespace TilePattern
                 P95Deviation = JsonAccess.Number(t, "p95_deviation"),
                 CutShare = JsonAccess.Number(t, "cut_share"),
                 Coverage = JsonAccess.Number(t, "coverage"),
-                WideJoints = t != null && t.TryGetValue("wide_joints", out wide) && wide is bool && (bool)wide,
+                WideJoints = JsonAccess.Flag(t, "wide_joints"),
                 Score = JsonAccess.Number(t, "score"),
                 Seconds = JsonAccess.Number(t, "seconds"),
                 LimitReached = JsonAccess.Text(t, "limit_reached"),

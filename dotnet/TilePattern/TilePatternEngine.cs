@@ -311,8 +311,7 @@ namespace TilePattern
                             bridge.Callback, IntPtr.Zero, out quads, out patternHandle, out tilesHandle);
                     bridge.Finish(status);
                     Tiling tiling = ReadTiles(tilesHandle);
-                    PolyMesh quadMesh = PolyMesh.FromHandle(quads);
-                    return new RunResult(quadMesh, new Pattern(quadMesh, quads, patternHandle), tiling);
+                    return new RunResult(new Pattern(PolyMesh.FromHandle(quads), quads, patternHandle), tiling);
                 }
                 catch
                 {

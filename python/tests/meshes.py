@@ -42,3 +42,22 @@ def mixed():
     vertices = np.vstack([vertices, (vertices[faces[2][0]] + vertices[faces[2][1]]) / 2])
     p = faces[2]
     return vertices, [[a, b, c], [a, c, d], faces[1], [p[0], middle, p[1], p[2], p[3]], faces[3], faces[4], faces[5]]
+
+
+def round_dome(rings=12, sectors=48):
+    """A spherical cap of radius 2 over a disk of radius 1.3: a centre, rings of triangles."""
+    V = [[0.0, 0.0, 2.0]]
+    for i in range(1, rings + 1):
+        r = 1.3 * i / rings
+        for j in range(sectors):
+            a = 2 * np.pi * j / sectors
+            V.append([r * np.cos(a), r * np.sin(a), np.sqrt(4.0 - r * r)])
+
+    def at(i, j):
+        return 0 if i == 0 else 1 + (i - 1) * sectors + j % sectors
+
+    F = [[0, at(1, j), at(1, j + 1)] for j in range(sectors)]
+    for i in range(1, rings):
+        for j in range(sectors):
+            F += [[at(i, j), at(i + 1, j), at(i + 1, j + 1)], [at(i, j), at(i + 1, j + 1), at(i, j + 1)]]
+    return np.array(V), F

@@ -14,8 +14,7 @@ import tilepattern as tp
 from tilepattern import _native as nat
 from tilepattern.core import mesh_handle
 
-from meshes import grid, triangulated
-from test_renormalisation import round_dome
+from meshes import grid, round_dome, triangulated
 
 #: As the C test: 280 x 140 mm tiles in level courses, quads of a course's height.
 LEVEL = dict(courses="level", target_edge=0.15)

@@ -351,13 +351,13 @@ class RunResult:
 
     @property
     def tries(self):
-        """Each try's figures, in order; empty when one try was asked for."""
-        return list(self.boxes.report.get("tries", []))
+        """Each try's figures (:attr:`tilepattern.Tiles.tries`)."""
+        return self.tiles.tries
 
     @property
     def chosen_try(self):
-        """Which of :attr:`tries` was kept, from 0; ``None`` when one try was made."""
-        return self.boxes.report.get("chosen_try")
+        """Which try was kept (:attr:`tilepattern.Tiles.chosen_try`)."""
+        return self.tiles.chosen_try
 
     def close(self):
         """Releases the pattern's native object."""

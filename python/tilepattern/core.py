@@ -825,6 +825,21 @@ class Tiles:
             length = float(self.sizes[:, 0].max()) if len(self) else 1.0
         return np.where(self.sizes[:, 0] > 0.75 * length, "full", "half")
 
+    @property
+    def tries(self) -> List[dict]:
+        """The tries of :func:`run` (the report's ``tries``), in order: ``renormalisation``,
+        ``quads``, ``p95_deviation``, ``cut_share``, ``coverage``, ``wide_joints``, ``score``,
+        ``seconds``, and ``limit_reached`` or ``failed`` where they apply. Empty for
+        :func:`tiles` and when one try was asked for (when more were and the first reached a
+        time limit, it lists that one)."""
+        return list(self.report.get("tries", []))
+
+    @property
+    def chosen_try(self) -> Optional[int]:
+        """Which of :attr:`tries` these tiles are, from 0; ``None`` when :attr:`tries` is
+        empty."""
+        return self.report.get("chosen_try")
+
     def to_dict(self) -> dict:
         """The tiles as plain (JSON-ready) data."""
         return {
@@ -1103,16 +1118,13 @@ class RunResult:
 
     @property
     def tries(self) -> List[dict]:
-        """Each try's figures, in order (``renormalisation``, ``quads``, ``p95_deviation``,
-        ``cut_share``, ``coverage``, ``wide_joints``, ``score``, ``seconds``, and
-        ``limit_reached`` or ``failed`` where they apply); empty when one try was asked for (when
-        more were and the first reached a time limit, it lists that one)."""
-        return list(self.tiles.report.get("tries", []))
+        """Each try's figures (:attr:`Tiles.tries`)."""
+        return self.tiles.tries
 
     @property
     def chosen_try(self) -> Optional[int]:
-        """Which of :attr:`tries` was kept, from 0; ``None`` when one try was asked for."""
-        return self.tiles.report.get("chosen_try")
+        """Which try was kept (:attr:`Tiles.chosen_try`)."""
+        return self.tiles.chosen_try
 
     def close(self):
         """Releases the pattern's native object; the arrays stay."""

@@ -13,7 +13,6 @@ use super::{
 };
 use crate::control::{Control, Figures};
 use crate::pipeline::{self, MAX_TRIES, Tries};
-use crate::tiles::FitStatus;
 
 /// Options of [`tp_run`] beyond those of the three stages. Initialise with
 /// [`tp_run_options_default`] or [`tp_run_options_init`]. Since ABI 9.
@@ -127,8 +126,9 @@ pub unsafe extern "C" fn tp_run(
         let options = pattern_options(&raw_pattern)?;
         let bond = options.bond;
         let mut report = progress_reporter(progress, user, TP_STAGE_RUN);
-        // A cancel ends the run whichever stage hears it: a fit cancelled in a later try is
-        // not kept and ends the tries, which then return an earlier try's tiles.
+        // A cancel ends the run whichever stage hears it (every stage hears this callback): a
+        // fit cancelled in a later try keeps its placement, is not kept and ends the tries,
+        // which would then return an earlier try's tiles.
         let mut cancelled = false;
         let mut heard = |fraction: f64, _: Option<Figures>| {
             let going = report(fraction);
@@ -144,23 +144,13 @@ pub unsafe extern "C" fn tp_run(
             tries,
             &mut Control::with_figures(&mut heard),
         );
-        let cancelled_fit = found.as_ref().is_ok_and(|(_, tiling)| {
-            tiling
-                .report
-                .fit
-                .is_some_and(|f| f.status == FitStatus::Cancelled)
-        });
-        if cancelled || cancelled_fit {
+        if cancelled {
             return Err(Failure::new(
                 TpStatus::TP_CANCELLED,
                 "cancelled by the progress callback",
             ));
         }
         let (remeshed, tiling) = found?;
-        let pattern = TpPattern {
-            pattern: tiling.pattern.clone(),
-            bond,
-        };
         // SAFETY: out_tiles checked non-null above; the others NULL (skipped) or writable by
         // the caller's promise.
         unsafe {
@@ -174,6 +164,10 @@ pub unsafe extern "C" fn tp_run(
                 )?;
             }
             if !out_pattern.is_null() {
+                let pattern = TpPattern {
+                    pattern: tiling.pattern.clone(),
+                    bond,
+                };
                 hand_over(out_pattern, pattern, "out_pattern")?;
             }
             hand_over(out_tiles, TpTiles { tiling }, "out_tiles")
