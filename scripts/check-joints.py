@@ -20,6 +20,11 @@ neighbours well and stands off the surface): the corners of the tile's face near
 surface, their signed distances to it, and the spread of those (largest minus smallest; a
 flat tile on a sphere of radius R spreads by about (L^2 + W^2) / 8R). Prints the tiles that
 spread by more than --lift (default 5 mm) and the largest spread.
+
+With `--up X,Y,Z` it also measures which way the whole tiles run where the surface slopes
+(by more than 20 degrees from level): a tile *climbs* when its length runs within 45 degrees
+of the slope's direction instead of along the level. Prints the sloped tiles and the share
+that climb (`--courses level` asks for none; a mason lays a vault's courses level).
 """
 import argparse
 import json
@@ -221,6 +226,38 @@ def lifts(tiles, surface):
     return out
 
 
+def climbing(tiles, up):
+    """Whole tiles (a rectangle in their own plane, longer than wide) on slopes steeper than
+    20 degrees, and how many of them run up the slope (length within 45 degrees of it)."""
+    sloped = climbs = 0
+    for t in tiles:
+        n = t["n"]
+        slope = tuple(up[k] - n[k] * dot(n, up) for k in range(3))
+        if norm(slope) < math.sin(math.radians(20)):
+            continue
+        e1 = unit(cross(n, (1.0, 0.0, 0.0)) if abs(n[0]) < 0.9 else cross(n, (0.0, 1.0, 0.0)))
+        e2 = cross(n, e1)
+        outline = []
+        for q in hull([(dot(sub(p, t["c"]), e1), dot(sub(p, t["c"]), e2)) for p in t["v"]]):
+            # Top and bottom corners project onto each other up to rounding: one corner.
+            if not outline or math.hypot(q[0] - outline[-1][0], q[1] - outline[-1][1]) > 0.02 * t["r"]:
+                outline.append(q)
+        if len(outline) > 1 and math.hypot(outline[0][0] - outline[-1][0], outline[0][1] - outline[-1][1]) <= 0.02 * t["r"]:
+            outline.pop()
+        if len(outline) != 4:
+            continue
+        sides = [(outline[(i + 1) % 4][0] - outline[i][0], outline[(i + 1) % 4][1] - outline[i][1]) for i in range(4)]
+        lengths = [math.hypot(*e) for e in sides]
+        if max(lengths) < 1.5 * min(lengths):
+            continue
+        e = sides[lengths.index(max(lengths))]
+        along = unit(tuple(e1[k] * e[0] + e2[k] * e[1] for k in range(3)))
+        sloped += 1
+        if abs(dot(along, unit(slope))) > math.cos(math.radians(45)):
+            climbs += 1
+    return {"sloped_tiles": sloped, "climbing_tiles": climbs, "climbing_share": climbs / max(1, sloped)}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("obj")
@@ -231,6 +268,7 @@ def main():
     ap.add_argument("--json", help="write the figures here")
     ap.add_argument("--surface", help="the input surface (OBJ): measure how the tiles lie on it")
     ap.add_argument("--lift", type=float, help="tiles spreading more than this off the surface are counted (default 5 mm)")
+    ap.add_argument("--up", help="up direction X,Y,Z: count the whole tiles on slopes whose length climbs")
     args = ap.parse_args()
     mm = args.units_per_mm
     reach = args.reach if args.reach is not None else 3 * args.joint
@@ -284,6 +322,8 @@ def main():
         spread = [x for x in lifts(tiles, Surface(read_mesh(args.surface), cell)) if x is not None]
         figures["tiles_lifted"] = sum(1 for x in spread if x > lift)
         figures["largest_lift_mm"] = max(spread, default=0.0) / mm
+    if args.up:
+        figures.update(climbing(tiles, unit(tuple(float(x) for x in args.up.split(",")))))
     print(json.dumps(figures))
     for a, b, g in deep[:10]:
         print("overlap %s %s %.2f mm" % (a, b, -g / mm), file=sys.stderr)
