@@ -22,10 +22,10 @@ def box(name, corners, thickness):
     return lines
 
 
-def measure(tmp_path, tiles, surface=True):
+def measure(tmp_path, tiles, surface=True, extra=()):
     obj = tmp_path / "tiles.obj"
     obj.write_text("\n".join(tiles) + "\n")
-    args = [sys.executable, str(SCRIPT), str(obj), "--joint", "0.01"]
+    args = [sys.executable, str(SCRIPT), str(obj), "--joint", "0.01", *extra]
     if surface:
         # A plate 1 x 1 m at z = 0, two triangles.
         plate = tmp_path / "plate.obj"
@@ -52,3 +52,22 @@ def test_a_tile_standing_off_the_surface_is_counted(tmp_path):
     figures = measure(tmp_path, flat + tilted)
     assert figures["tiles_lifted"] == 1
     assert figures["largest_lift_mm"] == pytest.approx(30.0, abs=0.5)
+
+
+def test_tiles_running_up_a_slope_are_told_from_level_ones(tmp_path):
+    # A roof plane rising 30 degrees along y: one tile lies level (its length along x), one
+    # climbs (its length up the slope), one lies on a level floor beside them (not counted).
+    c, s = 0.8660254037844387, 0.5
+
+    def on_roof(x, v):
+        return (x, v * c, v * s)
+
+    level = box("full_0", [on_roof(0.1, 0.1), on_roof(0.38, 0.1), on_roof(0.38, 0.24), on_roof(0.1, 0.24)], 0.015)
+    climbs = box("full_1", [on_roof(0.6, 0.1), on_roof(0.74, 0.1), on_roof(0.74, 0.38), on_roof(0.6, 0.38)], 0.015)
+    floor = box("full_2", [(2.0, 0.1, 0), (2.28, 0.1, 0), (2.28, 0.24, 0), (2.0, 0.24, 0)], 0.015)
+    figures = measure(tmp_path, level + climbs + floor, surface=False, extra=["--up", "0,0,1"])
+    assert figures["sloped_tiles"] == 2
+    assert figures["climbing_tiles"] == 1
+    assert figures["climbing_share"] == pytest.approx(0.5)
+    # Without --up nothing of the kind is measured.
+    assert "climbing_share" not in measure(tmp_path, level, surface=False)
