@@ -89,6 +89,8 @@ namespace TilePattern.Tests
                 Assert.That(report.Joints.MaxGap, Is.GreaterThanOrEqualTo(report.Joints.MinGap));
                 Assert.IsNotNull(report.Sequence);
                 Assert.Greater(report.Sequence.SupportTiles, 0);
+                Assert.That(report.Sequence.ClimbingTiles, Is.InRange(0, report.Sequence.SlopedTiles));
+                Assert.That(report.Sequence.SlopedTiles, Is.LessThanOrEqualTo(report.FullTiles));
                 CollectionAssert.AreEquivalent(Enumerable.Range(0, tiling.Tiles.Length), tiling.Tiles.Select(t => t.Step), "steps number the tiles");
                 Assert.AreEqual(tiling.Tiles.Length, tiling.CutList.Sum(g => g.Count), "the cut list counts every tile");
                 CollectionAssert.AreEquivalent(tiling.CutList.Select(g => g.Label), tiling.Tiles.Select(t => t.Label).Distinct());

@@ -94,6 +94,12 @@ namespace TilePattern.Tests
                 Assert.AreEqual(-1, run.Tiling.Report.ChosenTry);
                 StringAssert.DoesNotContain("\"chosen_try\"", run.Tiling.Report.Json);
                 StringAssert.StartsWith("One quad mesh tried", UserMessage.ForTries(run.Tiling.Report).Text);
+                // The dome's flanks slope by up to 40 degrees: whole tiles there are counted, as
+                // lying level or climbing.
+                SequenceReport sequence = run.Tiling.Report.Sequence;
+                Assert.Greater(sequence.SlopedTiles, 0);
+                Assert.That(sequence.ClimbingTiles, Is.InRange(0, sequence.SlopedTiles));
+                StringAssert.Contains("\"climbing_tiles\":" + sequence.ClimbingTiles, run.Tiling.Report.Json.Replace(" ", ""));
 
                 // The whole run's progress, on the calling thread, never going back.
                 Assert.Greater(seen.Count, 0);

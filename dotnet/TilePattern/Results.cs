@@ -601,6 +601,12 @@ namespace TilePattern
         public int SupportTiles { get; internal set; }
         /// <summary>Tiles that at their step touch no lower laid tile and stand on no support.</summary>
         public int Unsupported { get; internal set; }
+        /// <summary>Whole tiles (uncut, longer than wide) on slopes steeper than 20 degrees.</summary>
+        public int SlopedTiles { get; internal set; }
+        /// <summary>Of <see cref="SlopedTiles"/>, those whose length runs up the slope (within 45
+        /// degrees of it) rather than along the level: level courses keep it near zero only where
+        /// one family of quad rows is level (barrels, webs), not on shells curved both ways.</summary>
+        public int ClimbingTiles { get; internal set; }
     }
 
     /// <summary>One try of <see cref="TilePatternEngine.Run"/> (report.json's <c>tries</c>):
@@ -781,6 +787,8 @@ namespace TilePattern
                 {
                     SupportTiles = JsonAccess.Integer(sequence, "support_tiles"),
                     Unsupported = JsonAccess.Integer(sequence, "unsupported"),
+                    SlopedTiles = JsonAccess.Integer(sequence, "sloped_tiles"),
+                    ClimbingTiles = JsonAccess.Integer(sequence, "climbing_tiles"),
                     Support = JsonAccess.Text(sequence, "support") ?? "edges",
                 };
             var seconds = JsonAccess.Object(root, "seconds");

@@ -61,6 +61,22 @@ def test_one_try_is_the_stages_one_by_one(dome, stages):
     # It unpacks as the four results.
     qv, qf, p, t = result
     assert qv is result.vertices and qf is result.faces and p is result.pattern and t is result.tiles
+    # The whole tiles on the dome's flanks (up to 40 degrees), counted again from the frames:
+    # on a slope of over 20 degrees, a tile climbs when its length lies within 45 degrees of
+    # the fall line.
+    tiles = result.tiles
+    up = np.array([0.0, 0.0, 1.0])
+    sloped = climbing = 0
+    for frame, size, outline in zip(tiles.frames, tiles.sizes, tiles.outlines):
+        if outline or size[0] < 1.5 * size[1]:
+            continue
+        slope = up - frame[3] * frame[3].dot(up)
+        if np.linalg.norm(slope) < np.sin(np.radians(20.0)):
+            continue
+        sloped += 1
+        climbing += abs(frame[1].dot(slope)) > np.linalg.norm(slope) * np.sqrt(0.5)
+    sequence = tiles.report["sequence"]
+    assert sloped > 0 and (sequence["sloped_tiles"], sequence["climbing_tiles"]) == (sloped, climbing)
 
 
 def test_the_default_target_edge_is_the_quad_edge_of_the_tile(dome):

@@ -1294,8 +1294,12 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
     });
     let laying = t.report.sequence.as_ref().map_or(String::new(), |s| {
         format!(
-            "\nlaying order: {} tiles on the supports, {} need a prop",
-            s.support_tiles, s.unsupported
+            "\nlaying order: {} tiles on the supports, {} need a prop; {} of the {} whole tiles on slopes over {:.0} degrees run up them",
+            s.support_tiles,
+            s.unsupported,
+            s.climbing_tiles,
+            s.sloped_tiles,
+            tilepattern::tiles::SLOPE_DEGREES
         )
     });
     let mm = units.per_mm();

@@ -29,7 +29,7 @@ pub use clip::{Cut, SurfaceBoundary};
 pub use cutlist::CutGroup;
 pub use fit::{FitOptions, FitStatus, FitSummary};
 pub use frame::Frame;
-pub use sequence::{Sequence, SequenceOptions, Support};
+pub use sequence::{SLOPE_DEGREES, Sequence, SequenceOptions, Support};
 
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;

@@ -35,7 +35,20 @@ pub struct Sequence {
     pub unsupported: usize,
     /// What the vault stands on.
     pub support: Support,
+    /// Whole tiles (uncut, longer than wide) on slopes steeper than [`SLOPE_DEGREES`].
+    pub sloped_tiles: usize,
+    /// Of [`Self::sloped_tiles`], those whose length runs up the slope (within 45 degrees of
+    /// it) rather than along the level: a course of them climbs. Level courses
+    /// ([`crate::pattern::Courses::Level`]) keep this near zero only where one family of the
+    /// quad rows is level (barrels, webs); on shells curved both ways, where rows turn, a
+    /// region's courses are level on one side and climb on another (README, *Level courses
+    /// are not level everywhere*).
+    pub climbing_tiles: usize,
 }
+
+/// Slope (degrees from level) beyond which whole tiles are counted as lying level or
+/// climbing ([`Sequence::climbing_tiles`]).
+pub const SLOPE_DEGREES: f64 = 20.0;
 
 /// What the tiles are laid from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -178,11 +191,36 @@ pub fn laying_order(
             }
         }
     }
+    let (sloped_tiles, climbing_tiles) = climbing(tiles, &up);
     Sequence {
         support_tiles: on_support.iter().filter(|&&s| s).count(),
         unsupported,
         support,
+        sloped_tiles,
+        climbing_tiles,
     }
+}
+
+/// Whole tiles (uncut, at least half as long again as wide) on slopes steeper than
+/// [`SLOPE_DEGREES`] with respect to `up` (a unit vector), and how many of them run up the
+/// slope: their length within 45 degrees of the slope's direction in their plane.
+fn climbing(tiles: &[Tile], up: &Vector3<f64>) -> (usize, usize) {
+    let (mut sloped, mut climbs) = (0, 0);
+    for tile in tiles {
+        if tile.cut.is_some() || tile.size[0] < 1.5 * tile.size[1] {
+            continue;
+        }
+        let normal = tile.frame.z;
+        let slope = up - normal * normal.dot(up);
+        if slope.norm() < SLOPE_DEGREES.to_radians().sin() {
+            continue;
+        }
+        sloped += 1;
+        if tile.frame.x.dot(&slope).abs() > slope.norm() * std::f64::consts::FRAC_1_SQRT_2 {
+            climbs += 1;
+        }
+    }
+    (sloped, climbs)
 }
 
 #[cfg(test)]
@@ -234,5 +272,39 @@ mod tests {
         assert_eq!(order.support_tiles, 1);
         assert_eq!(order.unsupported, 0);
         assert_eq!(tiles[2].step, 0);
+        // A standing wall: its whole tiles lie along the level (x), none climbs.
+        assert_eq!((order.sloped_tiles, order.climbing_tiles), (3, 0));
+    }
+
+    #[test]
+    fn tiles_running_up_a_slope_are_told_from_level_ones() {
+        // A roof plane rising 30 degrees along y: a tile along x lies level, one along the
+        // fall line climbs, one turned 30 degrees off level still lies level, a half tile and
+        // a tile on a level floor are not counted.
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let normal = Vector3::new(0.0, -s, c);
+        let up_roof = Vector3::new(0.0, c, s);
+        let on_roof = |along: Vector3<f64>, size: [f64; 3]| {
+            let x = along.normalize();
+            let frame = Frame {
+                origin: Point3::origin(),
+                x,
+                y: normal.cross(&x),
+                z: normal,
+            };
+            Tile::new(TileKind::Full, Vec::new(), frame, size)
+        };
+        let whole = [0.28, 0.14, 0.015];
+        let tiles = vec![
+            on_roof(Vector3::x(), whole),
+            on_roof(up_roof, whole),
+            on_roof(
+                Vector3::x() * 30f64.to_radians().cos() + up_roof * 30f64.to_radians().sin(),
+                whole,
+            ),
+            on_roof(up_roof, [0.14, 0.14, 0.015]),
+            tile_at(Vec::new(), 5.0, 5.0),
+        ];
+        assert_eq!(climbing(&tiles, &Vector3::z()), (3, 1));
     }
 }
