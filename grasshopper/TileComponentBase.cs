@@ -100,6 +100,9 @@ namespace TilePattern.Gh
             Report report = result.Tiling.Report;
             foreach (UserMessage message in UserMessage.ForJoints(report))
                 Show(message);
+            UserMessage laying = UserMessage.ForLaying(report);
+            if (laying != null)
+                Show(laying);
             // The library's checks (closed or split surface, tile shape, coverage, dropped tiles
             // and slivers, no support, ...): each stays visible on the component.
             if (report.Warnings != null)

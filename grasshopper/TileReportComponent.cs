@@ -87,6 +87,9 @@ namespace TilePattern.Gh
             }
             foreach (UserMessage message in UserMessage.ForJoints(r))
                 Show(message);
+            UserMessage laying = UserMessage.ForLaying(r);
+            if (laying != null)
+                Show(laying);
         }
     }
 }

@@ -348,6 +348,22 @@ namespace TilePattern.Tests
         }
 
         [Test]
+        public void MessageAboutTheLayingOrder()
+        {
+            Report r = Report.Parse("{\"sequence\": {\"support_tiles\": 16, \"unsupported\": 4, \"support\": \"edges\", \"sloped_tiles\": 102, \"climbing_tiles\": 56}}");
+            Assert.AreEqual(102, r.Sequence.SlopedTiles);
+            Assert.AreEqual(56, r.Sequence.ClimbingTiles);
+            UserMessage m = UserMessage.ForLaying(r);
+            Assert.AreEqual(MessageLevel.Remark, m.Level);
+            Assert.AreEqual("Laying order: 16 tiles on the supports, 4 need a prop; 56 of the 102 whole tiles on slopes over 20 degrees run up them.", m.Text);
+            // No slope, no count; no laying order (an older library's report), no message.
+            r = Report.Parse("{\"sequence\": {\"support_tiles\": 3, \"unsupported\": 0, \"support\": \"level\"}}");
+            Assert.AreEqual("Laying order: 3 tiles on the supports, 0 need a prop.", UserMessage.ForLaying(r).Text);
+            Assert.IsNull(UserMessage.ForLaying(Report.Parse("{\"faces\": 10}")));
+            Assert.Throws<ArgumentNullException>(() => UserMessage.ForLaying(null));
+        }
+
+        [Test]
         public void FitReportFromJson()
         {
             Report r = Report.Parse("{\"joints\": {\"contacts\": 3, \"joint\": 0.01, \"within_2mm\": 0.5, \"within_5mm\": 0.75, \"fit_cuts\": 2,"

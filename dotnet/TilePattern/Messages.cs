@@ -109,6 +109,24 @@ namespace TilePattern
             return messages.ToArray();
         }
 
+        /// <summary>What a host should say about the laying order (a remark; null when the report
+        /// has none): tiles on the supports, tiles that need a prop, and how many of the whole
+        /// tiles on slopes over 20 degrees run up the slope instead of along the level (level
+        /// courses are level only where one family of quad rows is).</summary>
+        public static UserMessage ForLaying(Report report)
+        {
+            if (report == null)
+                throw new ArgumentNullException("report");
+            SequenceReport s = report.Sequence;
+            if (s == null)
+                return null;
+            var culture = System.Globalization.CultureInfo.InvariantCulture;
+            string text = string.Format(culture, "Laying order: {0} tiles on the supports, {1} need a prop", s.SupportTiles, s.Unsupported);
+            if (s.SlopedTiles > 0)
+                text += string.Format(culture, "; {0} of the {1} whole tiles on slopes over 20 degrees run up them", s.ClimbingTiles, s.SlopedTiles);
+            return new UserMessage(MessageLevel.Remark, text + ".");
+        }
+
         /// <summary>What a host should say about the tries of <see cref="TilePatternEngine.Run"/>
         /// (a remark): which try's tiles were kept, with its p95 |gap - joint| (model units),
         /// share of tiles cut, coverage and score (lower is better; tries whose joints are not
