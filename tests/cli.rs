@@ -486,6 +486,21 @@ fn remesh_and_run_go_from_triangles_to_tiles() {
     assert_eq!(report["units"], "m");
     assert!(report["remesh"]["faces"].as_u64().unwrap() > 100);
     assert!(report["full_tiles"].as_u64().unwrap() > 50);
+    // The laying-order line (on standard output) gives the report's count of tiles climbing
+    // the slopes, when there are sloped tiles at all.
+    let said = String::from_utf8_lossy(&out.stdout);
+    let sequence = &report["sequence"];
+    let sloped = sequence["sloped_tiles"].as_u64().unwrap();
+    let climbing = sequence["climbing_tiles"].as_u64().unwrap();
+    assert!(climbing <= sloped);
+    assert_eq!(
+        said.contains(&format!(
+            "{climbing} of the {sloped} whole tiles on slopes over 20 degrees run up them"
+        )),
+        sloped > 0,
+        "{said}"
+    );
+    assert_eq!(said.contains("whole tiles on slopes"), sloped > 0, "{said}");
 
     let bad = tilepattern(&["remesh", s(&surface), "--edge", "0", "-o", s(&quads)]);
     assert!(!bad.status.success());

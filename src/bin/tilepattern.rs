@@ -1293,13 +1293,19 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
         )
     });
     let laying = t.report.sequence.as_ref().map_or(String::new(), |s| {
+        let climbing = if s.sloped_tiles > 0 {
+            format!(
+                "; {} of the {} whole tiles on slopes over {:.0} degrees run up them",
+                s.climbing_tiles,
+                s.sloped_tiles,
+                tilepattern::tiles::SLOPE_DEGREES
+            )
+        } else {
+            String::new()
+        };
         format!(
-            "\nlaying order: {} tiles on the supports, {} need a prop; {} of the {} whole tiles on slopes over {:.0} degrees run up them",
-            s.support_tiles,
-            s.unsupported,
-            s.climbing_tiles,
-            s.sloped_tiles,
-            tilepattern::tiles::SLOPE_DEGREES
+            "\nlaying order: {} tiles on the supports, {} need a prop{climbing}",
+            s.support_tiles, s.unsupported
         )
     });
     let mm = units.per_mm();
