@@ -493,14 +493,16 @@ fn remesh_and_run_go_from_triangles_to_tiles() {
     let sloped = sequence["sloped_tiles"].as_u64().unwrap();
     let climbing = sequence["climbing_tiles"].as_u64().unwrap();
     assert!(climbing <= sloped);
-    assert_eq!(
-        said.contains(&format!(
-            "{climbing} of the {sloped} whole tiles on slopes over 20 degrees run up them"
-        )),
-        sloped > 0,
-        "{said}"
-    );
-    assert_eq!(said.contains("whole tiles on slopes"), sloped > 0, "{said}");
+    if sloped > 0 {
+        assert!(
+            said.contains(&format!(
+                "{climbing} of the {sloped} whole tiles on slopes over 20 degrees run up them"
+            )),
+            "{said}"
+        );
+    } else {
+        assert!(!said.contains("whole tiles on slopes"), "{said}");
+    }
 
     let bad = tilepattern(&["remesh", s(&surface), "--edge", "0", "-o", s(&quads)]);
     assert!(!bad.status.success());

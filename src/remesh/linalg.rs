@@ -27,23 +27,20 @@ pub(crate) fn conjugate_gradient(
     let mut ax = vec![0.0; n];
     apply(x, &mut ax);
     let mut r: Vec<f64> = b.iter().zip(&ax).map(|(b, a)| b - a).collect();
-    // Without a preconditioner z is r itself, and r . z is r . r, summed in the same parts
-    // and order as the update's own sum of squares: neither a copy nor a second dot product
-    // is made (the iterates are the same bit for bit).
-    let mut z = match precondition {
+    // z = M^-1 r and r . z. Without a preconditioner z is r itself and r . z is r . r,
+    // summed in the same parts and order as the update's own sum of squares `rr`: neither a
+    // copy nor a second dot product is made (the iterates are the same bit for bit), and
+    // `z` stays empty.
+    let mut z = vec![0.0; if precondition.is_some() { n } else { 0 }];
+    let precondition_dot = |r: &[f64], rr: f64, z: &mut [f64]| match precondition {
         Some(m) => {
-            let mut z = vec![0.0; n];
-            m(&r, &mut z);
-            z
+            m(r, z);
+            parallel::dot(r, z)
         }
-        None => Vec::new(),
+        None => rr,
     };
     let mut rr = parallel::dot(&r, &r);
-    let mut rz = if precondition.is_some() {
-        parallel::dot(&r, &z)
-    } else {
-        rr
-    };
+    let mut rz = precondition_dot(&r, rr, &mut z);
     let mut p = if precondition.is_some() {
         z.clone()
     } else {
@@ -71,13 +68,7 @@ pub(crate) fn conjugate_gradient(
             r.iter().map(|r| r * r).sum()
         });
         rr = rr_new;
-        let rz_new = match precondition {
-            Some(m) => {
-                m(&r, &mut z);
-                parallel::dot(&r, &z)
-            }
-            None => rr_new,
-        };
+        let rz_new = precondition_dot(&r, rr, &mut z);
         let beta = rz_new / rz;
         rz = rz_new;
         let z_now: &[f64] = if precondition.is_some() { &z } else { &r };
