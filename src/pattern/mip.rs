@@ -38,19 +38,29 @@ pub(super) fn expected_linear_seconds(faces: usize) -> f64 {
     LINEAR_SECONDS_AT_1000_FACES * (faces as f64 / 1000.0).powf(LINEAR_TIME_EXPONENT)
 }
 
-/// Clp's presolve for the root of a program over `graph`: off in level courses, on
-/// otherwise. In courses the root relaxation is nearly or wholly integral and presolve
-/// removes little but costs most of the solve (`match --courses level --method mip`,
-/// 2026-12-04, on and off: the 20 m cap's 34,330 faces 21 s and 5.4 s, the same optimum
-/// 17014; the 51 programs of the benchmark set 28.2 s and 21.5 s in all, each the same
-/// optimum). Over free programs (either way across every quad) it made no consistent
-/// difference on the same 51 meshes at 20 s each (752 s and 737 s in all; as many
-/// programs proven faster with it as without), so CBC's default stays.
-fn presolve_for(graph: &DualGraph) -> cbc::Presolve {
+/// How CBC searches a program over `graph`: in level courses as for a nearly integral
+/// program (no presolve, cuts or heuristics: [`cbc::Search::NearlyIntegral`]), otherwise
+/// with CBC's defaults. In courses each face pairs only along its course and the root
+/// relaxation is nearly or wholly integral; what is left is where a course's half tile
+/// goes, which CBC's first dives settle. Presolve removes little there but cost most of the
+/// solve (`match --courses level --method mip`, 2026-12-04, on and off: the 20 m cap's
+/// 34,330 faces 21 s and 5.4 s, the same optimum 17014; the 51 programs of the benchmark
+/// set 28.2 s and 21.5 s in all, each the same optimum). The cut generators and heuristics
+/// then took seconds each on the programs CBC did not prove at its root, and the cuts moved
+/// the bound by half a tile at most (`match --courses level`, 2026-12-06, 63 quad meshes of
+/// 80-34,219 faces from `run` and `remesh` on the shared surfaces, the shells of
+/// `scripts/shells.py` and others, each the same proven optimum: 53.5 s -> 19.0 s in all; a
+/// barrel vault with two openings 18.5 -> 2.4 s and, remeshed finer, 17.9 -> 6.6 s, a
+/// latitude-longitude hemisphere 6.0 -> 1.5 s, a cone 2.5 -> 0.5 s; the programs solved at
+/// the root unchanged, the 20 m cap 6.9 and 6.8 s). Over free programs (either way across
+/// every quad) presolve made no consistent difference on the same 51 meshes at 20 s each
+/// (752 s and 737 s in all; as many programs proven faster with it as without) and the cuts
+/// are what tightens their bound, so CBC's defaults stay.
+fn search_for(graph: &DualGraph) -> cbc::Search {
     if graph.in_courses() {
-        cbc::Presolve::Off
+        cbc::Search::NearlyIntegral
     } else {
-        cbc::Presolve::On
+        cbc::Search::Default
     }
 }
 
@@ -80,13 +90,13 @@ pub(super) fn solve(
         });
     }
     let seconds = time_limit.as_secs_f64() * CBC_SHARE_OF_LIMIT;
-    let presolve = presolve_for(graph);
+    let search = search_for(graph);
 
     // CBC runs on a worker thread, so that progress callbacks stay on the caller's thread;
     // the caller's cancel and deadline reach it through its stop handlers, which end it
     // within milliseconds wherever it is (in Clp's root linear program too).
     let worker = move |stop: Stop| {
-        cbc::solve(program.model(), seconds, gap, presolve, &stop).map(|solved| {
+        cbc::solve(program.model(), seconds, gap, search, &stop).map(|solved| {
             let chosen = solved.values.map(|values| program.chosen(&values));
             (chosen, solved.bound, solved.ending)
         })
@@ -128,41 +138,59 @@ mod tests {
     use crate::mesh::{Topology, generate};
 
     #[test]
-    fn programs_in_courses_skip_clps_presolve_and_reach_the_same_optimum() {
-        let mesh = generate::corner_supported_shell(3.0, 0.4);
+    fn programs_in_courses_are_searched_as_nearly_integral_and_reach_the_same_optimum() {
+        let mesh = generate::corner_supported_shell(3.0, 0.2);
         let topology = Topology::new(&mesh).unwrap();
         let free_graph = DualGraph::new(&mesh, &topology, &[]);
         assert!(!free_graph.in_courses());
-        assert_eq!(presolve_for(&free_graph), cbc::Presolve::On);
+        assert_eq!(search_for(&free_graph), cbc::Search::Default);
         let middle =
             crate::pattern::courses::middle_edges(&mesh, &topology, [0.0, 0.0, 1.0]).unwrap();
-        let graph = DualGraph::restricted(&mesh, &topology, &[], Some(&middle));
-        assert!(graph.in_courses());
-        assert_eq!(presolve_for(&graph), cbc::Presolve::Off);
-        let all = vec![true; graph.tiles().len()];
-        let none = vec![false; graph.tiles().len()];
-        let restriction = Restriction {
-            free: &all,
-            fixed: &none,
-            patch: None,
-        };
-        let terms = Terms::uniform(&graph, crate::pattern::Bond::Staggered { weight: 0.5 });
-        let program = Program::new(&graph, &terms, Formulation::Strengthened, &restriction);
-        let optimum = |presolve| {
-            let solved = cbc::solve(program.model(), 60.0, 0.0, presolve, &Stop::new()).unwrap();
-            assert_eq!(solved.ending, Ending::Finished, "{presolve:?}");
-            let values = solved.values.unwrap();
-            let objective: f64 = values
-                .iter()
-                .zip(&program.model().objective)
-                .map(|(x, c)| x * c)
-                .sum();
-            (objective, solved.bound)
-        };
-        let (with, without) = (optimum(cbc::Presolve::On), optimum(cbc::Presolve::Off));
-        assert!(with.0 > 0.0);
-        assert!((with.0 - without.0).abs() < 1e-6, "{with:?} {without:?}");
-        assert!((with.1 - without.1).abs() < 1e-6, "{with:?} {without:?}");
+        // Two openings, so that courses stop and start and the optimum is not the root's.
+        let excluded: Vec<bool> = (0..mesh.face_count())
+            .map(|f| {
+                let c = mesh.face_centroid(f);
+                [(0.9, 1.1), (2.0, 1.7)]
+                    .iter()
+                    .any(|&(x, y)| (c.x - x).hypot(c.y - y) < 0.35)
+            })
+            .collect();
+        for excluded in [vec![], excluded] {
+            let graph = DualGraph::restricted(&mesh, &topology, &excluded, Some(&middle));
+            assert!(graph.in_courses());
+            assert_eq!(search_for(&graph), cbc::Search::NearlyIntegral);
+            let all = vec![true; graph.tiles().len()];
+            let none = vec![false; graph.tiles().len()];
+            let restriction = Restriction {
+                free: &all,
+                fixed: &none,
+                patch: None,
+            };
+            let terms = Terms::uniform(&graph, crate::pattern::Bond::Staggered { weight: 0.5 });
+            let program = Program::new(&graph, &terms, Formulation::Strengthened, &restriction);
+            let optimum = |search| {
+                let solved = cbc::solve(program.model(), 60.0, 0.0, search, &Stop::new()).unwrap();
+                assert_eq!(solved.ending, Ending::Finished, "{search:?}");
+                let values = solved.values.unwrap();
+                let objective: f64 = values
+                    .iter()
+                    .zip(&program.model().objective)
+                    .map(|(x, c)| x * c)
+                    .sum();
+                (objective, solved.bound)
+            };
+            let default = optimum(cbc::Search::Default);
+            let integral = optimum(cbc::Search::NearlyIntegral);
+            assert!(default.0 > 0.0);
+            assert!(
+                (default.0 - integral.0).abs() < 1e-6,
+                "{default:?} {integral:?}"
+            );
+            assert!(
+                (default.1 - integral.1).abs() < 1e-6,
+                "{default:?} {integral:?}"
+            );
+        }
     }
 
     /// The whole program of an `n` x `n` grid, staggered, on CBC for at most `limit`.
