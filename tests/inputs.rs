@@ -843,6 +843,95 @@ fn units_are_chosen_from_the_shell_size_and_said() {
 }
 
 #[test]
+fn inches_and_feet_are_read_when_given_and_named_when_guessed() {
+    // The paper's 3 m shell in metres and in inches (118 units across: as centimetres a
+    // plausible 1.7 m shell across its diagonal, which --units auto keeps, naming the inch
+    // reading of 4.3 m).
+    let metres = generate::corner_supported_shell(3.0, 0.05);
+    let inches = PolyMesh::new(
+        metres.positions().iter().map(|p| p / 0.0254).collect(),
+        metres.faces().to_vec(),
+    )
+    .unwrap();
+    let bytes = obj::to_string(&inches);
+    let fast = ["--tile", "280x140x15", "--no-fit", "--tries", "1"];
+    let (out, report, _) = run("inch-auto", "shell.obj", bytes.as_bytes(), &fast);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(report.unwrap()["units"], "cm");
+    assert!(
+        stderr(&out).contains("in inches it would be 4.3 m across"),
+        "{}",
+        stderr(&out)
+    );
+    let given = [&fast[..], &["--units", "in"]].concat();
+    let (out, report, dir) = run("inch", "shell.obj", bytes.as_bytes(), &given);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    assert_eq!(report["units"], "in");
+    let length = report["tile"]["length"].as_f64().unwrap();
+    assert!((length - 280.0 / 25.4).abs() < 1e-9, "{length}");
+    let csv = std::fs::read_to_string(dir.join("out").join("cutlist.csv")).unwrap();
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",in")), "{csv}");
+    // The same shell in metres lays the same tiles, within a few from the remesh.
+    let (out, in_metres, _) = run(
+        "inch-m",
+        "shell.obj",
+        obj::to_string(&metres).as_bytes(),
+        &[&fast[..], &["--units", "m"]].concat(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let [a, b] = [&report, &in_metres.unwrap()].map(|r| r["full_tiles"].as_f64().unwrap());
+    assert!(
+        (a - b).abs() <= 0.02 * b,
+        "{a} full tiles in inches, {b} in metres"
+    );
+    // Feet: 9.8 units across, given.
+    let feet = PolyMesh::new(
+        metres.positions().iter().map(|p| p / 0.3048).collect(),
+        metres.faces().to_vec(),
+    )
+    .unwrap();
+    let (out, report, _) = run(
+        "feet",
+        "shell.obj",
+        obj::to_string(&feet).as_bytes(),
+        &[&fast[..], &["--units", "ft"]].concat(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(report.unwrap()["units"], "ft");
+}
+
+#[test]
+fn a_stray_vertex_does_not_change_the_units() {
+    // Before: a vertex no face uses, 100 m off, made a 3 m shell in metres "no plausible
+    // shell in any unit".
+    let mut text = obj::to_string(&generate::corner_supported_shell(3.0, 0.05));
+    text.insert_str(0, "v 100 100 100\n");
+    // The faces' indices move by one with the stray vertex first.
+    let text: String = text
+        .lines()
+        .map(|l| match l.strip_prefix("f ") {
+            Some(rest) => {
+                let shifted: Vec<String> = rest
+                    .split_whitespace()
+                    .map(|i| (i.parse::<usize>().unwrap() + 1).to_string())
+                    .collect();
+                format!("f {}\n", shifted.join(" "))
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    let (out, report, _) = run(
+        "stray",
+        "shell.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--no-fit", "--tries", "1"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(report.unwrap()["units"], "m");
+}
+
+#[test]
 fn small_things_read_right() {
     let dir = scratch("small");
     let quads = dir.join("q.obj");

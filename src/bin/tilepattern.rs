@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
+use nalgebra::Point3;
 use serde::Serialize;
 use tilepattern::control::Control;
 use tilepattern::mesh::io::{Loaded, Weld};
@@ -338,9 +339,9 @@ struct TileArgs {
     /// Mortar joint in millimetres.
     #[arg(long, default_value_t = 10.0, value_parser = parse_mm, allow_negative_numbers = true)]
     joint: f64,
-    /// Units of the mesh coordinates; auto = the one reading (m, cm or mm) under which the
-    /// mesh is a plausible shell for this tile (see the README); it refuses when two readings
-    /// are plausible.
+    /// Units of the mesh coordinates (in = inches, ft = feet); auto = the one reading (m, cm
+    /// or mm) under which the mesh is a plausible shell for this tile (see the README); it
+    /// refuses when two readings are plausible. Inches and feet are never guessed: give them.
     #[arg(long, value_enum, default_value_t = Units::Auto)]
     units: Units,
     /// Cutting tolerance in millimetres: tiles the boundary enters by no more than this stay
@@ -384,6 +385,8 @@ enum Units {
     M,
     Cm,
     Mm,
+    In,
+    Ft,
 }
 
 fn main() -> ExitCode {
@@ -961,7 +964,7 @@ impl ChosenUnits {
         let error = anyhow::Error::new(error);
         if scale {
             error.context(format!(
-                "{}; if the mesh is not in these units, give --units m, cm or mm",
+                "{}; if the mesh is not in these units, give --units m, cm, mm, in or ft",
                 self.why
             ))
         } else {
@@ -978,10 +981,13 @@ const USUAL_DIAGONAL_M: [f64; 2] = [2.0, 25.0];
 
 /// `--units auto`: reads the mesh in metres, centimetres and millimetres and keeps the one
 /// reading under which it is a usual shell (diagonal 2 to 25 m), else the one under which it is
-/// at least plausible (0.5 to 100 m, 20 to 2 million tiles of this size).
+/// at least plausible (0.5 to 100 m, 20 to 2 million tiles of this size). The size is that of
+/// the vertices the faces use (a stray vertex far off, as some exporters leave, does not count).
+/// Inches and feet are not guessed (a shell in inches is as plausible in centimetres), but
+/// where one of them reads as a usual shell the message says so, so that a model in inches
+/// read as centimetres shows it.
 fn auto_units(mesh: &PolyMesh, tile_mm: [f64; 3], joint_mm: f64) -> Result<ChosenUnits> {
-    let (min, max) = mesh.bounding_box();
-    let diagonal = (max - min).norm();
+    let diagonal = used_diagonal(mesh);
     let area = mesh.area();
     // Area of one tile with its joint, in square metres.
     let tile_m2 = (tile_mm[0] + joint_mm) * (tile_mm[1] + joint_mm) * 1e-6;
@@ -1014,7 +1020,7 @@ fn auto_units(mesh: &PolyMesh, tile_mm: [f64; 3], joint_mm: f64) -> Result<Chose
     let chosen = match candidates.as_slice() {
         [one] => *one,
         [] => bail!(
-            "--units auto: the mesh ({diagonal:.4} units across) is no plausible shell for a {}x{} mm tile in any unit ({}); give --units m, cm or mm",
+            "--units auto: the mesh ({diagonal:.4} units across) is no plausible shell for a {}x{} mm tile in any unit ({}); give --units m, cm, mm, in or ft",
             tile_mm[0],
             tile_mm[1],
             all.join("; ")
@@ -1037,6 +1043,13 @@ fn auto_units(mesh: &PolyMesh, tile_mm: [f64; 3], joint_mm: f64) -> Result<Chose
         .iter()
         .filter(|r| r.0 != chosen.0)
         .map(describe)
+        .chain(
+            [(Units::In, "inches"), (Units::Ft, "feet")]
+                .into_iter()
+                .map(|(u, name)| (name, diagonal / (u.per_mm() * 1000.0)))
+                .filter(|&(_, d)| within(d, USUAL_DIAGONAL_M))
+                .map(|(name, d)| format!("in {name} it would be {} across", metres(d))),
+        )
         .collect();
     Ok(ChosenUnits {
         unit: chosen.0,
@@ -1047,6 +1060,16 @@ fn auto_units(mesh: &PolyMesh, tile_mm: [f64; 3], joint_mm: f64) -> Result<Chose
             others.join(", ")
         ),
     })
+}
+
+/// Bounding-box diagonal of the vertices `mesh`'s faces use.
+fn used_diagonal(mesh: &PolyMesh) -> f64 {
+    let p = mesh.positions();
+    let mut corners: Option<(Point3<f64>, Point3<f64>)> = None;
+    for &v in mesh.faces().iter().flatten() {
+        corners = Some(corners.map_or((p[v], p[v]), |(lo, hi)| (lo.inf(&p[v]), hi.sup(&p[v]))));
+    }
+    corners.map_or(0.0, |(lo, hi)| (hi - lo).norm())
 }
 
 /// A length in metres, written with a sensible unit.
@@ -1067,6 +1090,8 @@ impl Units {
             Units::M => 0.001,
             Units::Cm => 0.1,
             Units::Mm | Units::Auto => 1.0,
+            Units::In => 1.0 / 25.4,
+            Units::Ft => 1.0 / 304.8,
         }
     }
 
@@ -1076,6 +1101,8 @@ impl Units {
             Units::M => "m",
             Units::Cm => "cm",
             Units::Mm => "mm",
+            Units::In => "in",
+            Units::Ft => "ft",
         }
     }
 }
