@@ -309,12 +309,16 @@ pub fn tiles_for_pattern_with(
         None => (boxes, None),
     };
     // The fill of the fit's tears honours the fit's time limit (a clock of its own, so that
-    // a fit stopped by the limit still has its tears filled) and the caller's cancel.
-    let fill_started = Instant::now();
+    // a fit stopped by the limit still has its tears filled) and the caller's cancel. The
+    // clock starts when the fill does (its first question), not with the clipping and
+    // fillers along the edge before it: on a fine input (a million triangles) those take
+    // longer than the limit, which then stopped the fill before its first piece.
+    let mut fill_started: Option<Instant> = None;
     let fill_limit = finish.fit.map_or(f64::INFINITY, |f| f.time_limit);
     let mut fill_timed_out = false;
     let (tiles, finished) = tiles::finish_with(quads, surface, boxes, spec, finish, &mut || {
-        fill_timed_out = fill_started.elapsed().as_secs_f64() > fill_limit;
+        let started = *fill_started.get_or_insert_with(Instant::now);
+        fill_timed_out = started.elapsed().as_secs_f64() > fill_limit;
         !fill_timed_out && control.keep_going(1.0)
     });
     let joints = report::gaps::joints(quads, &tiles, spec.joint);

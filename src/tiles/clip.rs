@@ -186,19 +186,21 @@ impl SurfaceBoundary {
     /// surface.
     pub(crate) fn sheet_of(&self, tile: &Tile, radius: f64) -> Option<usize> {
         let p = &tile.frame.origin;
-        // One pass over the faces within `radius`, in index order: their distances, then the
-        // choice among those near the closest.
+        // The closest face by a nearest query, then only the faces near enough to it to be
+        // chosen, in index order. (Gathering every face within `radius` first cost thousands
+        // of faces per tile on a fine input: a million triangles, 8 mm edges, took 13 s of
+        // the tiles' 18.)
+        let (_, foot) = self.closest_face(p, radius, None)?;
+        let slack = (foot - p).norm() + SHEET_SLACK * tile.size[1] / 2.0;
         let near: Vec<(f64, usize)> = self
             .face_bvh
-            .within(&p.coords, radius)
+            .within(&p.coords, slack.min(radius))
             .into_iter()
             .filter_map(|f| Some(((self.closest_on_face(f, p)? - p).norm(), f)))
-            .filter(|&(d, _)| d <= radius)
+            .filter(|&(d, _)| d <= radius && d <= slack)
             .collect();
-        let closest = near.iter().map(|&(d, _)| d).reduce(f64::min)?;
-        let slack = closest + SHEET_SLACK * tile.size[1] / 2.0;
         let mut best: Option<(f64, f64, usize)> = None;
-        for &(d, f) in near.iter().filter(|&&(d, _)| d <= slack) {
+        for &(d, f) in &near {
             let facing = self.faces[f].1.dot(&tile.frame.z).abs();
             if best.is_none_or(|(bf, bd, _)| facing > bf + 1e-9 || (facing > bf - 1e-9 && d < bd)) {
                 best = Some((facing, d, f));
