@@ -1283,6 +1283,14 @@ fn pattern_summary(p: &Pattern) -> String {
 }
 
 fn remesh_summary(m: &Metrics) -> String {
+    let simplified = if m.input_vertices_removed > 0 {
+        format!(
+            "; the input, much finer than the quads, simplified first ({} of its vertices removed, the boundary kept)",
+            m.input_vertices_removed
+        )
+    } else {
+        String::new()
+    };
     let sheets = if m.crease_sheets > 0 {
         format!(
             "; split at its creases into {} sheets, each with quads of its own, tiles cut to the creases",
@@ -1302,7 +1310,7 @@ fn remesh_summary(m: &Metrics) -> String {
         m.max_distance_to_input_ratio,
         m.seconds,
         sheets
-    )
+    ) + &simplified
 }
 
 fn tiling_summary(t: &Tiling, units: Units) -> String {

@@ -11,6 +11,7 @@ pub mod generate;
 pub mod io;
 pub mod obj;
 pub mod orient;
+pub mod simplify;
 mod topology;
 pub mod weld;
 pub mod zip;

@@ -117,6 +117,8 @@ pub fn tile_surface_tries(
     tries: Tries,
     control: &mut Control<'_>,
 ) -> Result<(Remeshed, Tiling), Error> {
+    let simplified = simplified_if_fine(surface, remesh, options);
+    let surface = simplified.as_ref().map_or(surface, |(mesh, _)| mesh);
     let count = tries.count(surface.area(), remesh.target_edge);
     let mut listed: Vec<TryFigures> = Vec::with_capacity(count);
     let mut best: Option<((bool, f64), usize, Remeshed, Tiling)> = None;
@@ -199,13 +201,48 @@ pub fn tile_surface_tries(
             }),
         }
     }
-    let (_, chosen, remeshed, mut tiling) = best.expect("the first try succeeded or returned");
+    let (_, chosen, mut remeshed, mut tiling) = best.expect("the first try succeeded or returned");
+    remeshed.metrics.input_vertices_removed = simplified.map_or(0, |(_, removed)| removed);
     if count > 1 {
         // Listed even when the first try's time limit left it alone: the report says why.
         tiling.report.tries = listed;
         tiling.report.chosen_try = Some(chosen);
     }
     Ok((remeshed, tiling))
+}
+
+/// An input whose mean edge is shorter than the quads' target edge divided by this is
+/// simplified before the tries ([`simplified_if_fine`]).
+const FINE_INPUT: f64 = 6.0;
+
+/// `surface` simplified to edges of at most the target edge ([`crate::mesh::simplify`]) when
+/// it is much finer than the quads ([`FINE_INPUT`]), with the vertices removed; `None` when
+/// it is not, and when a designer's field or zones are given per vertex or face of it (they
+/// would lose their vertices and faces). A surface of a million triangles at 8 mm, tiled
+/// with 280 mm tiles, becomes one of about 7,000 vertices: each stage then works on those,
+/// while every vertex kept is one of the input's and the boundary stays the input's.
+fn simplified_if_fine(
+    surface: &PolyMesh,
+    remesh: &RemeshOptions,
+    options: &PatternOptions,
+) -> Option<(PolyMesh, usize)> {
+    if remesh.user_field.is_some() || options.zones.is_some() {
+        return None;
+    }
+    let p = surface.positions();
+    let (mut length, mut edges) = (0.0, 0usize);
+    for face in surface.faces() {
+        for k in 0..face.len() {
+            length += (p[face[(k + 1) % face.len()]] - p[face[k]]).norm();
+            edges += 1;
+        }
+    }
+    let t = remesh.target_edge;
+    if edges == 0 || length / edges as f64 >= t / FINE_INPUT {
+        return None;
+    }
+    let (mesh, removed) = crate::mesh::simplify::simplify(surface, t);
+    (removed > 0).then_some((mesh, removed))
 }
 
 /// Share of the surface the tiles cover (1 when the report has no cutting figures).
@@ -271,6 +308,70 @@ mod tests {
         assert_eq!(Tries::Count(0).count(1.0, t), 1);
         assert_eq!(Tries::Count(9).count(1.0, t), MAX_TRIES);
         assert_eq!(Tries::Auto.count(f64::NAN, t), 1);
+    }
+
+    #[test]
+    fn an_input_much_finer_than_the_quads_is_tiled_simplified_and_as_well() {
+        let spec = TileSpec {
+            length: 0.28,
+            width: 0.14,
+            thickness: 0.015,
+            joint: 0.01,
+        };
+        let options = PatternOptions {
+            courses: Courses::Level {
+                up: [0.0, 0.0, 1.0],
+            },
+            ..PatternOptions::default()
+        };
+        let remesh = RemeshOptions {
+            target_edge: spec.quad_edge(true),
+            ..RemeshOptions::default()
+        };
+        let shell =
+            |edge| generate::triangulate_quads(&generate::corner_supported_shell(3.0, edge));
+        // 15 mm triangles, a tenth of the quads' edge: simplified; 50 mm: as given.
+        let (fine, usual) = (shell(0.015), shell(0.05));
+        let (simplified, removed) = simplified_if_fine(&fine, &remesh, &options).unwrap();
+        assert!(removed * 10 > fine.positions().len() * 9, "{removed}");
+        assert!((simplified.area() - fine.area()).abs() < 1e-3 * fine.area());
+        assert!(simplified_if_fine(&usual, &remesh, &options).is_none());
+        // Not where zones are given per face of the input.
+        let zoned = PatternOptions {
+            zones: Some(vec![crate::pattern::Bond::Stack; fine.face_count()]),
+            ..options.clone()
+        };
+        assert!(simplified_if_fine(&fine, &remesh, &zoned).is_none());
+        // The fine input's tiles are as good as the usual one's, and the report says so.
+        let run = |surface: &PolyMesh| {
+            tile_surface_tries(
+                surface,
+                &remesh,
+                &options,
+                &spec,
+                &FinishOptions::for_spec(&spec),
+                Tries::Count(1),
+                &mut Control::none(),
+            )
+            .unwrap()
+        };
+        let ((fine_quads, fine_tiles), (usual_quads, usual_tiles)) = (run(&fine), run(&usual));
+        assert_eq!(fine_quads.metrics.input_vertices_removed, removed);
+        assert_eq!(usual_quads.metrics.input_vertices_removed, 0);
+        let (a, b) = (&fine_tiles.report, &usual_tiles.report);
+        assert!(
+            (a.full_tiles as f64 - b.full_tiles as f64).abs() <= 0.02 * b.full_tiles as f64,
+            "{} {}",
+            a.full_tiles,
+            b.full_tiles
+        );
+        assert!(
+            coverage(a) > coverage(b) - 0.01,
+            "{} {}",
+            coverage(a),
+            coverage(b)
+        );
+        assert!(a.joints.p95_deviation < 2e-3, "{}", a.joints.p95_deviation);
     }
 
     /// A small dome (umbilic, so where its field's cones sit is up to the renormalisation)

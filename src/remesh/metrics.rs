@@ -38,6 +38,10 @@ pub struct Metrics {
     /// own (a groin vault's four webs; `mesh::crease`), or 0 when no crease parts the surface
     /// (and when measured on a foreign mesh).
     pub crease_sheets: usize,
+    /// Vertices of an input much finer than the quads removed before remeshing, 0 when it
+    /// was remeshed as given (`mesh::simplify`; `pipeline`'s tries, which tile the
+    /// simplified surface).
+    pub input_vertices_removed: usize,
 }
 
 /// Measures `quads` against `input` at target edge `t`; works on any polygon mesh, e.g.
@@ -189,6 +193,7 @@ pub(crate) fn metrics_with(
         area_covered_ratio,
         seconds: 0.0,
         crease_sheets: 0,
+        input_vertices_removed: 0,
     }
 }
 
