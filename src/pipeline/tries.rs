@@ -117,7 +117,7 @@ pub fn tile_surface_tries(
     tries: Tries,
     control: &mut Control<'_>,
 ) -> Result<(Remeshed, Tiling), Error> {
-    let simplified = simplified_if_fine(surface, remesh, options);
+    let simplified = simplified_if_fine(surface, remesh, options, &mut || control.keep_going(0.0));
     let surface = simplified.as_ref().map_or(surface, |(mesh, _)| mesh);
     let count = tries.count(surface.area(), remesh.target_edge);
     let mut listed: Vec<TryFigures> = Vec::with_capacity(count);
@@ -220,11 +220,13 @@ const FINE_INPUT: f64 = 6.0;
 /// it is not, and when a designer's field or zones are given per vertex or face of it (they
 /// would lose their vertices and faces). A surface of a million triangles at 8 mm, tiled
 /// with 280 mm tiles, becomes one of about 7,000 vertices: each stage then works on those,
-/// while every vertex kept is one of the input's and the boundary stays the input's.
+/// while every vertex kept is one of the input's and the boundary stays the input's. A cancel
+/// (`keep_going` saying no) stops it with what it has; the first try then stops at once.
 fn simplified_if_fine(
     surface: &PolyMesh,
     remesh: &RemeshOptions,
     options: &PatternOptions,
+    keep_going: &mut dyn FnMut() -> bool,
 ) -> Option<(PolyMesh, usize)> {
     if remesh.user_field.is_some() || options.zones.is_some() {
         return None;
@@ -241,7 +243,7 @@ fn simplified_if_fine(
     if edges == 0 || length / edges as f64 >= t / FINE_INPUT {
         return None;
     }
-    let (mesh, removed) = crate::mesh::simplify::simplify(surface, t);
+    let (mesh, removed) = crate::mesh::simplify::simplify(surface, t, keep_going);
     (removed > 0).then_some((mesh, removed))
 }
 
@@ -332,16 +334,17 @@ mod tests {
             |edge| generate::triangulate_quads(&generate::corner_supported_shell(3.0, edge));
         // 15 mm triangles, a tenth of the quads' edge: simplified; 50 mm: as given.
         let (fine, usual) = (shell(0.015), shell(0.05));
-        let (simplified, removed) = simplified_if_fine(&fine, &remesh, &options).unwrap();
+        let (simplified, removed) =
+            simplified_if_fine(&fine, &remesh, &options, &mut || true).unwrap();
         assert!(removed * 10 > fine.positions().len() * 9, "{removed}");
         assert!((simplified.area() - fine.area()).abs() < 1e-3 * fine.area());
-        assert!(simplified_if_fine(&usual, &remesh, &options).is_none());
+        assert!(simplified_if_fine(&usual, &remesh, &options, &mut || true).is_none());
         // Not where zones are given per face of the input.
         let zoned = PatternOptions {
             zones: Some(vec![crate::pattern::Bond::Stack; fine.face_count()]),
             ..options.clone()
         };
-        assert!(simplified_if_fine(&fine, &remesh, &zoned).is_none());
+        assert!(simplified_if_fine(&fine, &remesh, &zoned, &mut || true).is_none());
         // The fine input's tiles are as good as the usual one's, and the report says so.
         let run = |surface: &PolyMesh| {
             tile_surface_tries(
