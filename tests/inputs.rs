@@ -848,12 +848,12 @@ fn inches_and_feet_are_read_when_given_and_named_when_guessed() {
     // plausible 1.7 m shell across its diagonal, which --units auto keeps, naming the inch
     // reading of 4.3 m).
     let metres = generate::corner_supported_shell(3.0, 0.05);
-    let inches = PolyMesh::new(
-        metres.positions().iter().map(|p| p / 0.0254).collect(),
-        metres.faces().to_vec(),
-    )
-    .unwrap();
-    let bytes = obj::to_string(&inches);
+    // The shell written in a unit of `metre` metres.
+    let in_unit = |metre: f64| {
+        let positions = metres.positions().iter().map(|p| p / metre).collect();
+        obj::to_string(&PolyMesh::new(positions, metres.faces().to_vec()).unwrap())
+    };
+    let bytes = in_unit(0.0254);
     let fast = ["--tile", "280x140x15", "--no-fit", "--tries", "1"];
     let (out, report, _) = run("inch-auto", "shell.obj", bytes.as_bytes(), &fast);
     assert!(out.status.success(), "{}", stderr(&out));
@@ -886,15 +886,10 @@ fn inches_and_feet_are_read_when_given_and_named_when_guessed() {
         "{a} full tiles in inches, {b} in metres"
     );
     // Feet: 9.8 units across, given.
-    let feet = PolyMesh::new(
-        metres.positions().iter().map(|p| p / 0.3048).collect(),
-        metres.faces().to_vec(),
-    )
-    .unwrap();
     let (out, report, _) = run(
         "feet",
         "shell.obj",
-        obj::to_string(&feet).as_bytes(),
+        in_unit(0.3048).as_bytes(),
         &[&fast[..], &["--units", "ft"]].concat(),
     );
     assert!(out.status.success(), "{}", stderr(&out));

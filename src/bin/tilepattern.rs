@@ -1300,7 +1300,7 @@ fn remesh_summary(m: &Metrics) -> String {
         String::new()
     };
     format!(
-        "{} quads (pure quad: {}), {} interior irregular vertices, mean edge {:.3} t, {:.1} % of edges within 20 %, area covered {:.3}, max distance {:.3} t ({:.2} s){}",
+        "{} quads (pure quad: {}), {} interior irregular vertices, mean edge {:.3} t, {:.1} % of edges within 20 %, area covered {:.3}, max distance {:.3} t ({:.2} s){}{}",
         m.faces,
         m.pure_quad,
         m.interior_irregular_vertices,
@@ -1309,8 +1309,9 @@ fn remesh_summary(m: &Metrics) -> String {
         m.area_covered_ratio,
         m.max_distance_to_input_ratio,
         m.seconds,
-        sheets
-    ) + &simplified
+        sheets,
+        simplified
+    )
 }
 
 fn tiling_summary(t: &Tiling, units: Units) -> String {

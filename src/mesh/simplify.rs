@@ -14,11 +14,11 @@
 //! Ties go to the lower vertex indices: the same input gives the same mesh.
 
 use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::BinaryHeap;
 
 use nalgebra::{Matrix4, Point3, Vector3, Vector4};
 
-use super::PolyMesh;
+use super::{PolyMesh, Topology};
 
 /// Most a moved triangle's normal may turn in one collapse: 30 degrees (cosine).
 const MAX_TURN_COS: f64 = 0.866;
@@ -55,20 +55,8 @@ pub fn simplify(
     // creases that part the surface into sheets (`crease`: the remesh splits it there, and
     // a crease fading out towards a groin vault's crown is carried on along the input's
     // edges, which must stay for it to be found again).
-    let mut uses: HashMap<(usize, usize), u32> = HashMap::new();
-    for tri in &tris {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            *uses.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let mut fixed = vec![false; n];
-    for (&(a, b), &count) in &uses {
-        if count != 2 {
-            fixed[a] = true;
-            fixed[b] = true;
-        }
-    }
+    let topology = Topology::new(mesh).expect("a PolyMesh is manifold by construction");
+    let mut fixed: Vec<bool> = (0..n).map(|v| topology.is_boundary_vertex(v)).collect();
     if let Some(sheets) = super::crease::split_at_creases(mesh) {
         for &v in sheets.seams.iter().flatten() {
             fixed[sheets.source[v]] = true;
@@ -249,7 +237,7 @@ fn collapsible(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{Topology, generate};
+    use crate::mesh::generate;
 
     /// A shell of fine triangles: the paper's corner-supported shell at `edge`.
     fn fine(edge: f64) -> PolyMesh {
@@ -323,10 +311,9 @@ mod tests {
         let sheets = |m: &PolyMesh| crate::mesh::crease::split_at_creases(m).map_or(1, |s| s.count);
         assert_eq!(sheets(&groin), 4);
         assert_eq!(sheets(&out), 4);
-        // Every crease vertex of the input is kept: those on the diagonals, where the webs
-        // turn by 12 degrees or more (0.3 m from the crown on; at the crown they meet level).
-        let on_diagonal =
-            |p: &Point3<f64>| (p.x.abs() - p.y.abs()).abs() < 1e-12 && p.x.abs() > 0.5;
+        // Every crease vertex of the input is kept: those on the diagonals, up to the crown
+        // (where the webs meet level and the creases are carried on).
+        let on_diagonal = |p: &Point3<f64>| (p.x.abs() - p.y.abs()).abs() < 1e-12;
         let count = |m: &PolyMesh| m.positions().iter().filter(|p| on_diagonal(p)).count();
         assert_eq!(count(&out), count(&groin));
     }
