@@ -7,6 +7,7 @@
 
 pub mod crease;
 mod error;
+mod face_set;
 pub mod generate;
 pub mod io;
 pub mod obj;
@@ -17,6 +18,7 @@ pub mod weld;
 pub mod zip;
 
 pub use error::MeshError;
+pub(crate) use face_set::{Corners, FaceSet};
 pub use topology::{Edge, Topology};
 
 use nalgebra::{Point3, Vector3};
@@ -157,15 +159,11 @@ impl PolyMesh {
                 return Err(MeshError::RepeatedIndex { face, vertex });
             }
         }
-        let mut seen: std::collections::HashMap<Vec<usize>, usize> =
-            std::collections::HashMap::with_capacity(faces.len());
+        let mut seen = FaceSet::with_capacity(faces.len());
         for (face, indices) in faces.iter().enumerate() {
-            let mut key = indices.clone();
-            key.sort_unstable();
-            if let Some(&first) = seen.get(&key) {
+            if let Some(first) = seen.insert(Corners::of(indices), face) {
                 return Err(MeshError::DuplicateFace { face, first });
             }
-            seen.insert(key, face);
         }
         let mesh = Self { positions, faces };
         let topology = Topology::new(&mesh)?;

@@ -1,11 +1,14 @@
 //! Welding: joining vertices that lie (nearly) at the same place, as files without shared
 //! vertices need (STL always, triangle soups exported as OBJ, PLY or OFF).
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
+
+use foldhash::fast::FixedState;
 
 use nalgebra::Point3;
 use serde::Serialize;
 
+use super::{Corners, FaceSet};
 use crate::geom::HashGrid;
 
 /// Default weld tolerance as a fraction of the mesh's bounding-box diagonal: far below any
@@ -81,7 +84,7 @@ pub fn weld(
             kept.push(positions[i]);
         }
     }
-    let mut seen: HashSet<Vec<usize>> = HashSet::with_capacity(faces.len());
+    let mut seen = FaceSet::with_capacity(faces.len());
     let mut out = Vec::with_capacity(faces.len());
     let mut dropped = 0;
     for face in faces {
@@ -92,10 +95,8 @@ pub fn weld(
         while f.len() > 1 && f.first() == f.last() {
             f.pop();
         }
-        let mut key = f.clone();
-        key.sort_unstable();
-        key.dedup();
-        if key.len() < 3 || !seen.insert(key) {
+        let key = Corners::of(&f);
+        if key.len() < 3 || seen.insert(key, out.len()).is_some() {
             dropped += 1;
             continue;
         }
@@ -126,7 +127,9 @@ pub fn weld(
 /// that are their own representative.
 fn representatives(positions: &[Point3<f64>], tolerance: f64) -> Vec<usize> {
     if tolerance == 0.0 {
-        let mut index: HashMap<[u64; 3], usize> = HashMap::with_capacity(positions.len());
+        // A fixed-seed hasher: only lookups shape the result.
+        let mut index: HashMap<[u64; 3], usize, FixedState> =
+            HashMap::with_capacity_and_hasher(positions.len(), FixedState::default());
         return positions
             .iter()
             .enumerate()

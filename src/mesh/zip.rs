@@ -8,6 +8,7 @@
 
 use std::collections::HashMap;
 
+use foldhash::fast::FixedState;
 use nalgebra::{Point3, Vector3};
 
 use crate::geom::{HashGrid, closest};
@@ -53,7 +54,9 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
     if !super::readable(positions, &faces) {
         return (faces, 0);
     }
-    let mut uses: HashMap<(usize, usize), usize> = HashMap::new();
+    // Fixed-seed hashers: only lookups, and the sorted keys, shape the result.
+    let mut uses: HashMap<(usize, usize), usize, FixedState> =
+        HashMap::with_capacity_and_hasher(faces.len() * 2, FixedState::default());
     for face in &faces {
         for k in 0..face.len() {
             let (a, b) = (face[k], face[(k + 1) % face.len()]);
@@ -88,7 +91,7 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
         return (faces, 0);
     }
     // Boundary vertices in a grid of points, and the sides at each.
-    let mut at_vertex: HashMap<usize, Vec<usize>> = HashMap::new();
+    let mut at_vertex: HashMap<usize, Vec<usize>, FixedState> = HashMap::default();
     for (i, side) in sides.iter().enumerate() {
         for v in side.ends {
             at_vertex.entry(v).or_default().push(i);
