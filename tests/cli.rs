@@ -256,25 +256,7 @@ fn match_stops_at_the_gap_it_is_given() {
     // branching; with --gap 0.05 it stops at the first pattern within 5 % of its bound.
     let dir = scratch("gap");
     let quads = dir.join("grid.obj");
-    let mut text = String::new();
-    for j in 0..=10 {
-        for i in 0..=10 {
-            text += &format!("v {i} {j} 0\n");
-        }
-    }
-    for j in 0..10 {
-        for i in 0..10 {
-            let v = |i: usize, j: usize| j * 11 + i + 1;
-            text += &format!(
-                "f {} {} {} {}\n",
-                v(i, j),
-                v(i + 1, j),
-                v(i + 1, j + 1),
-                v(i, j + 1)
-            );
-        }
-    }
-    std::fs::write(&quads, text).unwrap();
+    std::fs::write(&quads, grid_obj(10)).unwrap();
     let pairs = dir.join("pairs.json");
     let out = tilepattern(&[
         "match",
@@ -299,6 +281,60 @@ fn match_stops_at_the_gap_it_is_given() {
     assert_eq!(found["status"], "feasible");
     let gap = found["gap"].as_f64().unwrap();
     assert!(gap > 0.0 && gap <= 0.05, "gap {gap}");
+}
+
+#[test]
+fn the_log_shows_the_search_when_standard_error_is_no_terminal() {
+    let dir = scratch("log");
+    let quads = dir.join("grid.obj");
+    std::fs::write(&quads, grid_obj(12)).unwrap();
+    let args = |log: bool| {
+        let mut a = vec!["match", s(&quads)];
+        if log {
+            a.push("--log");
+        }
+        a
+    };
+    // Standard error is a pipe here: without --log no progress is written.
+    let quiet = tilepattern(&args(false));
+    assert!(quiet.status.success());
+    let quiet = String::from_utf8_lossy(&quiet.stderr);
+    assert!(!quiet.contains("pattern "), "{quiet}");
+    let logged = tilepattern(&args(true));
+    assert!(logged.status.success());
+    let log = String::from_utf8_lossy(&logged.stderr);
+    let lines: Vec<&str> = log.lines().filter(|l| l.starts_with("pattern ")).collect();
+    assert!(!lines.is_empty(), "{log}");
+    // The last line has the proven optimum of the 12 x 12 grid: 72 tiles, one joint.
+    let last = lines.last().unwrap();
+    assert!(last.contains("best 71.5  bound 71.5  gap 0.00 %"), "{log}");
+    assert!(!log.contains('\r'), "lines, not a redrawn line: {log:?}");
+    // The result on standard output either way.
+    let result: serde_json::Value = serde_json::from_slice(&logged.stdout).unwrap();
+    assert_eq!(result["objective"], 71.5);
+}
+
+/// An `n` x `n` grid of unit quads, as OBJ text.
+fn grid_obj(n: usize) -> String {
+    let mut text = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            text += &format!("v {i} {j} 0\n");
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let v = |i: usize, j: usize| j * (n + 1) + i + 1;
+            text += &format!(
+                "f {} {} {} {}\n",
+                v(i, j),
+                v(i + 1, j),
+                v(i + 1, j + 1),
+                v(i, j + 1)
+            );
+        }
+    }
+    text
 }
 
 /// A triangulated saddle z = (x^2 - y^2) / 4 over [-1, 1]^2, as OBJ text.

@@ -45,6 +45,11 @@ struct Cli {
     /// groin vault's webs get quads of their own and the tiles are cut to the groins).
     #[arg(long, global = true)]
     no_creases: bool,
+    /// Write the progress as a log on standard error, one line per stage, per change of the
+    /// pattern's best or bound and every 5 s, terminal or not (as a MIP solver's log),
+    /// instead of one line redrawn on a terminal.
+    #[arg(long, global = true)]
+    log: bool,
 }
 
 #[derive(Subcommand)]
@@ -402,6 +407,7 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<()> {
     let weld = cli.weld;
     let creases = !cli.no_creases;
+    let log = cli.log;
     let read_mesh = |path: &Path| read_mesh(path, weld);
     match cli.command {
         Command::Match {
@@ -418,7 +424,7 @@ fn run(cli: Cli) -> Result<()> {
                 .map(|path| zones_file::read(&path, mesh.face_count(), "quad mesh"))
                 .transpose()?;
             let options = pattern.options(false, up, zones.as_deref())?;
-            let mut line = ProgressLine::on_terminal();
+            let mut line = ProgressLine::on_stderr(log);
             let found = pattern::solve_with(
                 &mesh,
                 &options,
@@ -551,7 +557,7 @@ fn run(cli: Cli) -> Result<()> {
                 o.time_limit = RemeshOptions::time_limit_from_secs(remesh_time_limit)?;
                 o
             };
-            let mut line = ProgressLine::on_terminal();
+            let mut line = ProgressLine::on_stderr(log);
             let found = pipeline::tile_surface_tries(
                 surface,
                 &remesh,
@@ -592,11 +598,18 @@ fn run(cli: Cli) -> Result<()> {
             pattern,
             no_fit,
             tries,
-        } => demo(&out, span, &pattern, no_fit, tries.tries()),
+        } => demo(&out, span, &pattern, no_fit, tries.tries(), log),
     }
 }
 
-fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool, tries: Tries) -> Result<()> {
+fn demo(
+    out: &Path,
+    span: f64,
+    args: &PatternArgs,
+    no_fit: bool,
+    tries: Tries,
+    log: bool,
+) -> Result<()> {
     if !(span.is_finite() && (0.5..=100.0).contains(&span)) {
         bail!("--span {span} m: give a shell size between 0.5 and 100 metres");
     }
@@ -622,7 +635,7 @@ fn demo(out: &Path, span: f64, args: &PatternArgs, no_fit: bool, tries: Tries) -
         o.fit = FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit);
         o
     };
-    let mut line = ProgressLine::on_terminal();
+    let mut line = ProgressLine::on_stderr(log);
     let found = pipeline::tile_surface_tries(
         &surface,
         &remesh,

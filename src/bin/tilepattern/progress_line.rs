@@ -1,10 +1,15 @@
-//! The command line's progress line: while a long stage runs, one line on the terminal,
-//! redrawn in place at most five times a second, with the stage, the time since the command
-//! started, the share of the stage's work (or time budget) done and, for the pattern stage,
-//! the best objective found, the proven bound and their gap (the [`Figures`] the engine
-//! notes through its [`Control`]; the C library's callback hears the same stage and fraction).
-//! Silent when standard error is not a terminal (a pipe, a file, CI), so logs and scripts see
-//! only the final summary. The line is erased when the stage ends.
+//! The command line's progress: while a long stage runs, one line on the terminal, redrawn
+//! in place at most five times a second, with the stage, the time since the command started,
+//! the share of the stage's work (or time budget) done and, for the pattern stage, the best
+//! objective found, the proven bound and their gap (the [`Figures`] the engine notes through
+//! its [`Control`]; the C library's callback hears the same stage and fraction). Silent when
+//! standard error is not a terminal (a pipe, a file, CI), so logs and scripts see only the
+//! final summary. The line is erased when the stage ends.
+//!
+//! With `--log` the same lines are written one under the other instead, terminal or not, as
+//! a MIP solver's log is: a line when a stage starts, whenever the best or the bound
+//! changes, and every [`HEARTBEAT`] in between, so that a run in a script or CI shows how
+//! the search went.
 
 use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
@@ -13,6 +18,8 @@ use tilepattern::control::Figures;
 
 /// Least time between two redraws.
 const REDRAW: Duration = Duration::from_millis(200);
+/// Longest time between two lines of the log when nothing changes.
+const HEARTBEAT: Duration = Duration::from_secs(5);
 
 /// The line, drawn on `out` when enabled.
 pub struct ProgressLine<W: Write> {
@@ -21,12 +28,25 @@ pub struct ProgressLine<W: Write> {
     started: Instant,
     last: Option<Instant>,
     drawn: bool,
+    /// Lines one under the other ([`ProgressLine::log`]), with what the last one showed.
+    log: Option<Logged>,
+}
+
+/// What the log's last line showed.
+#[derive(Default)]
+struct Logged {
+    stage: String,
+    figures: Option<Figures>,
 }
 
 impl ProgressLine<std::io::Stderr> {
-    /// On standard error, enabled only when it is a terminal.
-    pub fn on_terminal() -> Self {
+    /// On standard error: the log when `log`, else the line, enabled only when standard
+    /// error is a terminal.
+    pub fn on_stderr(log: bool) -> Self {
         let err = std::io::stderr();
+        if log {
+            return ProgressLine::log(err);
+        }
         let enabled = err.is_terminal();
         Self::new(err, enabled)
     }
@@ -41,6 +61,16 @@ impl<W: Write> ProgressLine<W> {
             started: Instant::now(),
             last: None,
             drawn: false,
+            log: None,
+        }
+    }
+
+    /// The log on `out`: a line when a stage starts, when the figures change, and every
+    /// [`HEARTBEAT`] otherwise; nothing redrawn or erased.
+    pub fn log(out: W) -> Self {
+        Self {
+            log: Some(Logged::default()),
+            ..Self::new(out, true)
         }
     }
 
@@ -51,6 +81,22 @@ impl<W: Write> ProgressLine<W> {
             return true;
         }
         let now = Instant::now();
+        if let Some(logged) = self.log.as_mut() {
+            let news = logged.stage != stage
+                || logged.figures != figures
+                || self
+                    .last
+                    .is_none_or(|last| now.duration_since(last) >= HEARTBEAT);
+            if news {
+                logged.stage = stage.to_string();
+                logged.figures = figures;
+                self.last = Some(now);
+                let line = format_line(stage, now.duration_since(self.started), fraction, figures);
+                let _ = writeln!(self.out, "{line}");
+                let _ = self.out.flush();
+            }
+            return true;
+        }
         if self
             .last
             .is_some_and(|last| now.duration_since(last) < REDRAW)
@@ -76,9 +122,9 @@ impl<W: Write> ProgressLine<W> {
         }
     }
 
-    /// Erases the line (if one was drawn).
+    /// Erases the line (if one was drawn; the log stays).
     pub fn finish(&mut self) {
-        if self.drawn {
+        if self.drawn && self.log.is_none() {
             let _ = write!(self.out, "\r\x1b[K");
             let _ = self.out.flush();
             self.drawn = false;
@@ -156,5 +202,31 @@ mod tests {
             "one draw, one erase: {text:?}"
         );
         assert!(text.ends_with("\r\x1b[K"));
+    }
+
+    #[test]
+    fn the_log_writes_a_line_per_stage_and_per_change_and_keeps_it() {
+        let mut log = ProgressLine::log(Vec::new());
+        let figures = |best, bound| Some(Figures { best, bound });
+        assert!(log.update_run(0.1, None));
+        // Within the heartbeat, the same stage and figures write nothing.
+        assert!(log.update_run(0.2, None));
+        assert!(log.update_run(0.6, figures(10.0, 12.0)));
+        assert!(log.update_run(0.7, figures(10.0, 12.0)));
+        assert!(log.update_run(0.8, figures(11.0, 12.0)));
+        log.finish();
+        let text = String::from_utf8(log.out).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 3, "{text:?}");
+        assert!(lines[0].starts_with("remesh "), "{text:?}");
+        assert!(
+            lines[1].contains("best 10  bound 12  gap 16.67 %"),
+            "{text:?}"
+        );
+        assert!(
+            lines[2].contains("best 11  bound 12  gap 8.33 %"),
+            "{text:?}"
+        );
+        assert!(!text.contains('\r'), "nothing redrawn or erased: {text:?}");
     }
 }
