@@ -69,6 +69,12 @@ impl<'a> Control<'a> {
         self.figures = Some(figures);
     }
 
+    /// Replaces the figures noted so far, forgetting them with `None` (a pipeline starting
+    /// another try, whose pattern stage has noted nothing yet).
+    pub fn set_figures(&mut self, figures: Option<Figures>) {
+        self.figures = figures;
+    }
+
     /// The figures noted last, if any.
     pub fn figures(&self) -> Option<Figures> {
         self.figures

@@ -557,14 +557,16 @@ fn run(cli: Cli) -> Result<()> {
                 o.time_limit = RemeshOptions::time_limit_from_secs(remesh_time_limit)?;
                 o
             };
-            let mut line = ProgressLine::on_stderr(log);
+            let tries = tries.tries();
+            let mut line = ProgressLine::on_stderr(log)
+                .with_tries(tries.count(surface.area(), remesh.target_edge));
             let found = pipeline::tile_surface_tries(
                 surface,
                 &remesh,
                 &options,
                 &spec,
                 &finish,
-                tries.tries(),
+                tries,
                 &mut Control::with_figures(&mut |fraction, figures| {
                     line.update_run(fraction, figures)
                 }),
@@ -635,7 +637,8 @@ fn demo(
         o.fit = FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit);
         o
     };
-    let mut line = ProgressLine::on_stderr(log);
+    let mut line =
+        ProgressLine::on_stderr(log).with_tries(tries.count(surface.area(), remesh.target_edge));
     let found = pipeline::tile_surface_tries(
         &surface,
         &remesh,

@@ -117,9 +117,11 @@ pub fn tile_surface_tries(
     tries: Tries,
     control: &mut Control<'_>,
 ) -> Result<(Remeshed, Tiling), Error> {
+    // Decided on the input as given, so that a caller can tell the tries apart in the
+    // progress (`Tries::count` with the input's area).
+    let count = tries.count(surface.area(), remesh.target_edge);
     let simplified = simplified_if_fine(surface, remesh, options, &mut || control.keep_going(0.0));
     let surface = simplified.as_ref().map_or(surface, |(mesh, _)| mesh);
-    let count = tries.count(surface.area(), remesh.target_edge);
     let mut listed: Vec<TryFigures> = Vec::with_capacity(count);
     let mut best: Option<((bool, f64), usize, Remeshed, Tiling)> = None;
     for (k, factor) in FACTORS.iter().take(count).enumerate() {
@@ -129,6 +131,8 @@ pub fn tile_surface_tries(
         };
         let started = std::time::Instant::now();
         let share = |fraction: f64| (k as f64 + fraction) / count as f64;
+        // Each try's own figures: none before its pattern stage notes some.
+        control.set_figures(None);
         let mut part = |fraction: f64, figures: Option<Figures>| {
             if let Some(figures) = figures {
                 control.note(figures);

@@ -30,6 +30,9 @@ pub struct ProgressLine<W: Write> {
     drawn: bool,
     /// Lines one under the other ([`ProgressLine::log`]), with what the last one showed.
     log: Option<Logged>,
+    /// Runs [`ProgressLine::update_run`] hears as equal shares of `0..1` (the pipeline's
+    /// tries).
+    tries: usize,
 }
 
 /// What the log's last line showed.
@@ -62,6 +65,16 @@ impl<W: Write> ProgressLine<W> {
             last: None,
             drawn: false,
             log: None,
+            tries: 1,
+        }
+    }
+
+    /// For a pipeline of `tries` runs ([`tilepattern::pipeline::tile_surface_tries`], each
+    /// an equal share of the fraction): the stages are labelled with their try.
+    pub fn with_tries(self, tries: usize) -> Self {
+        Self {
+            tries: tries.max(1),
+            ..self
         }
     }
 
@@ -113,12 +126,33 @@ impl<W: Write> ProgressLine<W> {
     }
 
     /// For [`tilepattern::pipeline::tile_surface`], which reports the remesh stage as
-    /// fractions `0..0.5` and the pattern stage as `0.5..1` (then the tiles at 1).
+    /// fractions `0..0.5` and the pattern stage as `0.5..1` (then the tiles at 1), and for
+    /// its tries ([`ProgressLine::with_tries`]), each an equal share of `0..1` reported so:
+    /// with more than one, the stage is named with its try (`pattern 2/3`).
     pub fn update_run(&mut self, fraction: f64, figures: Option<Figures>) -> bool {
-        if fraction < 0.5 {
-            self.update("remesh", 2.0 * fraction, None)
+        let tries = self.tries as f64;
+        let scaled = fraction.clamp(0.0, 1.0) * tries;
+        let mut k = (scaled.floor() as usize).min(self.tries - 1);
+        let mut within = scaled - k as f64;
+        // k / tries is both the end of try k - 1 (its tiles report all of its share, with
+        // its figures) and the start of try k (whose figures the pipeline forgets).
+        if within == 0.0 && k > 0 && figures.is_some() {
+            k -= 1;
+            within = 1.0;
+        }
+        let name = |stage: &str| {
+            if self.tries > 1 {
+                format!("{stage} {}/{}", k + 1, self.tries)
+            } else {
+                stage.to_string()
+            }
+        };
+        if within < 0.5 {
+            let stage = name("remesh");
+            self.update(&stage, 2.0 * within, None)
         } else {
-            self.update("pattern", 2.0 * fraction - 1.0, figures)
+            let stage = name("pattern");
+            self.update(&stage, 2.0 * within - 1.0, figures)
         }
     }
 
@@ -202,6 +236,45 @@ mod tests {
             "one draw, one erase: {text:?}"
         );
         assert!(text.ends_with("\r\x1b[K"));
+    }
+
+    #[test]
+    fn tries_are_told_apart() {
+        let mut log = ProgressLine::log(Vec::new()).with_tries(3);
+        let figures = Some(Figures {
+            best: 10.0,
+            bound: 12.0,
+        });
+        assert!(log.update_run(0.0, None));
+        assert!(log.update_run(0.1, None));
+        assert!(log.update_run(0.3, figures));
+        // The end of the first try, with its last figures.
+        let proven = Some(Figures {
+            best: 11.0,
+            bound: 11.0,
+        });
+        assert!(log.update_run(1.0 / 3.0, proven));
+        // The start of the second: no figures yet.
+        assert!(log.update_run(1.0 / 3.0, None));
+        assert!(log.update_run(0.4, None));
+        assert!(log.update_run(0.9, figures));
+        assert!(log.update_run(1.0, figures));
+        let text = String::from_utf8(log.out).unwrap();
+        let stages: Vec<&str> = text
+            .lines()
+            .map(|l| l.split("   ").next().unwrap().trim())
+            .collect();
+        assert_eq!(
+            stages,
+            [
+                "remesh 1/3",
+                "pattern 1/3",
+                "pattern 1/3",
+                "remesh 2/3",
+                "pattern 3/3"
+            ],
+            "{text:?}"
+        );
     }
 
     #[test]
