@@ -248,26 +248,33 @@ mod tests {
     #[test]
     fn a_cancel_or_the_deadline_inside_cbc_stops_it_and_leaves_it_free() {
         let before = small();
-        // 45 x 45 grid: CBC's root linear program alone takes seconds. Cancel 1 s in.
-        let started = Instant::now();
-        let mut asked: Option<Instant> = None;
-        let mut cancel_after_a_second = |_: f64| {
-            if started.elapsed() < Duration::from_secs(1) {
-                return true;
+        // 45 x 45 grid: CBC's root linear program alone takes seconds. Cancel 1 s in. The
+        // other tests run beside this one on as many threads as there are cores, so a
+        // return a scheduler's slice late is tried again (as `at_full_speed` does); a
+        // cancel CBC does not hear fails every time.
+        let mut late = Vec::new();
+        for _ in 0..3 {
+            let started = Instant::now();
+            let mut asked: Option<Instant> = None;
+            let mut cancel_after_a_second = |_: f64| {
+                if started.elapsed() < Duration::from_secs(1) {
+                    return true;
+                }
+                asked.get_or_insert_with(Instant::now);
+                false
+            };
+            let mut control = Control::with_progress(&mut cancel_after_a_second);
+            let outcome = whole(45, Duration::from_secs(60), &mut control);
+            let returned = Instant::now();
+            assert!(matches!(outcome, Err(PatternError::Cancelled)));
+            let after_cancel = returned - asked.unwrap();
+            at_full_speed(before).unwrap();
+            if after_cancel < Duration::from_millis(200) {
+                break;
             }
-            asked.get_or_insert_with(Instant::now);
-            false
-        };
-        let mut control = Control::with_progress(&mut cancel_after_a_second);
-        let outcome = whole(45, Duration::from_secs(60), &mut control);
-        let returned = Instant::now();
-        assert!(matches!(outcome, Err(PatternError::Cancelled)));
-        let after_cancel = returned - asked.unwrap();
-        assert!(
-            after_cancel < Duration::from_millis(200),
-            "returned {after_cancel:?} after the cancel"
-        );
-        at_full_speed(before).unwrap();
+            late.push(after_cancel);
+        }
+        assert!(late.len() < 3, "returned {late:?} after the cancel");
 
         // The deadline, inside the root linear program, stops CBC the same way.
         let started = Instant::now();
