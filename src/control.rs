@@ -95,6 +95,30 @@ impl<'a> Control<'a> {
     }
 }
 
+/// For tests of cancel: a progress callback that lets a stage go on for `delay` from now,
+/// then asks it to stop, and when it first asked.
+#[cfg(test)]
+pub(crate) fn cancel_after(
+    delay: std::time::Duration,
+) -> (
+    impl FnMut(f64) -> bool,
+    std::rc::Rc<std::cell::Cell<Option<std::time::Instant>>>,
+) {
+    let started = std::time::Instant::now();
+    let asked = std::rc::Rc::new(std::cell::Cell::new(None));
+    let seen = std::rc::Rc::clone(&asked);
+    let callback = move |_| {
+        if started.elapsed() < delay {
+            return true;
+        }
+        if seen.get().is_none() {
+            seen.set(Some(std::time::Instant::now()));
+        }
+        false
+    };
+    (callback, asked)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

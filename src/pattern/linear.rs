@@ -88,6 +88,7 @@ pub(super) fn bound(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::control::cancel_after;
     use crate::mesh::{Topology, generate};
     use crate::pattern::decompose::tests::ragged;
     use crate::pattern::{Bond, Method, PatternOptions, SolveStatus, solve};
@@ -188,15 +189,7 @@ mod tests {
         // iteration (some 60 ms alone) and the poll. 0.5 s, not less: the other tests of this
         // binary share the two cores, and a clean-clone CI run with a build beside it took
         // 0.28 s (a barrier left running would take the 60 s limit).
-        let started = Instant::now();
-        let mut asked: Option<Instant> = None;
-        let mut cancel_after_a_second = |_: f64| {
-            if started.elapsed() < Duration::from_secs(1) {
-                return true;
-            }
-            asked.get_or_insert_with(Instant::now);
-            false
-        };
+        let (mut cancel_after_a_second, asked) = cancel_after(Duration::from_secs(1));
         let mut control = Control::with_progress(&mut cancel_after_a_second);
         let outcome = bound(
             &graph,
@@ -208,7 +201,7 @@ mod tests {
         );
         let returned = Instant::now();
         assert!(matches!(outcome, Err(PatternError::Cancelled)));
-        let after = returned - asked.unwrap();
+        let after = returned - asked.get().unwrap();
         assert!(
             after < Duration::from_millis(500),
             "returned {after:?} after the cancel"

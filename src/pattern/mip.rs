@@ -135,6 +135,7 @@ mod tests {
     use std::time::Instant;
 
     use super::*;
+    use crate::control::cancel_after;
     use crate::mesh::{Topology, generate};
 
     #[test]
@@ -254,20 +255,12 @@ mod tests {
         // cancel CBC does not hear fails every time.
         let mut late = Vec::new();
         for _ in 0..3 {
-            let started = Instant::now();
-            let mut asked: Option<Instant> = None;
-            let mut cancel_after_a_second = |_: f64| {
-                if started.elapsed() < Duration::from_secs(1) {
-                    return true;
-                }
-                asked.get_or_insert_with(Instant::now);
-                false
-            };
+            let (mut cancel_after_a_second, asked) = cancel_after(Duration::from_secs(1));
             let mut control = Control::with_progress(&mut cancel_after_a_second);
             let outcome = whole(45, Duration::from_secs(60), &mut control);
             let returned = Instant::now();
             assert!(matches!(outcome, Err(PatternError::Cancelled)));
-            let after_cancel = returned - asked.unwrap();
+            let after_cancel = returned - asked.get().unwrap();
             at_full_speed(before).unwrap();
             if after_cancel < Duration::from_millis(200) {
                 break;
