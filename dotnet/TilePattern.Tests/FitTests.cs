@@ -368,7 +368,7 @@ namespace TilePattern.Tests
         {
             Report r = Report.Parse("{\"joints\": {\"contacts\": 3, \"joint\": 0.01, \"within_2mm\": 0.5, \"within_5mm\": 0.75, \"fit_cuts\": 2,"
                 + "\"before_fit\": {\"contacts\": 3, \"joint\": 0.01, \"p95_deviation\": 0.02}},"
-                + "\"fit\": {\"status\": \"iteration_limit\", \"iterations\": 60, \"objective_before\": 2.0, \"objective_after\": 1.0, \"mean_move\": 0.01, \"max_move\": 0.03},"
+                + "\"fit\": {\"status\": \"iteration_limit\", \"iterations\": 60, \"objective_before\": 2.0, \"objective_after\": 1.0, \"mean_move\": 0.01, \"max_move\": 0.03, \"room_pieces\": 4},"
                 + "\"seconds\": {\"pattern\": 0.5, \"tiles\": 0.2, \"fit\": 0.1}}");
             Assert.AreEqual(0.5, r.Joints.Within2Mm);
             Assert.AreEqual(0.75, r.Joints.Within5Mm);
@@ -377,8 +377,10 @@ namespace TilePattern.Tests
             Assert.AreEqual(FitStatus.IterationLimit, r.Fit.Status);
             Assert.AreEqual(60, r.Fit.Iterations);
             Assert.AreEqual(0.03, r.Fit.MaxMove);
+            Assert.AreEqual(4, r.Fit.RoomPieces);
             Assert.AreEqual(0.1, r.FitSeconds);
             Assert.AreEqual(FitStatus.Unknown, Report.Parse("{\"fit\": {\"status\": \"something_new\"}}").Fit.Status);
+            Assert.AreEqual(0, Report.Parse("{\"fit\": {\"status\": \"converged\"}}").Fit.RoomPieces);
             Assert.IsNull(Report.Parse("{\"joints\": {}}").Fit);
         }
     }

@@ -480,6 +480,10 @@ namespace TilePattern
         public double MaxMove { get; internal set; }
         /// <summary>Overlaps up to this depth were left, deeper ones cut (model units).</summary>
         public double OverlapTolerance { get; internal set; }
+        /// <summary>Standard pieces (halves or whole tiles) the fit laid whole in rooms it left
+        /// between the heads of a course, with their joints closed around them: no cut on site
+        /// (0 in reports of libraries before them).</summary>
+        public int RoomPieces { get; internal set; }
 
         internal static FitReport Parse(Dictionary<string, object> fit)
         {
@@ -494,6 +498,7 @@ namespace TilePattern
                 MeanMove = JsonAccess.Number(fit, "mean_move"),
                 MaxMove = JsonAccess.Number(fit, "max_move"),
                 OverlapTolerance = JsonAccess.Number(fit, "overlap_tolerance"),
+                RoomPieces = Math.Max(0, JsonAccess.Integer(fit, "room_pieces")),
             };
             switch (r.StatusText)
             {

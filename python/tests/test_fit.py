@@ -40,6 +40,10 @@ def test_the_fit_runs_by_default_and_its_figures_are_reported(shell_quads):
     assert fit["status"] in ("converged", "iteration_limit", "time_limit")
     assert fit["iterations"] >= 1 and fit["objective_after"] <= fit["objective_before"]
     assert 0 <= fit["mean_move"] <= fit["max_move"]
+    # Pieces laid in rooms are tiles with no faces, counted in neither full nor half tiles.
+    whole = (placed.faces[:, 0] == -1) & np.isin(placed.kinds, ("full", "half"))
+    faceless = int(whole.sum())
+    assert 0 <= fit["room_pieces"] <= faceless
     joints = report["joints"]
     assert JOINT_FIGURES <= set(joints) and JOINT_FIGURES <= set(joints["before_fit"])
     assert "before_fit" not in joints["before_fit"]

@@ -764,7 +764,8 @@ class Tiles:
         Length, width, thickness of each box (the blank: a cut tile keeps its blank's).
     faces : ndarray (N, 2) int64
         Faces under each tile; -1 in the second slot of a half tile and in both slots of a
-        filler piece beyond the quad mesh's boundary.
+        filler piece beyond the quad mesh's boundary, of a piece filling the fit's tears and
+        of a whole piece laid in a room of a course (``report["fit"]["room_pieces"]``).
     steps : ndarray (N,) int64
         Step of each tile in the laying order, from 0.
     kept_fractions : ndarray (N,) float64

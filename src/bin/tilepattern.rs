@@ -1375,14 +1375,15 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
     let j = &t.report.joints;
     let joints = match (&j.before_fit, &t.report.fit) {
         (Some(before), Some(fit)) => format!(
-            "joints (nominal {:.1} mm) before the fit: {}\nafter the fit ({:?}, {} steps, {:.2} s): {}; {} tiles cut to fit",
+            "joints (nominal {:.1} mm) before the fit: {}\nafter the fit ({:?}, {} steps, {:.2} s): {}; {} tiles cut to fit, {} whole pieces laid in rooms of the courses",
             j.joint / mm,
             figures(before),
             fit.status,
             fit.iterations,
             t.report.seconds.fit,
             figures(j),
-            j.fit_cuts
+            j.fit_cuts,
+            fit.room_pieces
         ),
         _ => format!(
             "joints (nominal {:.1} mm, placement of section 3.5): {}",

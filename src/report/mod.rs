@@ -134,7 +134,8 @@ pub struct CuttingSummary {
     pub filler_tiles: usize,
     /// Of `filler_tiles`, the pieces (tile blanks, most of them cut) that fill the holes the
     /// fit left where courses converge or part, and along the edge where the edge's filler
-    /// pieces did not reach.
+    /// pieces did not reach, with the whole pieces the fit laid in the rooms of its courses
+    /// ([`FitSummary::room_pieces`]).
     pub tear_pieces: usize,
     /// Of `tear_pieces`, those cut to the room their neighbours leave away from the
     /// surface's edge (a piece the edge cuts is cut there anyway; a whole piece is no cut):
@@ -142,7 +143,8 @@ pub struct CuttingSummary {
     /// `fit_cuts` warning.
     pub tear_cuts: usize,
     /// Of `tear_pieces`, whole half tiles laid where a hole's room held one with its joints
-    /// within half a joint of the nominal one, instead of a piece cut to the room: no cut on
+    /// within half a joint of the nominal one (by the tear fill, or by the fit in the rooms
+    /// of its courses), instead of a piece cut to the room: no cut on
     /// site (halves are cut off site, as the pattern's half tiles are; they are in the cut
     /// list's `H`).
     pub tear_halves: usize,

@@ -251,14 +251,15 @@ pub struct Finished {
     /// Filler pieces placed beyond the quad mesh's boundary and in the fit's tears (tiles
     /// with no faces).
     pub fillers: usize,
-    /// Of `fillers`, the pieces filling holes the fit left (`tears.rs`).
+    /// Of `fillers`, the pieces filling holes the fit left (`tears.rs`), and the whole pieces
+    /// the fit itself laid in the rooms of its courses ([`FitSummary::room_pieces`]).
     pub tear_pieces: usize,
     /// Of `tear_pieces`, those cut to the room their neighbours leave away from the
     /// surface's edge: the cuts the fit's tears alone ask for.
     pub tear_cuts: usize,
     /// Of `tear_pieces`, whole half tiles laid where the room held one with joints within
-    /// half a joint of the nominal one (no cut on site: halves are cut off site, as the
-    /// pattern's are).
+    /// half a joint of the nominal one, by the tear fill or in the fit's rooms (no cut on
+    /// site: halves are cut off site, as the pattern's are).
     pub tear_halves: usize,
     /// Whether the fill of those holes was stopped (by [`finish_with`]'s `keep_going`)
     /// before every hole was tried.
@@ -481,7 +482,21 @@ pub fn finish_with(
         .filter_map(|(i, p)| Some([kept_index[i]?, kept_index[(*p)?]?]))
         .collect();
     links.extend(loose_neighbours(quads, &kept));
-    let fillers = kept_index[fillers_from..].iter().flatten().count() + tears.pieces;
+    // Whole pieces the fit laid in the rooms of its courses (tiles on no quad among those it
+    // placed, [`fit`]'s rooms) fill its tears as the tear fill's whole halves do, and are
+    // counted with them.
+    let rooms: Vec<&Tile> = kept_index[..fillers_from]
+        .iter()
+        .flatten()
+        .map(|&k| &kept[k])
+        .filter(|t| t.faces.is_empty())
+        .collect();
+    let room_halves = rooms
+        .iter()
+        .filter(|t| t.kind == TileKind::Half && t.cut.is_none())
+        .count();
+    let room_pieces = rooms.len();
+    let fillers = kept_index[fillers_from..].iter().flatten().count() + tears.pieces + room_pieces;
     let cut_list = cutlist::cut_list(&mut kept, options.tolerance);
     let sequence = sequence::laying_order(quads, &mut kept, &links, &options.sequence);
     let lifts = lifts(&kept, &boundary);
@@ -490,9 +505,9 @@ pub fn finish_with(
         Finished {
             dropped,
             fillers,
-            tear_pieces: tears.pieces,
+            tear_pieces: tears.pieces + room_pieces,
             tear_cuts: tears.inside_cuts,
-            tear_halves: tears.halves,
+            tear_halves: tears.halves + room_halves,
             tear_fill_stopped: tears.stopped,
             cut_list,
             sequence,

@@ -30,7 +30,7 @@ pub(crate) enum Side {
 
 impl Side {
     /// Sides counter-clockwise from `+x`.
-    const CCW: [Side; 4] = [Side::PosX, Side::PosY, Side::NegX, Side::NegY];
+    pub(crate) const CCW: [Side; 4] = [Side::PosX, Side::PosY, Side::NegX, Side::NegY];
 
     /// The side `k` quarter turns counter-clockwise from this one.
     fn turn(self, k: usize) -> Side {

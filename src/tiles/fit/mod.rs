@@ -12,7 +12,9 @@
 //! Each tile keeps its origin on the surface (the closest point) and its thickness axis
 //! along the surface's normal there, and may slide and turn in its tangent plane
 //! ([`solve`]). Where that first placement leaves a course overlapping or torn, the course
-//! loses a closer per tile of surplus and the rest is placed again ([`closers`]). What cannot
+//! loses a closer per tile of surplus and the rest is placed again ([`closers`]). Where it
+//! leaves a room about a half tile (or a tile) long between two heads of a course, a whole
+//! piece is laid there and the tiles placed again around it ([`rooms`]). What cannot
 //! be made to fit is not left overlapping: after the tiles are cut to the boundary,
 //! [`resolve_overlaps`] cuts the rest, closers first (rarely: the method's aim is to cut
 //! little).
@@ -20,6 +22,7 @@
 mod closers;
 pub(crate) mod contacts;
 mod cuts;
+mod rooms;
 mod solve;
 
 pub(crate) use cuts::cut_to_room;
@@ -204,6 +207,11 @@ pub struct FitSummary {
     pub max_move: f64,
     /// Overlaps up to this depth were left, deeper ones cut ([`FitOptions::overlap_tolerance`]).
     pub overlap_tolerance: f64,
+    /// Standard pieces (halves, or whole tiles) laid in rooms the placement left between the
+    /// heads of a course, each with its joints within [`MAX_P95_DEVIATION_SHARE`] of the
+    /// joint ([`rooms`]): among the tiles with no faces, in the cut list's whole blanks
+    /// (labels F and H), no cut on site.
+    pub room_pieces: usize,
 }
 
 /// Moves `tiles` (as built by [`crate::tiles::build`] on `quads`) to fit their joints,
@@ -330,13 +338,62 @@ pub fn fit(
             };
         }
     }
+    // Rooms about a standard piece long between the heads of a course take one, and the
+    // placement is done again from where it is, so that the course's joints close around
+    // it ([`rooms`]).
+    let original = tiles.len();
+    let mut placement = rooms::Placement {
+        contacts: all
+            .iter()
+            .filter(|c| c.tiles.iter().all(|t| out.binary_search(t).is_err()))
+            .copied()
+            .collect(),
+        tiles,
+        frames,
+        anchors,
+        beyond_start,
+        sizes,
+    };
+    if !outcome.stopped {
+        // Rounds begun while the fit's work and theirs would fit in half the time limit
+        // ([`TILE_STEPS_PER_SECOND`]): on a machine half as fast they still finish in time.
+        let budget = (TILE_STEPS_PER_SECOND * options.time_limit / 2.0) as usize;
+        let mut work = original * outcome.iterations;
+        let setting = rooms::Setting {
+            spec,
+            options,
+            weights,
+            surface: &index,
+        };
+        let laid = rooms::lay(
+            &mut placement,
+            &out,
+            &setting,
+            (&mut work, budget),
+            &mut |_| {
+                if started.elapsed().as_secs_f64() > options.time_limit {
+                    timed_out = true;
+                    return false;
+                }
+                control.keep_going(1.0)
+            },
+        );
+        outcome.iterations += laid.iterations;
+        outcome.stopped |= laid.stopped;
+        if let Some(end) = laid.end {
+            outcome.end = end;
+        }
+    }
+    let rooms::Placement { tiles, frames, .. } = placement;
+    let room_pieces = tiles.len() - original;
     let status = match (outcome.stopped, timed_out, outcome.converged) {
         (true, true, _) => FitStatus::TimeLimit,
         (true, false, _) => FitStatus::Cancelled,
         (false, _, true) => FitStatus::Converged,
         (false, _, false) => FitStatus::IterationLimit,
     };
-    let moves: Vec<f64> = tiles
+    // Of the tiles of the pattern (the rooms' pieces had no place before the fit).
+    let moves: Vec<f64> = tiles[..original]
         .iter()
         .zip(&frames)
         .map(|(t, f)| (f.origin - t.frame.origin).norm())
@@ -359,6 +416,7 @@ pub fn fit(
         mean_move: moves.iter().sum::<f64>() / moves.len().max(1) as f64,
         max_move: moves.iter().copied().fold(0.0, f64::max),
         overlap_tolerance: options.overlap_tolerance,
+        room_pieces,
     };
     if status != FitStatus::Cancelled {
         control.keep_going(1.0);
