@@ -34,7 +34,7 @@ pub(crate) const SPREAD: f64 = 0.4;
 const ROUNDS: usize = 3;
 
 /// Most steps of a placement done again around a round's pieces (it starts from a placement
-/// that fits everywhere else): the tubemesh's took 13-23, the 20 m cap's 40-70.
+/// that fits everywhere else): the tubemesh's took 13-23, the 20 m cap's up to 40.
 const ROUND_STEPS: usize = 40;
 
 /// Most turn, in degrees, between the two heads facing across a room: a wedge-shaped room
