@@ -360,7 +360,7 @@ pub fn fit(
         // and the largest shells (the 20 m cap: 17,311 tiles, 52 steps before them, a round
         // of up to 40 more) keep their time (issue 19's 30 s for the whole run) unless the
         // designer gives the fit more (`--fit-time-limit 30`: its second placement, tried and
-        // not kept, and one round; 9.2 -> 8.4 % of its tiles cut, the fit 4.2 -> 17.4 s).
+        // not kept, and rooms; 9.2 -> 8.7 % of its tiles cut, the fit 4.2 -> 12 s).
         let budget = (TILE_STEPS_PER_SECOND * options.time_limit / 3.0) as usize;
         let mut work = original * outcome.iterations;
         let setting = rooms::Setting {
