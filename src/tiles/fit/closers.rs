@@ -31,8 +31,13 @@ pub(crate) fn gaps(tiles: &[Tile], frames: &[Frame], contacts: &[Contact]) -> Ve
         .collect()
 }
 
-/// Per tile, whether `gaps` (per contact, [`gaps`]) leave it overlapping a neighbour by more
-/// than `tolerance` or parted from one by more than `tear`.
+/// Whether a joint of width `gap` is one the tiles cannot keep: an overlap deeper than
+/// `tolerance` (to be cut) or a tear wider than `tear` (to take a cut piece).
+pub(crate) fn misfit(gap: f64, tolerance: f64, tear: f64) -> bool {
+    gap < -tolerance || gap > tear
+}
+
+/// Per tile, whether `gaps` (per contact, [`gaps`]) leave it with a [`misfit`] joint.
 pub(crate) fn failing(
     tiles: usize,
     contacts: &[Contact],
@@ -42,7 +47,7 @@ pub(crate) fn failing(
 ) -> Vec<bool> {
     let mut out = vec![false; tiles];
     for (c, &gap) in contacts.iter().zip(gaps) {
-        if gap < -tolerance || gap > tear {
+        if misfit(gap, tolerance, tear) {
             c.tiles.iter().for_each(|&t| out[t] = true);
         }
     }

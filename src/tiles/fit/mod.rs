@@ -102,6 +102,21 @@ fn wide_gap(spec: &TileSpec) -> f64 {
     }
 }
 
+/// The residual weights for a tile spec: [`WEIGHTS`] with `wide` and `tear` set from it.
+fn weights_for(spec: &TileSpec) -> Weights {
+    Weights {
+        wide: wide_gap(spec),
+        tear: TEAR_FROM * wide_gap(spec),
+        ..WEIGHTS
+    }
+}
+
+/// How wide a gap is when it is no joint but a tear the fill will take a cut piece for:
+/// the joint and two [`wide_gap`]s (30 mm on a 10 mm joint).
+fn tear_gap(spec: &TileSpec) -> f64 {
+    spec.joint + 2.0 * wide_gap(spec)
+}
+
 /// Where a joint's cost turns from Huber's linear growth to a logarithm's
 /// ([`solve`]'s `capped`), in [`wide_gap`]s beyond the joint: 1.5 (a 25 mm gap on a 10 mm
 /// joint), so that joints that cannot close gather into tears that take a piece. Measured
@@ -248,11 +263,7 @@ pub fn fit(
         .map(|t| solve::place(&index, &t.frame.origin.coords, &t.frame.x, &t.frame.z))
         .unzip();
     let sizes: Vec<[f64; 3]> = tiles.iter().map(|t| t.size).collect();
-    let weights = Weights {
-        wide: wide_gap(spec),
-        tear: TEAR_FROM * wide_gap(spec),
-        ..WEIGHTS
-    };
+    let weights = weights_for(spec);
     let mut timed_out = false;
     // One placement from the anchors with the joints of `found`, reporting progress from
     // `from` to `to`.
@@ -295,7 +306,7 @@ pub fn fit(
     let mut out = if first.stopped || large || !flagged {
         Vec::new()
     } else {
-        let tear = spec.joint + 2.0 * wide_gap(spec);
+        let tear = tear_gap(spec);
         let failing = closers::failing(
             tiles.len(),
             &all,

@@ -16,8 +16,8 @@ use std::collections::BTreeSet;
 use nalgebra::Vector3;
 
 use super::contacts::{Contact, Side};
-use super::solve::{BondBand, Problem, Weights, place};
-use super::{FitOptions, MAX_P95_DEVIATION_SHARE, bond_band, closers, wide_gap};
+use super::solve::{BondBand, Problem, Weights, place, side_line};
+use super::{FitOptions, MAX_P95_DEVIATION_SHARE, bond_band, closers, tear_gap};
 use crate::geom::SurfaceIndex;
 use crate::tiles::{Frame, Tile, TileKind, TileSpec, outline};
 
@@ -74,6 +74,16 @@ pub(crate) struct Placement {
 }
 
 impl Placement {
+    /// Takes out the tiles from `n` on (whose joints must already be gone); the frames are
+    /// those of the first `n`.
+    fn truncate(&mut self, n: usize) {
+        self.tiles.truncate(n);
+        self.frames.truncate(n);
+        self.anchors.truncate(n);
+        self.beyond_start.truncate(n);
+        self.sizes.truncate(n);
+    }
+
     /// Keeps the tiles whose flag in `keep` is set, renumbering the joints (those of a tile
     /// taken out go with it).
     fn retain(&mut self, keep: &[bool]) {
@@ -160,10 +170,9 @@ pub(crate) fn lay(
         stopped: false,
         end: None,
     };
-    // Joints the tiles cannot keep: overlaps to cut, or tears that take a cut piece.
     let misfits = |gaps: &[f64]| {
         gaps.iter()
-            .filter(|&&g| g < -options.overlap_tolerance || g > spec.joint + 2.0 * wide_gap(spec))
+            .filter(|&&g| closers::misfit(g, options.overlap_tolerance, tear_gap(spec)))
             .count()
     };
     let strays = |g: f64| {
@@ -238,7 +247,7 @@ pub(crate) fn lay(
             // nothing, or for joints that fit no better (fewer misfits, and a p95 deviation
             // no higher): the round is undone.
             p.contacts = before;
-            p.retain(&(0..p.tiles.len()).map(|t| t < n).collect::<Vec<_>>());
+            p.truncate(n);
             laid.stopped = progress.stopped;
             break;
         }
@@ -316,15 +325,12 @@ fn rooms(
         else {
             continue;
         };
-        let (na, nb) = (sa.normal(&frames[a]), sb.normal(&frames[b]));
+        // The heads' normals and mid-points: the room runs from one to the other.
+        let (na, pa, _, _) = side_line(&frames[a], &tiles[a].size, sa);
+        let (nb, pb, _, _) = side_line(&frames[b], &tiles[b].size, sb);
         if na.dot(&-nb) < parallel {
             continue;
         }
-        // The heads' mid-points: the room runs from one to the other, along the course.
-        let mid = |t: usize, side: Side, n: &Vector3<f64>| {
-            frames[t].origin.coords + n * side.extents(&tiles[t].size).0
-        };
-        let (pa, pb) = (mid(a, sa, &na), mid(b, sb, &nb));
         let d = pb - pa;
         if (d - na * d.dot(&na)).norm() > spec.width / 4.0 {
             continue;
@@ -400,7 +406,7 @@ fn rooms(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{TEAR_FROM, WEIGHTS};
+    use super::super::weights_for;
     use super::*;
     use crate::mesh::{PolyMesh, Topology, generate};
     use crate::tiles::fit::contacts::{contacts, tests::pattern};
@@ -452,16 +458,11 @@ mod tests {
     }
 
     fn laid(placement: &mut Placement, surface: &SurfaceIndex) -> Laid {
-        let weights = Weights {
-            wide: wide_gap(&SPEC),
-            tear: TEAR_FROM * wide_gap(&SPEC),
-            ..WEIGHTS
-        };
         let options = FitOptions::for_spec(&SPEC);
         let setting = Setting {
             spec: &SPEC,
             options: &options,
-            weights,
+            weights: weights_for(&SPEC),
             surface,
         };
         lay(placement, &[], &setting, (&mut 0, usize::MAX), &mut |_| {

@@ -149,7 +149,7 @@ fn plane_distance(
 
 /// A side of a tile placed by `frame`: outward normal, centre, direction along it, half
 /// length.
-fn side_line(
+pub(super) fn side_line(
     frame: &Frame,
     size: &[f64; 3],
     side: Side,
