@@ -163,6 +163,21 @@ fn quads_follow_the_meridians_given_per_face() {
 }
 
 #[test]
+fn the_meridian_field_with_its_cones_placed_otherwise_still_gives_a_quad_mesh() {
+    // At 150 mm quads and the renormalisation `run`'s second try uses, a merge of the two
+    // quads round a vertex of valence two rebuilt a quad already there (back to back with
+    // it), and the quad mesh was refused: "face 1307 repeats face 1285".
+    let dome = dome();
+    let field = UserField::for_mesh(&dome, per_vertex(&dome, meridian), 1.0).unwrap();
+    let mut o = options(Some(field));
+    o.target_edge = 0.15;
+    o.renormalisation = 1.0;
+    let followed = remesh(&dome, &o).unwrap();
+    assert!(followed.metrics.pure_quad);
+    assert!(followed.quads.face_count() > 1000);
+}
+
+#[test]
 fn quads_follow_a_field_across_the_grid_of_a_plate() {
     // A flat plate triangulated along its axes, with a field at 30 degrees to them given per
     // face: a field quads can follow exactly, so nearly every edge is on it.

@@ -326,8 +326,10 @@ pub enum RemeshError {
     #[error("unsupported input surface: {0}")]
     UnsupportedInput(String),
     /// The quad mesh could not be assembled into a valid mesh (a bug or an extreme input).
+    /// The mesh error is in the message, not a `source()`, so that a chain of sources
+    /// printed after it (`{:#}`) does not say it twice.
     #[error("the quad mesh could not be built: {0}")]
-    Mesh(#[from] MeshError),
+    Mesh(MeshError),
     /// Extraction found no quad at all.
     #[error(
         "no quad could be extracted; the target edge {0} is probably too large for this surface"
@@ -347,6 +349,12 @@ pub enum RemeshError {
         /// Seconds spent.
         seconds: f64,
     },
+}
+
+impl From<MeshError> for RemeshError {
+    fn from(error: MeshError) -> Self {
+        Self::Mesh(error)
+    }
 }
 
 /// Most quads [`remesh`] will produce, so a wrong unit (mm for m) fails fast instead of

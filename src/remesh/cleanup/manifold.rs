@@ -2,7 +2,7 @@
 //! used twice are dropped, stray components too, and vertices where two fans of faces touch
 //! are split.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use nalgebra::Vector3;
 
@@ -16,13 +16,20 @@ pub(super) fn distinct(f: &[usize]) -> bool {
     f.iter().enumerate().all(|(i, v)| !f[i + 1..].contains(v))
 }
 
-/// Drops faces that would use a directed edge a second time (crossing links).
+/// Drops faces that would use a directed edge a second time (crossing links), or that lie on
+/// the same corners as an earlier face (a pillow of two faces back to back).
 pub(super) fn make_edge_manifold(faces: &mut Vec<Vec<usize>>) {
     let mut seen: HashMap<(usize, usize), ()> = HashMap::new();
+    let mut corners_seen: BTreeSet<Vec<usize>> = BTreeSet::new();
     faces.retain(|f| {
         let directed: Vec<(usize, usize)> =
             (0..f.len()).map(|i| (f[i], f[(i + 1) % f.len()])).collect();
         if directed.iter().any(|d| seen.contains_key(d)) {
+            return false;
+        }
+        let mut corners = f.clone();
+        corners.sort_unstable();
+        if !corners_seen.insert(corners) {
             return false;
         }
         for d in directed {
@@ -133,6 +140,10 @@ mod tests {
         // The third face runs 1 -> 2 as the first does (a crossing link); the second runs
         // 2 -> 1, as a neighbour should.
         let mut faces = vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2], vec![1, 2, 6, 7]];
+        make_edge_manifold(&mut faces);
+        assert_eq!(faces, vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2]]);
+        // The same corners the other way round: no directed edge twice, but a face twice.
+        faces.push(vec![2, 5, 4, 1]);
         make_edge_manifold(&mut faces);
         assert_eq!(faces, vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2]]);
     }

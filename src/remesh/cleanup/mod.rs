@@ -86,6 +86,8 @@ pub(crate) fn pure_quads(
     fit::shorten_boundary_chords(&mut pos, &faces, &anchors, locator, FINAL * t);
     drop_unfit_rim_faces(&mut pos, &mut faces, locator, t);
     drop_rim_slivers(&pos, &mut faces, locator, t);
+    // No step above should leave a face twice; should one, the mesh still holds.
+    make_edge_manifold(&mut faces);
     split_pinched_vertices(&mut pos, &mut faces);
     let (pos, faces) = compact(pos, faces);
     if faces.is_empty() {

@@ -1,7 +1,7 @@
 //! Making vertices regular: edges between two quads rotated where that brings valences
 //! closer to four, and the two quads around a valence-two vertex merged.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::Vector3;
 
@@ -236,9 +236,17 @@ const ROTATION_SHAPE_SLACK: f64 = 0.6;
 
 /// Merges the two quads around every interior vertex of valence two (a doublet, left where
 /// rows from two sides meet along a seam) into one quad, which makes both ends of the seam
-/// edge regular again.
+/// edge regular again. A merge that would give a quad on the same four vertices as a face
+/// already there (the doublet and that face then close a pillow, as where a filled hole
+/// folded over its rim) is left undone: the mesh keeps a doublet rather than a face twice.
 pub(super) fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
+    let corners = |f: &[usize]| {
+        let mut k = f.to_vec();
+        k.sort_unstable();
+        k
+    };
     loop {
+        let mut present: BTreeSet<Vec<usize>> = faces.iter().map(|f| corners(f)).collect();
         let mut around: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
         for (fi, f) in faces.iter().enumerate() {
             for &v in f {
@@ -268,9 +276,13 @@ pub(super) fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
             if !interior || p1 != r2 || r1 != p2 || q1 == q2 {
                 continue;
             }
+            let merged = vec![p1, q1, p2, q2];
+            if !present.insert(corners(&merged)) {
+                continue;
+            }
             gone[*f1] = true;
             gone[*f2] = true;
-            added.push(vec![p1, q1, p2, q2]);
+            added.push(merged);
         }
         if added.is_empty() {
             return;
@@ -390,5 +402,22 @@ mod tests {
         let mut same = regular.clone();
         remove_doublets(&mut same);
         assert_eq!(same, regular);
+    }
+
+    #[test]
+    fn a_doublet_whose_merge_would_repeat_a_face_is_left() {
+        // Vertex 0 has two quads round it, [0, 1, 2, 3] and [0, 3, 4, 1]; merged they give
+        // [1, 2, 3, 4], the face already there the other way round (as a filled hole left
+        // it, folded over the doublet): the merge would put a face twice.
+        let pillow = vec![vec![0, 1, 2, 3], vec![0, 3, 4, 1], vec![4, 3, 2, 1]];
+        let mut faces = pillow.clone();
+        remove_doublets(&mut faces);
+        assert_eq!(faces, pillow);
+        // A doublet elsewhere in the same list is still merged.
+        let mut faces = pillow.clone();
+        faces.extend([vec![5, 6, 7, 8], vec![5, 8, 9, 6]]);
+        remove_doublets(&mut faces);
+        assert_eq!(faces.len(), 4);
+        assert!(faces.contains(&vec![6, 7, 8, 9]), "{faces:?}");
     }
 }
