@@ -25,7 +25,7 @@ namespace TilePattern.Gh
     {
         public TileSurfaceComponent()
             : base("Tile Surface", "TSurface",
-                "Tiles a surface mesh in one step, as the command line's run: quad remeshing, the pattern and the tiles with the fit of the joints, cut to the surface's boundary, on up to three quad meshes of the surface (Tries), keeping the tiles that fit best (joints not flagged wide first, then the fewest cuts and the closest joints); the same outputs as Tile Boxes, and the kept quad mesh and pattern. A remark says which try was kept. Solves in the background; right-click to cancel.",
+                "Tiles a surface mesh in one step, as the command line's run: quad remeshing, the pattern and the tiles with the fit of the joints, cut to the surface's boundary, on up to four quad meshes of the surface (Tries), keeping the tiles that fit best (joints not flagged wide first, then the fewest cuts and the closest joints); the same outputs as Tile Boxes, and the kept quad mesh and pattern. A remark says which try was kept. Solves in the background; right-click to cancel.",
                 "3 Tiles")
         {
         }
@@ -46,7 +46,7 @@ namespace TilePattern.Gh
             pManager.AddIntegerParameter("Bond", "B", "0 = stack (maximum matching), 1 = staggered, 2 = running bond, 3 = herringbone, 4 = basket weave (3 and 4 lay tiles both ways: always in free courses)", GH_ParamAccess.item, (int)Bond.Staggered);
             pManager.AddIntegerParameter("Courses", "C", "1 = level: every tile along level courses (horizontal in the world's z) on quads of max((length + joint) / 2, width + joint), which the fit closes far better (default); 0 = free: tiles either way across quads of (length + joint) / 2 (the paper's model)", GH_ParamAccess.item, (int)Courses.Level);
             pManager.AddBooleanParameter("Fit", "F", "Move the tiles on the surface so that every joint comes close to the mortar joint, keeping the bond, and cut what cannot fit (default true); false keeps the paper's placement", GH_ParamAccess.item, true);
-            pManager.AddIntegerParameter("Tries", "Tr", "How many quad meshes to lay tiles on, keeping the tiles that fit best: 0 = automatic (3 on a surface of at most 10,000 quads, else 1; default), or 1 to 3 (renormalisation 0.5, then 1, then 0.25). 1 gives what Quad Remesh, Tile Pattern and Tile Boxes give one by one", GH_ParamAccess.item, 0);
+            pManager.AddIntegerParameter("Tries", "Tr", "How many quad meshes to lay tiles on, keeping the tiles that fit best: 0 = automatic (4 on a surface of at most 10,000 quads, else 1; default), or 1 to 4 (renormalisation 0.5, then 1, then 0.25, then a smooth field that follows neither the curvature nor anything else, made only without a direction, angle, designer's field or guides). 1 gives what Quad Remesh, Tile Pattern and Tile Boxes give one by one", GH_ParamAccess.item, 0);
             pManager.AddNumberParameter("Time limit", "TL", "Seconds of the pattern stage (default 10; a later try has at most 10); when a try's pattern stage or fit reaches its time limit no further try is made", GH_ParamAccess.item, 10.0);
             pManager.AddBooleanParameter("Creases", "Cr", "Split the mesh where its faces turn sharply (a groin vault's groins, a fold): each part gets quads of its own and the tiles are cut to the creases, half a joint short on each side (default true)", GH_ParamAccess.item, true);
             for (int i = 1; i <= 4; i++)
@@ -58,6 +58,7 @@ namespace TilePattern.Gh
             tries.AddNamedValue("One try", 1);
             tries.AddNamedValue("Two tries", 2);
             tries.AddNamedValue("Three tries", 3);
+            tries.AddNamedValue("Four tries", 4);
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)

@@ -546,7 +546,7 @@ fn remesh_and_run_go_from_triangles_to_tiles() {
 }
 
 #[test]
-fn run_tries_three_quad_meshes_and_says_which_tiles_it_kept() {
+fn run_tries_four_quad_meshes_and_says_which_tiles_it_kept() {
     let dir = scratch("run-tries");
     let surface = dir.join("saddle.obj");
     std::fs::write(&surface, saddle_obj()).unwrap();
@@ -564,7 +564,10 @@ fn run_tries_three_quad_meshes_and_says_which_tiles_it_kept() {
     );
     let report = json(&auto.join("report.json"));
     let tries = report["tries"].as_array().expect("tries listed");
-    assert_eq!(tries.len(), 3, "{report}");
+    assert_eq!(tries.len(), 4, "{report}");
+    // Three strengths of the curvature field, then the smooth field.
+    let fields: Vec<&str> = tries.iter().map(|t| t["field"].as_str().unwrap()).collect();
+    assert_eq!(fields, ["curvature", "curvature", "curvature", "smooth"]);
     let chosen = report["chosen_try"].as_u64().unwrap() as usize;
     let rank = |t: &serde_json::Value| {
         (
@@ -578,6 +581,7 @@ fn run_tries_three_quad_meshes_and_says_which_tiles_it_kept() {
     );
     for field in [
         "renormalisation",
+        "field",
         "quads",
         "interior_irregular_vertices",
         "p95_deviation",
@@ -600,19 +604,24 @@ fn run_tries_three_quad_meshes_and_says_which_tiles_it_kept() {
     let report = json(&one.join("report.json"));
     assert!(report.get("tries").is_none() && report.get("chosen_try").is_none());
 
-    let bad = run(&["--tries", "4"], &dir.join("bad"));
+    let bad = run(&["--tries", "5"], &dir.join("bad"));
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--tries"));
-    // The tries start from --renormalisation: twice and half of it.
-    let from = dir.join("from");
-    assert!(run(&["--renormalisation", "0.3"], &from).status.success());
-    let strengths: Vec<f64> = json(&from.join("report.json"))["tries"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|t| t["renormalisation"].as_f64().unwrap())
-        .collect();
-    assert_eq!(strengths, [0.3, 0.6, 0.15]);
+    // Each try's `key` in the report of a run with `extra` options.
+    let listed = |extra: &[&str], key: &str| -> Vec<serde_json::Value> {
+        let out_dir = dir.join(extra.join("_"));
+        assert!(run(extra, &out_dir).status.success());
+        let report = json(&out_dir.join("report.json"));
+        let tries = report["tries"].as_array().unwrap();
+        tries.iter().map(|t| t[key].clone()).collect()
+    };
+    // The tries start from --renormalisation: twice and half of it, then the smooth field.
+    assert_eq!(
+        listed(&["--renormalisation", "0.3"], "renormalisation"),
+        [0.3, 0.6, 0.15, 0.3]
+    );
+    // With a direction asked for, no smooth try: what the designer asked is kept.
+    assert_eq!(listed(&["--direction", "1,0,0"], "field"), ["direction"; 3]);
     let bad = run(&["--renormalisation", "-1"], &dir.join("bad"));
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("renormalisation"));

@@ -150,6 +150,8 @@ namespace TilePattern.Tests
                     var json = (Dictionary<string, object>)tries[k];
                     TryReport t = report.Tries[k];
                     Assert.AreEqual((double)json["renormalisation"], t.Renormalisation);
+                    Assert.AreEqual("curvature", (string)json["field"]);
+                    Assert.AreEqual("curvature", t.Field, "three tries are the curvature field's");
                     Assert.AreEqual((int)(double)json["quads"], t.Quads);
                     Assert.AreEqual((double)json["p95_deviation"], t.P95Deviation);
                     Assert.AreEqual((double)json["cut_share"], t.CutShare);
@@ -266,10 +268,10 @@ namespace TilePattern.Tests
         }
 
         [Test]
-        public void TriesOutsideZeroToThreeAreRefusedByName()
+        public void TriesOutsideZeroToMaxTriesAreRefusedByName()
         {
             Assert.AreEqual(0, new RunOptions().Tries, "automatic by default");
-            foreach (int tries in new[] { 4, -1 })
+            foreach (int tries in new[] { RunOptions.MaxTries + 1, -1 })
             {
                 var e = Assert.Throws<ArgumentOutOfRangeException>(() => TilePatternEngine.Run(Dome, Remesh(), Level(), null, new RunOptions { Tries = tries }),
                     "Tries = " + tries);
@@ -339,6 +341,16 @@ namespace TilePattern.Tests
                 + " try 3 (renormalisation 0.25): p95 |gap - joint| 0.0061 (wide joints), 0 % of tiles cut, coverage 0.98, score 1,"
                 + " its pattern stage reached its time limit, so no further try was made and it is not kept.",
                 remark.Text);
+            // A report written before tries named their field reads as the curvature's; the
+            // smooth try is named in the remark.
+            Assert.AreEqual("curvature", report.Tries[0].Field);
+            Report smooth = Report.Parse(@"{""faces"": 10, ""warnings"": [], ""tries"": [
+                {""renormalisation"": 0.5, ""field"": ""curvature"", ""quads"": 300, ""interior_irregular_vertices"": 4, ""p95_deviation"": 0.0042, ""cut_share"": 0.021, ""coverage"": 0.98, ""wide_joints"": false, ""score"": 3.0, ""seconds"": 1.5},
+                {""renormalisation"": 0.5, ""field"": ""smooth"", ""quads"": 296, ""interior_irregular_vertices"": 0, ""p95_deviation"": 0.0031, ""cut_share"": 0.012, ""coverage"": 0.99, ""wide_joints"": false, ""score"": 2.0, ""seconds"": 1.4}],
+                ""chosen_try"": 1}");
+            Assert.AreEqual("smooth", smooth.Tries[1].Field);
+            StringAssert.StartsWith("2 tries: the tiles of try 2 (smooth field, renormalisation 0.5) are kept", UserMessage.ForTries(smooth).Text);
+            StringAssert.Contains("Try 1 (renormalisation 0.5): ", UserMessage.ForTries(smooth).Text);
             // A report of the stages one by one has no tries.
             Report plain = Report.Parse(@"{""faces"": 10, ""warnings"": []}");
             Assert.IsEmpty(plain.Tries);

@@ -541,8 +541,10 @@ namespace TilePattern
     public sealed class RunOptions
     {
         /// <summary>The most quad meshes a run carries through to tiles: the remesh options'
-        /// <see cref="RemeshOptions.Renormalisation"/>, twice and half of it.</summary>
-        public const int MaxTries = 3;
+        /// <see cref="RemeshOptions.Renormalisation"/>, twice and half of it, and a smooth field
+        /// (following neither the curvature nor anything else; made only when no direction,
+        /// angle, designer's field or guide curves are given).</summary>
+        public const int MaxTries = 4;
 
         /// <summary>The library's defaults: <see cref="Tries"/> 0 (automatic).</summary>
         public RunOptions()
@@ -560,10 +562,10 @@ namespace TilePattern
 
         /// <summary>How many quad meshes of the surface to carry through the pattern, the tiles
         /// and the fit, keeping the tiles that fit best: 0 (default) for the command line's
-        /// choice (3 when the surface needs at most 10,000 quads of
+        /// choice (4 when the surface needs at most 10,000 quads of
         /// <see cref="RemeshOptions.TargetEdge"/>, else 1), or 1 to <see cref="MaxTries"/>
-        /// (the strengths <see cref="RemeshOptions.Renormalisation"/>, twice and half of it, in
-        /// this order). 1 gives what <see cref="TilePatternEngine.Remesh"/>,
+        /// (the strengths <see cref="RemeshOptions.Renormalisation"/>, twice and half of it, then
+        /// the smooth field, in this order; <see cref="TryReport.Field"/> names each). 1 gives what <see cref="TilePatternEngine.Remesh"/>,
         /// <see cref="TilePatternEngine.Match"/> and <see cref="TilePatternEngine.Tiles(Pattern, TileOptions, PolyMesh)"/>
         /// give one by one. Anything else throws <see cref="ArgumentOutOfRangeException"/>
         /// when the run starts.</summary>
@@ -573,7 +575,7 @@ namespace TilePattern
         internal TpRunOptions ToNative()
         {
             if (Tries < 0 || Tries > MaxTries)
-                throw new ArgumentOutOfRangeException("Tries", Tries, "Tries is 0 (automatic: 3 on a surface of at most 10,000 quads, else 1) or 1 to " + MaxTries + ", not " + Tries);
+                throw new ArgumentOutOfRangeException("Tries", Tries, "Tries is 0 (automatic: 4 on a surface of at most 10,000 quads, else 1) or 1 to " + MaxTries + ", not " + Tries);
             TpRunOptions o = NativeMethods.RunDefaults();
             o.struct_size = (uint)Marshal.SizeOf(typeof(TpRunOptions));
             o.tries = (uint)Tries;

@@ -620,6 +620,11 @@ namespace TilePattern
     {
         /// <summary>The field's renormalisation strength of this try's quad mesh.</summary>
         public double Renormalisation { get; internal set; }
+        /// <summary>What its field follows besides a designer's field and guide curves:
+        /// "curvature" (the default; also for reports written before tries named it), "smooth"
+        /// (nothing: the boundary and smoothness alone, the last automatic try), "direction" or
+        /// "angle".</summary>
+        public string Field { get; internal set; }
         /// <summary>Faces of its quad mesh (0 when it failed).</summary>
         public int Quads { get; internal set; }
         /// <summary>Interior irregular vertices of its quad mesh.</summary>
@@ -649,6 +654,7 @@ namespace TilePattern
             return new TryReport
             {
                 Renormalisation = JsonAccess.Number(t, "renormalisation"),
+                Field = JsonAccess.Text(t, "field") ?? "curvature",
                 Quads = JsonAccess.Integer(t, "quads"),
                 InteriorIrregularVertices = JsonAccess.Integer(t, "interior_irregular_vertices"),
                 P95Deviation = JsonAccess.Number(t, "p95_deviation"),

@@ -124,6 +124,7 @@ def test_three_tries_are_listed_and_the_best_is_kept(dome, stages):
     tries, chosen = result.tries, result.chosen_try
     assert len(tries) == 3 and chosen in (0, 1, 2)
     assert [t["renormalisation"] for t in tries] == pytest.approx([0.5, 1.0, 0.25])
+    assert [t["field"] for t in tries] == ["curvature"] * 3
     # The kept try is the best by the run's rank: joints not flagged first, then the score
     # (the first of equals).
     ranks = [(t["wide_joints"], t["score"]) for t in tries]
@@ -136,10 +137,15 @@ def test_three_tries_are_listed_and_the_best_is_kept(dome, stages):
     # The report as plain data and as JSON says the same.
     report = json.loads(json.dumps(result.tiles.to_dict()))["report"]
     assert len(report["tries"]) == 3 and report["chosen_try"] == chosen
-    # 0 (automatic) makes 3 tries on this surface (268 quads, at most 10,000), the same tiles.
+    # 0 (automatic) makes 4 tries on this surface (268 quads, at most 10,000): the same three
+    # and the smooth field's, and keeps the best of the four.
     auto = tp.run(V, F, **LEVEL)
-    assert len(auto.tries) == 3 and auto.chosen_try == chosen
-    assert np.array_equal(auto.tiles.corners, result.tiles.corners)
+    assert len(auto.tries) == 4 and auto.tries[3]["field"] == "smooth"
+    assert [t["score"] for t in auto.tries[:3]] == [t["score"] for t in tries]
+    ranks = [(t["wide_joints"], t["score"]) for t in auto.tries]
+    assert auto.chosen_try == ranks.index(min(ranks))
+    if auto.chosen_try == chosen:
+        assert np.array_equal(auto.tiles.corners, result.tiles.corners)
 
 
 def test_cancel_from_the_progress_callback(dome):
@@ -182,10 +188,10 @@ def test_a_cancel_in_the_last_try_cancels_the_run(dome):
     assert heard[-1] >= 0.999 and heard[0] < 1.0 / 3
 
 
-@pytest.mark.parametrize("tries", [4, -1, 2.0, "2", True, None])
+@pytest.mark.parametrize("tries", [5, -1, 2.0, "2", True, None])
 def test_bad_tries_are_refused_by_name(dome, tries):
     V, F = dome
-    with pytest.raises(tp.InvalidArgumentError, match=r"^TP_INVALID_ARGUMENT \(2\): tries is .*0 \(automatic\) or 1 to 3"):
+    with pytest.raises(tp.InvalidArgumentError, match=r"^TP_INVALID_ARGUMENT \(2\): tries is .*0 \(automatic\) or 1 to 4"):
         tp.run(V, F, tries=tries, **LEVEL)
 
 
@@ -194,8 +200,8 @@ def test_the_library_refuses_bad_tries_and_named_quads_too(dome):
     V, F = dome
     remesh, pattern, tiles, run = nat.remesh_options(), nat.pattern_options(), nat.tile_options(), nat.run_options()
     with mesh_handle(V, F) as surface:
-        run.tries = 4
-        with pytest.raises(tp.InvalidArgumentError, match="tries is 4"):
+        run.tries = 5
+        with pytest.raises(tp.InvalidArgumentError, match="tries is 5"):
             surface.run(remesh, pattern, tiles, run)
         run.tries = 1
         pair = np.array([0, 1], dtype=np.uint32)

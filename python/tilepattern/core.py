@@ -271,7 +271,7 @@ def remesh(
         Strength of the field's renormalising steps, which place its cones and with them
         where rows end (any number from 0, default 0.5). Other strengths give other, equally
         valid quads whose tiles may fit better: the command line's ``run`` tries 0.5, 1 and
-        0.25 and keeps the tiles with the fewest cuts and the closest joints; do the same by
+        0.25 (and a smooth field) and keeps the tiles with the fewest cuts and the closest joints; do the same by
         calling :func:`remesh`, :func:`match` and :func:`tiles` for each and comparing the
         reports.
 
@@ -830,7 +830,9 @@ class Tiles:
     def tries(self) -> List[dict]:
         """The tries of :func:`run` (the report's ``tries``), in order: ``renormalisation``,
         ``quads``, ``p95_deviation``, ``cut_share``, ``coverage``, ``wide_joints``, ``score``,
-        ``seconds``, and ``limit_reached`` or ``failed`` where they apply. Empty for
+        ``seconds``, ``field`` (``"curvature"``, or ``"smooth"`` for the last automatic
+        try, whose field follows nothing), and ``limit_reached`` or ``failed`` where they
+        apply. Empty for
         :func:`tiles` and when one try was asked for (when more were and the first reached a
         time limit, it lists that one)."""
         return list(self.report.get("tries", []))
@@ -1139,7 +1141,7 @@ class RunResult:
 
 
 #: Most quad meshes :func:`run` tries (the library's ``pipeline::MAX_TRIES``).
-MAX_TRIES = 3
+MAX_TRIES = 4
 
 
 def _tries(tries) -> int:
@@ -1227,8 +1229,11 @@ def run(
         Its faces: triangles, quads or n-gons, mixed if need be.
     tries : int, optional
         How many quad meshes to carry through to tiles: 0 (default) for the command line's
-        choice, 3 when the surface needs at most 10,000 quads of ``target_edge`` (its area
-        over ``target_edge`` squared) and 1 otherwise; or 1 to 3. Anything else raises
+        choice, 4 when the surface needs at most 10,000 quads of ``target_edge`` (its area
+        over ``target_edge`` squared) and 1 otherwise; or 1 to 4: the renormalisation
+        strength given, twice and half of it, then a smooth field that follows neither the
+        curvature nor anything else (made only without a direction, angle, designer's field
+        or guides: then at most 3). Anything else raises
         :class:`~tilepattern.InvalidArgumentError` naming ``tries``. Each try has the
         stages' own time limits (a later try's pattern stage at most 10 s); a try whose
         pattern stage or fit reaches its limit ends the tries (its tiles depend on the

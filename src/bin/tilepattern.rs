@@ -255,11 +255,13 @@ impl FieldArgs {
 #[derive(clap::Args)]
 struct TriesArg {
     /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints closest
-    /// to the nominal one, most of the surface covered; report.json lists each try): 1 to 3,
+    /// to the nominal one, most of the surface covered; report.json lists each try): 1 to 4,
     /// the field's cones placed by a renormalisation at --renormalisation's strength (run;
-    /// the default for demo), twice and half of it. Default: 3 on surfaces of at most 10,000
-    /// quads, 1 on larger ones. Each try has the stages' time limits.
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=3))]
+    /// the default for demo), twice and half of it, then a smooth field that follows neither
+    /// the curvature nor anything else (made only when no --direction, --angle, --field or
+    /// --guides is given). Default: 4 on surfaces of at most 10,000 quads, 1 on larger ones.
+    /// Each try has the stages' time limits.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4))]
     tries: Option<u64>,
 }
 
@@ -558,8 +560,8 @@ fn run(cli: Cli) -> Result<()> {
                 o
             };
             let tries = tries.tries();
-            let mut line = ProgressLine::on_stderr(log)
-                .with_tries(tries.count(surface.area(), remesh.target_edge));
+            let mut line =
+                ProgressLine::on_stderr(log).with_tries(tries.count_for(surface.area(), &remesh));
             let found = pipeline::tile_surface_tries(
                 surface,
                 &remesh,
@@ -638,7 +640,7 @@ fn demo(
         o
     };
     let mut line =
-        ProgressLine::on_stderr(log).with_tries(tries.count(surface.area(), remesh.target_edge));
+        ProgressLine::on_stderr(log).with_tries(tries.count_for(surface.area(), &remesh));
     let found = pipeline::tile_surface_tries(
         &surface,
         &remesh,
@@ -1400,15 +1402,20 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
             .enumerate()
             .map(|(k, x)| {
                 let kept = if k == chosen { " <- kept" } else { "" };
+                // The field is named when it is not the curvature's (the smooth try).
+                let field = match x.field {
+                    "curvature" => String::new(),
+                    other => format!("{other} field, "),
+                };
                 match x.score {
                     None => format!(
-                        "\n  try {} (renormalisation {}): failed: {}",
+                        "\n  try {} ({field}renormalisation {}): failed: {}",
                         k + 1,
                         x.renormalisation,
                         x.failed.as_deref().unwrap_or("no tiles")
                     ),
                     Some(score) => format!(
-                        "\n  try {} (renormalisation {}): {} quads, {} irregular, p95 {:.1} mm{}, {:.1} % cut, coverage {:.3}, score {:.2}, {:.1} s{}{kept}",
+                        "\n  try {} ({field}renormalisation {}): {} quads, {} irregular, p95 {:.1} mm{}, {:.1} % cut, coverage {:.3}, score {:.2}, {:.1} s{}{kept}",
                         k + 1,
                         x.renormalisation,
                         x.quads,

@@ -50,7 +50,7 @@ pub unsafe extern "C" fn tp_run_options_init(options: *mut TpRunOptions, size: u
 
 /// Tiles a triangle or polygon surface in one call, as the command line's `run`: quadrangulates
 /// it (`remesh`), matches the quads (`pattern`) and places, fits and cuts the tiles (`tiles`),
-/// on up to three quad meshes (`run->tries`), and keeps the tiles that fit best. Their report
+/// on up to four quad meshes (`run->tries`), and keeps the tiles that fit best. Their report
 /// (`tp_tiles_report_json`) lists every try (`tries`) and the one kept (`chosen_try`).
 ///
 /// `*out_tiles` gets the kept tiles; `*out_quads` and `*out_pattern` (each may be NULL when

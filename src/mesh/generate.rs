@@ -201,29 +201,64 @@ pub fn spherical_cap(radius: f64, area_fraction: f64, edge: f64) -> PolyMesh {
         area_fraction > 0.0 && area_fraction < 1.0,
         "the cap covers a fraction of the sphere in (0, 1)"
     );
-    use std::f64::consts::TAU;
     // Cap area 2 pi R h = fraction * 4 pi R^2: height h = 2 R fraction.
     let theta_max = (1.0 - 2.0 * area_fraction).acos();
     let rings = ((radius * theta_max / edge).round() as usize).max(1);
     let z_rim = radius * theta_max.cos();
-    let mut positions = vec![Point3::new(0.0, 0.0, radius - z_rim)];
-    // First vertex and vertex count of each ring; ring 0 is the crown.
+    let profile: Vec<(f64, f64)> = (0..=rings)
+        .map(|k| {
+            let theta = theta_max * k as f64 / rings as f64;
+            (radius * theta.sin(), radius * theta.cos() - z_rim)
+        })
+        .collect();
+    of_revolution(&profile, edge)
+}
+
+/// A cone of base `radius` and `height` (apex on +z, base rim in the plane z = 0),
+/// triangulated with edges of about `edge` as [`spherical_cap`] is: developable, with its
+/// curvature lines (the rulings and the rings) converging on the apex.
+///
+/// # Panics
+/// If `radius`, `height` or `edge` is not positive and finite, or `edge` is not smaller than
+/// the radius.
+pub fn cone(radius: f64, height: f64, edge: f64) -> PolyMesh {
+    assert!(
+        [radius, height, edge]
+            .iter()
+            .all(|x| x.is_finite() && *x > 0.0)
+            && edge < radius,
+        "radius, height and edge must be positive, the edge smaller than the radius"
+    );
+    let rings = ((radius.hypot(height) / edge).round() as usize).max(1);
+    let profile: Vec<(f64, f64)> = (0..=rings)
+        .map(|k| {
+            let s = k as f64 / rings as f64;
+            (radius * s, height * (1.0 - s))
+        })
+        .collect();
+    of_revolution(&profile, edge)
+}
+
+/// The surface of revolution about z through the `profile`'s (radius, z) points, the first
+/// on the axis: a ring of vertices per point, each with as many vertices as its circumference
+/// holds at `edge` (at least 6), neighbouring rings zipped into near-equilateral triangles,
+/// counter-clockwise seen from outside.
+fn of_revolution(profile: &[(f64, f64)], edge: f64) -> PolyMesh {
+    use std::f64::consts::TAU;
+    let (_, z_apex) = profile[0];
+    let mut positions = vec![Point3::new(0.0, 0.0, z_apex)];
+    // First vertex and vertex count of each ring; ring 0 is the apex.
     let mut ring = vec![(0usize, 1usize)];
-    for k in 1..=rings {
-        let theta = theta_max * k as f64 / rings as f64;
-        let count = ((TAU * radius * theta.sin() / edge).round() as usize).max(6);
+    for &(r, z) in &profile[1..] {
+        let count = ((TAU * r / edge).round() as usize).max(6);
         ring.push((positions.len(), count));
         for i in 0..count {
             let phi = TAU * i as f64 / count as f64;
-            positions.push(Point3::new(
-                radius * theta.sin() * phi.cos(),
-                radius * theta.sin() * phi.sin(),
-                radius * theta.cos() - z_rim,
-            ));
+            positions.push(Point3::new(r * phi.cos(), r * phi.sin(), z));
         }
     }
     let mut faces = Vec::new();
-    for k in 1..=rings {
+    for k in 1..ring.len() {
         let (inner, m) = ring[k - 1];
         let (outer, n) = ring[k];
         let at = |first: usize, count: usize, i: usize| first + i % count;
@@ -245,7 +280,7 @@ pub fn spherical_cap(radius: f64, area_fraction: f64, edge: f64) -> PolyMesh {
             }
         }
     }
-    PolyMesh::new(positions, faces).expect("a zipped cap is a valid mesh")
+    PolyMesh::new(positions, faces).expect("a zipped surface of revolution is a valid mesh")
 }
 
 #[cfg(test)]

@@ -398,6 +398,7 @@ pub(crate) fn solve(
             }
             VECTOR_WEIGHT
         }
+        FieldDirection::Smooth => 0.0,
     };
     let mut weight: Vec<f64> = clarity.iter().map(|c| c * strength).collect();
     if let Some((samples, share)) = user {

@@ -81,6 +81,12 @@ pub enum FieldDirection {
     Vector([f64; 3]),
     /// The curvature directions rotated by an angle in degrees (45 gives a diagonal pattern).
     Angle(f64),
+    /// Follow nothing: the boundary (where its loops are aligned) and smoothness alone orient
+    /// the quads, as on a sphere. Where the curvature lines converge (a cone's rulings, the
+    /// rings and meridians of a shell of revolution) square quads along them must end rows
+    /// all over; the smoothest field spreads the turning instead, and rigid tiles fit it
+    /// better there.
+    Smooth,
 }
 
 /// Whether quad rows follow the boundary.

@@ -35,6 +35,10 @@ pub struct StageSeconds {
 pub struct TryFigures {
     /// The field's renormalisation strength of this try.
     pub renormalisation: f64,
+    /// What its field follows besides a designer's field and guide curves: `"curvature"`
+    /// (the default), `"smooth"` (nothing: the boundary and smoothness alone, the last of
+    /// the automatic tries), `"direction"` or `"angle"`.
+    pub field: &'static str,
     /// Faces of its quad mesh.
     pub quads: usize,
     /// Interior irregular vertices of its quad mesh.
