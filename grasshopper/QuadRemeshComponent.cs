@@ -39,6 +39,7 @@ namespace TilePattern.Gh
             pManager.AddNumberParameter("Guide weight", "GW", "Share of the Guides on the curves against every other source (curvature, Direction / Angle, Field), 0 to 1 (default 1: the guides alone on them)", GH_ParamAccess.item, 1.0);
             pManager.AddBooleanParameter("Creases", "Cr", "Split the mesh where its faces turn sharply (a groin vault's groins, a fold) and give each part quads of its own, as masons lay each web in its own courses (default true); give Tile Boxes the same", GH_ParamAccess.item, true);
             pManager.AddNumberParameter("Renormalisation", "Rn", "Strength that places the field's cones, and with them where rows end: any number from 0 (default 0.5). Other strengths give other, equally valid quads whose tiles may fit better: where Tile Boxes reports cuts or wide joints, try 1 and 0.25 and keep the tiles that fit best (the command line's run does this)", GH_ParamAccess.item, 0.5);
+            pManager.AddBooleanParameter("Smooth", "Sm", "Follow neither the curvature nor a direction: the boundary and smoothness alone orient the quads (default false; Tile Surface's fourth try). Where the curvature lines converge (a cone, a funnel, a bend) its quads end fewer rows and the tiles are cut less; ignored when a Direction or Angle is given", GH_ParamAccess.item, false);
             for (int i = 1; i <= 4; i++)
                 pManager[i].Optional = true;
             pManager[6].Optional = true;
@@ -48,6 +49,7 @@ namespace TilePattern.Gh
             pManager[11].Optional = true;
             pManager[12].Optional = true;
             pManager[13].Optional = true;
+            pManager[14].Optional = true;
             ((Param_Number)pManager[4]).AngleParameter = true;
             NameCourses((Param_Integer)pManager[7]);
         }
@@ -91,6 +93,8 @@ namespace TilePattern.Gh
             DA.GetData(12, ref creases);
             double renormalisation = 0.5;
             DA.GetData(13, ref renormalisation);
+            bool smooth = false;
+            DA.GetData(14, ref smooth);
             if (!CheckCourses(courses))
                 return;
             // An angle parameter gives radians unless the user switched it to degrees.
@@ -110,6 +114,8 @@ namespace TilePattern.Gh
                 options.Direction = FieldDirection.Angle;
                 options.AngleDegrees = angle;
             }
+            else if (smooth)
+                options.Direction = FieldDirection.Smooth;
             if (field.Count > 0)
             {
                 if (field.Count != mesh.Vertices.Count && field.Count != mesh.Faces.Count)

@@ -169,6 +169,13 @@
 #define TP_DIRECTION_ANGLE 2
 
 /**
+ * `direction`: follow nothing, the boundary and smoothness alone orient the quads (the
+ * fourth of `tp_run`'s tries): where the curvature lines converge (a cone, a funnel, a
+ * bend) its quads end fewer rows and the tiles on them are cut less.
+ */
+#define TP_DIRECTION_SMOOTH 3
+
+/**
  * Tile kind: a standard tile over two faces.
  */
 #define TP_TILE_FULL 0

@@ -620,6 +620,8 @@ fn run_tries_four_quad_meshes_and_says_which_tiles_it_kept() {
         listed(&["--renormalisation", "0.3"], "renormalisation"),
         [0.3, 0.6, 0.15, 0.3]
     );
+    // --smooth asks for the smooth field: every try has it.
+    assert_eq!(listed(&["--smooth"], "field"), ["smooth"; 3]);
     // With a direction asked for, no smooth try: what the designer asked is kept.
     assert_eq!(listed(&["--direction", "1,0,0"], "field"), ["direction"; 3]);
     let bad = run(&["--renormalisation", "-1"], &dir.join("bad"));

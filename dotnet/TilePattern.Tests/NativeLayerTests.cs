@@ -102,6 +102,7 @@ namespace TilePattern.Tests
             Assert.AreEqual(NativeMethods.TP_BOUND_WHOLE_PROGRAM, (int)BoundSource.WholeProgram);
             Assert.AreEqual(NativeMethods.TP_BOUND_LINEAR_RELAXATION, (int)BoundSource.LinearRelaxation);
             Assert.AreEqual(NativeMethods.TP_DIRECTION_ANGLE, (int)FieldDirection.Angle);
+            Assert.AreEqual(NativeMethods.TP_DIRECTION_SMOOTH, (int)FieldDirection.Smooth);
             Assert.AreEqual(NativeMethods.TP_TILE_HALF, (int)TileKind.Half);
             Assert.AreEqual(NativeMethods.TP_TILE_FIT_CUT, (int)TileKind.FitCut);
             Assert.AreEqual(NativeMethods.TP_COURSES_FREE, (int)Courses.Free);

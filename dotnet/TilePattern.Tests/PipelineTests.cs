@@ -337,8 +337,10 @@ namespace TilePattern.Tests
             PolyMesh coarse = TilePatternEngine.Remesh(surface, new RemeshOptions { TargetEdge = 0.3 });
             PolyMesh fine = TilePatternEngine.Remesh(surface, new RemeshOptions { TargetEdge = 0.15, Direction = FieldDirection.Angle, AngleDegrees = 45 });
             PolyMesh along = TilePatternEngine.Remesh(surface, new RemeshOptions { TargetEdge = 0.15, Direction = FieldDirection.Vector, DirectionVector = new[] { 1.0, 1.0, 0.0 }, ShapeUp = true });
+            PolyMesh smooth = TilePatternEngine.Remesh(surface, new RemeshOptions { TargetEdge = 0.15, Direction = FieldDirection.Smooth });
             Assert.Less(coarse.FaceCount, fine.FaceCount);
             Assert.Greater(along.FaceCount, coarse.FaceCount);
+            Assert.Greater(smooth.FaceCount, coarse.FaceCount);
         }
 
         /// <summary>Quads with corners on both sides of the fold at x = 1.2.</summary>

@@ -185,6 +185,7 @@ namespace TilePattern
         internal const int TP_DIRECTION_CURVATURE = 0;
         internal const int TP_DIRECTION_VECTOR = 1;
         internal const int TP_DIRECTION_ANGLE = 2;
+        internal const int TP_DIRECTION_SMOOTH = 3;
         internal const int TP_TILE_FULL = 0;
         internal const int TP_TILE_HALF = 1;
         internal const int TP_TILE_BOUNDARY = 2;

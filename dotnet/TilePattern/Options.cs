@@ -49,6 +49,10 @@ namespace TilePattern
         Vector = 1,
         /// <summary>The curvature field rotated by <see cref="RemeshOptions.AngleDegrees"/>.</summary>
         Angle = 2,
+        /// <summary>Nothing: the boundary and smoothness alone orient the quads (the fourth of
+        /// <see cref="TilePatternEngine.Run"/>'s tries). Where the curvature lines converge (a
+        /// cone, a funnel, a bend) its quads end fewer rows and the tiles are cut less.</summary>
+        Smooth = 3,
     }
 
     /// <summary>TP_SOLVE_*: how good a pattern is known to be.</summary>

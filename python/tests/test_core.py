@@ -100,6 +100,8 @@ def test_remesh_options_reach_the_library(curved):
     assert 0.15 < mean < 0.25
     qv2, qf2 = tp.remesh(v, f, target_edge=0.2, angle=45)
     assert len(qf2) > 20
+    qv3, qf3 = tp.remesh(v, f, target_edge=0.2, direction="smooth")
+    assert len(qf3) > 20
 
 
 def test_frames_and_corners_agree():

@@ -111,6 +111,8 @@ def test_a_pattern_on_another_mesh(quads):
         (dict(time_limit=-1), tp.InvalidArgumentError, 2),
         (dict(direction=(0, 0, 0, 1)), tp.InvalidArgumentError, 2),
         (dict(direction=(1, 0, 0), angle=45), tp.InvalidArgumentError, 2),
+        (dict(direction="smoooth"), tp.InvalidArgumentError, 2),
+        (dict(direction="smooth", angle=45), tp.InvalidArgumentError, 2),
         (dict(time_limit=0), tp.TimeLimitError, 7),
     ],
 )

@@ -16,7 +16,7 @@ import itertools
 import json
 import warnings
 from dataclasses import dataclass, field
-from typing import Callable, List, Optional, Sequence, Tuple
+from typing import Callable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -207,7 +207,7 @@ def remesh(
     vertices,
     faces,
     target_edge: float = 0.145,
-    direction: Optional[Sequence[float]] = None,
+    direction: Union[Sequence[float], str, None] = None,
     angle: Optional[float] = None,
     shapeup: bool = False,
     time_limit: float = 60.0,
@@ -235,8 +235,11 @@ def remesh(
     target_edge : float, optional
         Quad edge in model units; ``(L + joint) / 2`` for tiles of length ``L``.
         Default 0.145, i.e. 280 mm tiles and 10 mm joints in metres.
-    direction : array_like (3,), optional
-        Align the quads with this direction (projected onto the surface).
+    direction : array_like (3,) or "smooth", optional
+        Align the quads with this direction (projected onto the surface); ``"smooth"``
+        follows neither the curvature nor a direction: the boundary and smoothness alone
+        orient the quads (:func:`run`'s fourth try), which ends fewer rows where the
+        curvature lines converge (a cone, a funnel, a bend).
     angle : float, optional
         Rotate the curvature-aligned field by this many degrees.
     shapeup : bool, optional
@@ -320,7 +323,13 @@ def _remesh_options(target_edge, direction, angle, shapeup, time_limit, field, f
         raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "give either direction or angle, not both")
     options = nat.remesh_options()
     options.target_edge = float(target_edge)
-    if direction is not None:
+    if isinstance(direction, str):
+        if direction != "smooth":
+            raise InvalidArgumentError(
+                nat.TP_INVALID_ARGUMENT, "direction must be 3 numbers or \"smooth\", got %r" % (direction,)
+            )
+        options.direction = nat.TP_DIRECTION_SMOOTH
+    elif direction is not None:
         d = np.asarray(direction, dtype=np.float64).reshape(-1)
         if d.shape != (3,):
             raise InvalidArgumentError(nat.TP_INVALID_ARGUMENT, "direction must be 3 numbers, got %r" % (direction,))
@@ -1170,7 +1179,7 @@ def run(
     progress: Optional[Progress] = None,
     # remesh
     target_edge: Optional[float] = None,
-    direction: Optional[Sequence[float]] = None,
+    direction: Union[Sequence[float], str, None] = None,
     angle: Optional[float] = None,
     shapeup: bool = False,
     remesh_time_limit: float = 60.0,

@@ -178,6 +178,11 @@ struct FieldArgs {
     /// Rotate the curvature-aligned field by this many degrees (e.g. 45).
     #[arg(long, allow_negative_numbers = true)]
     angle: Option<f64>,
+    /// Follow neither the curvature nor a direction: the boundary and smoothness alone orient
+    /// the quads (run's fourth try). Where the curvature lines converge (a cone, a funnel, a
+    /// bend) its quads end fewer rows and the tiles are cut less.
+    #[arg(long, conflicts_with_all = ["direction", "angle"])]
+    smooth: bool,
     /// Pull faces towards squares (shape-up) without leaving the surface.
     #[arg(long)]
     shapeup: bool,
@@ -226,6 +231,7 @@ impl FieldArgs {
         let direction = match (self.direction, self.angle) {
             (Some(v), _) => FieldDirection::Vector(v),
             (None, Some(a)) => FieldDirection::Angle(a),
+            (None, None) if self.smooth => FieldDirection::Smooth,
             (None, None) => FieldDirection::Curvature,
         };
         let user_field = self

@@ -16,6 +16,10 @@ pub const TP_DIRECTION_CURVATURE: i32 = 0;
 pub const TP_DIRECTION_VECTOR: i32 = 1;
 /// `direction`: the curvature field rotated by `angle_degrees`.
 pub const TP_DIRECTION_ANGLE: i32 = 2;
+/// `direction`: follow nothing, the boundary and smoothness alone orient the quads (the
+/// fourth of `tp_run`'s tries): where the curvature lines converge (a cone, a funnel, a
+/// bend) its quads end fewer rows and the tiles on them are cut less.
+pub const TP_DIRECTION_SMOOTH: i32 = 3;
 
 /// Options of [`tp_remesh`]. Initialise with [`tp_remesh_options_default`].
 #[repr(C)]
@@ -171,11 +175,12 @@ pub(super) unsafe fn remesh_options(
         TP_DIRECTION_CURVATURE => FieldDirection::Curvature,
         TP_DIRECTION_VECTOR => FieldDirection::Vector(raw.direction_vector),
         TP_DIRECTION_ANGLE => FieldDirection::Angle(raw.angle_degrees),
+        TP_DIRECTION_SMOOTH => FieldDirection::Smooth,
         other => {
             return Err(Failure::new(
                 TP_INVALID_ARGUMENT,
                 format!(
-                    "direction {other} is not one of TP_DIRECTION_CURVATURE, TP_DIRECTION_VECTOR, TP_DIRECTION_ANGLE"
+                    "direction {other} is not one of TP_DIRECTION_CURVATURE, TP_DIRECTION_VECTOR, TP_DIRECTION_ANGLE, TP_DIRECTION_SMOOTH"
                 ),
             ));
         }

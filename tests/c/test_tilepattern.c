@@ -613,8 +613,18 @@ static void test_remesh(void) {
   CHECK(tp_mesh_counts(quads, &counts[0], &counts[1], &counts[2]) == TP_OK);
   CHECK(counts[1] > 50 && counts[1] < 200 && counts[2] == 4 * counts[1]);
   tp_mesh_free(quads);
+  /* The smooth field (TP_DIRECTION_SMOOTH): on a flat square, whose boundary alone
+     orients the quads, the same count. */
+  quads = NULL;
+  options.direction = TP_DIRECTION_SMOOTH;
+  size_t smooth[3] = {0, 0, 0};
+  CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_OK && quads != NULL);
+  CHECK(tp_mesh_counts(quads, &smooth[0], &smooth[1], &smooth[2]) == TP_OK);
+  CHECK(smooth[1] == counts[1]);
+  tp_mesh_free(quads);
 
   quads = NULL;
+  options.direction = TP_DIRECTION_CURVATURE;
   options.target_edge = 0.0;
   CHECK(tp_remesh(surface, &options, NULL, NULL, &quads) == TP_INVALID_ARGUMENT && quads == NULL);
   options = tp_remesh_options_default();
