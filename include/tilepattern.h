@@ -170,7 +170,7 @@
 
 /**
  * `direction`: follow nothing, the boundary and smoothness alone orient the quads (the
- * fourth of `tp_run`'s tries): where the curvature lines converge (a cone, a funnel, a
+ * second of `tp_run`'s tries): where the curvature lines converge (a cone, a funnel, a
  * bend) its quads end fewer rows and the tiles on them are cut less.
  */
 #define TP_DIRECTION_SMOOTH 3

@@ -565,9 +565,9 @@ fn run_tries_four_quad_meshes_and_says_which_tiles_it_kept() {
     let report = json(&auto.join("report.json"));
     let tries = report["tries"].as_array().expect("tries listed");
     assert_eq!(tries.len(), 4, "{report}");
-    // Three strengths of the curvature field, then the smooth field.
+    // The curvature field, the smooth field, then the curvature field at two more strengths.
     let fields: Vec<&str> = tries.iter().map(|t| t["field"].as_str().unwrap()).collect();
-    assert_eq!(fields, ["curvature", "curvature", "curvature", "smooth"]);
+    assert_eq!(fields, ["curvature", "smooth", "curvature", "curvature"]);
     let chosen = report["chosen_try"].as_u64().unwrap() as usize;
     let rank = |t: &serde_json::Value| {
         (
@@ -615,10 +615,10 @@ fn run_tries_four_quad_meshes_and_says_which_tiles_it_kept() {
         let tries = report["tries"].as_array().unwrap();
         tries.iter().map(|t| t[key].clone()).collect()
     };
-    // The tries start from --renormalisation: twice and half of it, then the smooth field.
+    // The tries start from --renormalisation: the smooth field at it, then twice and half.
     assert_eq!(
         listed(&["--renormalisation", "0.3"], "renormalisation"),
-        [0.3, 0.6, 0.15, 0.3]
+        [0.3, 0.3, 0.6, 0.15]
     );
     // --smooth asks for the smooth field: every try has it.
     assert_eq!(listed(&["--smooth"], "field"), ["smooth"; 3]);

@@ -49,7 +49,7 @@ namespace TilePattern
         Vector = 1,
         /// <summary>The curvature field rotated by <see cref="RemeshOptions.AngleDegrees"/>.</summary>
         Angle = 2,
-        /// <summary>Nothing: the boundary and smoothness alone orient the quads (the fourth of
+        /// <summary>Nothing: the boundary and smoothness alone orient the quads (the second of
         /// <see cref="TilePatternEngine.Run"/>'s tries). Where the curvature lines converge (a
         /// cone, a funnel, a bend) its quads end fewer rows and the tiles are cut less.</summary>
         Smooth = 3,
@@ -545,9 +545,9 @@ namespace TilePattern
     public sealed class RunOptions
     {
         /// <summary>The most quad meshes a run carries through to tiles: the remesh options'
-        /// <see cref="RemeshOptions.Renormalisation"/>, twice and half of it, and a smooth field
-        /// (following neither the curvature nor anything else; made only when no direction,
-        /// angle, designer's field or guide curves are given).</summary>
+        /// <see cref="RemeshOptions.Renormalisation"/>, a smooth field at it (following neither the
+        /// curvature nor anything else; made only when no direction, angle, designer's field or
+        /// guide curves are given), then twice and half the strength.</summary>
         public const int MaxTries = 4;
 
         /// <summary>The library's defaults: <see cref="Tries"/> 0 (automatic).</summary>
@@ -568,8 +568,8 @@ namespace TilePattern
         /// and the fit, keeping the tiles that fit best: 0 (default) for the command line's
         /// choice (4 when the surface needs at most 10,000 quads of
         /// <see cref="RemeshOptions.TargetEdge"/>, else 1), or 1 to <see cref="MaxTries"/>
-        /// (the strengths <see cref="RemeshOptions.Renormalisation"/>, twice and half of it, then
-        /// the smooth field, in this order; <see cref="TryReport.Field"/> names each). 1 gives what <see cref="TilePatternEngine.Remesh"/>,
+        /// (the strength <see cref="RemeshOptions.Renormalisation"/>, the smooth field at it, then
+        /// twice and half the strength, in this order; <see cref="TryReport.Field"/> names each). 1 gives what <see cref="TilePatternEngine.Remesh"/>,
         /// <see cref="TilePatternEngine.Match"/> and <see cref="TilePatternEngine.Tiles(Pattern, TileOptions, PolyMesh)"/>
         /// give one by one. Anything else throws <see cref="ArgumentOutOfRangeException"/>
         /// when the run starts.</summary>

@@ -238,7 +238,7 @@ def remesh(
     direction : array_like (3,) or "smooth", optional
         Align the quads with this direction (projected onto the surface); ``"smooth"``
         follows neither the curvature nor a direction: the boundary and smoothness alone
-        orient the quads (:func:`run`'s fourth try), which ends fewer rows where the
+        orient the quads (:func:`run`'s second try), which ends fewer rows where the
         curvature lines converge (a cone, a funnel, a bend).
     angle : float, optional
         Rotate the curvature-aligned field by this many degrees.
@@ -1219,9 +1219,10 @@ def run(
 
     As the command line's ``tilepattern run``: the surface is quadrangulated (:func:`remesh`),
     the quads matched (:func:`match`) and the tiles placed, fitted and cut to the surface
-    (:func:`tiles`), on up to three quad meshes, the field's cones placed by a
-    renormalisation at ``renormalisation``, then at twice and half of it (other strengths
-    give other, equally valid quads, which decide where courses end). The tiles that fit
+    (:func:`tiles`), on up to four quad meshes, the field's cones placed by a
+    renormalisation at ``renormalisation``, then a smooth field, then at twice and half the
+    strength (other strengths and fields give other, equally valid quads, which decide where
+    courses end). The tiles that fit
     best are kept: joints the report does not flag (``wide_joints``) first, then the fewest
     tiles cut to fit, joints closest to ``joint`` and most of the surface covered. One try
     gives exactly what :func:`remesh`, :func:`match` and :func:`tiles` give called one by one
@@ -1240,9 +1241,9 @@ def run(
         How many quad meshes to carry through to tiles: 0 (default) for the command line's
         choice, 4 when the surface needs at most 10,000 quads of ``target_edge`` (its area
         over ``target_edge`` squared) and 1 otherwise; or 1 to 4: the renormalisation
-        strength given, twice and half of it, then a smooth field that follows neither the
-        curvature nor anything else (made only without a direction, angle, designer's field
-        or guides: then at most 3). Anything else raises
+        strength given, a smooth field that follows neither the curvature nor anything else
+        (made only without a direction, angle, designer's field or guides: then at most 3),
+        then twice and half the strength. Anything else raises
         :class:`~tilepattern.InvalidArgumentError` naming ``tries``. Each try has the
         stages' own time limits (a later try's pattern stage at most 10 s); a try whose
         pattern stage or fit reaches its limit ends the tries (its tiles depend on the

@@ -179,7 +179,7 @@ struct FieldArgs {
     #[arg(long, allow_negative_numbers = true)]
     angle: Option<f64>,
     /// Follow neither the curvature nor a direction: the boundary and smoothness alone orient
-    /// the quads (run's fourth try). Where the curvature lines converge (a cone, a funnel, a
+    /// the quads (run's second try). Where the curvature lines converge (a cone, a funnel, a
     /// bend) its quads end fewer rows and the tiles are cut less.
     #[arg(long, conflicts_with_all = ["direction", "angle"])]
     smooth: bool,
@@ -214,7 +214,8 @@ struct FieldArgs {
     guide_weight: f64,
     /// Strength of the field's renormalising steps, which place its cones and with them where
     /// rows end (any number from 0): other strengths give other, equally valid quads, whose
-    /// tiles may fit better. `run` tries this, twice and half of it (--tries).
+    /// tiles may fit better. `run` tries this, twice and half of it, and a smooth field
+    /// (--tries).
     #[arg(long, default_value_t = tilepattern::remesh::RENORMALISATION, allow_negative_numbers = true)]
     renormalisation: f64,
 }
@@ -263,9 +264,9 @@ struct TriesArg {
     /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints closest
     /// to the nominal one, most of the surface covered; report.json lists each try): 1 to 4,
     /// the field's cones placed by a renormalisation at --renormalisation's strength (run;
-    /// the default for demo), twice and half of it, then a smooth field that follows neither
-    /// the curvature nor anything else (made only when no --direction, --angle, --field or
-    /// --guides is given). Default: 4 on surfaces of at most 10,000 quads, 1 on larger ones.
+    /// the default for demo), then a smooth field that follows neither the curvature nor
+    /// anything else (made only when no --direction, --angle, --field or --guides is given),
+    /// then twice and half the strength. Default: 4 on surfaces of at most 10,000 quads, 1 on larger ones.
     /// Each try has the stages' time limits.
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4))]
     tries: Option<u64>,

@@ -17,7 +17,7 @@ pub const TP_DIRECTION_VECTOR: i32 = 1;
 /// `direction`: the curvature field rotated by `angle_degrees`.
 pub const TP_DIRECTION_ANGLE: i32 = 2;
 /// `direction`: follow nothing, the boundary and smoothness alone orient the quads (the
-/// fourth of `tp_run`'s tries): where the curvature lines converge (a cone, a funnel, a
+/// second of `tp_run`'s tries): where the curvature lines converge (a cone, a funnel, a
 /// bend) its quads end fewer rows and the tiles on them are cut less.
 pub const TP_DIRECTION_SMOOTH: i32 = 3;
 
