@@ -266,8 +266,8 @@ struct TriesArg {
     /// the field's cones placed by a renormalisation at --renormalisation's strength (run;
     /// the default for demo), then a smooth field that follows neither the curvature nor
     /// anything else (made only when no --direction, --angle, --field or --guides is given),
-    /// then twice and half the strength. Default: 4 on surfaces of at most 10,000 quads, 1 on larger ones.
-    /// Each try has the stages' time limits.
+    /// then twice and half the strength. Default: 4 on surfaces of at most 10,000 quads, 1 on
+    /// larger ones. Each try has the stages' time limits.
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4))]
     tries: Option<u64>,
 }

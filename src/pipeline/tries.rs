@@ -20,14 +20,13 @@
 //! the second, where the field follows the curvature (the default: no direction, angle,
 //! designer's field or guides asked for), orients the quads by the boundary and smoothness
 //! alone ([`FieldDirection::Smooth`]) at that strength; the last two renormalise at twice
-//! and half of it. Where the curvature lines
-//! converge (a cone's rulings, a funnel's or a dome's rings, the tubemesh's bend) quads
-//! along them must end rows all over, and the tiles there are cut; the smoothest field
-//! spreads that turning instead (`--tries 1` on 29 shells: a cone 62 -> 6 % of tiles cut,
-//! a funnel 20 -> 4 %, the tubemesh 3.2 -> 1.0 %; worse on a 3 m spherical cap, 12 -> 22 %,
-//! where the first try stays). It comes second, before the other strengths, as its gains
-//! are the larger and a try whose pattern reaches its time limit ends the tries. The first
-//! try is what one run gives, so tries never do
+//! and half of it. Where the curvature lines converge (a cone's rulings, a funnel's or a
+//! dome's rings, the tubemesh's bend) quads along them must end rows all over, and the
+//! tiles there are cut; the smoothest field spreads that turning instead (`--tries 1` on 29
+//! shells: a cone 62 -> 6 % of tiles cut, a funnel 20 -> 4 %, the tubemesh 3.2 -> 1.0 %;
+//! worse on a 3 m spherical cap, 12 -> 22 %, where the first try stays). It comes second,
+//! before the other strengths, as its gains are the larger and a try whose pattern reaches
+//! its time limit ends the tries. The first try is what one run gives, so tries never do
 //! worse by the score. Each try is deterministic, so the kept one is too (ties go to the
 //! earlier try).
 
@@ -95,27 +94,29 @@ pub const LATER_PATTERN_SECONDS: std::time::Duration = std::time::Duration::from
 /// whether the field follows nothing ([`FieldDirection::Smooth`]) instead of the curvature.
 const VARIANTS: [(f64, bool); MAX_TRIES] = [(1.0, false), (1.0, true), (2.0, false), (0.5, false)];
 
-/// The remesh options of the tries [`tile_surface_tries`] makes, at most `count` of them: a
+/// The [`VARIANTS`] of the tries [`tile_surface_tries`] makes, at most `count` of them: a
 /// smooth try only where the field would follow the curvature alone (a direction, an angle,
 /// a designer's field or guide curves asked for are kept in every try).
-fn variants(remesh: &RemeshOptions, count: usize) -> Vec<RemeshOptions> {
-    let curvature_alone = remesh.direction == FieldDirection::Curvature
-        && remesh.user_field.as_ref().is_none_or(|f| f.weight == 0.0)
-        && remesh.guides.as_ref().is_none_or(|g| !g.active());
+fn variants(remesh: &RemeshOptions, count: usize) -> Vec<(f64, bool)> {
+    let curvature_alone = remesh.direction == FieldDirection::Curvature && !remesh.designer_pulls();
     VARIANTS
-        .iter()
-        .filter(|&&(_, smooth)| !smooth || curvature_alone)
+        .into_iter()
+        .filter(|&(_, smooth)| !smooth || curvature_alone)
         .take(count)
-        .map(|&(factor, smooth)| RemeshOptions {
-            renormalisation: remesh.renormalisation * factor,
-            direction: if smooth {
-                FieldDirection::Smooth
-            } else {
-                remesh.direction
-            },
-            ..remesh.clone()
-        })
         .collect()
+}
+
+/// `remesh` as one of the [`variants`] asks for it.
+fn variant_options(remesh: &RemeshOptions, (factor, smooth): (f64, bool)) -> RemeshOptions {
+    RemeshOptions {
+        renormalisation: remesh.renormalisation * factor,
+        direction: if smooth {
+            FieldDirection::Smooth
+        } else {
+            remesh.direction
+        },
+        ..remesh.clone()
+    }
 }
 
 /// What a try's field follows, as `report.json`'s `tries` name it.
@@ -177,7 +178,8 @@ pub fn tile_surface_tries(
     let surface = simplified.as_ref().map_or(surface, |(mesh, _)| mesh);
     let mut listed: Vec<TryFigures> = Vec::with_capacity(count);
     let mut best: Option<((bool, f64), usize, Remeshed, Tiling)> = None;
-    for (k, options_k) in variants.into_iter().enumerate() {
+    for (k, &variant) in variants.iter().enumerate() {
+        let options_k = variant_options(remesh, variant);
         let started = std::time::Instant::now();
         let share = |fraction: f64| (k as f64 + fraction) / count as f64;
         // Each try's own figures: none before its pattern stage notes some.
@@ -374,8 +376,8 @@ mod tests {
         remesh.direction = FieldDirection::Vector([1.0, 0.0, 0.0]);
         assert_eq!(Tries::Auto.count_for(12.0, &remesh), MAX_TRIES - 1);
         let fields: Vec<_> = variants(&remesh, MAX_TRIES)
-            .iter()
-            .map(|o| field_name(o.direction))
+            .into_iter()
+            .map(|v| field_name(variant_options(&remesh, v).direction))
             .collect();
         assert_eq!(fields, ["direction"; MAX_TRIES - 1]);
     }

@@ -182,12 +182,16 @@ impl RemeshOptions {
     /// vault at an angle to its edges would otherwise fight the edges' pinned crosses); an
     /// explicit choice is kept.
     pub fn effective_boundary(&self) -> BoundaryAlignment {
-        let field = self.user_field.as_ref().is_some_and(|f| f.weight > 0.0);
-        let guides = self.guides.as_ref().is_some_and(GuideCurves::active);
         match self.boundary {
-            BoundaryAlignment::Auto if field || guides => BoundaryAlignment::Never,
+            BoundaryAlignment::Auto if self.designer_pulls() => BoundaryAlignment::Never,
             boundary => boundary,
         }
+    }
+
+    /// Whether the designer's field or guide curves have a share in the field.
+    pub fn designer_pulls(&self) -> bool {
+        self.user_field.as_ref().is_some_and(|f| f.weight > 0.0)
+            || self.guides.as_ref().is_some_and(GuideCurves::active)
     }
 
     /// Converts seconds (as typed on a command line or passed through the C ABI) into a time

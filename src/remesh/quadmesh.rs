@@ -10,6 +10,14 @@ pub(super) fn key(a: usize, b: usize) -> (usize, usize) {
     (a.min(b), a.max(b))
 }
 
+/// A face's corners, sorted: the same for a face and for that face the other way round (or
+/// from another first corner).
+pub(super) fn corners_key(face: &[usize]) -> Vec<usize> {
+    let mut k = face.to_vec();
+    k.sort_unstable();
+    k
+}
+
 /// Undirected edge -> faces containing it, in face order.
 pub(super) fn edge_faces(faces: &[Vec<usize>]) -> BTreeMap<(usize, usize), Vec<usize>> {
     let mut map: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();

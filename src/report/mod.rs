@@ -36,8 +36,8 @@ pub struct TryFigures {
     /// The field's renormalisation strength of this try.
     pub renormalisation: f64,
     /// What its field follows besides a designer's field and guide curves: `"curvature"`
-    /// (the default), `"smooth"` (nothing: the boundary and smoothness alone, the last of
-    /// the automatic tries), `"direction"` or `"angle"`.
+    /// (the default), `"smooth"` (nothing: the boundary and smoothness alone, the second
+    /// of the automatic tries), `"direction"` or `"angle"`.
     pub field: &'static str,
     /// Faces of its quad mesh.
     pub quads: usize,

@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use nalgebra::Vector3;
 
-use crate::remesh::quadmesh::{edge_faces, key};
+use crate::remesh::quadmesh::{corners_key, edge_faces, key};
 
 /// Components with fewer faces than this are dropped (stray faces of a garbled lattice).
 const MIN_COMPONENT: usize = 4;
@@ -27,9 +27,7 @@ pub(super) fn make_edge_manifold(faces: &mut Vec<Vec<usize>>) {
         if directed.iter().any(|d| seen.contains_key(d)) {
             return false;
         }
-        let mut corners = f.clone();
-        corners.sort_unstable();
-        if !corners_seen.insert(corners) {
+        if !corners_seen.insert(corners_key(f)) {
             return false;
         }
         for d in directed {

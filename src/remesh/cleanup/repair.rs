@@ -8,7 +8,9 @@ use nalgebra::Vector3;
 
 use super::valence::remove_doublets;
 use crate::remesh::budget::Budget;
-use crate::remesh::quadmesh::{boundary_loops, edge_faces, key, quad_cost, replace_faces};
+use crate::remesh::quadmesh::{
+    boundary_loops, corners_key, edge_faces, key, quad_cost, replace_faces,
+};
 use crate::remesh::surface::Locator;
 
 /// Turns extraction holes (short boundary loops, mostly away from the input boundary) into
@@ -35,15 +37,11 @@ pub(super) fn fill_holes(
             continue;
         }
         // A loop around a single face (a stray face) is not a hole.
-        let mut sorted = lp.clone();
-        sorted.sort_unstable();
-        if faces.iter().any(|f| {
-            f.len() == sorted.len() && {
-                let mut g = f.clone();
-                g.sort_unstable();
-                g == sorted
-            }
-        }) {
+        let sorted = corners_key(&lp);
+        if faces
+            .iter()
+            .any(|f| f.len() == sorted.len() && corners_key(f) == sorted)
+        {
             continue;
         }
         let mut face = lp;

@@ -5,7 +5,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::Vector3;
 
-use crate::remesh::quadmesh::{edge_faces, key, quad_cost, replace_faces};
+use crate::remesh::quadmesh::{corners_key, edge_faces, key, quad_cost, replace_faces};
 
 /// Rotates interior edges between two quads where that brings the valences of the four
 /// vertices involved closer to four (Bommes et al.'s quad mesh "edge rotation"): a 5 next
@@ -240,13 +240,8 @@ const ROTATION_SHAPE_SLACK: f64 = 0.6;
 /// already there (the doublet and that face then close a pillow, as where a filled hole
 /// folded over its rim) is left undone: the mesh keeps a doublet rather than a face twice.
 pub(super) fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
-    let corners = |f: &[usize]| {
-        let mut k = f.to_vec();
-        k.sort_unstable();
-        k
-    };
     loop {
-        let mut present: BTreeSet<Vec<usize>> = faces.iter().map(|f| corners(f)).collect();
+        let mut present: BTreeSet<Vec<usize>> = faces.iter().map(|f| corners_key(f)).collect();
         let mut around: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
         for (fi, f) in faces.iter().enumerate() {
             for &v in f {
@@ -277,7 +272,7 @@ pub(super) fn remove_doublets(faces: &mut Vec<Vec<usize>>) {
                 continue;
             }
             let merged = vec![p1, q1, p2, q2];
-            if !present.insert(corners(&merged)) {
+            if !present.insert(corners_key(&merged)) {
                 continue;
             }
             gone[*f1] = true;
