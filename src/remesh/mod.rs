@@ -464,75 +464,37 @@ pub fn remesh_with(
     // Lattice lines can lie on the boundary only when the crosses follow it.
     let pin = (rotation / 90.0 - (rotation / 90.0).round()).abs() < 1e-9;
     let pinned: Vec<bool> = aligned.iter().map(|&a| a && pin).collect();
-    let relaxation = position::Relaxation::for_surface(&work);
-    let on_lattice = |relaxation, budget: &mut Budget| {
-        lattice_quads(
-            (&work, &work_frames, &pinned),
-            relaxation,
-            (input, &locator),
-            options,
-            budget,
-        )
-    };
-    let (mut quads, mut found) = on_lattice(relaxation, &mut budget)?;
-    if relaxation == position::Relaxation::Multigrid
-        && found.max_distance_to_input_ratio > FOLDED
-        && budget.stopped().is_none()
-    {
-        // A lattice relaxed at every wavelength has been seen to fold next to a cluster of
-        // dislocations at a cone of the field (a patch extracted as long faces across the
-        // surface, 3.4 t off it): the plain rounds' lattice is taken there instead.
-        (quads, found) = on_lattice(position::Relaxation::Plain, &mut budget)?;
+    budget.stage(0.2, 0.8);
+    let lattice = position::solve(&work, &work_frames, t, &pinned, &mut budget);
+    budget.check()?;
+    budget.stage(0.8, 0.82);
+    let raw = extract::extract(&work, &lattice);
+    if raw.faces.is_empty() {
+        return Err(RemeshError::NothingExtracted(t));
     }
-    found.seconds = start.elapsed().as_secs_f64();
+    budget.stage(0.82, 0.97);
+    let mut quads = cleanup::pure_quads(raw, &locator, t, &mut budget)?;
+    if options.shapeup && budget.stopped().is_none() {
+        budget.stage(0.97, 0.99);
+        quads = shapeup::shapeup(
+            &quads,
+            &locator,
+            t,
+            options.shapeup_iterations,
+            options.shapeup_tolerance,
+            &mut budget,
+        )?;
+    }
+    let quads = PolyMesh::new(quads.positions, quads.faces)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let mut found = metrics::metrics_with(&locator, input, &quads, t);
+    found.seconds = seconds;
     found.crease_sheets = sheets.as_ref().map_or(0, |s| s.count);
     budget.finish();
     Ok(Remeshed {
         quads,
         metrics: found,
     })
-}
-
-/// Farthest (in target edges) a quad mesh from a lattice relaxed by multigrid may stand off
-/// the input before it counts as folded and the plain lattice is taken ([`remesh_with`]); a
-/// sound one stands off by a few tenths at most (0.23 t on a hypar at three times its size).
-const FOLDED: f64 = 1.0;
-
-/// Stages 2-5 on the working surface `work` with its crosses and pinned boundary: the
-/// lattice ([`position`], relaxed as `relaxation` says), its extraction, the cleanup, the
-/// optional shape-up, and the quad mesh's metrics against `input`.
-fn lattice_quads(
-    (work, frames, pinned): (&surface::Surface, &[nalgebra::Vector3<f64>], &[bool]),
-    relaxation: position::Relaxation,
-    (input, locator): (&PolyMesh, &surface::Locator),
-    options: &RemeshOptions,
-    budget: &mut Budget,
-) -> Result<(PolyMesh, Metrics), RemeshError> {
-    let t = options.target_edge;
-    budget.stage(0.2, 0.8);
-    let lattice = position::solve(work, frames, t, pinned, relaxation, budget);
-    budget.check()?;
-    budget.stage(0.8, 0.82);
-    let raw = extract::extract(work, &lattice);
-    if raw.faces.is_empty() {
-        return Err(RemeshError::NothingExtracted(t));
-    }
-    budget.stage(0.82, 0.97);
-    let mut quads = cleanup::pure_quads(raw, locator, t, budget)?;
-    if options.shapeup && budget.stopped().is_none() {
-        budget.stage(0.97, 0.99);
-        quads = shapeup::shapeup(
-            &quads,
-            locator,
-            t,
-            options.shapeup_iterations,
-            options.shapeup_tolerance,
-            budget,
-        )?;
-    }
-    let quads = PolyMesh::new(quads.positions, quads.faces)?;
-    let found = metrics::metrics_with(locator, input, &quads, t);
-    Ok((quads, found))
 }
 
 fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), RemeshError> {

@@ -15,14 +15,11 @@
 //! and at corners both offsets are, which is what lets extraction put quad vertices exactly
 //! on the boundary.
 
-use std::cell::RefCell;
-
 use nalgebra::{Matrix2, Matrix3x2, Vector2, Vector3};
 
 use super::budget::Budget;
 use super::flow::Jumps;
-use super::linalg::{Preconditioner, conjugate_gradient};
-use super::multigrid::{BlockMatrix, Multigrid};
+use super::linalg::conjugate_gradient;
 use super::scale;
 use super::surface::Surface;
 use crate::parallel::Scatter;
@@ -50,18 +47,6 @@ const ITERATIONS: usize = 150;
 
 /// Conjugate-gradient iterations of the last round.
 const LAST_ITERATIONS: usize = 300;
-
-/// Conjugate-gradient iterations per round with [`Relaxation::Multigrid`], each
-/// preconditioned by a multigrid cycle. Not to convergence: run to the plain rounds' residual
-/// (1e-6, 55 steps in the 20 m dome's last round) the lattice folds next to a cluster of
-/// dislocations at a cone there (a patch 3.4 t off the surface; the remesher then takes the
-/// plain lattice, [`super::remesh_with`]), as it did when every surface was relaxed so
-/// (README, *Spherical domes*); at 20 and 40 steps none of the five wide surfaces measured
-/// folded (README, *Remesher*).
-const MULTIGRID_ITERATIONS: usize = 20;
-
-/// Conjugate-gradient iterations of the last round with [`Relaxation::Multigrid`].
-const MULTIGRID_LAST_ITERATIONS: usize = 40;
 
 /// Farthest (in quad lengths `t`) a dislocation is walked to cancel it against another or
 /// through the boundary. Farther apart, cancelling would strain every quad in between (a
@@ -119,49 +104,13 @@ pub(crate) fn edge_frames(
         .unzip()
 }
 
-/// How the rounds relax the lattice between their roundings.
-///
-/// A plain conjugate-gradient step carries a correction one edge further, so the rounds'
-/// [`ITERATIONS`] and [`LAST_ITERATIONS`] relax a lattice only within that many edges of where
-/// it is wrong. On a surface more than twice [`LAST_ITERATIONS`] edges across (the 20 m dome
-/// of issue 19 is 725) its middle keeps the first integration's lattice, whose dislocations no
-/// round moves: 215 irregular vertices there. Each step preconditioned by a multigrid cycle
-/// ([`super::multigrid`]), [`MULTIGRID_ITERATIONS`] relax it at every wavelength, and the
-/// rounds cancel the dislocations the surface does not ask for (51 irregular vertices there,
-/// in clusters at the field's cones; 96.0 % of edges within 20 % instead of 94.9 %; README,
-/// *Remesher*). Narrower surfaces keep the plain steps: their lattice is relaxed across
-/// anyway, and the fully relaxed one was measured to leave no better tiles there (a cone's
-/// curvature field 221 -> 441 irregular vertices).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Relaxation {
-    /// [`ITERATIONS`] plain steps a round, [`LAST_ITERATIONS`] in the last.
-    Plain,
-    /// [`MULTIGRID_ITERATIONS`] preconditioned steps a round, [`MULTIGRID_LAST_ITERATIONS`] in
-    /// the last.
-    Multigrid,
-}
-
-impl Relaxation {
-    /// Multigrid where `s` is more than twice [`LAST_ITERATIONS`] edges across
-    /// ([`Surface::hop_diameter`]), plain steps elsewhere.
-    pub(crate) fn for_surface(s: &Surface) -> Self {
-        if s.hop_diameter() > 2 * LAST_ITERATIONS {
-            Relaxation::Multigrid
-        } else {
-            Relaxation::Plain
-        }
-    }
-}
-
-/// Solves the lattice of spacing `t` for the cross field `frames` on `s`, relaxed between
-/// roundings as `relaxation` says.
+/// Solves the lattice of spacing `t` for the cross field `frames` on `s`.
 /// Stops early (with an unfinished lattice the caller must discard) once `budget` says so.
 pub(crate) fn solve(
     s: &Surface,
     frames: &[Vector3<f64>],
     t: f64,
     pin: &[bool],
-    relaxation: Relaxation,
     budget: &mut Budget,
 ) -> Lattice {
     let n = s.len();
@@ -218,7 +167,6 @@ pub(crate) fn solve(
         delta: &delta,
         weight: &weight,
         t,
-        cycle: (relaxation == Relaxation::Multigrid).then(|| RefCell::new(None)),
     };
     // Jumps as read before the last cancellation, to fall back on when cancelling strains
     // the lattice too much (a shell whose rows must really end somewhere, like a dome with
@@ -269,7 +217,7 @@ pub(crate) fn solve(
         let first_round = |start: Vec<f64>, budget: &mut Budget| {
             let mut u = start;
             let m = jumps(&u);
-            system.solve(&active, &m, &mut u, false, &mut |_| budget.poll(0.0));
+            system.solve(&active, &m, &mut u, ITERATIONS, &mut |_| budget.poll(0.0));
             into_cells(&mut u, &active);
             let mut m = jumps(&u);
             let before = cancel(&mut m, true, Some(free), &pinned_normal, budget);
@@ -303,16 +251,16 @@ pub(crate) fn solve(
             uncancelled = cancel(&mut m, cancelling, None, &pinned_normal, budget);
         }
         let last = round + 1 == ROUNDS;
-        let iterations = system.iterations(last);
+        let iterations = if last { LAST_ITERATIONS } else { ITERATIONS };
         let u_before = u.clone();
         let mut keep_going = |k: usize| budget.poll(share(k as f64 / iterations as f64));
-        system.solve(&active, &m, &mut u, last, &mut keep_going);
+        system.solve(&active, &m, &mut u, iterations, &mut keep_going);
         if let Some(before) = uncancelled.take() {
             if system.strained(&m, &u) {
                 cancelling = false;
                 m = before;
                 u = u_before;
-                system.solve(&active, &m, &mut u, last, &mut keep_going);
+                system.solve(&active, &m, &mut u, iterations, &mut keep_going);
             }
         }
         if last {
@@ -331,18 +279,11 @@ pub(crate) fn solve(
     }
 }
 
-/// Weight of the pull of every offset towards where it starts, per unit of edge weight: it
-/// only fixes what the edges leave free (a lattice may slide as a whole).
-const REGULARISATION: f64 = 1e-6;
-
 /// Relative edge misfit counted as strain.
 const STRAIN: f64 = 0.5;
 
 /// Fraction of strained edges above which a cancellation round is undone.
 const STRAINED_FRACTION: f64 = 0.05;
-
-/// A multigrid cycle made when first asked for, with the held components it was made for.
-type CachedCycle = RefCell<Option<(Vec<bool>, Multigrid)>>;
 
 /// The least-squares lattice energy of one level.
 struct System<'a> {
@@ -352,10 +293,6 @@ struct System<'a> {
     /// Per edge weight of its misfit (see [`edge_weights`]).
     weight: &'a [f64],
     t: f64,
-    /// With [`Relaxation::Multigrid`]: the multigrid cycle of the energy with the components
-    /// it was built for held, made when first needed and again when the held components
-    /// change (once, when the boundary is pinned).
-    cycle: Option<CachedCycle>,
 }
 
 impl System<'_> {
@@ -379,47 +316,14 @@ impl System<'_> {
         count as f64 > STRAINED_FRACTION * self.s.edges.len() as f64
     }
 
-    /// Conjugate-gradient steps of a round (`last`: the last one).
-    fn iterations(&self, last: bool) -> usize {
-        match (self.cycle.is_some(), last) {
-            (false, false) => ITERATIONS,
-            (false, true) => LAST_ITERATIONS,
-            (true, false) => MULTIGRID_ITERATIONS,
-            (true, true) => MULTIGRID_LAST_ITERATIONS,
-        }
-    }
-
-    /// Runs `solve` with the multigrid cycle of the energy with the components flagged in
-    /// `active` held, with [`Relaxation::Multigrid`] ([`System::cycle`]), or with none.
-    fn preconditioned(&self, active: &[bool], solve: impl FnOnce(Option<&Multigrid>)) {
-        let Some(cell) = &self.cycle else {
-            return solve(None);
-        };
-        let mut cached = cell.borrow_mut();
-        if cached
-            .as_ref()
-            .is_none_or(|(held, _)| held.as_slice() != active)
-        {
-            let energy = BlockMatrix::connection(
-                self.s.len(),
-                &self.s.edges,
-                |e| (self.weight[e], self.transfer[e]),
-                |_| REGULARISATION,
-            );
-            *cached = Some((active.to_vec(), Multigrid::new(energy, active)));
-        }
-        solve(cached.as_ref().map(|(_, cycle)| cycle));
-    }
-
     /// Minimises the energy over the offsets `u` for fixed jumps `m`, with the components
-    /// flagged in `active` held at zero, in the steps of a round ([`System::iterations`];
-    /// `last`: the last round).
+    /// flagged in `active` held at zero.
     fn solve(
         &self,
         active: &[bool],
         m: &[[i64; 2]],
         u: &mut [f64],
-        last: bool,
+        iterations: usize,
         keep_going: &mut dyn FnMut(usize) -> bool,
     ) {
         // Held components of every vector the solver applies the operator to are exactly
@@ -442,9 +346,7 @@ impl System<'_> {
             .collect();
         let scatter = Scatter::default();
         let apply = |x: &[f64], out: &mut [f64]| {
-            out.iter_mut()
-                .zip(x)
-                .for_each(|(o, x)| *o = REGULARISATION * x);
+            out.iter_mut().zip(x).for_each(|(o, x)| *o = 1e-6 * x);
             scatter.add(packed.len(), out, |range, out| {
                 for &([a, b], t, w) in &packed[range] {
                     let (a, b) = (a as usize, b as usize);
@@ -464,7 +366,7 @@ impl System<'_> {
                 }
             }
         };
-        let mut rhs: Vec<f64> = u.iter().map(|x| REGULARISATION * x).collect();
+        let mut rhs: Vec<f64> = u.iter().map(|x| 1e-6 * x).collect();
         for (e, &[a, b]) in self.s.edges.iter().enumerate() {
             let c = (self.delta[e] - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t)
                 * self.weight[e];
@@ -479,12 +381,7 @@ impl System<'_> {
                 rhs[k] = 0.0;
             }
         }
-        let iterations = self.iterations(last);
-        self.preconditioned(active, |cycle| {
-            let multigrid = cycle.map(|c| move |r: &[f64], z: &mut [f64]| c.precondition(r, z));
-            let precondition = multigrid.as_ref().map(|m| m as Preconditioner<'_>);
-            conjugate_gradient(apply, &rhs, u, iterations, 1e-6, precondition, keep_going);
-        });
+        conjugate_gradient(apply, &rhs, u, iterations, 1e-6, None, keep_going);
     }
 }
 
@@ -609,82 +506,6 @@ mod tests {
         burgers_density(&s, &delta, &transfer, 0.1)
             .iter()
             .fold([0.0; 2], |acc, d| [acc[0] + d[0], acc[1] + d[1]])
-    }
-
-    #[test]
-    fn on_a_surface_wider_than_the_plain_steps_reach_the_preconditioned_round_relaxes_the_lattice()
-    {
-        // A flat square of 320 x 320 cells of t (its diagonal more than 600 edges across),
-        // crosses along its sides, and a lattice whose offsets are out by up to 0.3 t in one
-        // long wave across it, with the right jumps: the relaxed lattice has one offset
-        // throughout. A plain round's 150 steps carry a correction 150 edges and leave most of
-        // the wave; the preconditioned round's 20 do not.
-        let (n, t) = (320, 0.1);
-        let s = sheet(n, t, (0..0, 0..0), |_, _| 0.0);
-        assert!(
-            s.hop_diameter() > 2 * LAST_ITERATIONS,
-            "{}",
-            s.hop_diameter()
-        );
-        let frames = vec![Vector3::x(); s.len()];
-        let (transfer, delta) = edge_frames(&s, &bases(&s, &frames));
-        let exact = integrate(&s, &delta, &transfer, t);
-        let m: Vec<[i64; 2]> = s
-            .edges
-            .iter()
-            .enumerate()
-            .map(|(e, &[a, b])| {
-                let ua = Vector2::new(exact[2 * a], exact[2 * a + 1]);
-                let ub = Vector2::new(exact[2 * b], exact[2 * b + 1]);
-                let r = (delta[e] + transfer[e] * ub - ua) / t;
-                [r.x.round() as i64, r.y.round() as i64]
-            })
-            .collect();
-        let side = n as f64 * t;
-        let wave = |k: usize| {
-            let p = s.pos[k / 2];
-            let phase = std::f64::consts::PI * (p.x + p.y) / (2.0 * side);
-            if k % 2 == 0 {
-                0.3 * t * phase.cos()
-            } else {
-                0.0
-            }
-        };
-        let waved: Vec<f64> = exact
-            .iter()
-            .enumerate()
-            .map(|(k, &u)| u + wave(k))
-            .collect();
-        let weight = edge_weights(&s);
-        let spread = |preconditioned: bool| {
-            let system = System {
-                s: &s,
-                transfer: &transfer,
-                delta: &delta,
-                weight: &weight,
-                t,
-                cycle: preconditioned.then(|| RefCell::new(None)),
-            };
-            let mut u = waved.clone();
-            let active = vec![false; 2 * s.len()];
-            system.solve(&active, &m, &mut u, false, &mut |_| true);
-            // How far the offsets stray from one value, in quad lengths.
-            let (lo, hi) = u
-                .iter()
-                .step_by(2)
-                .fold((f64::MAX, f64::MIN), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-            (hi - lo) / t
-        };
-        let plain = spread(false);
-        let preconditioned = spread(true);
-        eprintln!(
-            "the wave's spread after a round: plain {plain:.3} t, preconditioned {preconditioned:.4} t"
-        );
-        assert!(plain > 0.2, "plain steps left {plain} t");
-        assert!(
-            preconditioned < 0.02,
-            "preconditioned steps left {preconditioned} t"
-        );
     }
 
     #[test]

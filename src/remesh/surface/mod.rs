@@ -190,33 +190,6 @@ impl Surface {
         count.iter().position(|&c| c > 2)
     }
 
-    /// How many edges the surface is across, at least: the longest of the shortest edge paths
-    /// from the vertex farthest from vertex 0 (a double sweep of breadth-first searches, at
-    /// least half the diameter, and on a disc-like surface close to it). Edge paths count
-    /// what an edge-by-edge iteration crosses; pieces not joined to vertex 0 are not counted.
-    pub fn hop_diameter(&self) -> usize {
-        let farthest = |from: usize| {
-            let mut depth = vec![usize::MAX; self.len()];
-            depth[from] = 0;
-            let mut queue = std::collections::VecDeque::from([from]);
-            let mut last = from;
-            while let Some(v) = queue.pop_front() {
-                last = v;
-                for &(w, _) in &self.adj[v] {
-                    if depth[w] == usize::MAX {
-                        depth[w] = depth[v] + 1;
-                        queue.push_back(w);
-                    }
-                }
-            }
-            (last, depth[last])
-        };
-        if self.len() == 0 {
-            return 0;
-        }
-        farthest(farthest(0).0).1
-    }
-
     /// Number of vertices.
     pub fn len(&self) -> usize {
         self.pos.len()
@@ -313,33 +286,6 @@ mod tests {
 
     use super::samples::{sheet, wavy};
     use super::*;
-
-    /// A flat strip `cells` long and two wide, of cells of `cell`, as a surface.
-    fn strip(cells: usize, cell: f64) -> Surface {
-        let at = |i: usize, j: usize| j * (cells + 1) + i;
-        let positions = (0..=2)
-            .flat_map(|j| {
-                (0..=cells).map(move |i| Point3::new(i as f64 * cell, j as f64 * cell, 0.0))
-            })
-            .collect();
-        let faces = (0..2)
-            .flat_map(|j| {
-                (0..cells)
-                    .map(move |i| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
-            })
-            .collect();
-        Surface::from_polymesh(&PolyMesh::new(positions, faces).unwrap()).unwrap()
-    }
-
-    #[test]
-    fn a_strip_is_as_many_edges_across_as_it_is_long() {
-        let s = strip(50, 0.1);
-        assert!(
-            (50..=52).contains(&s.hop_diameter()),
-            "{}",
-            s.hop_diameter()
-        );
-    }
 
     #[test]
     fn vertex_areas_share_out_the_surface() {
