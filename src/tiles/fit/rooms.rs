@@ -150,8 +150,8 @@ pub(crate) struct Laid {
 /// and leaves fewer joints the tiles cannot keep (overlaps beyond the tolerance, or gaps a
 /// piece will be cut for) with a p95 deviation from the joint no higher (as the cuts to fit
 /// will leave them, [`closers::p95_deviation_after_cuts`]); its pieces whose joints stray
-/// are taken out again, and the tiles they stood between face each other as before. `keep_going` is asked as the fit's
-/// placements ask it (with the share of the steps done).
+/// are taken out again, and the tiles they stood between face each other as before.
+/// `keep_going` is asked as the fit's placements ask it (with the share of the steps done).
 pub(crate) fn lay(
     placement: &mut Placement,
     skip: &[usize],
