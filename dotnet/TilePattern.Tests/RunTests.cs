@@ -341,6 +341,16 @@ namespace TilePattern.Tests
                 + " try 3 (renormalisation 0.25): p95 |gap - joint| 0.0061 (wide joints), 0 % of tiles cut, coverage 0.98, score 1,"
                 + " its pattern stage reached its time limit, so no further try was made and it is not kept.",
                 remark.Text);
+            // The first try's pattern stage reaching its limit does not end the tries.
+            const string first = @"{""faces"": 10, ""warnings"": [], ""tries"": [
+                {""renormalisation"": 0.5, ""quads"": 300, ""interior_irregular_vertices"": 40, ""p95_deviation"": 0.0092, ""cut_share"": 0.3, ""coverage"": 0.96, ""wide_joints"": true, ""score"": 40.0, ""seconds"": 70.5, ""limit_reached"": ""pattern""},
+                {""renormalisation"": 0.5, ""field"": ""smooth"", ""quads"": 296, ""interior_irregular_vertices"": 20, ""p95_deviation"": 0.0082, ""cut_share"": 0.17, ""coverage"": 0.97, ""wide_joints"": true, ""score"": 21.5, ""seconds"": 5.3}],
+                ""chosen_try"": 1}";
+            Report firstLimited = Report.Parse(first);
+            Assert.IsFalse(firstLimited.Tries[0].EndsTries(0));
+            Assert.IsTrue(report.Tries[2].EndsTries(2));
+            StringAssert.EndsWith("its pattern stage reached its time limit, so its tiles depend on the machine's speed and it is not kept.",
+                UserMessage.ForTries(firstLimited).Text);
             // A report written before tries named their field reads as the curvature's; the
             // smooth try is named in the remark.
             Assert.AreEqual("curvature", report.Tries[0].Field);

@@ -131,7 +131,7 @@ namespace TilePattern
         /// (a remark): which try's tiles were kept, with its p95 |gap - joint| (model units),
         /// share of tiles cut, coverage and score (lower is better; tries whose joints are not
         /// flagged wide come first), then every other try's, and any try that reached a time
-        /// limit (no further try made) or failed. With no tries listed (one quad mesh tried): a
+        /// limit (and whether that ended the tries) or failed. With no tries listed (one quad mesh tried): a
         /// remark saying so.</summary>
         public static UserMessage ForTries(Report report)
         {
@@ -152,7 +152,9 @@ namespace TilePattern
                 string text = string.Format(culture, "p95 |gap - joint| {0:G3}{1}, {2:0.#} % of tiles cut, coverage {3:0.###}, score {4:0.##}", t.P95Deviation,
                     t.WideJoints ? " (wide joints)" : "", 100 * t.CutShare, t.Coverage, t.Score);
                 if (t.LimitReached != null)
-                    text += ", its " + t.LimitReached + " stage reached its time limit, so no further try was made" + (k == chosen ? "" : " and it is not kept");
+                    text += ", its " + t.LimitReached + " stage reached its time limit, so "
+                        + (t.EndsTries(k) ? "no further try was made" : "its tiles depend on the machine's speed")
+                        + (k == chosen ? "" : " and it is not kept");
                 return text;
             };
             var others = new System.Collections.Generic.List<string>();

@@ -644,8 +644,18 @@ namespace TilePattern
         /// <summary>Seconds of this try, all stages.</summary>
         public double Seconds { get; internal set; }
         /// <summary>"pattern" or "fit" when that stage reached its time limit in this try (its
-        /// tiles then depend on the machine's speed, and no further try was made); null otherwise.</summary>
+        /// tiles then depend on the machine's speed, and unless it was the first try's pattern
+        /// stage, no further try was made: <see cref="EndsTries"/>); null otherwise.</summary>
         public string LimitReached { get; internal set; }
+
+        /// <summary>Whether this try, the <paramref name="index"/>-th (from 0), ended the tries
+        /// by reaching a time limit: every limit does except the first try's pattern stage's
+        /// (a later try's pattern stage has a shorter limit of its own). The same rule as the
+        /// library's (<c>TryFigures::ends_tries</c>).</summary>
+        public bool EndsTries(int index)
+        {
+            return LimitReached != null && (index > 0 || LimitReached != "pattern");
+        }
         /// <summary>Why the try gave no tiles, or null.</summary>
         public string Failed { get; internal set; }
 

@@ -842,8 +842,8 @@ class Tiles:
         ``seconds``, ``field`` (``"curvature"``, or ``"smooth"`` for the last automatic
         try, whose field follows nothing), and ``limit_reached`` or ``failed`` where they
         apply. Empty for
-        :func:`tiles` and when one try was asked for (when more were and the first reached a
-        time limit, it lists that one)."""
+        :func:`tiles` and when one try was asked for (when more were and one reached a time
+        limit that ended the tries, it lists those made)."""
         return list(self.report.get("tries", []))
 
     @property

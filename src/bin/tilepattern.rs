@@ -1434,7 +1434,8 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
                         score,
                         x.seconds,
                         x.limit_reached.map_or(String::new(), |stage| format!(
-                            "; the {stage} stage reached its time limit, so its tiles depend on the machine's speed and no further try is made"
+                            "; the {stage} stage reached its time limit, so its tiles depend on the machine's speed{}",
+                            if x.ends_tries(k) { " and no further try is made" } else { "" }
                         ))
                     ),
                 }

@@ -231,13 +231,14 @@ pub fn tile_surface_tries(
                     failed: None,
                 });
                 // A try stopped by a time limit gave tiles that depend on the machine's
-                // speed: the first is kept all the same (it is what one run gives), a later
-                // one is not compared; and no further try is made, each would take as long.
+                // speed: the first is compared all the same (it is what one run gives), a
+                // later one is not; and no further try is made where each would take as
+                // long (`TryFigures::ends_tries`).
                 let rank = (wide, value);
                 if (k == 0 || limit.is_none()) && best.as_ref().is_none_or(|(b, ..)| rank < *b) {
                     best = Some((rank, k, remeshed, tiling));
                 }
-                if limit.is_some() {
+                if listed.last().is_some_and(|x| x.ends_tries(k)) {
                     break;
                 }
             }
@@ -318,7 +319,7 @@ fn cut_share(report: &Report) -> f64 {
 /// The stage whose time limit a try reached, if any: the pattern stage's search, or the
 /// fit's placement (or its tear fill). A fit the caller cancelled counts too: it keeps its
 /// placement so far rather than failing (the other stages fail), and no further try is
-/// made either.
+/// made after it either.
 fn limit_reached(report: &Report) -> Option<&'static str> {
     if report.status == SolveStatus::TimeLimit {
         Some("pattern")
@@ -566,8 +567,11 @@ mod tests {
     }
 
     #[test]
-    fn a_try_stopped_by_its_time_limit_ends_the_tries() {
+    fn a_later_try_stopped_by_its_time_limit_ends_the_tries_and_the_first_pattern_does_not() {
         // No time for the pattern stage: its greedy start, stopped by the limit, on every try.
+        // The first try's pattern stage reaching its limit lets the second run (a later
+        // try's pattern stage has a limit of its own); the second's reaching it ends the
+        // tries, and the second, its tiles depending on the machine's speed, is not kept.
         let options = PatternOptions {
             time_limit: std::time::Duration::ZERO,
             ..PatternOptions::default()
@@ -575,8 +579,10 @@ mod tests {
         let (.., tiling) = three_tries(&options);
         let r = &tiling.report;
         assert_eq!(r.status, SolveStatus::TimeLimit);
-        assert_eq!(r.tries.len(), 1, "{:?}", r.tries);
+        assert_eq!(r.tries.len(), 2, "{:?}", r.tries);
         assert_eq!(r.tries[0].limit_reached, Some("pattern"));
+        assert_eq!(r.tries[1].limit_reached, Some("pattern"));
+        assert!(!r.tries[0].ends_tries(0) && r.tries[1].ends_tries(1));
         assert_eq!(r.chosen_try, Some(0));
     }
 }
