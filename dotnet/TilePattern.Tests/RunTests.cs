@@ -322,7 +322,7 @@ namespace TilePattern.Tests
             const string json = @"{""faces"": 10, ""warnings"": [], ""tries"": [
                 {""renormalisation"": 0.5, ""quads"": 300, ""interior_irregular_vertices"": 4, ""p95_deviation"": 0.0042, ""cut_share"": 0.021, ""coverage"": 0.98, ""wide_joints"": false, ""score"": 3.0, ""seconds"": 1.5},
                 {""renormalisation"": 1, ""quads"": 296, ""interior_irregular_vertices"": 2, ""p95_deviation"": 0.0031, ""cut_share"": 0.012, ""coverage"": 0.99, ""wide_joints"": false, ""score"": 2.0, ""seconds"": 1.4},
-                {""renormalisation"": 0.25, ""quads"": 310, ""interior_irregular_vertices"": 6, ""p95_deviation"": 0.0061, ""cut_share"": 0.0, ""coverage"": 0.98, ""wide_joints"": true, ""score"": 1.0, ""seconds"": 10.2, ""limit_reached"": ""pattern""}],
+                {""renormalisation"": 0.25, ""quads"": 310, ""interior_irregular_vertices"": 6, ""p95_deviation"": 0.0061, ""cut_share"": 0.0, ""coverage"": 0.98, ""wide_joints"": true, ""score"": 1.0, ""seconds"": 10.2, ""limit_reached"": ""pattern"", ""ended_tries"": true}],
                 ""chosen_try"": 1}";
             Report report = Report.Parse(json);
             Assert.AreEqual(3, report.Tries.Length);
@@ -347,8 +347,8 @@ namespace TilePattern.Tests
                 {""renormalisation"": 0.5, ""field"": ""smooth"", ""quads"": 296, ""interior_irregular_vertices"": 20, ""p95_deviation"": 0.0082, ""cut_share"": 0.17, ""coverage"": 0.97, ""wide_joints"": true, ""score"": 21.5, ""seconds"": 5.3}],
                 ""chosen_try"": 1}";
             Report firstLimited = Report.Parse(first);
-            Assert.IsFalse(firstLimited.Tries[0].EndsTries(0));
-            Assert.IsTrue(report.Tries[2].EndsTries(2));
+            Assert.IsFalse(firstLimited.Tries[0].EndedTries);
+            Assert.IsTrue(report.Tries[2].EndedTries);
             StringAssert.EndsWith("its pattern stage reached its time limit, so its tiles depend on the machine's speed and it is not kept.",
                 UserMessage.ForTries(firstLimited).Text);
             // A report written before tries named their field reads as the curvature's; the

@@ -153,7 +153,7 @@ namespace TilePattern
                     t.WideJoints ? " (wide joints)" : "", 100 * t.CutShare, t.Coverage, t.Score);
                 if (t.LimitReached != null)
                     text += ", its " + t.LimitReached + " stage reached its time limit, so "
-                        + (t.EndsTries(k) ? "no further try was made" : "its tiles depend on the machine's speed")
+                        + (t.EndedTries ? "no further try was made" : "its tiles depend on the machine's speed")
                         + (k == chosen ? "" : " and it is not kept");
                 return text;
             };

@@ -644,18 +644,13 @@ namespace TilePattern
         /// <summary>Seconds of this try, all stages.</summary>
         public double Seconds { get; internal set; }
         /// <summary>"pattern" or "fit" when that stage reached its time limit in this try (its
-        /// tiles then depend on the machine's speed, and unless it was the first try's pattern
-        /// stage, no further try was made: <see cref="EndsTries"/>); null otherwise.</summary>
+        /// tiles then depend on the machine's speed, and a later try that reaches one is not
+        /// kept); null otherwise.</summary>
         public string LimitReached { get; internal set; }
-
-        /// <summary>Whether this try, the <paramref name="index"/>-th (from 0), ended the tries
-        /// by reaching a time limit: every limit does except the first try's pattern stage's
-        /// (a later try's pattern stage has a shorter limit of its own). The same rule as the
-        /// library's (<c>TryFigures::ends_tries</c>).</summary>
-        public bool EndsTries(int index)
-        {
-            return LimitReached != null && (index > 0 || LimitReached != "pattern");
-        }
+        /// <summary>Whether reaching that limit ended the tries (no further try was made): every
+        /// limit does except the first try's pattern stage's when a later try's pattern stage
+        /// has a shorter limit (the report's <c>ended_tries</c>).</summary>
+        public bool EndedTries { get; internal set; }
         /// <summary>Why the try gave no tiles, or null.</summary>
         public string Failed { get; internal set; }
 
@@ -674,6 +669,7 @@ namespace TilePattern
                 Score = JsonAccess.Number(t, "score"),
                 Seconds = JsonAccess.Number(t, "seconds"),
                 LimitReached = JsonAccess.Text(t, "limit_reached"),
+                EndedTries = JsonAccess.Flag(t, "ended_tries"),
                 Failed = JsonAccess.Text(t, "failed"),
             };
         }
@@ -740,7 +736,7 @@ namespace TilePattern
 
         /// <summary>Every try of <see cref="TilePatternEngine.Run"/>, in order (report.json's
         /// <c>tries</c>); empty when one try was asked for, and for the stages called one by one
-        /// (when more were asked for and the first reached a time limit, it lists that one).</summary>
+        /// (when more were asked for and a time limit ended the tries, it lists those made).</summary>
         public TryReport[] Tries { get; private set; }
 
         /// <summary>Which of <see cref="Tries"/> these tiles are, from 0 (report.json's

@@ -1245,9 +1245,11 @@ def run(
         (made only without a direction, angle, designer's field or guides: then at most 3),
         then twice and half the strength. Anything else raises
         :class:`~tilepattern.InvalidArgumentError` naming ``tries``. Each try has the
-        stages' own time limits (a later try's pattern stage at most 10 s); a try whose
-        pattern stage or fit reaches its limit ends the tries (its tiles depend on the
-        machine's speed), and a later one that does is listed but not kept.
+        stages' own time limits (a later try's pattern stage at most 10 s). A try whose
+        pattern stage or fit reaches its limit has tiles that depend on the machine's
+        speed: a later one is listed but not kept. A later one's limit ends the tries, and
+        so does the first try's fit, or its pattern stage when that limit is 10 s or less
+        (the try's ``ended_tries``).
     progress : callable, optional
         ``progress(stage, fraction)`` with ``stage == "run"`` and the share of the whole run
         done (each try an equal share), about every 10 ms; return True to cancel

@@ -1435,7 +1435,7 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
                         x.seconds,
                         x.limit_reached.map_or(String::new(), |stage| format!(
                             "; the {stage} stage reached its time limit, so its tiles depend on the machine's speed{}",
-                            if x.ends_tries(k) { " and no further try is made" } else { "" }
+                            if x.ended_tries { " and no further try is made" } else { "" }
                         ))
                     ),
                 }

@@ -25,8 +25,8 @@
 //! tiles there are cut; the smoothest field spreads that turning instead (`--tries 1` on 29
 //! shells: a cone 62 -> 6 % of tiles cut, a funnel 20 -> 4 %, the tubemesh 3.2 -> 1.0 %;
 //! worse on a 3 m spherical cap, 12 -> 22 %, where the first try stays). It comes second,
-//! before the other strengths, as its gains are the larger and a try whose pattern reaches
-//! its time limit ends the tries. The first try is what one run gives, so tries never do
+//! before the other strengths, as its gains are the larger and a later try whose pattern
+//! reaches its time limit ends the tries. The first try is what one run gives, so tries never do
 //! worse by the score. Each try is deterministic, so the kept one is too (ties go to the
 //! earlier try).
 
@@ -153,9 +153,12 @@ pub fn score(report: &Report) -> f64 {
 /// try (`tries`) and which was kept (`chosen_try`). `control` hears each try as an equal
 /// share of `0..1` and can cancel any.
 ///
-/// A try whose pattern stage or fit reaches its time limit ends the tries: its tiles depend
-/// on the machine's speed, and each further try would take as long. The first try is kept
-/// all the same; a later one is listed but not kept (`limit_reached`).
+/// A try whose pattern stage or fit reaches its time limit has tiles that depend on the
+/// machine's speed: the first is compared all the same; a later one is listed but not kept
+/// (`limit_reached`). Where each further try would take as long, the limit ends the tries
+/// (`ended_tries`): always after a later try and the first try's fit, and after the first
+/// try's pattern stage when its limit is no longer than a later try's
+/// ([`LATER_PATTERN_SECONDS`]).
 ///
 /// # Errors
 /// As [`tile_surface`] for the first try, and [`RemeshError::Cancelled`] (or the pattern
@@ -216,6 +219,7 @@ pub fn tile_surface_tries(
                 let value = score(r);
                 let limit = limit_reached(r);
                 let wide = wide_joints(r);
+                let ended_tries = limit.is_some_and(|stage| ends_tries(k, stage, options));
                 listed.push(TryFigures {
                     renormalisation: options_k.renormalisation,
                     field: field_name(options_k.direction),
@@ -228,17 +232,18 @@ pub fn tile_surface_tries(
                     score: Some(value),
                     seconds,
                     limit_reached: limit,
+                    ended_tries,
                     failed: None,
                 });
                 // A try stopped by a time limit gave tiles that depend on the machine's
                 // speed: the first is compared all the same (it is what one run gives), a
                 // later one is not; and no further try is made where each would take as
-                // long (`TryFigures::ends_tries`).
+                // long (`TryFigures::ended_tries`).
                 let rank = (wide, value);
                 if (k == 0 || limit.is_none()) && best.as_ref().is_none_or(|(b, ..)| rank < *b) {
                     best = Some((rank, k, remeshed, tiling));
                 }
-                if listed.last().is_some_and(|x| x.ends_tries(k)) {
+                if ended_tries {
                     break;
                 }
             }
@@ -255,6 +260,7 @@ pub fn tile_surface_tries(
                 score: None,
                 seconds,
                 limit_reached: None,
+                ended_tries: false,
                 failed: Some(e.to_string()),
             }),
         }
@@ -314,6 +320,14 @@ fn coverage(report: &Report) -> f64 {
 fn cut_share(report: &Report) -> f64 {
     let tiles = (report.full_tiles + report.half_tiles).max(1) as f64;
     report.fit_cut_count() as f64 / tiles
+}
+
+/// Whether try `k` (from 0), whose `stage` reached its time limit, ends the tries: where
+/// each further try would take as long. A later try's pattern stage has a limit of its own,
+/// [`LATER_PATTERN_SECONDS`], so after the first try's pattern stage with a longer limit
+/// (`options`'), the later tries still run.
+fn ends_tries(k: usize, stage: &str, options: &PatternOptions) -> bool {
+    k > 0 || stage != "pattern" || options.time_limit <= LATER_PATTERN_SECONDS
 }
 
 /// The stage whose time limit a try reached, if any: the pattern stage's search, or the
@@ -567,11 +581,9 @@ mod tests {
     }
 
     #[test]
-    fn a_later_try_stopped_by_its_time_limit_ends_the_tries_and_the_first_pattern_does_not() {
+    fn a_try_stopped_by_its_time_limit_ends_the_tries() {
         // No time for the pattern stage: its greedy start, stopped by the limit, on every try.
-        // The first try's pattern stage reaching its limit lets the second run (a later
-        // try's pattern stage has a limit of its own); the second's reaching it ends the
-        // tries, and the second, its tiles depending on the machine's speed, is not kept.
+        // A limit no longer than a later try's ends the tries at the first.
         let options = PatternOptions {
             time_limit: std::time::Duration::ZERO,
             ..PatternOptions::default()
@@ -579,10 +591,24 @@ mod tests {
         let (.., tiling) = three_tries(&options);
         let r = &tiling.report;
         assert_eq!(r.status, SolveStatus::TimeLimit);
-        assert_eq!(r.tries.len(), 2, "{:?}", r.tries);
+        assert_eq!(r.tries.len(), 1, "{:?}", r.tries);
         assert_eq!(r.tries[0].limit_reached, Some("pattern"));
-        assert_eq!(r.tries[1].limit_reached, Some("pattern"));
-        assert!(!r.tries[0].ends_tries(0) && r.tries[1].ends_tries(1));
+        assert!(r.tries[0].ended_tries);
         assert_eq!(r.chosen_try, Some(0));
+    }
+
+    #[test]
+    fn only_the_first_pattern_stage_with_a_longer_limit_than_later_ones_lets_the_tries_go_on() {
+        let with = |seconds: u64| PatternOptions {
+            time_limit: std::time::Duration::from_secs(seconds),
+            ..PatternOptions::default()
+        };
+        let long = with(60);
+        assert!(!ends_tries(0, "pattern", &long));
+        assert!(ends_tries(0, "fit", &long));
+        assert!(ends_tries(1, "pattern", &long));
+        assert!(ends_tries(2, "fit", &long));
+        assert!(ends_tries(0, "pattern", &with(10)));
+        assert!(ends_tries(0, "pattern", &with(5)));
     }
 }

@@ -58,25 +58,19 @@ pub struct TryFigures {
     pub seconds: f64,
     /// The stage whose time limit this try reached, if one did (`"pattern"` or `"fit"`; a
     /// fit the caller cancelled counts as the fit's): its tiles then depend on the
-    /// machine's speed. A later try that reaches one is not kept, and it ends the tries, as
-    /// the first does when its fit reached it ([`Self::ends_tries`]).
+    /// machine's speed, and a later try that reaches one is not kept.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub limit_reached: Option<&'static str>,
+    /// Whether reaching that limit ended the tries (written only when it did): each further
+    /// try would take as long, except after the first try's pattern stage when a later
+    /// try's pattern stage has a shorter limit (`pipeline::LATER_PATTERN_SECONDS`), where
+    /// its quads may be proven though the first's were not (a shell whose curvature asks
+    /// rows to end all over it, where the smooth field's quads end few).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub ended_tries: bool,
     /// Why the try gave no tiles (its figures are then 0 and it is not kept), if it failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub failed: Option<String>,
-}
-
-impl TryFigures {
-    /// Whether this try, the `index`-th (from 0), ended the tries by reaching a time limit.
-    /// Each later try would take as long, except after the first try's pattern stage: a
-    /// later try's pattern stage has a limit of its own (`pipeline::LATER_PATTERN_SECONDS`),
-    /// and its quads may be proven where the first's were not (a shell whose curvature asks
-    /// rows to end all over it, where the smooth field's quads end few).
-    pub fn ends_tries(&self, index: usize) -> bool {
-        self.limit_reached
-            .is_some_and(|stage| index > 0 || stage != "pattern")
-    }
 }
 
 /// Everything a designer wants to know about a tiling, serialised as `report.json`.
