@@ -908,9 +908,10 @@ TpStatus tp_run_options_init(struct TpRunOptions *options, size_t size);
  * `progress` (may be NULL) is called with `TP_STAGE_RUN` and the share of the whole run
  * done, each try an equal share; a non-zero return cancels the run, in whichever try and
  * stage, and the call returns `TP_CANCELLED` without tiles. Each stage keeps its own time
- * limit, except that a later try's pattern stage has at most 10 s; a try whose pattern
- * stage or fit reaches its limit ends the tries (the report's `tries[].limit_reached`), so
- * the progress may end short of 1.
+ * limit, except that a later try's pattern stage has at most 10 s; a later try whose
+ * pattern stage or fit reaches its limit ends the tries, and so does the first try's fit,
+ * or its pattern stage when that limit is 10 s or less (the report's
+ * `tries[].limit_reached` and `tries[].ended_tries`), so the progress may end short of 1.
  *
  * # Safety
  * `surface` must be a live mesh; the four options valid, their arrays holding their stated
