@@ -84,36 +84,6 @@ impl<'c, 'a> Budget<'c, 'a> {
         true
     }
 
-    /// Runs `work`, which the run can do without (a second attempt at a result it has), on
-    /// a budget of its own that reports and stops like this one; `None` when its time
-    /// limit passed or the caller cancelled. The time limit passing stops the work but not
-    /// the run, which goes on with the result it has (and stops at its next poll); a cancel
-    /// stops both.
-    pub fn optional<R>(&mut self, work: impl FnOnce(&mut Budget<'_, 'a>) -> R) -> Option<R> {
-        let mut own = Budget {
-            control: &mut *self.control,
-            start: self.start,
-            deadline: self.deadline,
-            from: self.from,
-            to: self.to,
-            last_report: self.last_report,
-            reported: self.reported,
-            stop: self.stop,
-        };
-        let done = work(&mut own);
-        let (stop, reported, last_report) = (own.stop, own.reported, own.last_report);
-        self.reported = reported;
-        self.last_report = last_report;
-        match stop {
-            None => Some(done),
-            Some(Stop::Cancelled) => {
-                self.stop = stop;
-                None
-            }
-            Some(Stop::TimeLimit) => None,
-        }
-    }
-
     /// Why the run stopped, if it did.
     pub fn stopped(&self) -> Option<Stop> {
         self.stop

@@ -307,13 +307,9 @@ fn solve_level(
     if coarse && budget.stopped().is_none() {
         let strained = system.strained_share(&m, &u);
         if strained > STRETCHED {
-            // The lattice in hand stays if the retry runs out of time.
-            let retry = budget.optional(|budget| {
-                let start = coarse_start(s, frames, &basis, t, pin, budget)?;
-                let m = jumps(&start);
-                Some(rounds(start, m, 0, None, budget))
-            });
-            if let Some((u2, m2)) = retry.flatten() {
+            if let Some(start) = coarse_start(s, frames, &basis, t, pin, budget) {
+                let m2 = jumps(&start);
+                let (u2, m2) = rounds(start, m2, 0, None, budget);
                 if system.strained_share(&m2, &u2) < strained {
                     (u, m) = (u2, m2);
                 }
