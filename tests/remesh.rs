@@ -459,6 +459,14 @@ fn a_dome_on_a_drum_gets_rows_that_end_rather_than_stretched_quads() {
     assert!((m.mean_edge_ratio - 1.0).abs() <= 0.1, "{m:?}");
     assert!(m.area_covered_ratio >= 0.98, "{m:?}");
     assert!(m.edges_within_20pct >= 0.7, "{m:?}");
+    assert!(m.coarse_start, "{m:?}");
+    // A spherical cap's rows end where its field's cones are, not all over it.
+    assert!(
+        !remesh(&cap(), &options(0.15))
+            .expect("remesh")
+            .metrics
+            .coarse_start
+    );
 }
 
 /// A pillow vault (10 x 7, rise 2.5) triangulated without rows: a 70 x 70 grid whose inner

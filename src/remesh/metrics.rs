@@ -42,6 +42,11 @@ pub struct Metrics {
     /// was remeshed as given (`mesh::simplify`; `pipeline`'s tries, which tile the
     /// simplified surface).
     pub input_vertices_removed: usize,
+    /// The lattice was solved again from a coarse start because the first one came out
+    /// stretched (`remesh::position`'s coarse start): the field asks rows to end all over
+    /// the surface (the rings of a dome of revolution, a bell), where each row end costs
+    /// tiles cut. False when measured on a foreign mesh.
+    pub coarse_start: bool,
 }
 
 /// Measures `quads` against `input` at target edge `t`; works on any polygon mesh, e.g.
@@ -194,6 +199,7 @@ pub(crate) fn metrics_with(
         seconds: 0.0,
         crease_sheets: 0,
         input_vertices_removed: 0,
+        coarse_start: false,
     }
 }
 

@@ -469,6 +469,7 @@ pub fn remesh_with(
     budget.check()?;
     budget.stage(0.8, 0.82);
     let raw = extract::extract(&work, &lattice);
+    let coarse_start = lattice.coarse_start;
     if raw.faces.is_empty() {
         return Err(RemeshError::NothingExtracted(t));
     }
@@ -490,6 +491,7 @@ pub fn remesh_with(
     let mut found = metrics::metrics_with(&locator, input, &quads, t);
     found.seconds = seconds;
     found.crease_sheets = sheets.as_ref().map_or(0, |s| s.count);
+    found.coarse_start = coarse_start;
     budget.finish();
     Ok(Remeshed {
         quads,

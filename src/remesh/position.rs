@@ -37,6 +37,8 @@ pub(crate) struct Lattice {
     pub offset: Vec<[i64; 2]>,
     /// Per vertex: 0 interior, 1 on a boundary lattice line, 2 a pinned corner.
     pub pinned: Vec<u8>,
+    /// The lattice kept is the one solved from the coarse start ([`coarse_start`]).
+    pub coarse_start: bool,
 }
 
 /// Solve-round-cancel rounds; the boundary is pinned from round [`PIN_FROM`] on, so the
@@ -304,6 +306,7 @@ fn solve_level(
         let m = jumps(&plain);
         rounds(plain, m, 0, None, budget)
     };
+    let mut restarted = false;
     if coarse && budget.stopped().is_none() {
         let strained = system.strained_share(&m, &u);
         if strained > STRETCHED {
@@ -312,6 +315,7 @@ fn solve_level(
                 let (u2, m2) = rounds(start, m2, 0, None, budget);
                 if system.strained_share(&m2, &u2) < strained {
                     (u, m) = (u2, m2);
+                    restarted = true;
                 }
             }
         }
@@ -321,6 +325,7 @@ fn solve_level(
         origin,
         offset: m,
         pinned,
+        coarse_start: restarted,
     }
 }
 
