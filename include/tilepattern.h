@@ -905,13 +905,14 @@ TpStatus tp_run_options_init(struct TpRunOptions *options, size_t size);
  * The pattern options' `zones` are given per face of `surface` (each quad takes the zone
  * of the surface face closest to it); forced pairs and excluded faces name quads, which do
  * not exist before the call, so they are refused here (use the stages one by one).
- * `progress` (may be NULL) is called with `TP_STAGE_RUN` and the share of the whole run
- * done, each try an equal share; a non-zero return cancels the run, in whichever try and
- * stage, and the call returns `TP_CANCELLED` without tiles. Each stage keeps its own time
- * limit, except that a later try's pattern stage has at most 10 s; a later try whose
- * pattern stage or fit reaches its limit ends the tries, and so does the first try's fit,
- * or its pattern stage when that limit is 10 s or less (the report's
- * `tries[].limit_reached` and `tries[].ended_tries`), so the progress may end short of 1.
+ * `progress` (may be NULL) is called with `TP_STAGE_RUN` and the share of the whole run done, each
+ * try an equal share; a non-zero return cancels the run, in whichever try and stage, and the call
+ * returns `TP_CANCELLED` without tiles. Each stage keeps its own time limit, except that a later
+ * try's pattern stage has at most 10 s (the smooth field's try has the caller's where the first
+ * try's quads end rows all over the surface); a later try whose pattern stage or fit reaches its
+ * limit ends the tries, and so does the first try's fit, or its pattern stage when that limit is
+ * 10 s or less (the report's `tries[].limit_reached` and `tries[].ended_tries`), so the progress
+ * may end short of 1.
  *
  * # Safety
  * `surface` must be a live mesh; the four options valid, their arrays holding their stated

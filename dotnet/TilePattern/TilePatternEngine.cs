@@ -257,8 +257,9 @@ namespace TilePattern
         /// thread, each try an equal share; cancelling <paramref name="cancellationToken"/>
         /// stops the run soon after and throws <see cref="TilePatternCanceledException"/> (no
         /// tiles), in whichever try and stage it comes. Each stage keeps its own time limit,
-        /// except that a later try's pattern stage has at most 10 s; a later try whose pattern
-        /// stage or fit reaches its limit ends the tries, and so does the first try's fit, or
+        /// except that a later try's pattern stage has at most 10 s (the smooth field's try has
+        /// the caller's where the first try's quads end rows all over the surface); a later try
+        /// whose pattern stage or fit reaches its limit ends the tries, and so does the first try's fit, or
         /// its pattern stage when that limit is 10 s or less (<see cref="TryReport.LimitReached"/>,
         /// <see cref="TryReport.EndedTries"/>). The result owns native
         /// memory (its <see cref="RunResult.Pattern"/>): dispose it when done.</para></summary>

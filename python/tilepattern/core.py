@@ -1245,7 +1245,9 @@ def run(
         (made only without a direction, angle, designer's field or guides: then at most 3),
         then twice and half the strength. Anything else raises
         :class:`~tilepattern.InvalidArgumentError` naming ``tries``. Each try has the
-        stages' own time limits (a later try's pattern stage at most 10 s). A try whose
+        stages' own time limits (a later try's pattern stage at most 10 s, but the smooth
+        field's try the caller's where the first try's quads end rows all over the
+        surface). A try whose
         pattern stage or fit reaches its limit has tiles that depend on the machine's
         speed: a later one is listed but not kept. A later one's limit ends the tries, and
         so does the first try's fit, or its pattern stage when that limit is 10 s or less
