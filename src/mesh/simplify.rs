@@ -39,6 +39,17 @@ pub fn simplify(
     max_edge: f64,
     keep_going: &mut dyn FnMut() -> bool,
 ) -> (PolyMesh, usize) {
+    let (simplified, kept) = simplify_mapped(mesh, max_edge, keep_going);
+    (simplified, mesh.positions().len() - kept.len())
+}
+
+/// [`simplify`], returning with the mesh, per vertex of it, the vertex of `mesh` it is (in
+/// `mesh`'s order; every vertex of `mesh` when none was removed).
+pub fn simplify_mapped(
+    mesh: &PolyMesh,
+    max_edge: f64,
+    keep_going: &mut dyn FnMut() -> bool,
+) -> (PolyMesh, Vec<usize>) {
     let pos = mesh.positions();
     let mut tris: Vec<[usize; 3]> = mesh
         .faces()
@@ -107,7 +118,6 @@ pub fn simplify(
         }
     }
     let mut changed = vec![false; n];
-    let mut count = 0;
     let mut asked = 0;
     while let Some(Reverse((_, v))) = heap.pop() {
         asked += 1;
@@ -151,7 +161,6 @@ pub fn simplify(
         }
         around[v].clear();
         removed[v] = true;
-        count += 1;
         let qv = quadric[v];
         quadric[w] += qv;
         let mut touched: Vec<usize> = around[w]
@@ -167,10 +176,9 @@ pub fn simplify(
     }
     // Keep the vertices left, in order, and the triangles.
     let mut index = vec![usize::MAX; n];
-    let mut kept = Vec::with_capacity(n - count);
-    for v in (0..n).filter(|&v| !removed[v]) {
-        index[v] = kept.len();
-        kept.push(pos[v]);
+    let kept: Vec<usize> = (0..n).filter(|&v| !removed[v]).collect();
+    for (k, &v) in kept.iter().enumerate() {
+        index[v] = k;
     }
     let faces: Vec<Vec<usize>> = tris
         .iter()
@@ -179,9 +187,9 @@ pub fn simplify(
         .map(|(t, _)| t.iter().map(|&v| index[v]).collect())
         .collect();
     // Each collapse keeps a manifold mesh of valid faces; should one not, the input stays.
-    match PolyMesh::new(kept, faces) {
-        Ok(simplified) => (simplified, count),
-        Err(_) => (mesh.clone(), 0),
+    match PolyMesh::new(kept.iter().map(|&v| pos[v]).collect(), faces) {
+        Ok(simplified) => (simplified, kept),
+        Err(_) => (mesh.clone(), (0..n).collect()),
     }
 }
 

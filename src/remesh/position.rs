@@ -25,7 +25,7 @@ use super::linalg::conjugate_gradient;
 use super::scale;
 use super::surface::Surface;
 use crate::mesh::PolyMesh;
-use crate::mesh::simplify::simplify;
+use crate::mesh::simplify::simplify_mapped;
 use crate::parallel::Scatter;
 
 /// The solved lattice: origins and per-edge integer offsets.
@@ -233,9 +233,9 @@ fn solve_level(
      -> (Vec<f64>, Vec<[i64; 2]>) {
         let mut active = vec![false; 2 * n];
         let mut pinned_normal = vec![false; n];
-        // Jumps as read before the last cancellation, to fall back on when cancelling strains
-        // the lattice too much (a shell whose rows must really end somewhere, like a dome
-        // with rows along its rim).
+        // Cancelling stops for good once a cancellation strained the lattice too much and
+        // `uncancelled`, the jumps as read before it, were taken back (a shell whose rows
+        // must really end somewhere, like a dome with rows along its rim).
         let mut cancelling = true;
         for round in first..ROUNDS {
             let share = |within: f64| (round as f64 + within) / ROUNDS as f64;
@@ -352,8 +352,8 @@ const COARSE_EDGE: f64 = 2.0;
 /// adds up to whole rows on single edges, the rounding ends rows where they should end, and
 /// each fine vertex takes the corner of the coarse lattice nearest to it (from the kept
 /// vertex nearest to it in steps along the edges). `None` when the copy cannot be made
-/// (the working surface is not a valid mesh for simplification, nothing is simplified, a
-/// kept vertex is not found) or the budget stopped it.
+/// (the working surface is not a valid mesh for simplification, or nothing is simplified)
+/// or the budget stopped it.
 fn coarse_start(
     s: &Surface,
     frames: &[Vector3<f64>],
@@ -367,25 +367,16 @@ fn coarse_start(
         s.tris.iter().map(|t| t.to_vec()).collect(),
     )
     .ok()?;
-    let (coarse, removed) = simplify(&fine, COARSE_EDGE * t, &mut || budget.poll(0.0));
-    if removed == 0 || budget.stopped().is_some() {
+    let (coarse, kept) = simplify_mapped(&fine, COARSE_EDGE * t, &mut || budget.poll(0.0));
+    if kept.len() == s.len() || budget.stopped().is_some() {
         return None;
     }
-    // Every vertex simplification keeps is a vertex of `s`, at the same place and in the same
-    // order (vertices at one place, as the copies of a crease's vertices on its two sheets,
-    // are told apart by the order).
-    let mut kept = Vec::with_capacity(coarse.positions().len());
-    let mut next = 0;
-    for p in coarse.positions() {
-        next += s.pos[next..].iter().position(|q| *q == p.coords)?;
-        kept.push(next);
-        next += 1;
-    }
+    // Simplification leaves triangles.
     let tris: Vec<[usize; 3]> = coarse
         .faces()
         .iter()
-        .flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]]))
-        .collect();
+        .map(|f| <[usize; 3]>::try_from(f.as_slice()).ok())
+        .collect::<Option<_>>()?;
     let mut copy = Surface::build(
         kept.iter().map(|&v| s.pos[v]).collect(),
         tris,
