@@ -308,12 +308,12 @@ fn solve_level(
     };
     let mut restarted = false;
     if coarse && budget.stopped().is_none() {
-        let strained = system.strained_share(&m, &u);
+        let strained = system.strained_share(&m, &u, STRETCH);
         if strained > STRETCHED {
             if let Some(start) = coarse_start(s, frames, &basis, t, pin, budget) {
                 let m2 = jumps(&start);
                 let (u2, m2) = rounds(start, m2, 0, None, budget);
-                if system.strained_share(&m2, &u2) < strained {
+                if system.strained_share(&m2, &u2, STRETCH) < strained {
                     (u, m) = (u2, m2);
                     restarted = true;
                 }
@@ -329,14 +329,21 @@ fn solve_level(
     }
 }
 
-/// Share of the edges strained ([`STRAIN`]) above which the lattice counts as stretched and
-/// is solved again from a coarse start ([`coarse_start`]). A lattice whose rows must end
-/// all over a wide part of the surface (rings of a dome of revolution, a bell, an annular
-/// vault: the rows at the rim are two or three times as many as at the top) but whose first
-/// lattice ends none there keeps its rows and stretches them: 5-48 % of the edges strained
-/// and quads of up to four target edges. Of eleven shells of the benchmark sets measured, at
-/// most 3.4 % are (a cone, whose rows converge everywhere), and none of the 29 passes this.
-const STRETCHED: f64 = 0.04;
+/// Share of the edges stretched by over [`STRETCH`] above which the lattice counts as
+/// stretched and is solved again from a coarse start ([`coarse_start`]). A lattice whose
+/// rows must end all over a wide part of the surface (rings of a dome of revolution, a bell,
+/// an annular vault: the rows at the rim are two or three times as many as at the top; a
+/// designer's field along a dome's meridians, whose columns converge on the crown) but whose
+/// first lattice ends none there keeps its rows and stretches them: 9-82 % of the edges
+/// stretched, quads of up to four target edges and, on the meridians, a hole at the crown.
+/// Of the 29 shells of the benchmark sets at most 5.8 % are (a cone, whose rows converge
+/// everywhere: its coarse start is worse and not kept), then 4.0 % (a torus patch).
+const STRETCHED: f64 = 0.07;
+
+/// Relative edge misfit counted as stretch for [`STRETCHED`]: lower than [`STRAIN`], as a
+/// lattice that keeps its rows spreads the shortfall thinly (the meridian field's: 3.6 % of
+/// its edges strained by half, 12 % by a third).
+const STRETCH: f64 = 0.35;
 
 /// Longest edge of the coarse copy, in target edges.
 const COARSE_EDGE: f64 = 2.0;
@@ -441,12 +448,12 @@ impl System<'_> {
     /// True when more than [`STRAINED_FRACTION`] of the edges disagree with their lattice
     /// step by over [`STRAIN`] of their length.
     fn strained(&self, m: &[[i64; 2]], u: &[f64]) -> bool {
-        self.strained_share(m, u) > STRAINED_FRACTION
+        self.strained_share(m, u, STRAIN) > STRAINED_FRACTION
     }
 
-    /// Share of the edges that disagree with their lattice step by over [`STRAIN`] of their
+    /// Share of the edges that disagree with their lattice step by over `strain` of their
     /// length.
-    fn strained_share(&self, m: &[[i64; 2]], u: &[f64]) -> f64 {
+    fn strained_share(&self, m: &[[i64; 2]], u: &[f64], strain: f64) -> f64 {
         let count = self
             .s
             .edges
@@ -458,7 +465,7 @@ impl System<'_> {
                 let r = self.delta[e] + self.transfer[e] * ub
                     - ua
                     - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t;
-                r.norm() > STRAIN * self.delta[e].norm()
+                r.norm() > strain * self.delta[e].norm()
             })
             .count();
         count as f64 / self.s.edges.len().max(1) as f64
