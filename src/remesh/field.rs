@@ -179,7 +179,7 @@ pub(crate) fn principal_curvatures(s: &Surface, reach: f64) -> Vec<Option<Princi
 /// directions: on such a hemisphere (facets of 196 mm, triangles of 98 mm) 29 % of the
 /// vertices read as anisotropic and the field turned into rings along the rim (83 irregular
 /// vertices instead of 16 on the same hemisphere meshed in rows); read over three quad
-/// edges, none does (two leave rings near the rim, four gain nothing: README, *Curvature
+/// edges, none does (two leave rings near the rim, four gain nothing: docs/journal.md, *Curvature
 /// read at the tile's scale*).
 pub(crate) const CURVATURE_REACH: f64 = 3.0;
 

@@ -41,7 +41,7 @@ pub struct Sequence {
     /// it) rather than along the level: a course of them climbs. Level courses
     /// ([`crate::pattern::Courses::Level`]) keep this near zero only where one family of the
     /// quad rows is level (barrels, webs); on shells curved both ways, where rows turn, a
-    /// region's courses are level on one side and climb on another (README, *Level courses
+    /// region's courses are level on one side and climb on another (docs/journal.md, *Level courses
     /// are not level everywhere*).
     pub climbing_tiles: usize,
 }

@@ -121,7 +121,7 @@ fn tear_gap(spec: &TileSpec) -> f64 {
 /// ([`solve`]'s `capped`), in [`wide_gap`]s beyond the joint: 1.5 (a 25 mm gap on a 10 mm
 /// joint), so that joints that cannot close gather into tears that take a piece. Measured
 /// on 51 runs (the shared surfaces, domes triangulated four ways, cross vaults, sails,
-/// saddles and barrels at 260, 280 and 300 mm tiles; README *Joints that cannot close
+/// saddles and barrels at 260, 280 and 300 mm tiles; docs/journal.md *Joints that cannot close
 /// become tears*): the summed p95 deviation 250 -> 198 mm, tiles cut to fit 330 -> 186; at
 /// 1 and 2 the domes gain as much but the tubemesh loses (p95 5.0 -> 6.6 mm at 1), at 3
 /// the domes gain less.
