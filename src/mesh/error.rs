@@ -14,7 +14,9 @@ pub enum MeshError {
         faces: usize,
     },
     /// A coordinate is NaN or infinite.
-    #[error("vertex {vertex} has a NaN or infinite coordinate")]
+    #[error(
+        "vertex {vertex} has a NaN or infinite coordinate; fix or delete that vertex (an export gone wrong: export the mesh again)"
+    )]
     NonFiniteCoordinate {
         /// The vertex at fault.
         vertex: usize,
@@ -32,7 +34,9 @@ pub enum MeshError {
         limit: f64,
     },
     /// A face has fewer than three vertices.
-    #[error("face {face} has {count} vertices; a face needs at least 3")]
+    #[error(
+        "face {face} has {count} vertices; a face needs at least 3: delete that face (Rhino: CullDegenerateMeshFaces)"
+    )]
     TooFewVertices {
         /// The face at fault.
         face: usize,
@@ -52,7 +56,9 @@ pub enum MeshError {
         vertex_count: usize,
     },
     /// A face lists the same vertex twice.
-    #[error("face {face} uses vertex {vertex} more than once")]
+    #[error(
+        "face {face} uses vertex {vertex} more than once; delete that face or give it its distinct corners (Rhino: CullDegenerateMeshFaces)"
+    )]
     RepeatedIndex {
         /// The face at fault.
         face: usize,
@@ -61,7 +67,7 @@ pub enum MeshError {
     },
     /// An edge is shared by more than two faces.
     #[error(
-        "edge {a}-{b} is shared by {face_count} faces (faces {faces:?}); a surface edge may border at most 2 faces"
+        "edge {a}-{b} is shared by {face_count} faces (faces {faces:?}); a surface edge may border at most 2 faces: a fin, a wall or a second shell meets the surface there, so delete those faces or tile each part as a mesh of its own (Rhino: ExtractNonManifoldMeshEdges shows them)"
     )]
     NonManifoldEdge {
         /// First vertex of the edge.
