@@ -209,6 +209,32 @@ mod tests {
     }
 
     #[test]
+    fn the_relaxation_of_odd_closed_courses_is_their_optimum() {
+        // Three rings of seven quads in level courses: three tiles each. Eq. (1) alone
+        // lets every tile take one half, 3.5 a ring (10.5); the rings' odd-set rows close it.
+        let mesh = crate::pattern::program::tests::tube(7, 3);
+        let topology = Topology::new(&mesh).unwrap();
+        let middle =
+            crate::pattern::courses::middle_edges(&mesh, &topology, [0.0, 0.0, 1.0]).unwrap();
+        let graph = DualGraph::restricted(&mesh, &topology, &[], Some(&middle));
+        let found = bound(
+            &graph,
+            &Terms::uniform(&graph, Bond::Stack),
+            None,
+            Duration::from_secs(20),
+            &mut Control::none(),
+            || 0.0,
+        )
+        .unwrap()
+        .unwrap();
+        assert!(
+            found.converged && (9.0 - 1e-6..9.0 + 1e-6).contains(&found.value),
+            "{}",
+            found.value
+        );
+    }
+
+    #[test]
     fn the_star_rows_relaxation_proves_the_papers_figure_5() {
         // 10 x 10, w = 2: 49 tiles and no joint is optimal, one tile short of a perfect
         // matching; the relaxation with the star rows proves it (its optimum rounds to 49).
