@@ -1290,7 +1290,30 @@ fn bad_remesh_options_are_refused() {
         "surfaces touching at a vertex",
         remesh::remesh(&bowtie, &options),
         |e| matches!(e, RemeshError::UnsupportedInput(_)),
-        &["vertex 2"],
+        &["vertex 2 (counted from 0) at (1.0000, 1.0000, 0.0000)"],
+    );
+    // The same with the shared vertex last in the file: the message names the file's
+    // number for it, not the order the faces first use it in (it said "vertex 2").
+    let bowtie = generate::triangulate_quads(
+        &PolyMesh::new(
+            points(&[
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [2.0, 1.0, 0.0],
+                [2.0, 2.0, 0.0],
+                [1.0, 2.0, 0.0],
+                [1.0, 1.0, 0.0],
+            ]),
+            vec![vec![0, 1, 6, 2], vec![6, 3, 4, 5]],
+        )
+        .unwrap(),
+    );
+    refused(
+        "surfaces touching at a vertex listed last",
+        remesh::remesh(&bowtie, &options),
+        |e| matches!(e, RemeshError::UnsupportedInput(_)),
+        &["vertex 6 (counted from 0) at (1.0000, 1.0000, 0.0000)"],
     );
 
     // The whole pipeline refuses a tile far too small for the surface before remeshing.

@@ -169,7 +169,7 @@ pub fn joint_checks(report: &Report) -> Vec<Warning> {
         out.push(Warning::new(
             WarningCode::WideJoints,
             format!(
-                "the joints stray from the nominal joint: p95 |gap - joint| is {:.2} joint widths and the widest gap {:.0} joint widths (report: joints, in model units); wedge-shaped joints open where courses converge, so look at gaps.svg before laying, and fill or cut where it is red",
+                "the joints stray from the nominal joint: p95 |gap - joint| is {:.2} joint widths and the widest gap {:.0} joint widths (report: joints, in model units); wedge-shaped joints open where courses converge, and a course closed on itself (a ring round a tower, a drum or a dome) whose length is not a whole number of tiles spreads the difference over its head joints, so look at gaps.svg before laying, and fill or cut where it is red",
                 j.p95_deviation / j.joint,
                 j.max_gap / j.joint
             ),
@@ -235,20 +235,29 @@ pub fn check(
     }
     out.extend(joint_checks(report));
     if let Some(s) = &report.sequence {
-        match s.support {
-            Support::Edges => {}
-            Support::NoBoundary => out.push(Warning::new(
-                WarningCode::NoSupport,
-                "the quad mesh has no boundary, so no tile stands on a support and the laying order's props mean nothing: open the surface where the vault stands",
-            )),
-            Support::Level => out.push(Warning::new(
-                WarningCode::NoSupport,
-                "the surface is level (it rises less than the support band): every tile lies on the ground or formwork and none needs a prop; give --up (up) if the vault stands another way",
-            )),
-        }
+        let closed = out.iter().any(|w| w.code == WarningCode::ClosedSurface);
+        out.extend(no_support(s.support, closed));
     }
     out.sort_by_key(|w| w.code);
     out
+}
+
+/// What the laying order stands on, when it is nothing a vault stands on: a surface without
+/// boundary (`closed`, or an open one whose openings the quads closed over) or a level one.
+fn no_support(support: Support, closed: bool) -> Option<Warning> {
+    let message = match support {
+        Support::Edges => return None,
+        Support::NoBoundary if closed => {
+            "the quad mesh has no boundary, so no tile stands on a support and the laying order's props mean nothing: open the surface where the vault stands"
+        }
+        Support::NoBoundary => {
+            "the quad mesh has no boundary although the surface has: its openings are too small for the quads, which closed over them (the tiles are still cut to them), so no tile stands on a support and the laying order's props mean nothing; open the surface where the vault stands, at least a few tiles wide, or remesh with smaller quads"
+        }
+        Support::Level => {
+            "the surface is level (it rises less than the support band): every tile lies on the ground or formwork and none needs a prop; give --up (up) if the vault stands another way"
+        }
+    };
+    Some(Warning::new(WarningCode::NoSupport, message))
 }
 
 /// Checks of the surface alone: closed, in pieces, upside down.
@@ -451,6 +460,28 @@ mod tests {
             tight.message
         );
         assert!(curvature(&half_cylinder(10.0), &TILE).is_none());
+    }
+
+    #[test]
+    fn a_laying_order_on_nothing_says_why() {
+        assert!(no_support(Support::Edges, false).is_none());
+        let closed = no_support(Support::NoBoundary, true).expect("closed");
+        assert_eq!(closed.code, WarningCode::NoSupport);
+        assert!(
+            closed.message.contains("open the surface"),
+            "{}",
+            closed.message
+        );
+        // An open surface whose small opening the quads closed over is not told to open
+        // itself as if it had none (it said "open the surface where the vault stands").
+        let closed_over = no_support(Support::NoBoundary, false).expect("closed over");
+        assert!(
+            closed_over.message.contains("although the surface has"),
+            "{}",
+            closed_over.message
+        );
+        let level = no_support(Support::Level, false).expect("level");
+        assert!(level.message.contains("level"), "{}", level.message);
     }
 
     #[test]

@@ -76,8 +76,13 @@ impl Surface {
         }
         let surface = Self::build(pos, tris, None);
         if let Some(v) = surface.pinched_vertex() {
+            // `v` numbers the vertices as the faces first use them: the message names the
+            // mesh's own number and where it is.
+            let own = remap.iter().position(|&r| r == v).unwrap_or(v);
+            let p = mesh.positions()[own];
             return Err(RemeshError::UnsupportedInput(format!(
-                "vertex {v} is where two boundary loops or two surface sheets touch; split it into separate vertices"
+                "vertex {own} (counted from 0) at ({:.4}, {:.4}, {:.4}) is where two boundary loops or two surface sheets touch at a single point; split it into separate vertices, one per sheet, or delete the faces of one sheet around it",
+                p.x, p.y, p.z
             )));
         }
         Ok((surface, remap))
