@@ -1271,50 +1271,45 @@ fn bad_remesh_options_are_refused() {
         |e| matches!(e, RemeshError::UnsupportedInput(_)),
         &["no area"],
     );
-    let bowtie = generate::triangulate_quads(
-        &PolyMesh::new(
-            points(&[
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [2.0, 1.0, 0.0],
-                [2.0, 2.0, 0.0],
-                [1.0, 2.0, 0.0],
-            ]),
-            vec![vec![0, 1, 2, 3], vec![2, 4, 5, 6]],
-        )
-        .unwrap(),
-    );
-    refused(
-        "surfaces touching at a vertex",
-        remesh::remesh(&bowtie, &options),
-        |e| matches!(e, RemeshError::UnsupportedInput(_)),
-        &["vertex 2 (counted from 0) at (1.0000, 1.0000, 0.0000)"],
-    );
-    // The same with the shared vertex last in the file: the message names the file's
-    // number for it, not the order the faces first use it in (it said "vertex 2").
-    let bowtie = generate::triangulate_quads(
-        &PolyMesh::new(
-            points(&[
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [2.0, 1.0, 0.0],
-                [2.0, 2.0, 0.0],
-                [1.0, 2.0, 0.0],
-                [1.0, 1.0, 0.0],
-            ]),
-            vec![vec![0, 1, 6, 2], vec![6, 3, 4, 5]],
-        )
-        .unwrap(),
-    );
-    refused(
-        "surfaces touching at a vertex listed last",
-        remesh::remesh(&bowtie, &options),
-        |e| matches!(e, RemeshError::UnsupportedInput(_)),
-        &["vertex 6 (counted from 0) at (1.0000, 1.0000, 0.0000)"],
-    );
+    // Two squares touching at (1, 1): that vertex third in the file, then last. The message
+    // names the file's number for it, not the order the faces first use it in (it said
+    // "vertex 2" for both).
+    let others = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [2.0, 1.0, 0.0],
+        [2.0, 2.0, 0.0],
+        [1.0, 2.0, 0.0],
+    ];
+    for (what, shared, expected) in [
+        (
+            "surfaces touching at a vertex",
+            2,
+            "vertex 2 (counted from 0) at (1.0000, 1.0000, 0.0000)",
+        ),
+        (
+            "surfaces touching at a vertex listed last",
+            6,
+            "vertex 6 (counted from 0) at (1.0000, 1.0000, 0.0000)",
+        ),
+    ] {
+        let mut xyz = others.to_vec();
+        xyz.insert(shared, [1.0, 1.0, 0.0]);
+        // The other six in the file's order, around the shared vertex.
+        let other: Vec<usize> = (0..7).filter(|&v| v != shared).collect();
+        let faces = vec![
+            vec![other[0], other[1], shared, other[2]],
+            vec![shared, other[3], other[4], other[5]],
+        ];
+        let bowtie = generate::triangulate_quads(&PolyMesh::new(points(&xyz), faces).unwrap());
+        refused(
+            what,
+            remesh::remesh(&bowtie, &options),
+            |e| matches!(e, RemeshError::UnsupportedInput(_)),
+            &[expected],
+        );
+    }
 
     // The whole pipeline refuses a tile far too small for the surface before remeshing.
     let tiny = TileSpec {

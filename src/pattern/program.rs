@@ -440,6 +440,15 @@ pub(super) mod tests {
         PolyMesh::new(points, faces).unwrap()
     }
 
+    /// The dual graph of [`tube`] in level courses (up along its axis): each ring a course
+    /// closed on itself.
+    pub(crate) fn tube_in_courses(around: usize, rows: usize) -> DualGraph {
+        let mesh = tube(around, rows);
+        let topology = Topology::new(&mesh).unwrap();
+        let middle = courses::middle_edges(&mesh, &topology, [0.0, 0.0, 1.0]).unwrap();
+        DualGraph::restricted(&mesh, &topology, &[], Some(&middle))
+    }
+
     /// A random pattern: the tiles in random order, each taken with probability 3/4 when
     /// its faces are still free.
     fn random_pattern(graph: &DualGraph, rng: &mut Rng) -> Vec<bool> {
@@ -463,12 +472,7 @@ pub(super) mod tests {
     /// 5), excluded faces, tiles restricted to courses, courses closed on themselves (odd
     /// and even rings of a tube).
     fn graphs() -> Vec<DualGraph> {
-        let mut graphs = Vec::new();
-        for mesh in [tube(7, 3), tube(6, 2)] {
-            let topology = Topology::new(&mesh).unwrap();
-            let middle = courses::middle_edges(&mesh, &topology, [0.0, 0.0, 1.0]).unwrap();
-            graphs.push(DualGraph::restricted(&mesh, &topology, &[], Some(&middle)));
-        }
+        let mut graphs = vec![tube_in_courses(7, 3), tube_in_courses(6, 2)];
         for mesh in [
             generate::grid(6, 5),
             ragged(8),
@@ -632,10 +636,7 @@ pub(super) mod tests {
     fn an_odd_closed_course_gets_one_row_and_an_even_one_none() {
         // Two rings of `around` quads: both odd, or both even.
         for (around, rings) in [(7, 2), (6, 0), (5, 2)] {
-            let mesh = tube(around, 2);
-            let topology = Topology::new(&mesh).unwrap();
-            let middle = courses::middle_edges(&mesh, &topology, [0.0, 0.0, 1.0]).unwrap();
-            let graph = DualGraph::restricted(&mesh, &topology, &[], Some(&middle));
+            let graph = tube_in_courses(around, 2);
             assert!(graph.in_courses());
             let found = odd_rings(&graph, &|_| true);
             assert_eq!(found.len(), rings, "{around} round");
