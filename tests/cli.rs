@@ -546,7 +546,7 @@ fn remesh_and_run_go_from_triangles_to_tiles() {
 }
 
 #[test]
-fn run_tries_four_quad_meshes_and_says_which_tiles_it_kept() {
+fn run_tries_five_quad_meshes_and_says_which_tiles_it_kept() {
     let dir = scratch("run-tries");
     let surface = dir.join("saddle.obj");
     std::fs::write(&surface, saddle_obj()).unwrap();
@@ -564,10 +564,20 @@ fn run_tries_four_quad_meshes_and_says_which_tiles_it_kept() {
     );
     let report = json(&auto.join("report.json"));
     let tries = report["tries"].as_array().expect("tries listed");
-    assert_eq!(tries.len(), 4, "{report}");
-    // The curvature field, the smooth field, then the curvature field at two more strengths.
+    assert_eq!(tries.len(), 5, "{report}");
+    // The curvature field, the smooth field, then the curvature field at two more strengths,
+    // then the smooth field's quads laid out for the level courses (written for it alone).
     let fields: Vec<&str> = tries.iter().map(|t| t["field"].as_str().unwrap()).collect();
-    assert_eq!(fields, ["curvature", "smooth", "curvature", "curvature"]);
+    assert_eq!(
+        fields,
+        ["curvature", "smooth", "curvature", "curvature", "smooth"]
+    );
+    let along: Vec<bool> = tries
+        .iter()
+        .map(|t| t.get("quads_along_courses").is_some_and(|a| a == true))
+        .collect();
+    assert_eq!(along, [false, false, false, false, true]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("quads along the courses"));
     let chosen = report["chosen_try"].as_u64().unwrap() as usize;
     let rank = |t: &serde_json::Value| {
         (
@@ -604,7 +614,7 @@ fn run_tries_four_quad_meshes_and_says_which_tiles_it_kept() {
     let report = json(&one.join("report.json"));
     assert!(report.get("tries").is_none() && report.get("chosen_try").is_none());
 
-    let bad = run(&["--tries", "5"], &dir.join("bad"));
+    let bad = run(&["--tries", "6"], &dir.join("bad"));
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--tries"));
     // Each try's `key` in the report of a run with `extra` options.
@@ -615,12 +625,14 @@ fn run_tries_four_quad_meshes_and_says_which_tiles_it_kept() {
         let tries = report["tries"].as_array().unwrap();
         tries.iter().map(|t| t[key].clone()).collect()
     };
-    // The tries start from --renormalisation: the smooth field at it, then twice and half.
+    // The tries start from --renormalisation: the smooth field at it, then twice and half,
+    // then the smooth field's quads along the courses at it.
     assert_eq!(
         listed(&["--renormalisation", "0.3"], "renormalisation"),
-        [0.3, 0.3, 0.6, 0.15]
+        [0.3, 0.3, 0.6, 0.15, 0.3]
     );
-    // --smooth asks for the smooth field: every try has it.
+    // --smooth asks for the smooth field: every try has it, and no smooth try of its own is
+    // added (nor its quads along the courses).
     assert_eq!(listed(&["--smooth"], "field"), ["smooth"; 3]);
     // With a direction asked for, no smooth try: what the designer asked is kept.
     assert_eq!(listed(&["--direction", "1,0,0"], "field"), ["direction"; 3]);

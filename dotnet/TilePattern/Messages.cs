@@ -142,8 +142,9 @@ namespace TilePattern
             int chosen = report.ChosenTry;
             if (tries.Length == 0 || chosen < 0 || chosen >= tries.Length)
                 return new UserMessage(MessageLevel.Remark, "One quad mesh tried (Tries 1, or 0 on a surface of more than 10,000 quads).");
-            Func<int, string> head = k => string.Format(culture, "try {0} ({1}renormalisation {2:G3})", k + 1,
-                tries[k].Field == null || tries[k].Field == "curvature" ? "" : tries[k].Field + " field, ", tries[k].Renormalisation);
+            Func<int, string> head = k => string.Format(culture, "try {0} ({1}{2}renormalisation {3:G3})", k + 1,
+                tries[k].Field == null || tries[k].Field == "curvature" ? "" : tries[k].Field + " field, ",
+                tries[k].QuadsAlongCourses ? "quads along the courses, " : "", tries[k].Renormalisation);
             Func<int, string> figures = k =>
             {
                 TryReport t = tries[k];

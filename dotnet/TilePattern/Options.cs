@@ -548,7 +548,7 @@ namespace TilePattern
         /// <see cref="RemeshOptions.Renormalisation"/>, a smooth field at it (following neither the
         /// curvature nor anything else; made only when no direction, angle, designer's field or
         /// guide curves are given), then twice and half the strength.</summary>
-        public const int MaxTries = 4;
+        public const int MaxTries = 5;
 
         /// <summary>The library's defaults: <see cref="Tries"/> 0 (automatic).</summary>
         public RunOptions()
@@ -566,10 +566,12 @@ namespace TilePattern
 
         /// <summary>How many quad meshes of the surface to carry through the pattern, the tiles
         /// and the fit, keeping the tiles that fit best: 0 (default) for the command line's
-        /// choice (4 when the surface needs at most 10,000 quads of
+        /// choice (all when the surface needs at most 10,000 quads of
         /// <see cref="RemeshOptions.TargetEdge"/>, else 1), or 1 to <see cref="MaxTries"/>
         /// (the strength <see cref="RemeshOptions.Renormalisation"/>, the smooth field at it, then
-        /// twice and half the strength, in this order; <see cref="TryReport.Field"/> names each). 1 gives what <see cref="TilePatternEngine.Remesh"/>,
+        /// twice and half the strength, then the smooth field's quads laid out for level courses,
+        /// in this order; <see cref="TryReport.Field"/> and <see cref="TryReport.QuadsAlongCourses"/>
+        /// name each). 1 gives what <see cref="TilePatternEngine.Remesh"/>,
         /// <see cref="TilePatternEngine.Match"/> and <see cref="TilePatternEngine.Tiles(Pattern, TileOptions, PolyMesh)"/>
         /// give one by one. Anything else throws <see cref="ArgumentOutOfRangeException"/>
         /// when the run starts.</summary>
@@ -579,7 +581,7 @@ namespace TilePattern
         internal TpRunOptions ToNative()
         {
             if (Tries < 0 || Tries > MaxTries)
-                throw new ArgumentOutOfRangeException("Tries", Tries, "Tries is 0 (automatic: 4 on a surface of at most 10,000 quads, else 1) or 1 to " + MaxTries + ", not " + Tries);
+                throw new ArgumentOutOfRangeException("Tries", Tries, "Tries is 0 (automatic: all on a surface of at most 10,000 quads, else 1) or 1 to " + MaxTries + ", not " + Tries);
             TpRunOptions o = NativeMethods.RunDefaults();
             o.struct_size = (uint)Marshal.SizeOf(typeof(TpRunOptions));
             o.tries = (uint)Tries;

@@ -625,6 +625,10 @@ namespace TilePattern
         /// (nothing: the boundary and smoothness alone, the last automatic try), "direction" or
         /// "angle".</summary>
         public string Field { get; internal set; }
+        /// <summary>Whether its quads are laid out for level courses, half a tile and a joint
+        /// along them and a course's pitch across (the fifth automatic try; report.json's
+        /// <c>quads_along_courses</c>).</summary>
+        public bool QuadsAlongCourses { get; internal set; }
         /// <summary>Faces of its quad mesh (0 when it failed).</summary>
         public int Quads { get; internal set; }
         /// <summary>Interior irregular vertices of its quad mesh.</summary>
@@ -660,6 +664,7 @@ namespace TilePattern
             {
                 Renormalisation = JsonAccess.Number(t, "renormalisation"),
                 Field = JsonAccess.Text(t, "field") ?? "curvature",
+                QuadsAlongCourses = JsonAccess.Flag(t, "quads_along_courses"),
                 Quads = JsonAccess.Integer(t, "quads"),
                 InteriorIrregularVertices = JsonAccess.Integer(t, "interior_irregular_vertices"),
                 P95Deviation = JsonAccess.Number(t, "p95_deviation"),

@@ -234,9 +234,10 @@ namespace TilePattern
 
         /// <summary>The whole pipeline in one call, as the command line's <c>run</c>: remeshes
         /// <paramref name="surface"/> (a triangle or polygon mesh), matches the quads and lays,
-        /// fits and cuts the tiles to the surface's boundary, on up to four quad meshes
+        /// fits and cuts the tiles to the surface's boundary, on up to five quad meshes
         /// (<see cref="RunOptions.Tries"/>: the strength <see cref="RemeshOptions.Renormalisation"/>,
-        /// the smooth field at it, twice and half the strength), and keeps the tiles that fit best: first those whose joints
+        /// the smooth field at it, twice and half the strength, the smooth field's quads laid
+        /// out for level courses), and keeps the tiles that fit best: first those whose joints
         /// the report does not flag (<see cref="TilingWarningCode.WideJoints"/>), then the lowest
         /// score (percent of tiles cut + p95 joint deviation per half joint + percent of the
         /// surface uncovered). The kept tiling's <see cref="Report.Tries"/> lists every try and

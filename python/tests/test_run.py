@@ -137,10 +137,14 @@ def test_three_tries_are_listed_and_the_best_is_kept(dome, stages):
     # The report as plain data and as JSON says the same.
     report = json.loads(json.dumps(result.tiles.to_dict()))["report"]
     assert len(report["tries"]) == 3 and report["chosen_try"] == chosen
-    # 0 (automatic) makes 4 tries on this surface (268 quads, at most 10,000): the same three
-    # and the curvature field at half the strength, and keeps the best of the four.
+    # 0 (automatic) makes 5 tries on this surface (268 quads, at most 10,000): the same three,
+    # the curvature field at half the strength and, in level courses with quads of a course's
+    # pitch (0.15, against 0.145 for half a tile and a joint), the smooth field's quads laid
+    # out for the courses; and keeps the best of the five.
     auto = tp.run(V, F, **LEVEL)
-    assert len(auto.tries) == 4 and auto.tries[3]["renormalisation"] == pytest.approx(0.25)
+    assert len(auto.tries) == 5 and auto.tries[3]["renormalisation"] == pytest.approx(0.25)
+    assert [t.get("quads_along_courses", False) for t in auto.tries] == [False] * 4 + [True]
+    assert auto.tries[4]["field"] == "smooth"
     assert [t["score"] for t in auto.tries[:3]] == [t["score"] for t in tries]
     ranks = [(t["wide_joints"], t["score"]) for t in auto.tries]
     assert auto.chosen_try == ranks.index(min(ranks))
@@ -188,10 +192,10 @@ def test_a_cancel_in_the_last_try_cancels_the_run(dome):
     assert heard[-1] >= 0.999 and heard[0] < 1.0 / 3
 
 
-@pytest.mark.parametrize("tries", [5, -1, 2.0, "2", True, None])
+@pytest.mark.parametrize("tries", [6, -1, 2.0, "2", True, None])
 def test_bad_tries_are_refused_by_name(dome, tries):
     V, F = dome
-    with pytest.raises(tp.InvalidArgumentError, match=r"^TP_INVALID_ARGUMENT \(2\): tries is .*0 \(automatic\) or 1 to 4"):
+    with pytest.raises(tp.InvalidArgumentError, match=r"^TP_INVALID_ARGUMENT \(2\): tries is .*0 \(automatic\) or 1 to 5"):
         tp.run(V, F, tries=tries, **LEVEL)
 
 

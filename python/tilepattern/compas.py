@@ -374,7 +374,7 @@ def run(mesh, zones=None, **options):
     """Tile a COMPAS surface in one call, keeping the best of a few quad meshes.
 
     :func:`tilepattern.run` on a COMPAS mesh: remesh, match and tiles (fitted, cut to the
-    surface), on up to four quad meshes (``tries``), the tiles that fit best kept.
+    surface), on up to five quad meshes (``tries``), the tiles that fit best kept.
 
     Parameters
     ----------

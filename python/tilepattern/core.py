@@ -1150,7 +1150,7 @@ class RunResult:
 
 
 #: Most quad meshes :func:`run` tries (the library's ``pipeline::MAX_TRIES``).
-MAX_TRIES = 4
+MAX_TRIES = 5
 
 
 def _tries(tries) -> int:
@@ -1219,10 +1219,10 @@ def run(
 
     As the command line's ``tilepattern run``: the surface is quadrangulated (:func:`remesh`),
     the quads matched (:func:`match`) and the tiles placed, fitted and cut to the surface
-    (:func:`tiles`), on up to four quad meshes, the field's cones placed by a
+    (:func:`tiles`), on up to five quad meshes, the field's cones placed by a
     renormalisation at ``renormalisation``, then a smooth field, then at twice and half the
-    strength (other strengths and fields give other, equally valid quads, which decide where
-    courses end). The tiles that fit
+    strength, then the smooth field's quads laid out for level courses (other strengths and
+    fields give other, equally valid quads, which decide where courses end). The tiles that fit
     best are kept: joints the report does not flag (``wide_joints``) first, then the fewest
     tiles cut to fit, joints closest to ``joint`` and most of the surface covered. One try
     gives exactly what :func:`remesh`, :func:`match` and :func:`tiles` give called one by one
@@ -1239,11 +1239,14 @@ def run(
         Its faces: triangles, quads or n-gons, mixed if need be.
     tries : int, optional
         How many quad meshes to carry through to tiles: 0 (default) for the command line's
-        choice, 4 when the surface needs at most 10,000 quads of ``target_edge`` (its area
-        over ``target_edge`` squared) and 1 otherwise; or 1 to 4: the renormalisation
-        strength given, a smooth field that follows neither the curvature nor anything else
-        (made only without a direction, angle, designer's field or guides: then at most 3),
-        then twice and half the strength. Anything else raises
+        choice, all of them when the surface needs at most 10,000 quads of ``target_edge``
+        (its area over ``target_edge`` squared) and 1 otherwise; or 1 to 5: the
+        renormalisation strength given, a smooth field that follows neither the curvature nor
+        anything else (made only without a direction, angle, designer's field or guides),
+        then twice and half the strength, then the smooth field's quads laid out for level
+        courses, half a tile and a joint along them and a course's pitch across (made only
+        in level courses with quads of a course's pitch: a course closed on itself, a
+        tower's or a drum's ring, then holds whole tiles at the nominal joint). Anything else raises
         :class:`~tilepattern.InvalidArgumentError` naming ``tries``. Each try has the
         stages' own time limits (a later try's pattern stage at most 10 s, but the smooth
         field's try the caller's where the first try's quads end rows all over the

@@ -262,13 +262,15 @@ impl FieldArgs {
 #[derive(clap::Args)]
 struct TriesArg {
     /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints closest
-    /// to the nominal one, most of the surface covered; report.json lists each try): 1 to 4,
+    /// to the nominal one, most of the surface covered; report.json lists each try): 1 to 5,
     /// the field's cones placed by a renormalisation at --renormalisation's strength (run;
     /// the default for demo), then a smooth field that follows neither the curvature nor
     /// anything else (made only when no --direction, --angle, --field or --guides is given),
-    /// then twice and half the strength. Default: 4 on surfaces of at most 10,000 quads, 1 on
-    /// larger ones. Each try has the stages' time limits.
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4))]
+    /// then twice and half the strength, then the smooth field's quads laid out for level
+    /// courses, half a tile and a joint along them (made only in level courses). Default: all
+    /// of them on surfaces of at most 10,000 quads, 1 on larger ones. Each try has the
+    /// stages' time limits.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=5))]
     tries: Option<u64>,
 }
 
@@ -567,8 +569,12 @@ fn run(cli: Cli) -> Result<()> {
                 o
             };
             let tries = tries.tries();
-            let mut line =
-                ProgressLine::on_stderr(log).with_tries(tries.count_for(surface.area(), &remesh));
+            let mut line = ProgressLine::on_stderr(log).with_tries(tries.count_for(
+                surface.area(),
+                &remesh,
+                &options,
+                &spec,
+            ));
             let found = pipeline::tile_surface_tries(
                 surface,
                 &remesh,
@@ -646,8 +652,12 @@ fn demo(
         o.fit = FinishOptions::for_spec(&spec).fit.filter(|_| !no_fit);
         o
     };
-    let mut line =
-        ProgressLine::on_stderr(log).with_tries(tries.count_for(surface.area(), &remesh));
+    let mut line = ProgressLine::on_stderr(log).with_tries(tries.count_for(
+        surface.area(),
+        &remesh,
+        &options,
+        &spec,
+    ));
     let found = pipeline::tile_surface_tries(
         &surface,
         &remesh,
@@ -1410,10 +1420,13 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
             .map(|(k, x)| {
                 let kept = if k == chosen { " <- kept" } else { "" };
                 // The field is named when it is not the curvature's (the smooth try).
-                let field = match x.field {
+                let mut field = match x.field {
                     "curvature" => String::new(),
                     other => format!("{other} field, "),
                 };
+                if x.quads_along_courses {
+                    field.push_str("quads along the courses, ");
+                }
                 match x.score {
                     None => format!(
                         "\n  try {} ({field}renormalisation {}): failed: {}",

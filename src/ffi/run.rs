@@ -22,9 +22,11 @@ pub struct TpRunOptions {
     /// `sizeof(TpRunOptions)` as compiled by the caller; set by the default initialiser.
     pub struct_size: u32,
     /// How many quad meshes to carry through to tiles: 0 (default) for the command line's
-    /// choice (3 when the surface needs at most 10,000 quads of `target_edge`, otherwise 1),
-    /// or 1 to 3: the remesh options' `renormalisation`, then twice and half of it. The tiles
-    /// that fit best are kept (README, *Tries*).
+    /// choice (all when the surface needs at most 10,000 quads of `target_edge`, otherwise
+    /// 1), or 1 to 5: the remesh options' `renormalisation`, then a smooth field (only when
+    /// the field follows the curvature alone), then twice and half the strength, then the
+    /// smooth field's quads laid out for level courses (only in level courses with quads
+    /// raised to a course's pitch). The tiles that fit best are kept (README, *Tries*).
     pub tries: u32,
 }
 
@@ -50,7 +52,7 @@ pub unsafe extern "C" fn tp_run_options_init(options: *mut TpRunOptions, size: u
 
 /// Tiles a triangle or polygon surface in one call, as the command line's `run`: quadrangulates
 /// it (`remesh`), matches the quads (`pattern`) and places, fits and cuts the tiles (`tiles`),
-/// on up to four quad meshes (`run->tries`), and keeps the tiles that fit best. Their report
+/// on up to five quad meshes (`run->tries`), and keeps the tiles that fit best. Their report
 /// (`tp_tiles_report_json`) lists every try (`tries`) and the one kept (`chosen_try`).
 ///
 /// `*out_tiles` gets the kept tiles; `*out_quads` and `*out_pattern` (each may be NULL when

@@ -26,15 +26,23 @@
 //! shells: a cone 62 -> 6 % of tiles cut, a funnel 20 -> 4 %, the tubemesh 3.2 -> 1.0 %;
 //! worse on a 3 m spherical cap, 12 -> 22 %, where the first try stays). It comes second,
 //! before the other strengths, as its gains are the larger and a later try whose pattern
-//! reaches its time limit ends the tries. The first try is what one run gives, so tries never do
-//! worse by the score. Each try is deterministic, so the kept one is too (ties go to the
+//! reaches its time limit ends the tries. In level courses whose quads are raised to a
+//! course's pitch (square quads longer than half a tile and a joint, [`TileSpec::quad_edge`])
+//! a fifth try lays the smooth field's quads out for the courses, half a tile and a joint
+//! along them and a pitch across ([`crate::remesh::CourseQuads`]): a course closed on itself
+//! (a tower, a drum) then holds whole tiles at the nominal joint, and on 15 of 26 shells
+//! (README, *Tries*) it fits best (the tubemesh 1.04 -> 0.43 % cut, the hypar's p95 3.2 ->
+//! 1.5 mm); with the curvature's field, or on every try, the quads' two sizes disagree where
+//! the crosses turn away from the level and it does worse as often as better
+//! (docs/journal.md, *Lattices that favour the courses*). The first try is what one run
+//! gives, so tries never do worse by the score. Each try is deterministic, so the kept one is too (ties go to the
 //! earlier try).
 
 use super::{Error, Tiling, tile_surface};
 use crate::control::{Control, Figures};
 use crate::mesh::PolyMesh;
-use crate::pattern::{PatternOptions, SolveStatus};
-use crate::remesh::{FieldDirection, RemeshError, RemeshOptions, Remeshed};
+use crate::pattern::{Courses, PatternOptions, SolveStatus};
+use crate::remesh::{CourseQuads, FieldDirection, RemeshError, RemeshOptions, Remeshed};
 use crate::report::warnings::WarningCode;
 use crate::report::{Report, TryFigures};
 use crate::tiles::{FinishOptions, FitStatus, TileSpec};
@@ -53,11 +61,23 @@ pub enum Tries {
 }
 
 impl Tries {
-    /// How many tries [`tile_surface_tries`] makes on a surface of `area` with `remesh`: as
-    /// [`Tries::count`], less the smooth try where the field does not follow the curvature
-    /// alone.
-    pub fn count_for(self, area: f64, remesh: &RemeshOptions) -> usize {
-        variants(remesh, self.count(area, remesh.target_edge)).len()
+    /// How many tries [`tile_surface_tries`] makes on a surface of `area` with `remesh`,
+    /// `options` and `spec`: as [`Tries::count`], less the smooth tries where the field does
+    /// not follow the curvature alone and the courses' quads where there are none.
+    pub fn count_for(
+        self,
+        area: f64,
+        remesh: &RemeshOptions,
+        options: &PatternOptions,
+        spec: &TileSpec,
+    ) -> usize {
+        let courses = course_quads(remesh, options, spec);
+        variants(
+            remesh,
+            courses.is_some(),
+            self.count(area, remesh.target_edge),
+        )
+        .len()
     }
 
     /// How many tries on a surface of `area` remeshed at edge `t`.
@@ -76,8 +96,9 @@ impl Tries {
     }
 }
 
-/// Most tries: the strength given, the smooth field, twice and half the strength.
-pub const MAX_TRIES: usize = 4;
+/// Most tries: the strength given, the smooth field, twice and half the strength, the smooth
+/// field's quads laid out for level courses.
+pub const MAX_TRIES: usize = 5;
 
 /// Quads (surface area over the target edge squared) up to which [`Tries::Auto`] tries
 /// [`MAX_TRIES`] quad meshes: the shared dome's 6,300 quads run in about 5 s on 2 cores.
@@ -90,24 +111,64 @@ pub const AUTO_TRIES_QUADS: f64 = 10_000.0;
 /// machine and not on a slower one.
 pub const LATER_PATTERN_SECONDS: std::time::Duration = std::time::Duration::from_secs(10);
 
-/// The quad meshes of the tries, in order: the renormalisation strength's factor, and
-/// whether the field follows nothing ([`FieldDirection::Smooth`]) instead of the curvature.
-const VARIANTS: [(f64, bool); MAX_TRIES] = [(1.0, false), (1.0, true), (2.0, false), (0.5, false)];
+/// One try's quad mesh: the renormalisation strength's factor, whether the field follows
+/// nothing ([`FieldDirection::Smooth`]) instead of the curvature, and whether its quads are
+/// laid out for level courses ([`CourseQuads`]).
+type Variant = (f64, bool, bool);
+
+/// The quad meshes of the tries, in order.
+const VARIANTS: [Variant; MAX_TRIES] = [
+    (1.0, false, false),
+    (1.0, true, false),
+    (2.0, false, false),
+    (0.5, false, false),
+    (1.0, true, true),
+];
+
+/// Shortest quad edge along the courses, as a share of the edge across them, for which the
+/// courses' quads are tried ([`course_quads`]): the pipeline's own quads for a tile of
+/// length about twice its width (280 x 140 mm with a 10 mm joint: 145 / 150), not a target
+/// edge the caller set far from half a tile.
+const ALONG_SHARE: f64 = 0.8;
+
+/// The courses' quads of the fifth try ([`VARIANTS`]): in level courses, half a tile and a
+/// joint along them where that is shorter than `remesh`'s target edge (raised to a course's
+/// pitch, [`TileSpec::quad_edge`]) by at most [`ALONG_SHARE`]; `None` otherwise.
+fn course_quads(
+    remesh: &RemeshOptions,
+    options: &PatternOptions,
+    spec: &TileSpec,
+) -> Option<CourseQuads> {
+    let Courses::Level { up } = options.courses else {
+        return None;
+    };
+    let up = nalgebra::Vector3::from(up).try_normalize(0.0)?;
+    let (along, t) = (spec.target_edge(), remesh.target_edge);
+    (along.is_finite() && along < t && along >= ALONG_SHARE * t).then_some(CourseQuads {
+        up: up.into(),
+        along,
+    })
+}
 
 /// The [`VARIANTS`] of the tries [`tile_surface_tries`] makes, at most `count` of them: a
 /// smooth try only where the field would follow the curvature alone (a direction, an angle,
-/// a designer's field or guide curves asked for are kept in every try).
-fn variants(remesh: &RemeshOptions, count: usize) -> Vec<(f64, bool)> {
+/// a designer's field or guide curves asked for are kept in every try), the courses' quads
+/// only where there are some (`courses`, [`course_quads`]).
+fn variants(remesh: &RemeshOptions, courses: bool, count: usize) -> Vec<Variant> {
     let curvature_alone = remesh.direction == FieldDirection::Curvature && !remesh.designer_pulls();
     VARIANTS
         .into_iter()
-        .filter(|&(_, smooth)| !smooth || curvature_alone)
+        .filter(|&(_, smooth, along)| (!smooth || curvature_alone) && (!along || courses))
         .take(count)
         .collect()
 }
 
-/// `remesh` as one of the [`variants`] asks for it.
-fn variant_options(remesh: &RemeshOptions, (factor, smooth): (f64, bool)) -> RemeshOptions {
+/// `remesh` as one of the [`variants`] asks for it, with the courses' quads `courses`.
+fn variant_options(
+    remesh: &RemeshOptions,
+    (factor, smooth, along): Variant,
+    courses: Option<CourseQuads>,
+) -> RemeshOptions {
     RemeshOptions {
         renormalisation: remesh.renormalisation * factor,
         direction: if smooth {
@@ -115,6 +176,7 @@ fn variant_options(remesh: &RemeshOptions, (factor, smooth): (f64, bool)) -> Rem
         } else {
             remesh.direction
         },
+        courses: courses.filter(|_| along),
         ..remesh.clone()
     }
 }
@@ -175,7 +237,12 @@ pub fn tile_surface_tries(
 ) -> Result<(Remeshed, Tiling), Error> {
     // Counted on the input as given, as a caller counts them for the progress
     // (`Tries::count_for` with the input's area).
-    let variants = variants(remesh, tries.count(surface.area(), remesh.target_edge));
+    let courses = course_quads(remesh, options, spec);
+    let variants = variants(
+        remesh,
+        courses.is_some(),
+        tries.count(surface.area(), remesh.target_edge),
+    );
     let count = variants.len();
     let simplified = simplified_if_fine(surface, remesh, options, &mut || control.keep_going(0.0));
     let surface = simplified.as_ref().map_or(surface, |(mesh, _)| mesh);
@@ -184,7 +251,7 @@ pub fn tile_surface_tries(
     // Whether the first try's quads end rows all over the surface (see `pattern_limit`).
     let mut rows_end_everywhere = false;
     for (k, &variant) in variants.iter().enumerate() {
-        let options_k = variant_options(remesh, variant);
+        let options_k = variant_options(remesh, variant, courses);
         let started = std::time::Instant::now();
         let share = |fraction: f64| (k as f64 + fraction) / count as f64;
         // Each try's own figures: none before its pattern stage notes some.
@@ -221,6 +288,7 @@ pub fn tile_surface_tries(
                 listed.push(TryFigures {
                     renormalisation: options_k.renormalisation,
                     field: field_name(options_k.direction),
+                    quads_along_courses: options_k.courses.is_some(),
                     quads: remeshed.quads.face_count(),
                     interior_irregular_vertices: remeshed.metrics.interior_irregular_vertices,
                     p95_deviation: r.joints.p95_deviation,
@@ -249,6 +317,7 @@ pub fn tile_surface_tries(
             Err(e) => listed.push(TryFigures {
                 renormalisation: options_k.renormalisation,
                 field: field_name(options_k.direction),
+                quads_along_courses: options_k.courses.is_some(),
                 quads: 0,
                 interior_irregular_vertices: 0,
                 p95_deviation: 0.0,
@@ -331,7 +400,7 @@ fn cut_share(report: &Report) -> f64 {
 /// in 12.9 s), so it gets the caller's limit too.
 fn pattern_limit(
     k: usize,
-    (_, smooth): (f64, bool),
+    (_, smooth, _): Variant,
     rows_end_everywhere: bool,
     options: &PatternOptions,
 ) -> std::time::Duration {
@@ -402,19 +471,47 @@ mod tests {
         assert_eq!(Tries::Count(0).count(1.0, t), 1);
         assert_eq!(Tries::Count(9).count(1.0, t), MAX_TRIES);
         assert_eq!(Tries::Auto.count(f64::NAN, t), 1);
-        // The smooth try only where the field would follow the curvature alone.
-        let mut remesh = RemeshOptions {
-            target_edge: t,
-            ..RemeshOptions::default()
-        };
-        assert_eq!(Tries::Auto.count_for(12.0, &remesh), MAX_TRIES);
-        remesh.direction = FieldDirection::Vector([1.0, 0.0, 0.0]);
-        assert_eq!(Tries::Auto.count_for(12.0, &remesh), MAX_TRIES - 1);
-        let fields: Vec<_> = variants(&remesh, MAX_TRIES)
+        // The smooth tries only where the field would follow the curvature alone, the
+        // courses' quads only in level courses with quads of a course's pitch.
+        let (spec, level, mut remesh) = level_courses();
+        assert!((remesh.target_edge - t).abs() < 1e-12);
+        let free = PatternOptions::default();
+        assert_eq!(
+            Tries::Auto.count_for(12.0, &remesh, &level, &spec),
+            MAX_TRIES
+        );
+        assert_eq!(
+            Tries::Auto.count_for(12.0, &remesh, &free, &spec),
+            MAX_TRIES - 1
+        );
+        let courses = course_quads(&remesh, &level, &spec).expect("level courses");
+        assert_eq!(
+            (courses.up, courses.along),
+            ([0.0, 0.0, 1.0], spec.target_edge())
+        );
+        let along: Vec<bool> = variants(&remesh, true, MAX_TRIES)
             .into_iter()
-            .map(|v| field_name(variant_options(&remesh, v).direction))
+            .map(|v| variant_options(&remesh, v, Some(courses)).courses.is_some())
             .collect();
-        assert_eq!(fields, ["direction"; MAX_TRIES - 1]);
+        assert_eq!(along, [false, false, false, false, true]);
+        // Quads at half a tile already (a target edge the caller gave), or far from it: none.
+        for edge in [spec.target_edge(), 0.2] {
+            let given = RemeshOptions {
+                target_edge: edge,
+                ..remesh.clone()
+            };
+            assert!(course_quads(&given, &level, &spec).is_none(), "{edge}");
+        }
+        remesh.direction = FieldDirection::Vector([1.0, 0.0, 0.0]);
+        assert_eq!(
+            Tries::Auto.count_for(12.0, &remesh, &level, &spec),
+            MAX_TRIES - 2
+        );
+        let fields: Vec<_> = variants(&remesh, true, MAX_TRIES)
+            .into_iter()
+            .map(|v| field_name(variant_options(&remesh, v, Some(courses)).direction))
+            .collect();
+        assert_eq!(fields, ["direction"; MAX_TRIES - 2]);
     }
 
     /// The 280 x 140 x 15 mm tile with a 10 mm joint in metres, level courses and the quads
@@ -457,13 +554,16 @@ mod tests {
         .unwrap();
         let r = &tiling.report;
         let fields: Vec<&str> = r.tries.iter().map(|x| x.field).collect();
-        assert_eq!(fields, ["curvature", "smooth", "curvature", "curvature"]);
+        assert_eq!(
+            fields,
+            ["curvature", "smooth", "curvature", "curvature", "smooth"]
+        );
         let strengths: Vec<f64> = r.tries.iter().map(|x| x.renormalisation).collect();
-        assert_eq!(strengths, [0.5, 0.5, 1.0, 0.25]);
+        assert_eq!(strengths, [0.5, 0.5, 1.0, 0.25, 0.5]);
         println!("{:?}", r.tries);
-        // The smooth field's quads are near squares of the tile's size, with rows that end
-        // nowhere inside, and the tiles on them are hardly cut.
-        assert_eq!(r.chosen_try, Some(1));
+        // The smooth field's quads (square, or laid out for the courses) are near the tile's
+        // size, with rows that end nowhere inside, and the tiles on them are hardly cut.
+        assert!(matches!(r.chosen_try, Some(1 | 4)), "{:?}", r.chosen_try);
         assert_eq!(quads.metrics.interior_irregular_vertices, 0);
         assert!(quads.metrics.edges_within_20pct > 0.85);
         assert!(cut_share(r) < 0.02, "{}", cut_share(r));

@@ -152,6 +152,26 @@ pub struct RemeshOptions {
     /// with them other quads: `pipeline::tile_surface_tries` lays the tiles on a few and
     /// keeps the one whose tiles fit best.
     pub renormalisation: f64,
+    /// Quads for level courses, shorter along the courses than across them; `None` (default)
+    /// for square quads. Set by `pipeline::tile_surface_tries` for a try of its own.
+    pub(crate) courses: Option<CourseQuads>,
+}
+
+/// Quads laid out for level courses ([`crate::pattern::Courses::Level`]): `target_edge`
+/// across the courses (a course's pitch, [`crate::tiles::TileSpec::quad_edge`]) and
+/// `along` along them (half a tile and a joint), so that a course's tiles meet at the
+/// nominal joint without the fit closing them up. Square quads of a course's pitch are
+/// 3.4 % long along the courses for a 280 x 140 mm tile with a 10 mm joint (150 against 145
+/// mm): a course open at its ends slides its tiles together and leaves the surplus at the
+/// edge, but a course closed on itself (a ring of a tower, a drum, a dome) cannot, and its
+/// head joints open to about twice the joint (a tower 6 m across: p95 |gap - joint| 9.4
+/// mm; with these quads 0.2 mm). See `position::spacings` for where the lattice takes them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CourseQuads {
+    /// The up direction the courses are level across (unit).
+    pub up: [f64; 3],
+    /// The quad edge along the courses, in model units (less than `target_edge`).
+    pub along: f64,
 }
 
 /// Default [`RemeshOptions::renormalisation`].
@@ -171,6 +191,7 @@ impl Default for RemeshOptions {
             shapeup_iterations: 20,
             time_limit: Duration::from_secs(60),
             renormalisation: RENORMALISATION,
+            courses: None,
         }
     }
 }
@@ -465,7 +486,14 @@ pub fn remesh_with(
     let pin = (rotation / 90.0 - (rotation / 90.0).round()).abs() < 1e-9;
     let pinned: Vec<bool> = aligned.iter().map(|&a| a && pin).collect();
     budget.stage(0.2, 0.8);
-    let lattice = position::solve(&work, &work_frames, t, &pinned, &mut budget);
+    let lattice = position::solve(
+        &work,
+        &work_frames,
+        t,
+        options.courses.as_ref(),
+        &pinned,
+        &mut budget,
+    );
     budget.check()?;
     budget.stage(0.8, 0.82);
     let raw = extract::extract(&work, &lattice);
@@ -552,4 +580,81 @@ fn check_options(input: &PolyMesh, options: &RemeshOptions) -> Result<(), Remesh
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Point3;
+
+    /// A vertical tube of radius `r` and height `h`, open at both ends, in triangles of
+    /// about `edge`.
+    fn tube(r: f64, h: f64, edge: f64) -> PolyMesh {
+        let around = (std::f64::consts::TAU * r / edge).round() as usize;
+        let rows = (h / edge).round() as usize;
+        let at = |i: usize, j: usize| j * around + i % around;
+        let points = (0..=rows)
+            .flat_map(|j| {
+                (0..around).map(move |i| {
+                    let a =
+                        std::f64::consts::TAU * (i as f64 + 0.5 * (j % 2) as f64) / around as f64;
+                    Point3::new(r * a.cos(), r * a.sin(), h * j as f64 / rows as f64)
+                })
+            })
+            .collect();
+        let mut faces = Vec::new();
+        for j in 0..rows {
+            for i in 0..around {
+                faces.push(vec![at(i, j), at(i + 1, j), at(i, j + 1)]);
+                faces.push(vec![at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        PolyMesh::new(points, faces).unwrap()
+    }
+
+    /// Mean length of the quad edges that run round a vertical tube (more level than not).
+    fn mean_level_edge(quads: &PolyMesh) -> f64 {
+        let p = quads.positions();
+        let (mut sum, mut n) = (0.0, 0);
+        for face in quads.faces() {
+            for k in 0..face.len() {
+                let d = p[face[(k + 1) % face.len()]] - p[face[k]];
+                if d.z.abs() < 0.5 * d.norm() {
+                    sum += d.norm();
+                    n += 1;
+                }
+            }
+        }
+        sum / n as f64
+    }
+
+    #[test]
+    fn quads_for_level_courses_are_half_a_tile_along_them_and_a_pitch_across() {
+        // A tower whose rings hold 30 quads of 0.145 but 29 of 0.15: square quads of a
+        // course's pitch make each ring's tiles 10 mm too long, which a closed ring cannot
+        // give back at its ends.
+        let surface = tube(0.6923, 1.2, 0.05);
+        let square = RemeshOptions {
+            target_edge: 0.15,
+            ..RemeshOptions::default()
+        };
+        let courses = RemeshOptions {
+            courses: Some(CourseQuads {
+                up: [0.0, 0.0, 1.0],
+                along: 0.145,
+            }),
+            ..square.clone()
+        };
+        let along = mean_level_edge(&remesh(&surface, &square).unwrap().quads);
+        assert!((along / 0.15 - 1.0).abs() < 0.02, "square quads: {along}");
+        let quads = remesh(&surface, &courses).unwrap().quads;
+        let along = mean_level_edge(&quads);
+        assert!(
+            (along / 0.145 - 1.0).abs() < 0.01,
+            "courses' quads: {along}"
+        );
+        // Across the courses they keep the pitch: 8 rows of 0.15 up the 1.2 m.
+        let rows = quads.face_count() as f64 / (std::f64::consts::TAU * 0.6923 / along);
+        assert!((rows - 8.0).abs() < 0.5, "{rows} rows");
+    }
 }

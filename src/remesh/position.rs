@@ -19,6 +19,7 @@ use std::collections::VecDeque;
 
 use nalgebra::{Matrix2, Matrix3x2, Point3, Vector2, Vector3};
 
+use super::CourseQuads;
 use super::budget::Budget;
 use super::flow::Jumps;
 use super::linalg::conjugate_gradient;
@@ -120,10 +121,11 @@ pub(crate) fn solve(
     s: &Surface,
     frames: &[Vector3<f64>],
     t: f64,
+    courses: Option<&CourseQuads>,
     pin: &[bool],
     budget: &mut Budget,
 ) -> Lattice {
-    solve_level(s, frames, t, pin, budget, true)
+    solve_level(s, frames, t, courses, pin, budget, true)
 }
 
 /// [`solve`], trying the coarse start only when `coarse` says so (not on the coarse copy).
@@ -131,6 +133,7 @@ fn solve_level(
     s: &Surface,
     frames: &[Vector3<f64>],
     t: f64,
+    courses: Option<&CourseQuads>,
     pin: &[bool],
     budget: &mut Budget,
     coarse: bool,
@@ -138,6 +141,7 @@ fn solve_level(
     let n = s.len();
     let basis = bases(s, frames);
     let (transfer, delta) = edge_frames(s, &basis);
+    let sp = spacings(s, &basis, t, courses);
 
     let mut pinned = vec![0u8; n];
     let mut fixed = vec![false; 2 * n];
@@ -156,14 +160,15 @@ fn solve_level(
             .iter()
             .enumerate()
             .map(|(e, &[a, b])| {
-                let r = (delta[e] + transfer[e] * read(u, b) - read(u, a)) / t;
+                let r = (delta[e] + transfer[e] * read(u, b) - read(u, a)).component_div(&sp[a]);
                 [r.x.round() as i64, r.y.round() as i64]
             })
             .collect()
     };
     // Offsets back into their lattice cells (held components to zero) before jumps are read.
     let into_cells = |u: &mut [f64], active: &[bool]| {
-        for (x, &held) in u.iter_mut().zip(active) {
+        for (k, (x, &held)) in u.iter_mut().zip(active).enumerate() {
+            let t = sp[k / 2][k % 2];
             *x = if held { 0.0 } else { *x - t * (*x / t).round() };
         }
     };
@@ -184,7 +189,7 @@ fn solve_level(
         transfer: &transfer,
         delta: &delta,
         weight: &weight,
-        t,
+        sp: &sp,
     };
     // Before the boundary is pinned, unwanted lone dislocations leave through it from
     // farther in.
@@ -281,7 +286,7 @@ fn solve_level(
     };
     // The first lattice: integrated at one spacing, or at the scale the surface asks for,
     // whichever keeps fewer dislocations after a first round (see `integrate`).
-    let plain = integrate(s, &delta, &transfer, t);
+    let plain = integrate(s, &delta, &transfer, &sp);
     let phi = scale::solve(s, &delta, &transfer, &flow, t, SCALE_LIMIT, &mut |_| {
         budget.poll(0.0)
     });
@@ -291,7 +296,7 @@ fn solve_level(
             .zip(&s.edges)
             .map(|(d, &[a, b])| d * (-(phi[a] + phi[b]) / 2.0).exp())
             .collect();
-        let mut at_scale = integrate(s, &scaled, &transfer, t);
+        let mut at_scale = integrate(s, &scaled, &transfer, &sp);
         for (v, p) in phi.iter().enumerate() {
             at_scale[2 * v] *= p.exp();
             at_scale[2 * v + 1] *= p.exp();
@@ -310,7 +315,7 @@ fn solve_level(
     if coarse && budget.stopped().is_none() {
         let strained = system.strained_share(&m, &u, STRETCH);
         if strained > STRETCHED {
-            if let Some(start) = coarse_start(s, frames, &basis, t, pin, budget) {
+            if let Some(start) = coarse_start(s, frames, &basis, t, courses, pin, budget) {
                 let m2 = jumps(&start);
                 let (u2, m2) = rounds(start, m2, 0, None, budget);
                 if system.strained_share(&m2, &u2, STRETCH) < strained {
@@ -366,6 +371,7 @@ fn coarse_start(
     frames: &[Vector3<f64>],
     basis: &[Matrix3x2<f64>],
     t: f64,
+    courses: Option<&CourseQuads>,
     pin: &[bool],
     budget: &mut Budget,
 ) -> Option<Vec<f64>> {
@@ -392,11 +398,12 @@ fn coarse_start(
     copy.set_boundary_scale(t * 0.5);
     let copy_frames: Vec<Vector3<f64>> = kept.iter().map(|&v| frames[v]).collect();
     let copy_pin: Vec<bool> = kept.iter().map(|&v| pin[v]).collect();
-    let lattice = solve_level(&copy, &copy_frames, t, &copy_pin, budget, false);
+    let lattice = solve_level(&copy, &copy_frames, t, courses, &copy_pin, budget, false);
     if budget.stopped().is_some() {
         return None;
     }
     let copy_basis = bases(&copy, &copy_frames);
+    let copy_sp = spacings(&copy, &copy_basis, t, courses);
     // Each vertex of `s` reads the lattice of the kept vertex nearest to it in steps.
     let mut from = vec![usize::MAX; s.len()];
     let mut queue = VecDeque::new();
@@ -419,14 +426,66 @@ fn coarse_start(
             continue;
         }
         let q = lattice.origin[c];
-        let k = copy_basis[c].transpose() * (s.pos[v] - q) / t;
-        let corner = q + copy_basis[c] * Vector2::new(k.x.round(), k.y.round()) * t;
+        let k = (copy_basis[c].transpose() * (s.pos[v] - q)).component_div(&copy_sp[c]);
+        let corner =
+            q + copy_basis[c] * Vector2::new(k.x.round(), k.y.round()).component_mul(&copy_sp[c]);
         let local = basis[v].transpose() * (corner - s.pos[v]);
         u[2 * v] = local.x;
         u[2 * v + 1] = local.y;
     }
     Some(u)
 }
+
+/// Per vertex, the lattice's spacing along each axis of its cross frame: `t` both ways, or
+/// for level courses ([`CourseQuads`]) `along` on the axis nearer the level and `t` on the
+/// one nearer the slope (across the courses). The shorter spacing is blended in by how
+/// clearly the vertex has a level ([`LEVEL_SLOPE`]) and how nearly its cross lies along it
+/// (`cos^4 2a` of the angle `a` between the level and the nearer axis: 1 along it, 0 at 45
+/// degrees), so that where the crosses turn away from the level, or the surface lies flat
+/// (a dome's crown), both axes take `t` and neighbours whose nearer axes differ (a cross
+/// turning through 45 degrees) agree on their spacings. Each edge's misfit is read with
+/// its first end's spacings (the jumps `m` count lattice steps of the end's own size).
+fn spacings(
+    s: &Surface,
+    basis: &[Matrix3x2<f64>],
+    t: f64,
+    courses: Option<&CourseQuads>,
+) -> Vec<Vector2<f64>> {
+    let Some(courses) = courses else {
+        return vec![Vector2::new(t, t); s.len()];
+    };
+    let up = Vector3::from(courses.up);
+    (0..s.len())
+        .map(|v| {
+            let n = s.normals[v];
+            let slope = up - n * up.dot(&n);
+            let sine = slope.norm();
+            let (c0, c1) = (
+                basis[v].column(0).dot(&slope).abs(),
+                basis[v].column(1).dot(&slope).abs(),
+            );
+            let along_level = if sine > 0.0 {
+                ((c0 * c0 - c1 * c1).abs() / (sine * sine)).powi(4)
+            } else {
+                0.0
+            };
+            let share = (sine / LEVEL_SLOPE.to_radians().sin()).min(1.0) * along_level;
+            let along = t - (t - courses.along) * share;
+            // The axis nearer the slope runs across the courses.
+            if c0 > c1 {
+                Vector2::new(t, along)
+            } else {
+                Vector2::new(along, t)
+            }
+        })
+        .collect()
+}
+
+/// Slope (degrees from level) from which a vertex has a level clearly enough for the
+/// courses' spacing along it ([`spacings`]); below it the spacing fades to `t` (the crown
+/// of a dome, a floor), as the laying order counts tiles on slopes from 20 degrees
+/// ([`crate::tiles::SLOPE_DEGREES`]).
+const LEVEL_SLOPE: f64 = crate::tiles::SLOPE_DEGREES;
 
 /// Relative edge misfit counted as strain.
 const STRAIN: f64 = 0.5;
@@ -441,7 +500,8 @@ struct System<'a> {
     delta: &'a [Vector2<f64>],
     /// Per edge weight of its misfit (see [`edge_weights`]).
     weight: &'a [f64],
-    t: f64,
+    /// Per vertex, the lattice spacing along each axis of its frame.
+    sp: &'a [Vector2<f64>],
 }
 
 impl System<'_> {
@@ -464,7 +524,7 @@ impl System<'_> {
                 let ub = Vector2::new(u[2 * b], u[2 * b + 1]);
                 let r = self.delta[e] + self.transfer[e] * ub
                     - ua
-                    - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t;
+                    - Vector2::new(m[e][0] as f64, m[e][1] as f64).component_mul(&self.sp[a]);
                 r.norm() > strain * self.delta[e].norm()
             })
             .count();
@@ -523,7 +583,8 @@ impl System<'_> {
         };
         let mut rhs: Vec<f64> = u.iter().map(|x| 1e-6 * x).collect();
         for (e, &[a, b]) in self.s.edges.iter().enumerate() {
-            let c = (self.delta[e] - Vector2::new(m[e][0] as f64, m[e][1] as f64) * self.t)
+            let c = (self.delta[e]
+                - Vector2::new(m[e][0] as f64, m[e][1] as f64).component_mul(&self.sp[a]))
                 * self.weight[e];
             let cb = self.transfer[e].transpose() * c;
             rhs[2 * a] += c.x;
@@ -580,7 +641,12 @@ fn edge_weights(s: &Surface) -> Vec<f64> {
 /// allow, which rigid tiles need (a lattice kept at the scale left the 3 m dome's greedy
 /// tiling with 147 tiles cut to fit against 98), and where the scale gains little (a fifth)
 /// the lattice of one spacing is kept for the same reason.
-fn integrate(s: &Surface, delta: &[Vector2<f64>], transfer: &[Matrix2<f64>], t: f64) -> Vec<f64> {
+fn integrate(
+    s: &Surface,
+    delta: &[Vector2<f64>],
+    transfer: &[Matrix2<f64>],
+    sp: &[Vector2<f64>],
+) -> Vec<f64> {
     let n = s.len();
     let mut u = vec![0.0; 2 * n];
     let mut done = vec![false; n];
@@ -608,8 +674,9 @@ fn integrate(s: &Surface, delta: &[Vector2<f64>], transfer: &[Matrix2<f64>], t: 
                 // In a's frame: b seen from a's corner, the corner of a's lattice nearest to
                 // b, then that corner seen from b, carried into b's frame.
                 let d = scale::step(s, delta, transfer, a, b);
-                let local = (d - ua) / t;
-                let corner = ua + Vector2::new(local.x.round(), local.y.round()) * t;
+                let local = (d - ua).component_div(&sp[a]);
+                let corner =
+                    ua + Vector2::new(local.x.round(), local.y.round()).component_mul(&sp[a]);
                 let ub = into(a, b) * (corner - d);
                 u[2 * b] = ub.x;
                 u[2 * b + 1] = ub.y;

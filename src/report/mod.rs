@@ -39,6 +39,10 @@ pub struct TryFigures {
     /// (the default), `"smooth"` (nothing: the boundary and smoothness alone, the second
     /// of the automatic tries), `"direction"` or `"angle"`.
     pub field: &'static str,
+    /// Whether its quads are laid out for level courses, half a tile and a joint along them
+    /// and a course's pitch across (the fifth automatic try; written only for it).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub quads_along_courses: bool,
     /// Faces of its quad mesh.
     pub quads: usize,
     /// Interior irregular vertices of its quad mesh.

@@ -1400,7 +1400,7 @@ static void test_run(void) {
   to.units_per_mm = 0.001;
 
   /* Bad input, refused by name. */
-  run.tries = 5;
+  run.tries = 6;
   CHECK(tp_run(dome, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, &none) == TP_INVALID_ARGUMENT);
   CHECK(none == NULL && last_error_contains("tries"));
   run.tries = 1;
