@@ -69,7 +69,12 @@ def unit(a):
 
 
 def plane(points):
-    """Centroid and unit normal of the least-squares plane (smallest principal axis)."""
+    """Centroid and unit normal of the least-squares plane (smallest principal axis).
+
+    The eigenvectors of the 3 x 3 scatter matrix by cyclic Jacobi rotations, which converge
+    whatever the spread: power iteration stalls on a long, narrow piece (a 275 x 44 mm sliver
+    left its normal 15 degrees off after 200 steps, and a pair at a right angle to it was
+    then projected onto the wrong plane)."""
     n = len(points)
     c = tuple(sum(p[k] for p in points) / n for k in range(3))
     m = [[0.0] * 3 for _ in range(3)]
@@ -78,16 +83,29 @@ def plane(points):
         for i in range(3):
             for j in range(3):
                 m[i][j] += d[i] * d[j]
-    # Power iteration on (trace I - M) finds M's smallest eigenvector.
-    t = m[0][0] + m[1][1] + m[2][2]
-    a = [[(t if i == j else 0.0) - m[i][j] for j in range(3)] for i in range(3)]
-    v = (0.3, 0.5, 0.8)
-    for _ in range(200):
-        w = tuple(sum(a[i][j] * v[j] for j in range(3)) for i in range(3))
-        if norm(w) == 0:
+    v = [[1.0 if i == j else 0.0 for j in range(3)] for i in range(3)]
+    for _ in range(50):
+        off = m[0][1] ** 2 + m[0][2] ** 2 + m[1][2] ** 2
+        if off <= 1e-30 * (m[0][0] ** 2 + m[1][1] ** 2 + m[2][2] ** 2) or off == 0.0:
             break
-        v = unit(w)
-    return c, v
+        for p_, q in ((0, 1), (0, 2), (1, 2)):
+            if m[p_][q] == 0.0:
+                continue
+            theta = (m[q][q] - m[p_][p_]) / (2.0 * m[p_][q])
+            t = (1.0 if theta >= 0 else -1.0) / (abs(theta) + math.sqrt(theta * theta + 1.0))
+            cs = 1.0 / math.sqrt(t * t + 1.0)
+            sn = t * cs
+            for k in range(3):
+                mkp, mkq = m[k][p_], m[k][q]
+                m[k][p_], m[k][q] = cs * mkp - sn * mkq, sn * mkp + cs * mkq
+            for k in range(3):
+                mpk, mqk = m[p_][k], m[q][k]
+                m[p_][k], m[q][k] = cs * mpk - sn * mqk, sn * mpk + cs * mqk
+            for k in range(3):
+                vkp, vkq = v[k][p_], v[k][q]
+                v[k][p_], v[k][q] = cs * vkp - sn * vkq, sn * vkp + cs * vkq
+    smallest = min(range(3), key=lambda i: m[i][i])
+    return c, unit(tuple(v[k][smallest] for k in range(3)))
 
 
 def hull(points):
