@@ -101,7 +101,7 @@ impl Frame {
 
 /// Unit normal of the least-squares plane through `points`: the eigenvector of their
 /// covariance with the smallest eigenvalue.
-pub(crate) fn best_fit_normal(points: &[Point3<f64>]) -> Vector3<f64> {
+fn best_fit_normal(points: &[Point3<f64>]) -> Vector3<f64> {
     let mean = points
         .iter()
         .fold(Vector3::zeros(), |acc, p| acc + p.coords)

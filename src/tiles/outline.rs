@@ -82,36 +82,6 @@ fn room_between_balls(a: &Tile, b: &Tile) -> f64 {
     (a.frame.origin - b.frame.origin).norm() - reach(a) - reach(b)
 }
 
-/// Below this |cos| of the angle between two tiles' thickness axes (60 degrees apart and
-/// more) which way they face each other is read from their solids' own planes
-/// ([`facing_dot`]).
-const NEAR_RIGHT_ANGLE: f64 = 0.5;
-
-/// The cosine that decides which way two tiles face each other for their mean plane
-/// ([`separation_of`]): of their thickness axes, or where those are near a right angle
-/// ([`NEAR_RIGHT_ANGLE`]: two tiles on the two layers of a fold), of the least-squares
-/// planes' normals of their solids' corners (`outline_a`, `outline_b`), each turned to its
-/// own axis. The two agree on a whole tile; on a piece cut to a sliver they may not (the
-/// shared hypar's fold: a 48 mm sliver whose corners' plane is 15 degrees off its axis,
-/// against a piece at 95 degrees to it, cosine -0.09 by the axes and +0.16 by the solids),
-/// and there the sign picks one of two orthogonal planes: in the difference of the axes the
-/// two are 24 mm apart, in their sum they overlap by 49 mm (by 55 mm in the sum of the
-/// solids' normals, as `scripts/check-joints.py` measures), though the solids themselves are
-/// 30 mm apart. A mean-plane check of the solids alone (issue 16's) reads the overlap, so the
-/// solids decide, and the library calls such a pair an overlap too: conservative, and rare
-/// (no pair of the 26 shells of README *Tries* changes).
-fn facing_dot(a: &Tile, outline_a: &[Point3<f64>], b: &Tile, outline_b: &[Point3<f64>]) -> f64 {
-    let axes = a.frame.z.dot(&b.frame.z);
-    if axes.abs() >= NEAR_RIGHT_ANGLE || outline_a.len() < 3 || outline_b.len() < 3 {
-        return axes;
-    }
-    let own = |t: &Tile, corners: &[Point3<f64>]| {
-        let n = super::frame::best_fit_normal(corners);
-        if n.dot(&t.frame.z) < 0.0 { -n } else { n }
-    };
-    own(a, outline_a).dot(&own(b, outline_b))
-}
-
 /// How two tiles meet.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Separation {
@@ -150,7 +120,7 @@ pub fn separation_of(
     // The mean plane of the two, whichever way each tile's thickness axis points (two tiles
     // laid on opposite faces of a folded or overlapping stretch of surface have opposite
     // axes: their plain sum would be a direction along the tiles, not across them).
-    let facing = if facing_dot(a, outline_a, b, outline_b) < 0.0 {
+    let facing = if a.frame.z.dot(&b.frame.z) < 0.0 {
         -1.0
     } else {
         1.0
@@ -221,28 +191,6 @@ mod tests {
             z,
         };
         Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
-    }
-
-    #[test]
-    fn near_a_right_angle_the_solids_planes_decide_which_way_two_tiles_face() {
-        // Whole tiles: their corners' plane is their axis, so the axes decide, at any angle.
-        let a = tile_at(0.0, 0.0, 0.0, 0.0);
-        for tilt in [0.3_f64, 1.4, 1.7, 2.8] {
-            let b = tile_at(0.3, 0.0, 0.0, tilt);
-            let dot = facing_dot(&a, &world_corners(&a), &b, &world_corners(&b));
-            assert!((dot - tilt.cos()).abs() < 1e-9, "{tilt}: {dot}");
-        }
-        // A tile at 95 degrees whose solid's corners lie in a plane turned 15 degrees back (a
-        // sliver cut from it): by the axes they face away (cosine -0.09), by the solids
-        // towards each other (+0.17), and the solids decide.
-        let b = tile_at(0.3, 0.0, 0.0, 95f64.to_radians());
-        let sliver = tile_at(0.3, 0.0, 0.0, 80f64.to_radians());
-        let dot = facing_dot(&a, &world_corners(&a), &b, &world_corners(&sliver));
-        assert!(b.frame.z.dot(&a.frame.z) < 0.0 && dot > 0.1, "{dot}");
-        // Away from a right angle the axes decide, whatever the solids.
-        let b = tile_at(0.3, 0.0, 0.0, 50f64.to_radians());
-        let dot = facing_dot(&a, &world_corners(&a), &b, &world_corners(&sliver));
-        assert!((dot - 50f64.to_radians().cos()).abs() < 1e-9, "{dot}");
     }
 
     #[test]
