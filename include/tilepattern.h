@@ -332,6 +332,10 @@ enum TpWarning
    * triangles, facets coarser than a tile).
    */
   TP_WARNING_TILES_OFF_SURFACE = 15,
+  /**
+   * The surface has openings smaller than a tile (often a face missing from the mesh).
+   */
+  TP_WARNING_SMALL_OPENINGS = 16,
 };
 #ifndef __cplusplus
 typedef int32_t TpWarning;

@@ -577,6 +577,8 @@ namespace TilePattern
         QuadSize = 14,
         /// <summary>Tiles stand off the surface by more than their thickness (creases across the input's triangles, facets coarser than a tile).</summary>
         TilesOffSurface = 15,
+        /// <summary>The surface has openings smaller than a tile (often a face missing from the mesh); the tiles over them are cut around them.</summary>
+        SmallOpenings = 16,
     }
 
     /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>

@@ -111,6 +111,7 @@ TP_WARNING_FOLDED_SURFACE = 12
 TP_WARNING_NORMALS_UNIFIED = 13
 TP_WARNING_QUAD_SIZE = 14
 TP_WARNING_TILES_OFF_SURFACE = 15
+TP_WARNING_SMALL_OPENINGS = 16
 
 #: Warning code -> its name in report.json, for every code of ``enum TpWarning``.
 WARNING_NAMES = {
@@ -129,6 +130,7 @@ WARNING_NAMES = {
     TP_WARNING_NORMALS_UNIFIED: "normals_unified",
     TP_WARNING_QUAD_SIZE: "quad_size",
     TP_WARNING_TILES_OFF_SURFACE: "tiles_off_surface",
+    TP_WARNING_SMALL_OPENINGS: "small_openings",
 }
 
 MAX_VERTICES = 4_000_000

@@ -662,6 +662,8 @@ pub enum TpWarning {
     /// Tiles stand off the surface by more than their thickness (creases across the input's
     /// triangles, facets coarser than a tile).
     TP_WARNING_TILES_OFF_SURFACE = 15,
+    /// The surface has openings smaller than a tile (often a face missing from the mesh).
+    TP_WARNING_SMALL_OPENINGS = 16,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -683,6 +685,7 @@ impl From<WarningCode> for TpWarning {
             WarningCode::NormalsUnified => TP_WARNING_NORMALS_UNIFIED,
             WarningCode::QuadSize => TP_WARNING_QUAD_SIZE,
             WarningCode::TilesOffSurface => TP_WARNING_TILES_OFF_SURFACE,
+            WarningCode::SmallOpenings => TP_WARNING_SMALL_OPENINGS,
         }
     }
 }

@@ -3,7 +3,7 @@
 //! message that says what to do. The checks read the surface, the quad mesh, the tile and the
 //! finished report; they never change a result.
 
-use nalgebra::Vector3;
+use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 
 use super::Report;
@@ -54,6 +54,9 @@ pub enum WarningCode {
     /// surface turns under them where the quads did not follow it (creases across the input's
     /// triangles, facets coarser than a tile).
     TilesOffSurface = 15,
+    /// The surface has openings smaller than a tile: a gap in the mesh (a face missing from
+    /// an STL) more often than a real opening; tiles are cut around them on site.
+    SmallOpenings = 16,
 }
 
 /// One warning.
@@ -189,6 +192,7 @@ pub fn check(
 ) -> Vec<Warning> {
     let mut out = Vec::new();
     out.extend(surface_checks(surface, up));
+    out.extend(small_openings(surface, spec.length));
     out.extend(tile_shape(spec));
     out.extend(curvature(quads, spec));
     out.extend(quad_size(quads, spec));
@@ -300,6 +304,84 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>) -> Vec<Warning> {
         }
     }
     out
+}
+
+/// Openings of the surface smaller than a tile of `length` (every vertex of the boundary
+/// around one within that distance of every other): a face missing from the input (STL
+/// soups lose them) more often than a real opening, and the tiles over it are cut around
+/// it. Named with the largest one's size and place.
+fn small_openings(surface: &PolyMesh, length: f64) -> Option<Warning> {
+    let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
+    let edges = topology.edges();
+    let positions = surface.positions();
+    let mut seen = vec![false; edges.len()];
+    let mut small: Vec<(f64, Point3<f64>, usize)> = Vec::new();
+    for start in 0..edges.len() {
+        if seen[start] || !edges[start].is_boundary() {
+            continue;
+        }
+        // The boundary edges connected to this one: one opening (or the outer edge).
+        seen[start] = true;
+        let (mut stack, mut vertices, mut count) = (vec![start], Vec::new(), 0usize);
+        while let Some(e) = stack.pop() {
+            count += 1;
+            for &v in &edges[e].vertices {
+                vertices.push(v);
+                for &next in topology.vertex_edges(v) {
+                    if !seen[next] && edges[next].is_boundary() {
+                        seen[next] = true;
+                        stack.push(next);
+                    }
+                }
+            }
+        }
+        vertices.sort_unstable();
+        vertices.dedup();
+        let points: Vec<Point3<f64>> = vertices.iter().map(|&v| positions[v]).collect();
+        if let Some(across) = diameter_within(&points, length) {
+            let centre = points
+                .iter()
+                .fold(Vector3::zeros(), |acc, p| acc + p.coords)
+                / points.len() as f64;
+            small.push((across, Point3::from(centre), count));
+        }
+    }
+    let (across, at, count) = *small.iter().max_by(|a, b| a.0.total_cmp(&b.0))?;
+    let (openings, largest, it, gap) = match small.len() {
+        1 => (
+            "an opening".to_string(),
+            "",
+            "it",
+            "it is a gap in the mesh (a face missing from an STL)",
+        ),
+        n => (
+            format!("{n} openings"),
+            "the largest ",
+            "them",
+            "they are gaps in the mesh (faces missing from an STL)",
+        ),
+    };
+    Some(Warning::new(
+        WarningCode::SmallOpenings,
+        format!(
+            "the surface has {openings} smaller than a tile (its length {length}), {largest}{across:.3} across, bounded by {count} edges, near ({:.3}, {:.3}, {:.3}): the tiles over {it} are cut around {it} on site; if {gap}, fill {it} (Rhino: FillMeshHoles) and tile again",
+            at.x, at.y, at.z
+        ),
+    ))
+}
+
+/// The largest distance between two of `points` when it is below `limit`, else `None`.
+fn diameter_within(points: &[Point3<f64>], limit: f64) -> Option<f64> {
+    let mut largest = 0.0_f64;
+    for (i, p) in points.iter().enumerate() {
+        for q in &points[i + 1..] {
+            largest = largest.max((p - q).norm());
+            if largest >= limit {
+                return None;
+            }
+        }
+    }
+    Some(largest)
 }
 
 /// Edges where the surface folds back on itself ([`FOLD_ANGLE`]), with the sharpest one's
@@ -482,6 +564,41 @@ mod tests {
         );
         let level = no_support(Support::Level, false).expect("level");
         assert!(level.message.contains("level"), "{}", level.message);
+    }
+
+    #[test]
+    fn a_hole_smaller_than_a_tile_is_named_and_a_larger_one_is_not() {
+        // A 12 x 12 grid of unit squares with the squares of `holes` left out.
+        let with_holes = |holes: &[usize]| {
+            let grid = generate::grid(12, 12);
+            let faces = (0..grid.face_count())
+                .filter(|f| !holes.contains(f))
+                .map(|f| grid.faces()[f].clone())
+                .collect();
+            PolyMesh::new(grid.positions().to_vec(), faces).expect("a grid with holes")
+        };
+        assert!(small_openings(&with_holes(&[]), 2.0).is_none());
+        // One square missing at (3..4, 5..6): 1.414 across, smaller than a tile of 2.
+        let one = small_openings(&with_holes(&[3 + 12 * 5]), 2.0).expect("a pinhole");
+        assert_eq!(one.code, WarningCode::SmallOpenings);
+        assert!(
+            one.message.contains("an opening smaller than a tile (its length 2), 1.414 across, bounded by 4 edges, near (3.500, 5.500, 0.000)"),
+            "{}",
+            one.message
+        );
+        // Two: one square and a 2 x 1 hole (2.236 across, the larger); the 2 x 2 hole and the
+        // grid's own edge are larger than a tile of 2.4.
+        let two =
+            small_openings(&with_holes(&[3 + 12 * 5, 7 + 12 * 7, 8 + 12 * 7]), 2.4).expect("two");
+        assert!(two.message.contains("2 openings"), "{}", two.message);
+        assert!(two.message.contains("the largest"), "{}", two.message);
+        assert!(
+            two.message.contains("2.236 across, bounded by 6 edges"),
+            "{}",
+            two.message
+        );
+        let square = [3 + 12 * 5, 4 + 12 * 5, 3 + 12 * 6, 4 + 12 * 6];
+        assert!(small_openings(&with_holes(&square), 2.4).is_none());
     }
 
     #[test]
