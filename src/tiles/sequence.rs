@@ -8,10 +8,11 @@
 use std::cmp::Reverse;
 use std::collections::{BTreeSet, BinaryHeap};
 
-use nalgebra::Vector3;
+use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 
-use super::Tile;
+use super::{Tile, outline};
+use crate::geom::{HashGrid, closest};
 use crate::mesh::{PolyMesh, Topology};
 
 /// Where the vault stands.
@@ -127,6 +128,14 @@ pub fn laying_order(
         Support::NoBoundary
     };
     // Pieces beyond the quad mesh (no faces) stand on a support when they sit low enough.
+    let width = tiles.iter().map(|t| t.size[1]).fold(0.0, f64::max);
+    let low_boundary = LowBoundary::new(
+        mesh,
+        &topology,
+        &height,
+        lowest + options.support_band,
+        width,
+    );
     let on_support: Vec<bool> = tiles
         .iter()
         .zip(&boundary_low)
@@ -139,7 +148,7 @@ pub fn laying_order(
                 } else {
                     h
                 };
-                h <= lowest + options.support_band
+                h <= lowest + options.support_band || low_boundary.holds(t, &height)
             }
         })
         .collect();
@@ -201,6 +210,52 @@ pub fn laying_order(
     }
 }
 
+/// The quad mesh's boundary edges within the support band: where a vault stands.
+struct LowBoundary {
+    top: f64,
+    edges: Vec<[Vector3<f64>; 2]>,
+    grid: HashGrid,
+}
+
+impl LowBoundary {
+    /// The boundary edges of `mesh` with an end no higher than `top`, found by cells of side
+    /// `cell` (a tile's width).
+    fn new(
+        mesh: &PolyMesh,
+        topology: &Topology,
+        height: &dyn Fn(&Point3<f64>) -> f64,
+        top: f64,
+        cell: f64,
+    ) -> Self {
+        let at = |v: usize| mesh.positions()[v];
+        let edges: Vec<[Point3<f64>; 2]> = topology
+            .edges()
+            .iter()
+            .filter(|e| e.is_boundary() && e.vertices.iter().any(|&v| height(&at(v)) <= top))
+            .map(|e| e.vertices.map(at))
+            .collect();
+        let grid = HashGrid::of_points(cell, &edges);
+        let edges = edges.iter().map(|e| e.map(|p| p.coords)).collect();
+        Self { top, edges, grid }
+    }
+
+    /// Whether `tile` stands on this stretch of boundary though its quads hold none of it
+    /// (the boundary's own quads unpaired, cut away or left out as off the surface, as at
+    /// the low corners of a tight saddle): a corner of its solid within the band and within
+    /// a quarter of its width of a low boundary edge (the next course's corners are a
+    /// course's pitch from it).
+    fn holds(&self, tile: &Tile, height: &dyn Fn(&Point3<f64>) -> f64) -> bool {
+        let reach = tile.size[1] / 4.0;
+        outline::world_corners(tile).iter().any(|c| {
+            height(c) <= self.top
+                && self.grid.near(c, reach).iter().any(|&k| {
+                    let [a, b] = &self.edges[k];
+                    (closest::on_segment(&c.coords, a, b) - c.coords).norm() <= reach
+                })
+        })
+    }
+}
+
 /// Whole tiles (uncut, at least half as long again as wide) on slopes steeper than
 /// [`SLOPE_DEGREES`] with respect to `up` (a unit vector), and how many of them run up the
 /// slope: their length within 45 degrees of the slope's direction in their plane.
@@ -225,8 +280,6 @@ fn climbing(tiles: &[Tile], up: &Vector3<f64>) -> (usize, usize) {
 
 #[cfg(test)]
 mod tests {
-    use nalgebra::Point3;
-
     use super::*;
     use crate::mesh::generate;
     use crate::tiles::{Frame, TileKind};
@@ -274,6 +327,33 @@ mod tests {
         assert_eq!(tiles[2].step, 0);
         // A standing wall: its whole tiles lie along the level (x), none climbs.
         assert_eq!((order.sloped_tiles, order.climbing_tiles), (3, 0));
+    }
+
+    #[test]
+    fn a_tile_reaching_down_to_the_low_boundary_stands_on_it() {
+        // The 4 x 4 wall again, y up: one tile on two quads of the second row, none on the
+        // boundary's quads (the low corners of a tight saddle leave them unpaired or cut
+        // away). Placed on its quads it floats (a prop); where its solid comes down to the
+        // foot (its lower corners 0.15 up: within the band and a quarter of its width of the
+        // boundary) it stands there, but not with them 0.3 up, as far as the next course.
+        let mesh = generate::grid(4, 4);
+        let faces: Vec<usize> = (0..mesh.face_count())
+            .filter(|&f| {
+                let c = mesh.face_centroid(f);
+                (c.y - 1.5).abs() < 0.1 && (c.x - 2.0).abs() < 1.0
+            })
+            .collect();
+        let options = SequenceOptions {
+            up: Vector3::y(),
+            support_band: 0.5,
+        };
+        for (y, supports) in [(1.5, 0), (0.75, 0), (0.6, 1)] {
+            let mut tiles = vec![tile_at(faces.clone(), 2.0, y)];
+            let order = laying_order(&mesh, &mut tiles, &[], &options);
+            assert_eq!(order.support, Support::Edges);
+            assert_eq!(order.support_tiles, supports, "{y}");
+            assert_eq!(order.unsupported, 1 - supports, "{y}");
+        }
     }
 
     #[test]
