@@ -449,6 +449,12 @@ fn faces_the_wrong_way_round_are_turned_and_said() {
         "{}",
         stderr(&turned)
     );
+    // Which way the kept side faces (the shell as drawn faces up).
+    assert!(
+        stderr(&turned).contains("the side kept faces (0.00, 0.00, 1.00) on average"),
+        "{}",
+        stderr(&turned)
+    );
     assert!(codes(&report.unwrap()).contains(&"normals_unified".to_owned()));
     let (drawn, _, drawn_dir) = run(
         "drawn",

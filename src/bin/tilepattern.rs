@@ -1222,13 +1222,25 @@ fn parse_weld(text: &str) -> Result<Weld, String> {
 /// What reading `loaded` changed: welded vertices, faces turned over.
 fn reading_warnings(loaded: &Loaded) -> Vec<Warning> {
     let turned = (loaded.turned_faces > 0).then(|| {
+        // Which way the side kept faces: on a near tie the count alone does not tell.
+        let mesh = &loaded.mesh;
+        let facing = (0..mesh.face_count())
+            .map(|f| mesh.face_area_vector(f))
+            .sum::<nalgebra::Vector3<f64>>()
+            .try_normalize(0.0)
+            .unwrap_or_else(nalgebra::Vector3::zeros)
+            // Rounded as printed, and no "-0.00".
+            .map(|c| (c * 100.0).round() / 100.0 + 0.0);
         Warning::new(
             WarningCode::NormalsUnified,
             format!(
-                "the {} file's faces did not all face the same side: {} of {} faces were turned over to agree with their neighbours (each piece keeps the side most of its faces face); tiles are laid on that side, so unify the normals in the model (Rhino: UnifyMeshNormals, then Flip if needed) to choose it yourself",
+                "the {} file's faces did not all face the same side: {} of {} faces were turned over to agree with their neighbours (each piece keeps the side most of its faces face; the side kept faces ({:.2}, {:.2}, {:.2}) on average); tiles are laid on that side, so unify the normals in the model (Rhino: UnifyMeshNormals, then Flip if needed) to choose it yourself",
                 loaded.format.name(),
                 loaded.turned_faces,
-                loaded.mesh.faces().len()
+                mesh.faces().len(),
+                facing.x,
+                facing.y,
+                facing.z
             ),
         )
     });
