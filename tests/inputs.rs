@@ -11,7 +11,7 @@ use std::process::Output;
 
 use common::{json, s, scratch, tilepattern};
 
-use nalgebra::Point3;
+use nalgebra::{Point3, Vector3};
 use tilepattern::mesh::io::{self, Format, Weld};
 use tilepattern::mesh::{PolyMesh, Topology, generate, obj};
 
@@ -750,6 +750,52 @@ fn a_closed_surface_is_flagged_and_stands_on_nothing() {
     assert_eq!(report["sequence"]["support"], "no_boundary");
     assert_eq!(report["sequence"]["support_tiles"], 0);
     never_silent(&out, &report);
+}
+
+#[test]
+fn a_face_missing_from_the_mesh_is_named() {
+    // Before: a shell with one triangle missing ran without a word, the tile over the hole
+    // cut around it.
+    let surface = shell(2.0, 1.0);
+    let centre = surface
+        .positions()
+        .iter()
+        .fold(Vector3::zeros(), |acc, p| acc + p.coords)
+        / surface.positions().len() as f64;
+    let middle = (0..surface.face_count())
+        .min_by(|&a, &b| {
+            let d = |f: usize| (surface.face_centroid(f).coords - centre).xy().norm();
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap();
+    let faces = (0..surface.face_count())
+        .filter(|&f| f != middle)
+        .map(|f| surface.faces()[f].clone())
+        .collect();
+    let holed = PolyMesh::new(surface.positions().to_vec(), faces).unwrap();
+    let (out, report, _) = run(
+        "pinhole",
+        "pinhole.obj",
+        obj::to_string(&holed).as_bytes(),
+        &["--tile", "280x140x15", "--units", "m", "--tries", "1"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out)
+            .contains("warning [small_openings]: the surface has an opening smaller than a tile"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(codes(&report.unwrap()).contains(&"small_openings".to_owned()));
+    // The shell as drawn has none.
+    let (whole, report, _) = run(
+        "no_pinhole",
+        "whole.obj",
+        obj::to_string(&surface).as_bytes(),
+        &["--tile", "280x140x15", "--units", "m", "--tries", "1"],
+    );
+    assert!(whole.status.success(), "{}", stderr(&whole));
+    assert!(!codes(&report.unwrap()).contains(&"small_openings".to_owned()));
 }
 
 #[test]
