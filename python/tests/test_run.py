@@ -204,8 +204,8 @@ def test_the_library_refuses_bad_tries_and_named_quads_too(dome):
     V, F = dome
     remesh, pattern, tiles, run = nat.remesh_options(), nat.pattern_options(), nat.tile_options(), nat.run_options()
     with mesh_handle(V, F) as surface:
-        run.tries = 5
-        with pytest.raises(tp.InvalidArgumentError, match="tries is 5"):
+        run.tries = 6
+        with pytest.raises(tp.InvalidArgumentError, match="tries is 6"):
             surface.run(remesh, pattern, tiles, run)
         run.tries = 1
         pair = np.array([0, 1], dtype=np.uint32)

@@ -406,7 +406,7 @@ def run(mesh, zones=None, **options):
     >>> result = tpc.run(surface, length=0.58, width=0.29, thickness=0.04, joint=0.02, courses="level", time_limit=10)
     >>> quads, pattern, boxes = result
     >>> all(len(quads.face_vertices(f)) == 4 for f in quads.faces()), len(result.tries), boxes[0].name
-    (True, 4, 'F')
+    (True, 5, 'F')
     """
     vertices, faces, keys = mesh_vertices_faces(mesh)
     result = core.run(vertices, faces, zones=_zones(zones, keys), **options)
