@@ -119,6 +119,12 @@ pub fn read(path: &Path, weld: Weld) -> Result<Loaded, MeshError> {
 /// format), [`MeshError::TooLarge`], [`MeshError::NonOrientable`] for a one-sided surface,
 /// then any validation error of [`PolyMesh::new`].
 pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded, MeshError> {
+    // A UTF-8 byte-order mark (Windows editors write one) is no part of a text file's first
+    // line: left in, an OBJ lost its first vertex and every face pointed one vertex off.
+    let bytes = match bytes.strip_prefix(b"\xEF\xBB\xBF") {
+        Some(rest) if !stl::is_binary(bytes) => rest,
+        _ => bytes,
+    };
     let format = detect(bytes, extension)?;
     let (positions, faces) = match format {
         Format::Obj => obj::parse_raw(&text(bytes, format)?)?,
@@ -135,7 +141,7 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
     };
     let (positions, faces, summary) = match weld {
         Weld::Relative(fraction) if fraction.is_finite() && fraction > 0.0 => {
-            let tolerance = fraction * diagonal(&positions);
+            let tolerance = fraction * diagonal(&positions, &faces);
             let (positions, faces, mut summary) = weld::weld(positions, faces, tolerance);
             // Cracks between patches meshed apart, once coincident vertices are one; in
             // triangle meshes only (STL, soups, triangulated exports): a quad mesh is a
@@ -161,9 +167,21 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
     })
 }
 
-/// Bounding-box diagonal of the finite positions (0 for none).
-fn diagonal(positions: &[Point3<f64>]) -> f64 {
-    let mut finite = positions.iter().filter(|p| super::usable_point(p));
+/// Bounding-box diagonal of the finite positions that faces use (0 for none).
+fn diagonal(positions: &[Point3<f64>], faces: &[Vec<usize>]) -> f64 {
+    // Only the vertices a face uses: a stray vertex 250 km off (or at the origin of a
+    // georeferenced model) made the weld tolerance swallow the whole mesh.
+    let mut used = vec![false; positions.len()];
+    for &v in faces.iter().flatten() {
+        if let Some(u) = used.get_mut(v) {
+            *u = true;
+        }
+    }
+    let mut finite = positions
+        .iter()
+        .zip(&used)
+        .filter(|&(p, &u)| u && super::usable_point(p))
+        .map(|(p, _)| p);
     let Some(first) = finite.next() else {
         return 0.0;
     };
@@ -245,7 +263,12 @@ fn text(bytes: &[u8], format: Format) -> Result<std::borrow::Cow<'_, str>, MeshE
                     .into(),
         });
     }
-    Ok(String::from_utf8_lossy(bytes))
+    let text = String::from_utf8_lossy(bytes);
+    // Lines ended by a carriage return alone (classic Mac OS) read as one line otherwise.
+    if text.contains('\r') && !text.contains('\n') {
+        return Ok(std::borrow::Cow::Owned(text.replace('\r', "\n")));
+    }
+    Ok(text)
 }
 
 #[cfg(test)]
@@ -266,5 +289,57 @@ mod tests {
             error.contains(".dwg") && error.contains("OBJ, STL"),
             "{error}"
         );
+    }
+
+    /// Two triangles of a unit square, as an OBJ and as an OFF file.
+    const OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+    const OFF: &str = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+
+    #[test]
+    fn a_byte_order_mark_and_lone_carriage_returns_read_as_plain_text() {
+        let plain = parse(OBJ.as_bytes(), Some("obj"), Weld::default()).unwrap();
+        // Before: the mark joined the first line, which lost its vertex, and every face
+        // pointed one vertex off (or past the last).
+        for (variant, extension) in [
+            (format!("\u{feff}{OBJ}"), "obj"),
+            (OBJ.replace('\n', "\r"), "obj"),
+            (format!("\u{feff}{}", OBJ.replace('\n', "\r\n")), "obj"),
+            (format!("\u{feff}{OFF}"), "off"),
+        ] {
+            let read = parse(variant.as_bytes(), Some(extension), Weld::default())
+                .unwrap_or_else(|e| panic!("{variant:?}: {e}"));
+            assert_eq!(read.mesh.positions(), plain.mesh.positions(), "{variant:?}");
+            assert_eq!(read.mesh.faces(), plain.mesh.faces(), "{variant:?}");
+        }
+    }
+
+    #[test]
+    fn a_vertex_no_face_uses_does_not_set_the_weld_tolerance() {
+        // A 1 m square of 0.1 m triangles and, unused, a vertex 250 km away: the tolerance of
+        // 1e-6 of the diagonal was 0.25 m and welded the square away.
+        let mut text = String::new();
+        for j in 0..=10 {
+            for i in 0..=10 {
+                text += &format!("v {} {} 0\n", i as f64 * 0.1, j as f64 * 0.1);
+            }
+        }
+        for j in 0..10 {
+            for i in 0..10 {
+                let v = 1 + i + 11 * j;
+                text += &format!(
+                    "f {} {} {}\nf {} {} {}\n",
+                    v,
+                    v + 1,
+                    v + 12,
+                    v,
+                    v + 12,
+                    v + 11
+                );
+            }
+        }
+        text += "v 250000 0 0\n";
+        let read = parse(text.as_bytes(), Some("obj"), Weld::default()).unwrap();
+        assert_eq!(read.mesh.face_count(), 200);
+        assert_eq!(read.weld.merged_vertices, 0);
     }
 }
