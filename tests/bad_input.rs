@@ -1408,6 +1408,10 @@ fn the_command_line_reports_bad_input() {
         r#"{"faces": 9, "pairs": [], "unpaired": [], "continuous_joints": 0, "shifted_pairs": 0, "objective": 0, "bound": 0, "gap": 0, "status": "optimal", "seconds": 0}"#,
     );
     let not_json = write("not.json", "pairs: 0 1");
+    let mixed = write(
+        "mixed.obj",
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 3 4\nf 2 5 3\n",
+    );
     let zone_typo = write("typo-zones.txt", "0 staggered\n1 herringbon\n");
     let zone_range = write("range-zones.txt", "0-2 stack\n");
     let zone_line = write("line-zones.txt", "0 stack staggered\n");
@@ -1455,6 +1459,21 @@ fn the_command_line_reports_bad_input() {
             &["face 1", "repeats face 0"],
         ),
         (args(&["match", &fan]), 1, &["edge 0-1", "3 faces"]),
+        // Before: "2 faces: 0 tiles", exit 0, and not a word more.
+        (
+            args(&["match", &triangles]),
+            0,
+            &[
+                "warning: none of the 2 faces is a quad",
+                "tilepattern remesh",
+                "tilepattern run",
+            ],
+        ),
+        (
+            args(&["match", &mixed]),
+            0,
+            &["warning: 1 of the 2 faces are not quads"],
+        ),
         (args(&["match", &empty]), 1, &["empty"]),
         (args(&["match", &junk]), 1, &["line 1", "x, y and z"]),
         (args(&["match", &binary]), 1, &["binary.obj"]),

@@ -431,6 +431,24 @@ fn run(cli: Cli) -> Result<()> {
             let loaded = read_mesh(&quads)?;
             print_warnings(&reading_warnings(&loaded));
             let mesh = loaded.mesh;
+            // Faces that are not quads are left out of the pattern (its `non_quad`); said, so
+            // that a triangle mesh given by mistake does not end in "0 tiles" and nothing else.
+            let quad_faces = (0..mesh.face_count()).filter(|&f| mesh.is_quad(f)).count();
+            if quad_faces < mesh.face_count() {
+                let which = if quad_faces == 0 {
+                    format!("none of the {} faces is a quad", mesh.face_count())
+                } else {
+                    format!(
+                        "{} of the {} faces are not quads",
+                        mesh.face_count() - quad_faces,
+                        mesh.face_count()
+                    )
+                };
+                eprintln!(
+                    "warning: {which}: `match` pairs quads into tiles and leaves the others out (non_quad in its JSON); make quads of half a tile first (`tilepattern remesh {} --edge T --out quads.obj`, T = (length + joint) / 2), or tile the surface with `tilepattern run`",
+                    quads.display()
+                );
+            }
             let zones = zones
                 .map(|path| zones_file::read(&path, mesh.face_count(), "quad mesh"))
                 .transpose()?;
