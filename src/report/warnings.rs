@@ -191,7 +191,7 @@ pub fn check(
     report: &Report,
 ) -> Vec<Warning> {
     let mut out = Vec::new();
-    out.extend(surface_checks(surface, up));
+    out.extend(surface_checks(surface, up, spec.width));
     out.extend(small_openings(surface, spec.length));
     out.extend(tile_shape(spec));
     out.extend(curvature(quads, spec));
@@ -264,8 +264,9 @@ fn no_support(support: Support, closed: bool) -> Option<Warning> {
     Some(Warning::new(WarningCode::NoSupport, message))
 }
 
-/// Checks of the surface alone: closed, in pieces, upside down.
-pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>) -> Vec<Warning> {
+/// Checks of the surface alone: closed, in pieces (and whether the pieces are layers closer
+/// than a tile's `width`), upside down.
+pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, width: f64) -> Vec<Warning> {
     let mut out = Vec::new();
     let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
     if !topology.edges().iter().any(|e| e.is_boundary()) {
@@ -279,10 +280,21 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>) -> Vec<Warning> {
         let mut sizes = vec![0usize; pieces];
         piece.iter().for_each(|&p| sizes[p] += 1);
         let largest = sizes.iter().copied().max().unwrap_or(0);
+        let advice = match stacked(surface, &piece, width) {
+            Some(layers) => format!(
+                "{:.0} % of its area lies within a tile's width ({width}) of another piece across the surface (on average {:.3} apart, e.g. near ({:.3}, {:.3}, {:.3})): the pieces are layers on top of each other, such as a thick shell's two faces or a surface exported twice, and the tiles fall on both; keep only the layer the tiles are laid on",
+                100.0 * layers.share,
+                layers.gap,
+                layers.at.x,
+                layers.at.y,
+                layers.at.z
+            ),
+            None => "if they should be one surface, weld them (the command line welds coincident vertices unless --weld off; raise the tolerance with --weld); otherwise tile each piece on its own".to_string(),
+        };
         out.push(Warning::new(
             WarningCode::SeveralPieces,
             format!(
-                "the surface has {pieces} separate pieces (the largest {largest} of {} faces) that share no edge: if they should be one surface, weld them (the command line welds coincident vertices unless --weld off; raise the tolerance with --weld); otherwise tile each piece on its own",
+                "the surface has {pieces} separate pieces (the largest {largest} of {} faces) that share no edge: {advice}",
                 surface.face_count()
             ),
         ));
@@ -383,6 +395,61 @@ fn diameter_within(points: &[Point3<f64>], limit: f64) -> Option<f64> {
     }
     Some(largest)
 }
+
+/// Pieces of a surface lying on top of each other ([`stacked`]).
+struct Layers {
+    /// Share of the surface's area over or under another piece.
+    share: f64,
+    /// Mean distance between them there.
+    gap: f64,
+    /// A face centroid there.
+    at: Point3<f64>,
+}
+
+/// Whether pieces of `surface` (`piece` per face) lie on top of each other: faces with a
+/// point of another piece within `reach` along their normal (within 37 degrees of it), more
+/// than [`STACKED_SHARE`] of the area. A thick shell exported with both its faces, or a
+/// surface exported twice a little apart, has its tiles laid on both layers.
+fn stacked(surface: &PolyMesh, piece: &[usize], reach: f64) -> Option<Layers> {
+    let pos: Vec<Vector3<f64>> = surface.positions().iter().map(|p| p.coords).collect();
+    let (face_of, tris): (Vec<usize>, Vec<[usize; 3]>) = crate::geom::fan(surface).unzip();
+    let bvh = crate::geom::Bvh::of_simplices(&pos, &tris);
+    let (mut over, mut total, mut gaps) = (0.0, 0.0, 0.0);
+    let mut at = None;
+    for f in 0..surface.face_count() {
+        let area = surface.face_area_vector(f);
+        total += area.norm();
+        let Some(normal) = area.try_normalize(0.0) else {
+            continue;
+        };
+        let c = surface.face_centroid(f).coords;
+        let nearest = bvh
+            .within(&c, reach)
+            .into_iter()
+            .filter(|&t| piece[face_of[t]] != piece[f])
+            .map(|t| {
+                let [a, b, d] = tris[t];
+                crate::geom::closest::on_triangle(&c, &pos[a], &pos[b], &pos[d]) - c
+            })
+            .filter(|d| d.norm() <= reach && d.dot(&normal).abs() >= 0.8 * d.norm())
+            .map(|d| d.norm())
+            .reduce(f64::min);
+        if let Some(gap) = nearest {
+            over += area.norm();
+            gaps += gap * area.norm();
+            at.get_or_insert(Point3::from(c));
+        }
+    }
+    (total > 0.0 && over > STACKED_SHARE * total).then(|| Layers {
+        share: over / total,
+        gap: gaps / over,
+        at: at.expect("some face is over another"),
+    })
+}
+
+/// Share of a surface's area over or under another of its pieces from which [`stacked`]
+/// calls the pieces layers.
+const STACKED_SHARE: f64 = 0.05;
 
 /// Edges where the surface folds back on itself ([`FOLD_ANGLE`]), with the sharpest one's
 /// place: quads and tiles there fold over each other, and the fit cuts them.
@@ -602,10 +669,49 @@ mod tests {
     }
 
     #[test]
+    fn pieces_on_top_of_each_other_are_called_layers_and_pieces_side_by_side_are_not() {
+        // Two 10 x 10 grids of 0.1 squares, the second moved by `shift`.
+        let two = |shift: Vector3<f64>| {
+            let grid = generate::grid(10, 10);
+            let scaled: Vec<Point3<f64>> = grid.positions().iter().map(|p| p * 0.1).collect();
+            let n = scaled.len();
+            let mut positions = scaled.clone();
+            positions.extend(scaled.iter().map(|p| p + shift));
+            let mut faces = grid.faces().to_vec();
+            faces.extend(
+                grid.faces()
+                    .iter()
+                    .map(|f| f.iter().map(|v| v + n).collect()),
+            );
+            PolyMesh::new(positions, faces).expect("two grids")
+        };
+        let pieces = |mesh: &PolyMesh| {
+            surface_checks(mesh, &Vector3::z(), 0.14)
+                .into_iter()
+                .find(|w| w.code == WarningCode::SeveralPieces)
+                .expect("two pieces")
+                .message
+        };
+        // A thick shell's two faces, 30 mm apart: layers, all of them.
+        let layers = pieces(&two(Vector3::new(0.0, 0.0, 0.03)));
+        assert!(layers.contains("100 % of its area"), "{layers}");
+        assert!(layers.contains("on average 0.030 apart"), "{layers}");
+        assert!(layers.contains("keep only the layer"), "{layers}");
+        // Half overlapping, 50 mm apart: half the area.
+        let half = pieces(&two(Vector3::new(0.5, 0.0, 0.05)));
+        assert!(half.contains("50 % of its area"), "{half}");
+        // Side by side, or farther apart than a tile's width: pieces to weld or tile apart.
+        for shift in [Vector3::new(1.05, 0.0, 0.0), Vector3::new(0.0, 0.0, 0.3)] {
+            let apart = pieces(&two(shift));
+            assert!(apart.contains("weld them"), "{shift:?}: {apart}");
+        }
+    }
+
+    #[test]
     fn a_grid_is_open_whole_and_faces_up() {
         let grid = generate::grid(4, 3);
-        assert!(surface_checks(&grid, &Vector3::z()).is_empty());
-        let codes: Vec<_> = surface_checks(&grid, &-Vector3::z())
+        assert!(surface_checks(&grid, &Vector3::z(), 0.14).is_empty());
+        let codes: Vec<_> = surface_checks(&grid, &-Vector3::z(), 0.14)
             .iter()
             .map(|w| w.code)
             .collect();
@@ -656,7 +762,7 @@ mod tests {
     #[test]
     fn a_surface_folded_back_on_itself_is_flagged_and_a_crease_is_not() {
         let codes = |mesh: &PolyMesh| -> Vec<WarningCode> {
-            surface_checks(mesh, &Vector3::z())
+            surface_checks(mesh, &Vector3::z(), 0.14)
                 .iter()
                 .map(|w| w.code)
                 .collect()
@@ -664,7 +770,7 @@ mod tests {
         // Turned by 90 degrees (a box's edge) and by 115: creases, not folds.
         assert!(codes(&strip_turned_by(std::f64::consts::FRAC_PI_2)).is_empty());
         assert!(codes(&strip_turned_by(115f64.to_radians())).is_empty());
-        let folded = surface_checks(&strip_turned_by(160f64.to_radians()), &Vector3::z());
+        let folded = surface_checks(&strip_turned_by(160f64.to_radians()), &Vector3::z(), 0.14);
         let fold = folded
             .iter()
             .find(|w| w.code == WarningCode::FoldedSurface)
