@@ -336,6 +336,10 @@ enum TpWarning
    * The surface has openings smaller than a tile (often a face missing from the mesh).
    */
   TP_WARNING_SMALL_OPENINGS = 16,
+  /**
+   * The surface faces along another axis than up (a model whose up is Y, tiled with up Z).
+   */
+  TP_WARNING_UP_AXIS = 17,
 };
 #ifndef __cplusplus
 typedef int32_t TpWarning;

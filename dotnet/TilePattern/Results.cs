@@ -579,6 +579,8 @@ namespace TilePattern
         TilesOffSurface = 15,
         /// <summary>The surface has openings smaller than a tile (often a face missing from the mesh); the tiles over them are cut around them.</summary>
         SmallOpenings = 16,
+        /// <summary>The surface faces along another axis than up (a model whose up is Y, tiled with up Z): set the up direction.</summary>
+        UpAxis = 17,
     }
 
     /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>

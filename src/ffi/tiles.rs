@@ -664,6 +664,8 @@ pub enum TpWarning {
     TP_WARNING_TILES_OFF_SURFACE = 15,
     /// The surface has openings smaller than a tile (often a face missing from the mesh).
     TP_WARNING_SMALL_OPENINGS = 16,
+    /// The surface faces along another axis than up (a model whose up is Y, tiled with up Z).
+    TP_WARNING_UP_AXIS = 17,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -686,6 +688,7 @@ impl From<WarningCode> for TpWarning {
             WarningCode::QuadSize => TP_WARNING_QUAD_SIZE,
             WarningCode::TilesOffSurface => TP_WARNING_TILES_OFF_SURFACE,
             WarningCode::SmallOpenings => TP_WARNING_SMALL_OPENINGS,
+            WarningCode::UpAxis => TP_WARNING_UP_AXIS,
         }
     }
 }

@@ -57,6 +57,9 @@ pub enum WarningCode {
     /// The surface has openings smaller than a tile: a gap in the mesh (a face missing from
     /// an STL) more often than a real opening; tiles are cut around them on site.
     SmallOpenings = 16,
+    /// The surface faces along another axis than up and rises along it: a model whose up is
+    /// Y (Blender's and Maya's OBJ export, glTF), tiled with up = Z.
+    UpAxis = 17,
 }
 
 /// One warning.
@@ -300,6 +303,7 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, width: f64) -> Vec<
         ));
     }
     out.extend(folds(surface, &topology));
+    out.extend(up_axis(surface, up));
     if let Some(up) = up.try_normalize(0.0) {
         let (mut signed, mut projected, mut area) = (0.0, 0.0, 0.0);
         for f in 0..surface.face_count() {
@@ -395,6 +399,69 @@ fn diameter_within(points: &[Point3<f64>], limit: f64) -> Option<f64> {
     }
     Some(largest)
 }
+
+/// A surface that faces sideways along a coordinate axis and rises along it, as a vault
+/// modelled with Y up (Blender's and Maya's OBJ export, glTF) and tiled with up = Z: its
+/// courses run level to the wrong axis and its laying order starts from the wrong edge. Said
+/// when the faces' summed area vector is over [`FACING_SHARE`] of their area, within 37
+/// degrees of the axis's positive side and more than 73 degrees from `up`, and the surface's
+/// extent along the axis is over a twentieth of its largest (a flat wall has none). A wall
+/// bent in plan has the same shape as such a vault, so the message says what to do in both
+/// cases.
+fn up_axis(surface: &PolyMesh, up: &Vector3<f64>) -> Option<Warning> {
+    let up = up.try_normalize(0.0)?;
+    let (mut sum, mut area) = (Vector3::zeros(), 0.0);
+    for f in 0..surface.face_count() {
+        let a = surface.face_area_vector(f);
+        sum += a;
+        area += a.norm();
+    }
+    if !(area > 0.0 && sum.norm() > FACING_SHARE * area) {
+        return None;
+    }
+    let facing = sum.normalize();
+    let k = facing.iamax();
+    let axis = Vector3::ith(k, 1.0);
+    if facing[k] < 0.8 || facing.dot(&up).abs() > 0.3 || axis.dot(&up).abs() > 0.9 {
+        return None;
+    }
+    let p = surface.positions();
+    let extent = |d: &Vector3<f64>| {
+        let (lo, hi) = p
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
+                (lo.min(q.coords.dot(d)), hi.max(q.coords.dot(d)))
+            });
+        hi - lo
+    };
+    let largest = (0..3)
+        .map(|i| extent(&Vector3::ith(i, 1.0)))
+        .fold(0.0, f64::max);
+    if extent(&axis) <= 0.05 * largest {
+        return None;
+    }
+    let name = ["X", "Y", "Z"][k];
+    let mut given = [0.0; 3];
+    given[k] = 1.0;
+    Some(Warning::new(
+        WarningCode::UpAxis,
+        format!(
+            "the surface faces sideways, along {name} (its area seen along {name} is {:.0} % of its area; up ({:.2}, {:.2}, {:.2}) is {:.0} degrees from that), and rises along {name}: if it is a vault modelled with {name} up (Blender's and Maya's OBJ export, glTF), give --up {},{},{} (up), or its courses run level to the wrong axis and the laying order starts from the wrong edge; a wall standing on its foot is tiled as it is",
+            100.0 * sum.norm() / area,
+            up.x,
+            up.y,
+            up.z,
+            facing.dot(&up).clamp(-1.0, 1.0).acos().to_degrees(),
+            given[0],
+            given[1],
+            given[2]
+        ),
+    ))
+}
+
+/// Share of the surface's area its summed area vector must reach for [`up_axis`] to read
+/// which way it faces (a hemisphere's is a half, a barrel vault's two thirds).
+const FACING_SHARE: f64 = 0.3;
 
 /// Pieces of a surface lying on top of each other ([`stacked`]).
 struct Layers {
@@ -705,6 +772,36 @@ mod tests {
             let apart = pieces(&two(shift));
             assert!(apart.contains("weld them"), "{shift:?}: {apart}");
         }
+    }
+
+    #[test]
+    fn a_vault_modelled_with_y_up_is_named_and_one_with_z_up_is_not() {
+        // A barrel vault 2 x 2 rising 0.5 in the middle, its grid's (x, y) laid out as
+        // (x, rise, -y): Y up, facing +Y; and the same as (x, y, rise): Z up.
+        let grid = generate::grid(10, 10);
+        let rise = |y: f64| 0.5 * (1.0 - (y - 1.0).powi(2));
+        let vault = |map: &dyn Fn(f64, f64) -> Point3<f64>| {
+            let positions = grid
+                .positions()
+                .iter()
+                .map(|p| map(p.x * 0.2, p.y * 0.2))
+                .collect();
+            PolyMesh::new(positions, grid.faces().to_vec()).expect("a vault")
+        };
+        let y_up = vault(&|x, y| Point3::new(x, rise(y), -y));
+        let z_up = vault(&|x, y| Point3::new(x, y, rise(y)));
+        let named = up_axis(&y_up, &Vector3::z()).expect("Y up, tiled with Z up");
+        assert_eq!(named.code, WarningCode::UpAxis);
+        assert!(
+            named.message.contains("give --up 0,1,0"),
+            "{}",
+            named.message
+        );
+        assert!(up_axis(&y_up, &Vector3::y()).is_none());
+        assert!(up_axis(&z_up, &Vector3::z()).is_none());
+        // A flat wall facing Y has no rise along it: nothing to say.
+        let wall = vault(&|x, y| Point3::new(x, 0.0, -y));
+        assert!(up_axis(&wall, &Vector3::z()).is_none());
     }
 
     #[test]
