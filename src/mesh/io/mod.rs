@@ -132,6 +132,7 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
         Format::StlAscii | Format::StlBinary => stl::parse(bytes, format)?,
         Format::PlyAscii | Format::PlyBinary => ply::parse(bytes, format)?,
     };
+    single_precision_far_out(&positions, &faces, format)?;
     let (positions, faces) = if matches!(format, Format::StlAscii | Format::StlBinary) {
         // STL has no shared vertices: identical corners are one vertex, always and silently.
         let (positions, faces, _) = weld::weld(positions, faces, 0.0);
@@ -165,6 +166,41 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
         weld: summary,
         turned_faces,
     })
+}
+
+/// Refuses coordinates that went through single precision (every one a 32-bit float: binary
+/// STL, STL and PLY read as floats, some exporters' OBJ) so far from the origin that their
+/// steps exceed a thousandth of the model: a shell 6 m across at a site's coordinates (y =
+/// 5,200,000) is quantized to 0.5 m, and its faces then meet as fins or vanish, which the
+/// checks downstream named as if the mesh were drawn so.
+fn single_precision_far_out(
+    positions: &[Point3<f64>],
+    faces: &[Vec<usize>],
+    format: Format,
+) -> Result<(), MeshError> {
+    let coordinates = || positions.iter().flat_map(|p| p.iter().copied());
+    if !coordinates().all(|c| !c.is_finite() || f64::from(c as f32) == c) {
+        return Ok(());
+    }
+    let far = coordinates()
+        .filter(|c| c.is_finite())
+        .fold(0.0, |m: f64, c| m.max(c.abs()));
+    let size = diagonal(positions, faces);
+    // The spacing of 32-bit floats at `far`: 2^(exponent - 23).
+    let step = if far > 0.0 {
+        2f64.powi(far.log2().floor() as i32 - 23)
+    } else {
+        0.0
+    };
+    if size > 0.0 && step > 1e-3 * size {
+        return Err(MeshError::Format {
+            format: format.name(),
+            message: format!(
+                "the coordinates are 32-bit floats, which {far:.0} from the origin are {step} apart, more than a thousandth of the model ({size:.3} across): its shape is lost; move the model near the origin before exporting (Rhino: Move; or export relative to a local origin), or export OBJ with full precision"
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// Bounding-box diagonal of the finite positions that faces use (0 for none).
@@ -311,6 +347,40 @@ mod tests {
             assert_eq!(read.mesh.positions(), plain.mesh.positions(), "{variant:?}");
             assert_eq!(read.mesh.faces(), plain.mesh.faces(), "{variant:?}");
         }
+    }
+
+    #[test]
+    fn single_precision_far_from_the_origin_is_refused_and_near_it_read() {
+        // A strip of 20 triangles 6 m long, at a site's coordinates and at the origin.
+        let strip = |y: f32| -> Vec<[[f32; 3]; 3]> {
+            (0..10)
+                .flat_map(|i| {
+                    let x = 0.6 * i as f32;
+                    [
+                        [[x, y, 0.0], [x + 0.6, y, 0.0], [x + 0.6, y + 0.6, 0.1]],
+                        [[x, y, 0.0], [x + 0.6, y + 0.6, 0.1], [x, y + 0.6, 0.1]],
+                    ]
+                })
+                .collect()
+        };
+        let far = stl::tests::binary(&strip(5_200_000.0));
+        let error = parse(&far, Some("stl"), Weld::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("32-bit floats")
+                && error.contains("0.5 apart")
+                && error.contains("near the origin"),
+            "{error}"
+        );
+        let near = stl::tests::binary(&strip(0.0));
+        assert_eq!(
+            parse(&near, Some("stl"), Weld::default())
+                .unwrap()
+                .mesh
+                .face_count(),
+            20
+        );
     }
 
     #[test]

@@ -59,15 +59,9 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
         owned = bytes.to_vec();
         owned[..5].fill(b' ');
         &owned[..]
-    } else if let Some(rest) = bytes.trim_ascii_start().strip_prefix(b"solid")
-        && !rest.starts_with(b" ")
-    {
-        // `stl_io` wants "solid " and a name; some exporters write "solid" alone.
-        owned = b"solid ".to_vec();
-        owned.extend_from_slice(rest);
-        &owned[..]
     } else {
-        bytes.trim_ascii_start()
+        owned = ascii_for_the_reader(bytes.trim_ascii_start());
+        &owned[..]
     };
     let mut cursor = Cursor::new(bytes);
     let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| error(e.to_string()))?;
@@ -94,8 +88,39 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
     Ok((positions, faces))
 }
 
+/// An ASCII STL as `stl_io` reads it: "solid " and a name (some exporters write "solid"
+/// alone), and every facet normal zero, since the corners alone give the triangle and
+/// exporters write "nan" for a degenerate facet's normal, which failed the whole file.
+fn ascii_for_the_reader(text: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(text.len() + 8);
+    if let Some(rest) = text.strip_prefix(b"solid")
+        && !rest.starts_with(b" ")
+    {
+        out.extend_from_slice(b"solid ");
+        out.extend_from_slice(rest);
+    } else {
+        out.extend_from_slice(text);
+    }
+    if !out.windows(3).any(|w| w.eq_ignore_ascii_case(b"nan")) {
+        return out;
+    }
+    let mut fixed = Vec::with_capacity(out.len());
+    for line in out.split_inclusive(|&b| b == b'\n') {
+        let words: Vec<&[u8]> = line
+            .split(u8::is_ascii_whitespace)
+            .filter(|w| !w.is_empty())
+            .collect();
+        if words.len() == 5 && words[0] == b"facet" && words[1] == b"normal" {
+            fixed.extend_from_slice(b"facet normal 0 0 0\n");
+        } else {
+            fixed.extend_from_slice(line);
+        }
+    }
+    fixed
+}
+
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A binary STL of the given triangles, its header starting with "solid" as some
@@ -143,5 +168,9 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(error.starts_with("ASCII STL"), "{error}");
+        // A degenerate facet's normal written as "nan" (before: the whole file refused).
+        let nan = text.replace("facet normal 0 0 1", "facet normal nan nan nan");
+        let (positions, faces) = parse(nan.as_bytes(), Format::StlAscii).unwrap();
+        assert_eq!((positions.len(), faces.len()), (3, 1));
     }
 }
