@@ -41,19 +41,20 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
                 bytes.len()
             )));
         };
-        if count > MAX_FACES {
-            return Err(MeshError::TooLarge {
-                what: "faces",
-                count,
-                limit: MAX_FACES,
-            });
-        }
+        // The size first: a corrupt count is no reason to call the shell too large.
         if !is_binary(bytes) {
             return Err(error(format!(
                 "the header announces {count} triangles ({} bytes), but the file has {} bytes: the file is cut short or not an STL",
                 HEADER as u64 + TRIANGLE as u64 * count as u64,
                 bytes.len()
             )));
+        }
+        if count > MAX_FACES {
+            return Err(MeshError::TooLarge {
+                what: "faces",
+                count,
+                limit: MAX_FACES,
+            });
         }
         // `stl_io` takes a header starting with "solid " for ASCII; the size proved binary.
         owned = bytes.to_vec();
@@ -153,6 +154,11 @@ pub(crate) mod tests {
             cut.starts_with("binary STL") && cut.contains("cut short"),
             "{cut}"
         );
+        // A count far beyond the file's size is a corrupt file, not a shell too large.
+        let mut huge = bytes.clone();
+        huge[80..84].copy_from_slice(&1_000_000_000u32.to_le_bytes());
+        let corrupt = parse(&huge, Format::StlBinary).unwrap_err().to_string();
+        assert!(corrupt.contains("cut short"), "{corrupt}");
     }
 
     #[test]
