@@ -236,6 +236,30 @@ fn bad_meshes_are_refused_with_the_culprit_named() {
             &["edge 0-1", "3 faces", "[0, 1, 2]"],
         ),
         (
+            // The third face has no area: it is named, not taken for a fin (before: 'a fin,
+            // a wall or a second shell').
+            "a face without area along an edge",
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.5, 1.0, 0.0],
+                [0.5, -1.0, 0.0],
+                [0.5, 0.0, 0.0],
+            ],
+            vec![vec![0, 1, 2], vec![1, 0, 3], vec![0, 4, 1]],
+            |e| {
+                matches!(
+                    e,
+                    MeshError::DegenerateFace {
+                        face: 2,
+                        a: 0,
+                        b: 1
+                    }
+                )
+            },
+            &["face 2 has no area", "CullDegenerateMeshFaces"],
+        ),
+        (
             "inconsistent orientation (triangles)",
             SQUARE.to_vec(),
             vec![vec![0, 1, 2], vec![0, 2, 3], vec![1, 2, 4]],

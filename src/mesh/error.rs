@@ -79,6 +79,19 @@ pub enum MeshError {
         /// The first three faces found on it.
         faces: Vec<usize>,
     },
+    /// A face without area (its corners on a line) lies along an edge of two other faces, a
+    /// third face there: exporters leave such slivers where they closed a gap.
+    #[error(
+        "face {face} has no area (its corners lie on a line) and lies along edge {a}-{b} of two other faces; delete degenerate faces (Rhino: CullDegenerateMeshFaces) and read the mesh again"
+    )]
+    DegenerateFace {
+        /// The face without area.
+        face: usize,
+        /// First vertex of the edge.
+        a: usize,
+        /// Second vertex of the edge.
+        b: usize,
+    },
     /// Two faces have the same vertices.
     #[error("face {face} repeats face {first} (the same vertices); remove one of them")]
     DuplicateFace {

@@ -77,6 +77,19 @@ impl Topology {
                 edges[e].faces.push(f);
                 if edges[e].faces.len() > 2 {
                     let faces = edges[e].faces.clone();
+                    // A face without area along the edge is the fault, not a fin.
+                    let length2 =
+                        (mesh.positions()[key[0]] - mesh.positions()[key[1]]).norm_squared();
+                    if let Some(&flat) = faces
+                        .iter()
+                        .find(|&&g| mesh.face_area_vector(g).norm() <= 1e-5 * length2)
+                    {
+                        return Err(MeshError::DegenerateFace {
+                            face: flat,
+                            a: key[0],
+                            b: key[1],
+                        });
+                    }
                     return Err(MeshError::NonManifoldEdge {
                         a: key[0],
                         b: key[1],
