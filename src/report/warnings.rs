@@ -204,7 +204,7 @@ pub fn check(
             out.push(Warning::new(
                 WarningCode::LowCoverage,
                 format!(
-                    "the tiles cover {:.3} of the surface (below {MIN_COVERAGE}): look at the pattern picture; usual causes are quads far from half a tile (remesh), mesh and tile in different units, or a surface in pieces or full of holes",
+                    "the tiles cover {:.3} of the surface (below {MIN_COVERAGE}): look at the pattern picture; usual causes are quads far from half a tile (remesh), mesh and tile in different units, a surface in pieces or full of holes, or quads made from another surface than the one given to cut the tiles to",
                     c.coverage
                 ),
             ));
