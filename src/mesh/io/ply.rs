@@ -6,10 +6,10 @@ use std::io::Cursor;
 
 use nalgebra::Point3;
 use ply_rs_bw::parser::Parser;
-use ply_rs_bw::ply::{DefaultElement, Encoding, Property};
+use ply_rs_bw::ply::{DefaultElement, ElementDef, Encoding, Property, PropertyType, ScalarType};
 
 use super::{Format, Raw};
-use crate::mesh::{MAX_FACES, MAX_VERTICES, MeshError};
+use crate::mesh::MeshError;
 
 /// ASCII or binary PLY, from the header's `format` line.
 pub(super) fn encoding(bytes: &[u8]) -> Format {
@@ -44,11 +44,24 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
         message,
     };
     let count = |name: &str| header.elements.get(name).map_or(0, |e| e.count);
-    crate::mesh::check_size(
-        count("vertex").min(MAX_VERTICES + 1),
-        count("face").min(MAX_FACES + 1),
-        0,
-    )?;
+    // The counts must fit the file: a corrupt header is no shell too large.
+    let body = bytes
+        .windows(10)
+        .position(|w| w == b"end_header")
+        .map_or(0, |at| bytes.len() - at);
+    let least: u128 = header
+        .elements
+        .values()
+        .map(|e| e.count as u128 * least_bytes(e, header.encoding == Encoding::Ascii))
+        .sum();
+    if least > body as u128 {
+        return Err(error(format!(
+            "the header announces {} vertices and {} faces, at least {least} bytes, but {body} bytes follow it: the file is cut short or corrupt",
+            count("vertex"),
+            count("face")
+        )));
+    }
+    crate::mesh::check_size(count("vertex"), count("face"), 0)?;
     let face_list = header.elements.get("face").and_then(|e| {
         ["vertex_indices", "vertex_index"]
             .into_iter()
@@ -84,6 +97,25 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
         }
     }
     Ok((positions, faces))
+}
+
+/// The fewest bytes one `element` takes: its scalars' sizes and its lists' counts in binary,
+/// a digit and a separator per property in ASCII.
+fn least_bytes(element: &ElementDef, ascii: bool) -> u128 {
+    let size = |t: &ScalarType| match t {
+        ScalarType::Char | ScalarType::UChar => 1,
+        ScalarType::Short | ScalarType::UShort => 2,
+        ScalarType::Int | ScalarType::UInt | ScalarType::Float => 4,
+        ScalarType::Double => 8,
+    };
+    element
+        .properties
+        .values()
+        .map(|p| match (&p.data_type, ascii) {
+            (_, true) => 2,
+            (PropertyType::Scalar(t), false) | (PropertyType::List(t, _), false) => size(t),
+        })
+        .sum()
 }
 
 fn scalar(p: &Property) -> Option<f64> {
@@ -146,5 +178,29 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(cut.starts_with("binary PLY"), "{cut}");
+        // A header announcing far more than the file holds: corrupt, not a shell too large
+        // (it said "4000001 vertices" for 4e9).
+        let corrupt = parse(&bytes_with_count(&bytes, 4_000_000_000), Format::PlyBinary)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            corrupt.contains("4000000000 vertices") && corrupt.contains("cut short or corrupt"),
+            "{corrupt}"
+        );
+    }
+
+    /// `bytes` with its header's vertex count replaced by `count`.
+    fn bytes_with_count(bytes: &[u8], count: u64) -> Vec<u8> {
+        let at = bytes.windows(10).position(|w| w == b"end_header").unwrap();
+        let header = String::from_utf8(bytes[..at].to_vec()).unwrap();
+        let mut out = header
+            .replacen(
+                "element vertex 4\n",
+                &format!("element vertex {count}\n"),
+                1,
+            )
+            .into_bytes();
+        out.extend_from_slice(&bytes[at..]);
+        out
     }
 }
