@@ -107,6 +107,24 @@ pub enum BoundaryAlignment {
     Never,
 }
 
+/// Refuses a surface that falls apart into pieces of a face or two, more pieces than a
+/// quarter of its faces: an unwelded triangle soup (read with `--weld off`, or given as
+/// arrays), on which no quad can be laid, whose extraction found none and blamed the target
+/// edge.
+fn refuse_crumbs(input: &PolyMesh) -> Result<(), RemeshError> {
+    let Ok(topology) = crate::mesh::Topology::new(input) else {
+        return Ok(());
+    };
+    let (_, pieces) = topology.face_pieces();
+    if pieces > 1 && 4 * pieces > input.face_count() {
+        return Err(RemeshError::UnsupportedInput(format!(
+            "the surface falls apart into {pieces} pieces of {} faces, sharing no edge: a triangle soup whose coincident corners were not joined; weld them (the command line welds unless --weld off; Rhino: Weld or JoinMesh) and remesh again",
+            input.face_count()
+        )));
+    }
+    Ok(())
+}
+
 /// Options of [`remesh`].
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -438,6 +456,7 @@ pub fn remesh_with(
     let t = options.target_edge;
     budget.stage(0.0, 0.02);
     budget.check()?;
+    refuse_crumbs(input)?;
     let (mut base, surface_of) = surface::Surface::from_polymesh_mapped(input)?;
     base.set_boundary_scale(t * 0.5);
     let samples = user_field.map(|u| (u.samples(input, &surface_of, base.len()), u.weight));

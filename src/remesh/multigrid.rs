@@ -151,6 +151,13 @@ pub(crate) struct Multigrid {
 /// Fewest blocks a level is coarsened from.
 const COARSEST: usize = 256;
 
+/// Most blocks the coarsest level is factored densely at (a 2048 x 2048 matrix, 32 MB, a
+/// second or two); above, where coarsening stalls (a surface of thousands of loose triangles,
+/// an unwelded soup read with `--weld off`: no aggregate spans two of them), it takes the
+/// regularised block-diagonal step instead. A dense factor of the soup's 18,900 vertices
+/// wanted 11 GB and ran for minutes.
+const MOST_DENSE: usize = 1024;
+
 impl Multigrid {
     /// The hierarchy of `a`, whose components flagged in `held` (2 per vertex) are held at
     /// zero by the caller (their rows and columns are left out).
@@ -184,6 +191,14 @@ impl Multigrid {
 
     fn finish(levels: Vec<Level>, held: &[bool], a: BlockMatrix, mask: Vec<bool>) -> Self {
         let n = a.len();
+        if n > MOST_DENSE {
+            return Multigrid {
+                levels,
+                held: held.to_vec(),
+                coarsest: None,
+                coarsest_a: a,
+            };
+        }
         let mut dense = DMatrix::<f64>::zeros(2 * n, 2 * n);
         for i in 0..n {
             for k in a.start[i]..a.start[i + 1] {

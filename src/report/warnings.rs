@@ -323,13 +323,30 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, width: f64) -> Vec<
 }
 
 /// Openings of the surface smaller than a tile of `length` (every vertex of the boundary
-/// around one within that distance of every other): a face missing from the input (STL
-/// soups lose them) more often than a real opening, and the tiles over it are cut around
-/// it. Named with the largest one's size and place.
+/// around one within that distance of every other, and of half the size of its piece): a
+/// face missing from the input (STL soups lose them) more often than a real opening, and the
+/// tiles over it are cut around it. Named with the largest one's size and place.
 fn small_openings(surface: &PolyMesh, length: f64) -> Option<Warning> {
     let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
     let edges = topology.edges();
     let positions = surface.positions();
+    // Each piece's size: a boundary as large as half its piece is the piece's outline (a
+    // loose triangle of an unwelded soup), not an opening in it.
+    let (piece, pieces) = topology.face_pieces();
+    let mut extent = vec![
+        (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(f64::NEG_INFINITY)
+        );
+        pieces
+    ];
+    for (f, face) in surface.faces().iter().enumerate() {
+        let (lo, hi) = &mut extent[piece[f]];
+        for &v in face {
+            *lo = lo.inf(&positions[v].coords);
+            *hi = hi.sup(&positions[v].coords);
+        }
+    }
     let mut seen = vec![false; edges.len()];
     let mut small: Vec<(f64, Point3<f64>, usize)> = Vec::new();
     for start in 0..edges.len() {
@@ -354,7 +371,9 @@ fn small_openings(surface: &PolyMesh, length: f64) -> Option<Warning> {
         vertices.sort_unstable();
         vertices.dedup();
         let points: Vec<Point3<f64>> = vertices.iter().map(|&v| positions[v]).collect();
-        if let Some(across) = diameter_within(&points, length) {
+        let (lo, hi) = extent[piece[edges[start].faces[0]]];
+        let limit = length.min(0.5 * (hi - lo).norm());
+        if let Some(across) = diameter_within(&points, limit) {
             let centre = points
                 .iter()
                 .fold(Vector3::zeros(), |acc, p| acc + p.coords)
@@ -483,7 +502,10 @@ fn stacked(surface: &PolyMesh, piece: &[usize], reach: f64) -> Option<Layers> {
     let bvh = crate::geom::Bvh::of_simplices(&pos, &tris);
     let (mut over, mut total, mut gaps) = (0.0, 0.0, 0.0);
     let mut at = None;
-    for f in 0..surface.face_count() {
+    // Every face up to STACKED_SAMPLES, evenly spread beyond (a fine mesh in two layers asks
+    // hundreds of closest points per face).
+    let step = surface.face_count().div_ceil(STACKED_SAMPLES).max(1);
+    for f in (0..surface.face_count()).step_by(step) {
         let area = surface.face_area_vector(f);
         total += area.norm();
         let Some(normal) = area.try_normalize(0.0) else {
@@ -517,6 +539,9 @@ fn stacked(surface: &PolyMesh, piece: &[usize], reach: f64) -> Option<Layers> {
 /// Share of a surface's area over or under another of its pieces from which [`stacked`]
 /// calls the pieces layers.
 const STACKED_SHARE: f64 = 0.05;
+
+/// The most faces [`stacked`] looks at.
+const STACKED_SAMPLES: usize = 20_000;
 
 /// Edges where the surface folds back on itself ([`FOLD_ANGLE`]), with the sharpest one's
 /// place: quads and tiles there fold over each other, and the fit cuts them.
@@ -733,6 +758,20 @@ mod tests {
         );
         let square = [3 + 12 * 5, 4 + 12 * 5, 3 + 12 * 6, 4 + 12 * 6];
         assert!(small_openings(&with_holes(&square), 2.4).is_none());
+        // Loose triangles (an unwelded soup): their outlines are no openings.
+        let loose = PolyMesh::new(
+            vec![
+                Point3::new(0.0, 0.0, 0.0),
+                Point3::new(0.5, 0.0, 0.0),
+                Point3::new(0.0, 0.5, 0.0),
+                Point3::new(3.0, 0.0, 0.0),
+                Point3::new(3.5, 0.0, 0.0),
+                Point3::new(3.0, 0.5, 0.0),
+            ],
+            vec![vec![0, 1, 2], vec![3, 4, 5]],
+        )
+        .expect("two triangles");
+        assert!(small_openings(&loose, 2.0).is_none());
     }
 
     #[test]
