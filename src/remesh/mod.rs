@@ -107,16 +107,17 @@ pub enum BoundaryAlignment {
     Never,
 }
 
-/// Refuses a surface that falls apart into pieces of a face or two, more pieces than a
-/// quarter of its faces: an unwelded triangle soup (read with `--weld off`, or given as
-/// arrays), on which no quad can be laid, whose extraction found none and blamed the target
-/// edge.
+/// Refuses a surface that falls apart into pieces of a face or two, more than [`CRUMBS`] of
+/// them and more than a quarter of its faces: an unwelded triangle soup (read with `--weld
+/// off`, or given as arrays), on which no quad can be laid, whose extraction found none and
+/// blamed the target edge. A few small pieces (two quads touching at a corner) are left to
+/// the checks that name them.
 fn refuse_crumbs(input: &PolyMesh) -> Result<(), RemeshError> {
     let Ok(topology) = crate::mesh::Topology::new(input) else {
         return Ok(());
     };
     let (_, pieces) = topology.face_pieces();
-    if pieces > 1 && 4 * pieces > input.face_count() {
+    if pieces > CRUMBS && 4 * pieces > input.face_count() {
         return Err(RemeshError::UnsupportedInput(format!(
             "the surface falls apart into {pieces} pieces of {} faces, sharing no edge: a triangle soup whose coincident corners were not joined; weld them (the command line welds unless --weld off; Rhino: Weld or JoinMesh) and remesh again",
             input.face_count()
@@ -124,6 +125,10 @@ fn refuse_crumbs(input: &PolyMesh) -> Result<(), RemeshError> {
     }
     Ok(())
 }
+
+/// More pieces than this, each of a face or two on average, make [`refuse_crumbs`] call a
+/// surface a soup.
+const CRUMBS: usize = 16;
 
 /// Options of [`remesh`].
 #[derive(Debug, Clone, PartialEq)]
