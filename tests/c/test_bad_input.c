@@ -126,8 +126,12 @@ int main(void) {
   row("duplicate face, reversed", mesh(square, 6, reversed, 8, fours, 2, &m), TP_INVALID_MESH, "face 1 repeats face 0");
   const uint32_t flipped[] = {0, 1, 2, 3, 2, 5, 4, 1};
   row("inconsistent orientation", mesh(square, 6, flipped, 8, fours, 2, &m), TP_INVALID_MESH, "faces [0, 1]");
-  const uint32_t fan[] = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+  const uint32_t fan[] = {0, 1, 2, 1, 0, 3, 0, 1, 5};
   row("non-manifold edge", mesh(square, 6, fan, 9, three, 3, &m), TP_INVALID_MESH, "edge 0-1 is shared by 3 faces");
+  /* The third face's corners on a line (vertex 4 continues the edge): a face without area. */
+  const uint32_t flat_fin[] = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+  row("face without area on an edge", mesh(square, 6, flat_fin, 9, three, 3, &m), TP_INVALID_MESH,
+      "face 2 has no area");
   row("empty mesh", mesh(NULL, 0, NULL, 0, NULL, 0, &m), TP_INVALID_MESH, "empty");
   row("vertices but no faces", mesh(square, 6, NULL, 0, NULL, 0, &m), TP_INVALID_MESH, "0 faces");
   row("faces but no vertices", mesh(NULL, 0, quad, 4, four, 1, &m), TP_INVALID_MESH, "0 vertices");
