@@ -194,8 +194,7 @@ pub fn check(
     report: &Report,
 ) -> Vec<Warning> {
     let mut out = Vec::new();
-    out.extend(surface_checks(surface, up, spec.width));
-    out.extend(small_openings(surface, spec.length));
+    out.extend(surface_checks(surface, up, spec));
     out.extend(tile_shape(spec));
     out.extend(curvature(quads, spec));
     out.extend(quad_size(quads, spec));
@@ -267,9 +266,10 @@ fn no_support(support: Support, closed: bool) -> Option<Warning> {
     Some(Warning::new(WarningCode::NoSupport, message))
 }
 
-/// Checks of the surface alone: closed, in pieces (and whether the pieces are layers closer
-/// than a tile's `width`), upside down.
-pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, width: f64) -> Vec<Warning> {
+/// Checks of the surface alone, against the tile of `spec`: closed, in pieces (and whether
+/// the pieces are layers closer than a tile's width), with openings smaller than a tile,
+/// folded, facing sideways or upside down.
+pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, spec: &TileSpec) -> Vec<Warning> {
     let mut out = Vec::new();
     let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
     if !topology.edges().iter().any(|e| e.is_boundary()) {
@@ -283,6 +283,7 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, width: f64) -> Vec<
         let mut sizes = vec![0usize; pieces];
         piece.iter().for_each(|&p| sizes[p] += 1);
         let largest = sizes.iter().copied().max().unwrap_or(0);
+        let width = spec.width;
         let advice = match stacked(surface, &piece, width) {
             Some(layers) => format!(
                 "{:.0} % of its area lies within a tile's width ({width}) of another piece across the surface (on average {:.3} apart, e.g. near ({:.3}, {:.3}, {:.3})): the pieces are layers on top of each other, such as a thick shell's two faces or a surface exported twice, and the tiles fall on both; keep only the layer the tiles are laid on",
@@ -302,6 +303,12 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, width: f64) -> Vec<
             ),
         ));
     }
+    out.extend(small_openings(
+        surface,
+        &topology,
+        (&piece, pieces),
+        spec.length,
+    ));
     out.extend(folds(surface, &topology));
     out.extend(up_axis(surface, up));
     if let Some(up) = up.try_normalize(0.0) {
@@ -326,13 +333,17 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, width: f64) -> Vec<
 /// around one within that distance of every other, and of half the size of its piece): a
 /// face missing from the input (STL soups lose them) more often than a real opening, and the
 /// tiles over it are cut around it. Named with the largest one's size and place.
-fn small_openings(surface: &PolyMesh, length: f64) -> Option<Warning> {
-    let topology = Topology::new(surface).expect("a PolyMesh is manifold by construction");
+/// `pieces` is [`Topology::face_pieces`] of `topology`, the surface's.
+fn small_openings(
+    surface: &PolyMesh,
+    topology: &Topology,
+    (piece, pieces): (&[usize], usize),
+    length: f64,
+) -> Option<Warning> {
     let edges = topology.edges();
     let positions = surface.positions();
     // Each piece's size: a boundary as large as half its piece is the piece's outline (a
     // loose triangle of an unwelded soup), not an opening in it.
-    let (piece, pieces) = topology.face_pieces();
     let mut extent = vec![
         (
             Vector3::repeat(f64::INFINITY),
@@ -444,19 +455,15 @@ fn up_axis(surface: &PolyMesh, up: &Vector3<f64>) -> Option<Warning> {
     if facing[k] < 0.8 || facing.dot(&up).abs() > 0.3 || axis.dot(&up).abs() > 0.9 {
         return None;
     }
-    let p = surface.positions();
-    let extent = |d: &Vector3<f64>| {
-        let (lo, hi) = p
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
-                (lo.min(q.coords.dot(d)), hi.max(q.coords.dot(d)))
-            });
-        hi - lo
-    };
-    let largest = (0..3)
-        .map(|i| extent(&Vector3::ith(i, 1.0)))
-        .fold(0.0, f64::max);
-    if extent(&axis) <= 0.05 * largest {
+    let (lo, hi) = surface.positions().iter().fold(
+        (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(f64::NEG_INFINITY),
+        ),
+        |(lo, hi), q| (lo.inf(&q.coords), hi.sup(&q.coords)),
+    );
+    let extent = hi - lo;
+    if extent[k] <= 0.05 * extent.max() {
         return None;
     }
     let name = ["X", "Y", "Z"][k];
@@ -658,6 +665,21 @@ mod tests {
         joint: 0.1,
     };
 
+    /// A 280 x 140 x 15 mm tile with a 10 mm joint, in metres.
+    const BRICK: TileSpec = TileSpec {
+        length: 0.28,
+        width: 0.14,
+        thickness: 0.015,
+        joint: 0.01,
+    };
+
+    /// [`small_openings`] of `mesh` for a tile of `length`.
+    fn openings(mesh: &PolyMesh, length: f64) -> Option<Warning> {
+        let topology = Topology::new(mesh).expect("a manifold mesh");
+        let (piece, pieces) = topology.face_pieces();
+        small_openings(mesh, &topology, (&piece, pieces), length)
+    }
+
     #[test]
     fn the_half_tile_model_is_checked() {
         assert!(tile_shape(&TILE).is_none());
@@ -736,9 +758,9 @@ mod tests {
                 .collect();
             PolyMesh::new(grid.positions().to_vec(), faces).expect("a grid with holes")
         };
-        assert!(small_openings(&with_holes(&[]), 2.0).is_none());
+        assert!(openings(&with_holes(&[]), 2.0).is_none());
         // One square missing at (3..4, 5..6): 1.414 across, smaller than a tile of 2.
-        let one = small_openings(&with_holes(&[3 + 12 * 5]), 2.0).expect("a pinhole");
+        let one = openings(&with_holes(&[3 + 12 * 5]), 2.0).expect("a pinhole");
         assert_eq!(one.code, WarningCode::SmallOpenings);
         assert!(
             one.message.contains("an opening smaller than a tile (its length 2), 1.414 across, bounded by 4 edges, near (3.500, 5.500, 0.000)"),
@@ -747,8 +769,7 @@ mod tests {
         );
         // Two: one square and a 2 x 1 hole (2.236 across, the larger); the 2 x 2 hole and the
         // grid's own edge are larger than a tile of 2.4.
-        let two =
-            small_openings(&with_holes(&[3 + 12 * 5, 7 + 12 * 7, 8 + 12 * 7]), 2.4).expect("two");
+        let two = openings(&with_holes(&[3 + 12 * 5, 7 + 12 * 7, 8 + 12 * 7]), 2.4).expect("two");
         assert!(two.message.contains("2 openings"), "{}", two.message);
         assert!(two.message.contains("the largest"), "{}", two.message);
         assert!(
@@ -757,7 +778,7 @@ mod tests {
             two.message
         );
         let square = [3 + 12 * 5, 4 + 12 * 5, 3 + 12 * 6, 4 + 12 * 6];
-        assert!(small_openings(&with_holes(&square), 2.4).is_none());
+        assert!(openings(&with_holes(&square), 2.4).is_none());
         // Loose triangles (an unwelded soup): their outlines are no openings.
         let loose = PolyMesh::new(
             vec![
@@ -771,7 +792,7 @@ mod tests {
             vec![vec![0, 1, 2], vec![3, 4, 5]],
         )
         .expect("two triangles");
-        assert!(small_openings(&loose, 2.0).is_none());
+        assert!(openings(&loose, 2.0).is_none());
     }
 
     #[test]
@@ -792,7 +813,7 @@ mod tests {
             PolyMesh::new(positions, faces).expect("two grids")
         };
         let pieces = |mesh: &PolyMesh| {
-            surface_checks(mesh, &Vector3::z(), 0.14)
+            surface_checks(mesh, &Vector3::z(), &BRICK)
                 .into_iter()
                 .find(|w| w.code == WarningCode::SeveralPieces)
                 .expect("two pieces")
@@ -846,8 +867,8 @@ mod tests {
     #[test]
     fn a_grid_is_open_whole_and_faces_up() {
         let grid = generate::grid(4, 3);
-        assert!(surface_checks(&grid, &Vector3::z(), 0.14).is_empty());
-        let codes: Vec<_> = surface_checks(&grid, &-Vector3::z(), 0.14)
+        assert!(surface_checks(&grid, &Vector3::z(), &BRICK).is_empty());
+        let codes: Vec<_> = surface_checks(&grid, &-Vector3::z(), &BRICK)
             .iter()
             .map(|w| w.code)
             .collect();
@@ -898,7 +919,7 @@ mod tests {
     #[test]
     fn a_surface_folded_back_on_itself_is_flagged_and_a_crease_is_not() {
         let codes = |mesh: &PolyMesh| -> Vec<WarningCode> {
-            surface_checks(mesh, &Vector3::z(), 0.14)
+            surface_checks(mesh, &Vector3::z(), &BRICK)
                 .iter()
                 .map(|w| w.code)
                 .collect()
@@ -906,7 +927,7 @@ mod tests {
         // Turned by 90 degrees (a box's edge) and by 115: creases, not folds.
         assert!(codes(&strip_turned_by(std::f64::consts::FRAC_PI_2)).is_empty());
         assert!(codes(&strip_turned_by(115f64.to_radians())).is_empty());
-        let folded = surface_checks(&strip_turned_by(160f64.to_radians()), &Vector3::z(), 0.14);
+        let folded = surface_checks(&strip_turned_by(160f64.to_radians()), &Vector3::z(), &BRICK);
         let fold = folded
             .iter()
             .find(|w| w.code == WarningCode::FoldedSurface)
