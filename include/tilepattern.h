@@ -340,6 +340,11 @@ enum TpWarning
    * The surface faces along another axis than up (a model whose up is Y, tiled with up Z).
    */
   TP_WARNING_UP_AXIS = 17,
+  /**
+   * The quad mesh does not lie on the surface the tiles are cut to (quads made from
+   * another surface, or the surface moved, scaled or in other units since).
+   */
+  TP_WARNING_QUADS_OFF_SURFACE = 18,
 };
 #ifndef __cplusplus
 typedef int32_t TpWarning;

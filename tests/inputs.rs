@@ -822,6 +822,75 @@ fn a_level_floor_needs_no_prop() {
 }
 
 #[test]
+fn tiles_cut_to_a_surface_the_quads_were_not_made_from_say_so() {
+    // Before: `tiles --surface` with another surface than the quads' (a second model, the
+    // shell moved since) laid and cut the tiles without a word about it.
+    let dir = scratch("other_surface");
+    let surface = shell(2.0, 1.0);
+    let moved = PolyMesh::new(
+        surface
+            .positions()
+            .iter()
+            .map(|p| p + Vector3::new(0.0, 0.0, 1.0))
+            .collect(),
+        surface.faces().to_vec(),
+    )
+    .unwrap();
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_owned();
+    std::fs::write(path("s.obj"), obj::to_string(&surface)).unwrap();
+    std::fs::write(path("moved.obj"), obj::to_string(&moved)).unwrap();
+    let remeshed = tilepattern(&[
+        "remesh",
+        &path("s.obj"),
+        "--edge",
+        "0.145",
+        "-o",
+        &path("q.obj"),
+    ]);
+    assert!(remeshed.status.success(), "{}", stderr(&remeshed));
+    let matched = tilepattern(&[
+        "match",
+        &path("q.obj"),
+        "--time-limit",
+        "2",
+        "--json",
+        &path("p.json"),
+    ]);
+    assert!(matched.status.success(), "{}", stderr(&matched));
+    let tiles_on = |surface: &str| {
+        let out = tilepattern(&[
+            "tiles",
+            &path("q.obj"),
+            "--pairs",
+            &path("p.json"),
+            "--surface",
+            &path(surface),
+            "--tile",
+            "280x140x15",
+            "--units",
+            "m",
+            "-o",
+            &path("t.obj"),
+            "--json",
+            &path("r.json"),
+        ]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        (stderr(&out), codes(&json(&dir.join("r.json"))))
+    };
+    let (said, codes) = tiles_on("moved.obj");
+    assert!(codes.contains(&"quads_off_surface".to_owned()), "{codes:?}");
+    assert!(
+        said.contains("warning [quads_off_surface]: 100 % of the quads lie farther than a tile's length (0.28) from the surface"),
+        "{said}"
+    );
+    let (_, codes) = tiles_on("s.obj");
+    assert!(
+        !codes.contains(&"quads_off_surface".to_owned()),
+        "{codes:?}"
+    );
+}
+
+#[test]
 fn tiles_that_do_not_fit_the_half_tile_model_are_refused_or_flagged() {
     let surface = shell(2.0, 1.0);
     let bytes = obj::to_string(&surface);

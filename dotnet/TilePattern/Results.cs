@@ -581,6 +581,8 @@ namespace TilePattern
         SmallOpenings = 16,
         /// <summary>The surface faces along another axis than up (a model whose up is Y, tiled with up Z): set the up direction.</summary>
         UpAxis = 17,
+        /// <summary>The quad mesh does not lie on the surface the tiles are cut to (quads made from another surface, or the surface moved, scaled or in other units since).</summary>
+        QuadsOffSurface = 18,
     }
 
     /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>

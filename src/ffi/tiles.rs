@@ -666,6 +666,9 @@ pub enum TpWarning {
     TP_WARNING_SMALL_OPENINGS = 16,
     /// The surface faces along another axis than up (a model whose up is Y, tiled with up Z).
     TP_WARNING_UP_AXIS = 17,
+    /// The quad mesh does not lie on the surface the tiles are cut to (quads made from
+    /// another surface, or the surface moved, scaled or in other units since).
+    TP_WARNING_QUADS_OFF_SURFACE = 18,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -689,6 +692,7 @@ impl From<WarningCode> for TpWarning {
             WarningCode::TilesOffSurface => TP_WARNING_TILES_OFF_SURFACE,
             WarningCode::SmallOpenings => TP_WARNING_SMALL_OPENINGS,
             WarningCode::UpAxis => TP_WARNING_UP_AXIS,
+            WarningCode::QuadsOffSurface => TP_WARNING_QUADS_OFF_SURFACE,
         }
     }
 }

@@ -60,6 +60,10 @@ pub enum WarningCode {
     /// The surface faces along another axis than up and rises along it: a model whose up is
     /// Y (Blender's and Maya's OBJ export, glTF), tiled with up = Z.
     UpAxis = 17,
+    /// The quad mesh does not lie on the surface the tiles are cut to: more than
+    /// [`MAX_OFF_SURFACE_SHARE`] of its faces are farther than a tile's length from it (quads
+    /// made from another surface, or the surface moved, scaled or in other units since).
+    QuadsOffSurface = 18,
 }
 
 /// One warning.
@@ -195,6 +199,9 @@ pub fn check(
 ) -> Vec<Warning> {
     let mut out = Vec::new();
     out.extend(surface_checks(surface, up, spec));
+    if !std::ptr::eq(quads, surface) {
+        out.extend(quads_off_surface(quads, surface, spec));
+    }
     out.extend(tile_shape(spec));
     out.extend(curvature(quads, spec));
     out.extend(quad_size(quads, spec));
@@ -246,6 +253,58 @@ pub fn check(
     }
     out.sort_by_key(|w| w.code);
     out
+}
+
+/// Share of the quad mesh's faces that may lie farther than a tile's length from the surface
+/// before [`WarningCode::QuadsOffSurface`] is raised: a twentieth. Quads made from the surface
+/// lie on it (the remesher's farthest vertex is about half a quad edge off it, where quads
+/// close over a notch); a few may stand out past its edge.
+pub const MAX_OFF_SURFACE_SHARE: f64 = 0.05;
+
+/// Faces of the quad mesh whose distance to the surface [`quads_off_surface`] measures at
+/// most (every k-th face on larger meshes), so that the check stays a small part of a run.
+const OFF_SURFACE_SAMPLES: usize = 20_000;
+
+/// The [`WarningCode::QuadsOffSurface`] check: the centres of (at most
+/// [`OFF_SURFACE_SAMPLES`] of) the faces of `quads` are measured to `surface`, and a share
+/// beyond [`MAX_OFF_SURFACE_SHARE`] farther than the tile's length raises the warning, with
+/// the farthest centre.
+pub fn quads_off_surface(quads: &PolyMesh, surface: &PolyMesh, spec: &TileSpec) -> Option<Warning> {
+    if quads.face_count() == 0 || surface.face_count() == 0 {
+        return None;
+    }
+    let index = crate::geom::SurfaceIndex::from_polymesh(surface);
+    let step = quads.face_count().div_ceil(OFF_SURFACE_SAMPLES).max(1);
+    let (mut sampled, mut off) = (0usize, 0usize);
+    let mut farthest = (0.0_f64, Point3::origin());
+    for f in (0..quads.face_count()).step_by(step) {
+        let centre = quads.face_centroid(f);
+        let distance = index
+            .closest(&centre.coords)
+            .map_or(f64::INFINITY, |q| (q.point - centre.coords).norm());
+        sampled += 1;
+        if distance > spec.length {
+            off += 1;
+        }
+        if distance > farthest.0 {
+            farthest = (distance, centre);
+        }
+    }
+    let share = off as f64 / sampled as f64;
+    (share > MAX_OFF_SURFACE_SHARE).then(|| {
+        let (d, at) = farthest;
+        Warning::new(
+            WarningCode::QuadsOffSurface,
+            format!(
+                "{:.0} % of the quads lie farther than a tile's length ({}) from the surface the tiles are cut to, the farthest {d:.3} away (its centre at ({:.3}, {:.3}, {:.3})): the quads were not made from this surface, or it was moved, scaled or changed to other units since; give the surface the quads were remeshed from, or remesh this one (the tiles here are cut to a surface they do not lie on)",
+                100.0 * share,
+                spec.length,
+                at.x,
+                at.y,
+                at.z
+            ),
+        )
+    })
 }
 
 /// What the laying order stands on, when it is nothing a vault stands on: a surface without
@@ -862,6 +921,42 @@ mod tests {
         // A flat wall facing Y has no rise along it: nothing to say.
         let wall = vault(&|x, y| Point3::new(x, 0.0, -y));
         assert!(up_axis(&wall, &Vector3::z()).is_none());
+    }
+
+    #[test]
+    fn quads_from_another_surface_are_named_and_quads_on_it_are_not() {
+        // Unit quads, 12 x 10, against the same grid: on it.
+        let grid = generate::grid(12, 10);
+        assert!(quads_off_surface(&grid, &grid, &TILE).is_none());
+        // Moved up by a tile's length and a little: every centre is off it.
+        let moved = |dz: f64| {
+            let positions = grid
+                .positions()
+                .iter()
+                .map(|p| Point3::new(p.x, p.y, p.z + dz))
+                .collect();
+            PolyMesh::new(positions, grid.faces().to_vec()).unwrap()
+        };
+        let w = quads_off_surface(&moved(2.0), &grid, &TILE).expect("2 above a 1.9 tile");
+        assert_eq!(w.code, WarningCode::QuadsOffSurface);
+        assert!(w.message.starts_with("100 % of the quads"), "{}", w.message);
+        assert!(
+            w.message.contains("the farthest 2.000 away"),
+            "{}",
+            w.message
+        );
+        // Within a tile's length: quads a little off it (a remesher's) are not named.
+        assert!(quads_off_surface(&moved(1.8), &grid, &TILE).is_none());
+        // The quads reach beyond the surface's edge by a few rows: moved 3 along x, the last
+        // of the 12 columns (centres 2.5 beyond the edge) is more than 1.9 off it.
+        let shifted: Vec<Point3<f64>> = grid
+            .positions()
+            .iter()
+            .map(|p| Point3::new(p.x + 3.0, p.y, p.z))
+            .collect();
+        let shifted = PolyMesh::new(shifted, grid.faces().to_vec()).unwrap();
+        let w = quads_off_surface(&shifted, &grid, &TILE).expect("a twelfth beyond the edge");
+        assert!(w.message.starts_with("8 % of the quads"), "{}", w.message);
     }
 
     #[test]
