@@ -345,6 +345,11 @@ enum TpWarning
    * another surface, or the surface moved, scaled or in other units since).
    */
   TP_WARNING_QUADS_OFF_SURFACE = 18,
+  /**
+   * Faces of more than four corners, larger than a tile and not flat: the surface inside
+   * them is a guess.
+   */
+  TP_WARNING_CURVED_POLYGONS = 19,
 };
 #ifndef __cplusplus
 typedef int32_t TpWarning;

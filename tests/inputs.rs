@@ -891,6 +891,40 @@ fn tiles_cut_to_a_surface_the_quads_were_not_made_from_say_so() {
 }
 
 #[test]
+fn a_shell_drawn_as_one_curved_polygon_is_named() {
+    // Before: a saddle's rim drawn as one 40-gon, read as a fan of needles from its first
+    // corner, ended with coverage 0.137 and no word of why.
+    let mut text = String::new();
+    for k in 0..40 {
+        let a = std::f64::consts::TAU * f64::from(k) / 40.0;
+        let _ = writeln!(
+            text,
+            "v {} {} {}",
+            2.5 * a.cos(),
+            2.5 * a.sin(),
+            0.9 * (2.0 * a).cos()
+        );
+    }
+    let corners: Vec<String> = (1..=40).map(|v| v.to_string()).collect();
+    let _ = writeln!(text, "f {}", corners.join(" "));
+    let (out, report, _) = run(
+        "curved_polygon",
+        "rim.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--units", "m", "--tries", "1"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    assert!(codes(&report).contains(&"curved_polygons".to_owned()));
+    assert!(
+        stderr(&out).contains("warning [curved_polygons]: 1 face of more than four corners is larger than a tile and not flat (face 0"),
+        "{}",
+        stderr(&out)
+    );
+    never_silent(&out, &report);
+}
+
+#[test]
 fn tiles_that_do_not_fit_the_half_tile_model_are_refused_or_flagged() {
     let surface = shell(2.0, 1.0);
     let bytes = obj::to_string(&surface);

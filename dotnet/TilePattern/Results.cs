@@ -583,6 +583,8 @@ namespace TilePattern
         UpAxis = 17,
         /// <summary>The quad mesh does not lie on the surface the tiles are cut to (quads made from another surface, or the surface moved, scaled or in other units since).</summary>
         QuadsOffSurface = 18,
+        /// <summary>Faces of more than four corners, larger than a tile and not flat: the surface inside them is a guess; give the surface as triangles or quads.</summary>
+        CurvedPolygons = 19,
     }
 
     /// <summary>One warning: odd input or a result to look at twice, with what to do.</summary>

@@ -114,6 +114,7 @@ TP_WARNING_TILES_OFF_SURFACE = 15
 TP_WARNING_SMALL_OPENINGS = 16
 TP_WARNING_UP_AXIS = 17
 TP_WARNING_QUADS_OFF_SURFACE = 18
+TP_WARNING_CURVED_POLYGONS = 19
 
 #: Warning code -> its name in report.json, for every code of ``enum TpWarning``.
 WARNING_NAMES = {
@@ -135,6 +136,7 @@ WARNING_NAMES = {
     TP_WARNING_SMALL_OPENINGS: "small_openings",
     TP_WARNING_UP_AXIS: "up_axis",
     TP_WARNING_QUADS_OFF_SURFACE: "quads_off_surface",
+    TP_WARNING_CURVED_POLYGONS: "curved_polygons",
 }
 
 MAX_VERTICES = 4_000_000

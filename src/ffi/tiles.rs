@@ -669,6 +669,9 @@ pub enum TpWarning {
     /// The quad mesh does not lie on the surface the tiles are cut to (quads made from
     /// another surface, or the surface moved, scaled or in other units since).
     TP_WARNING_QUADS_OFF_SURFACE = 18,
+    /// Faces of more than four corners, larger than a tile and not flat: the surface inside
+    /// them is a guess.
+    TP_WARNING_CURVED_POLYGONS = 19,
 }
 
 impl From<WarningCode> for TpWarning {
@@ -693,6 +696,7 @@ impl From<WarningCode> for TpWarning {
             WarningCode::SmallOpenings => TP_WARNING_SMALL_OPENINGS,
             WarningCode::UpAxis => TP_WARNING_UP_AXIS,
             WarningCode::QuadsOffSurface => TP_WARNING_QUADS_OFF_SURFACE,
+            WarningCode::CurvedPolygons => TP_WARNING_CURVED_POLYGONS,
         }
     }
 }

@@ -64,6 +64,10 @@ pub enum WarningCode {
     /// [`MAX_OFF_SURFACE_SHARE`] of its faces are farther than a tile's length from it (quads
     /// made from another surface, or the surface moved, scaled or in other units since).
     QuadsOffSurface = 18,
+    /// Faces of more than four corners that are larger than a tile and not flat: the surface
+    /// inside them is a guess (the fan of triangles from their first corner every stage
+    /// reads them as, [`crate::geom::fan`]).
+    CurvedPolygons = 19,
 }
 
 /// One warning.
@@ -369,6 +373,7 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, spec: &TileSpec) ->
         spec.length,
     ));
     out.extend(folds(surface, &topology));
+    out.extend(curved_polygons(surface, spec));
     out.extend(up_axis(surface, up));
     if let Some(up) = up.try_normalize(0.0) {
         let (mut signed, mut projected, mut area) = (0.0, 0.0, 0.0);
@@ -540,6 +545,56 @@ fn up_axis(surface: &PolyMesh, up: &Vector3<f64>) -> Option<Warning> {
             given[0],
             given[1],
             given[2]
+        ),
+    ))
+}
+
+/// Faces of five corners or more that span more than a tile's length and whose corners stand
+/// off their mean plane by more than a tile's thickness. Every stage reads a polygon as the
+/// fan of triangles from its first corner ([`crate::geom::fan`]), which is the surface only
+/// where the polygon is flat; a large curved one (a vault's whole rim drawn as one face)
+/// folds into needles, its quads and tiles with it (one such 40-gon: coverage 0.137 and no
+/// word but the coverage). A small face of a vault meshed in hexagons bends less than a
+/// tile's thickness, and one smaller than a tile cannot mislead a tile much.
+fn curved_polygons(surface: &PolyMesh, spec: &TileSpec) -> Option<Warning> {
+    let mut count = 0usize;
+    let mut worst: Option<(f64, usize, f64)> = None;
+    for (f, face) in surface.faces().iter().enumerate() {
+        if face.len() < 5 {
+            continue;
+        }
+        let corners: Vec<Vector3<f64>> = face
+            .iter()
+            .map(|&v| surface.positions()[v].coords)
+            .collect();
+        let centre = corners.iter().sum::<Vector3<f64>>() / corners.len() as f64;
+        let across = 2.0
+            * corners
+                .iter()
+                .map(|c| (c - centre).norm())
+                .fold(0.0, f64::max);
+        let Some(normal) = surface.face_area_vector(f).try_normalize(0.0) else {
+            continue;
+        };
+        let off = corners
+            .iter()
+            .map(|c| (c - centre).dot(&normal).abs())
+            .fold(0.0, f64::max);
+        if across > spec.length && off > spec.thickness {
+            count += 1;
+            if worst.is_none_or(|(o, _, _)| off > o) {
+                worst = Some((off, f, across));
+            }
+        }
+    }
+    let (off, face, across) = worst?;
+    let corners = surface.faces()[face].len();
+    Some(Warning::new(
+        WarningCode::CurvedPolygons,
+        format!(
+            "{count} {} of more than four corners {} larger than a tile and not flat (face {face}, counted from 0: {corners} corners, {across:.3} across, standing up to {off:.3} off its plane): the surface inside such a face is read as a fan of triangles from its first corner, which is not the shell you drew and folds where the face is large; give the surface as triangles or quads (mesh it in the modeller, e.g. Rhino's Mesh with a small maximum edge, or triangulate those faces)",
+            if count == 1 { "face" } else { "faces" },
+            if count == 1 { "is" } else { "are" }
         ),
     ))
 }
@@ -957,6 +1012,43 @@ mod tests {
         let shifted = PolyMesh::new(shifted, grid.faces().to_vec()).unwrap();
         let w = quads_off_surface(&shifted, &grid, &TILE).expect("a twelfth beyond the edge");
         assert!(w.message.starts_with("8 % of the quads"), "{}", w.message);
+    }
+
+    #[test]
+    fn a_large_curved_polygon_is_named_and_flat_or_small_ones_are_not() {
+        // A 40-gon round a circle of radius `r`, its corners rising `rise` and falling as
+        // cos(2a) (a saddle's rim drawn as one face).
+        let polygon = |r: f64, rise: f64| {
+            let positions = (0..40)
+                .map(|k| {
+                    let a = std::f64::consts::TAU * k as f64 / 40.0;
+                    Point3::new(r * a.cos(), r * a.sin(), rise * (2.0 * a).cos())
+                })
+                .collect();
+            PolyMesh::new(positions, vec![(0..40).collect()]).unwrap()
+        };
+        let w = curved_polygons(&polygon(2.5, 0.9), &BRICK).expect("5 m across, 0.9 off");
+        assert_eq!(w.code, WarningCode::CurvedPolygons);
+        assert!(
+            w.message
+                .starts_with("1 face of more than four corners is larger than a tile"),
+            "{}",
+            w.message
+        );
+        assert!(
+            w.message.contains(
+                "face 0, counted from 0: 40 corners, 5.314 across, standing up to 0.900 off"
+            ),
+            "{}",
+            w.message
+        );
+        // Flat: read as drawn.
+        assert!(curved_polygons(&polygon(2.5, 0.0), &BRICK).is_none());
+        // Bent by less than a tile's thickness (15 mm), or smaller than a tile.
+        assert!(curved_polygons(&polygon(2.5, 0.01), &BRICK).is_none());
+        assert!(curved_polygons(&polygon(0.1, 0.05), &BRICK).is_none());
+        // Quads are never named: a fan of a quad is one of its two triangulations.
+        assert!(curved_polygons(&generate::corner_supported_shell(2.0, 0.5), &BRICK).is_none());
     }
 
     #[test]
