@@ -1424,7 +1424,7 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
     let j = &t.report.joints;
     let joints = match (&j.before_fit, &t.report.fit) {
         (Some(before), Some(fit)) => format!(
-            "joints (nominal {:.1} mm) before the fit: {}\nafter the fit ({:?}, {} steps, {:.2} s): {}; {} tiles cut to fit, {} whole pieces laid in rooms of the courses",
+            "joints (nominal {:.1} mm) before the fit: {}\nafter the fit ({:?}, {} steps, {:.2} s): {}; {} tiles cut to fit, {} whole pieces laid in rooms of the courses, {} tears too narrow for a piece closed along them",
             j.joint / mm,
             figures(before),
             fit.status,
@@ -1432,7 +1432,8 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
             t.report.seconds.fit,
             figures(j),
             j.fit_cuts,
-            fit.room_pieces
+            fit.room_pieces,
+            fit.closed_tears
         ),
         _ => format!(
             "joints (nominal {:.1} mm, placement of section 3.5): {}",

@@ -14,11 +14,13 @@
 //! ([`solve`]). Where that first placement leaves a course overlapping or torn, the course
 //! loses a closer per tile of surplus and the rest is placed again ([`closers`]). Where it
 //! leaves a room about a half tile (or a tile) long between two heads of a course, a whole
-//! piece is laid there and the tiles placed again around it ([`rooms`]). What cannot
-//! be made to fit is not left overlapping: after the tiles are cut to the boundary,
-//! [`resolve_overlaps`] cuts the rest, closers first (rarely: the method's aim is to cut
-//! little).
+//! piece is laid there and the tiles placed again around it ([`rooms`]); a tear too narrow
+//! for a piece is pulled shut along its course where the course has slack ([`close`]).
+//! What cannot be made to fit is not left overlapping: after the tiles are cut to the
+//! boundary, [`resolve_overlaps`] cuts the rest, closers first (rarely: the method's aim is
+//! to cut little).
 
+mod close;
 mod closers;
 pub(crate) mod contacts;
 mod cuts;
@@ -227,6 +229,9 @@ pub struct FitSummary {
     /// joint ([`rooms`]): among the tiles with no faces, in the cut list's whole blanks
     /// (labels F and H), no cut on site.
     pub room_pieces: usize,
+    /// Tears too narrow for a standard piece that the fit closed by pressing the head joints
+    /// of their courses ([`close`]): no piece cut for them.
+    pub closed_tears: usize,
 }
 
 /// Moves `tiles` (as built by [`crate::tiles::build`] on `quads`) to fit their joints,
@@ -281,6 +286,7 @@ pub fn fit(
             joint: spec.joint,
             weights,
             surface: &index,
+            closing: &[],
         };
         let mut frames = anchors.clone();
         let outcome = problem.solve(&mut frames, options.max_iterations, &mut |fraction| {
@@ -353,6 +359,7 @@ pub fn fit(
     // placement is done again from where it is, so that the course's joints close around
     // it ([`rooms`]).
     let original = tiles.len();
+    let mut closed_tears = 0;
     let mut placement = rooms::Placement {
         contacts: all
             .iter()
@@ -380,23 +387,40 @@ pub fn fit(
             weights,
             surface: &index,
         };
+        let mut keep_going = |_| {
+            if started.elapsed().as_secs_f64() > options.time_limit {
+                timed_out = true;
+                return false;
+            }
+            control.keep_going(1.0)
+        };
         let laid = rooms::lay(
             &mut placement,
             &out,
             &setting,
             (&mut work, budget),
-            &mut |_| {
-                if started.elapsed().as_secs_f64() > options.time_limit {
-                    timed_out = true;
-                    return false;
-                }
-                control.keep_going(1.0)
-            },
+            &mut keep_going,
         );
         outcome.iterations += laid.iterations;
         outcome.stopped |= laid.stopped;
         if let Some(end) = laid.end {
             outcome.end = end;
+        }
+        // Then tears too narrow for a piece are closed along their courses ([`close`]).
+        if !outcome.stopped {
+            let closed = close::close(
+                &mut placement,
+                &out,
+                &setting,
+                (&mut work, budget),
+                &mut keep_going,
+            );
+            outcome.iterations += closed.iterations;
+            outcome.stopped |= closed.stopped;
+            closed_tears = closed.tears;
+            if let Some(end) = closed.end {
+                outcome.end = end;
+            }
         }
     }
     let rooms::Placement { tiles, frames, .. } = placement;
@@ -432,6 +456,7 @@ pub fn fit(
         max_move: moves.iter().copied().fold(0.0, f64::max),
         overlap_tolerance: options.overlap_tolerance,
         room_pieces,
+        closed_tears,
     };
     if status != FitStatus::Cancelled {
         control.keep_going(1.0);

@@ -35,7 +35,7 @@ const ROUNDS: usize = 3;
 
 /// Most steps of a placement done again around a round's pieces (it starts from a placement
 /// that fits everywhere else): the tubemesh's took 13-23, the 20 m cap's up to 40.
-const ROUND_STEPS: usize = 40;
+pub(crate) const ROUND_STEPS: usize = 40;
 
 /// Most turn, in degrees, between the two heads facing across a room: a wedge-shaped room
 /// (where a course bends or ends) takes no standard piece. At 10 degrees the 3 m cap's
@@ -224,6 +224,7 @@ pub(crate) fn lay(
             joint: spec.joint,
             weights,
             surface,
+            closing: &[],
         };
         let progress = problem.solve(&mut frames, steps, keep_going);
         laid.iterations += progress.iterations;
@@ -405,13 +406,13 @@ fn rooms(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::super::weights_for;
     use super::*;
     use crate::mesh::{PolyMesh, Topology, generate};
     use crate::tiles::fit::contacts::{contacts, tests::pattern};
 
-    const SPEC: TileSpec = TileSpec {
+    pub(in crate::tiles::fit) const SPEC: TileSpec = TileSpec {
         length: 0.28,
         width: 0.14,
         thickness: 0.015,
@@ -429,7 +430,7 @@ mod tests {
     /// One course of 6 tiles on quads of 145 mm, laid at the joint, with the three last
     /// moved `shift` further along it and turned `turn` radians: a room of 10 mm + `shift`
     /// between the third and the fourth, on a flat surface longer than the course.
-    fn course(shift: f64, turn: f64) -> (Placement, SurfaceIndex) {
+    pub(in crate::tiles::fit) fn course(shift: f64, turn: f64) -> (Placement, SurfaceIndex) {
         let mesh = scaled(generate::grid(12, 1), 0.145);
         let pairs: Vec<[usize; 2]> = (0..6).map(|k| [2 * k, 2 * k + 1]).collect();
         let tiles = crate::tiles::build(&mesh, &pattern(12, pairs, vec![]), &SPEC).unwrap();

@@ -110,6 +110,10 @@ pub(crate) struct Problem<'a> {
     pub weights: Weights,
     /// The surface the tiles stay on.
     pub surface: &'a SurfaceIndex,
+    /// Per contact (missing ones: `false`), whether its joint is being closed: its cost stays
+    /// quadratic however wide the gap, not [`capped`], so that a tear too narrow for a piece
+    /// pulls its tiles together ([`super::close`]).
+    pub closing: &'a [bool],
 }
 
 /// A residual's gradient on one tile: the step `u` (along `x`), `v` (along `y`), `phi`.
@@ -172,7 +176,7 @@ impl Problem<'_> {
     /// With equal slopes the least-squares placement centres the wedge on the joint and its
     /// narrow end, which is what the outline measure (and the mason) sees, lies `delta / 2`
     /// under it; with slope `s` on the narrow side it lies `delta / (1 + s^2)` under it.
-    fn joint_residual(&self, d: f64) -> (f64, f64) {
+    fn joint_residual(&self, d: f64, closing: bool) -> (f64, f64) {
         let (j, k, s) = (
             self.joint,
             self.weights.overlap_slope,
@@ -185,6 +189,9 @@ impl Problem<'_> {
         } else {
             (k * d - s * j, k)
         };
+        if closing {
+            return (raw, slope);
+        }
         capped(raw, slope, self.weights.wide, self.weights.tear)
     }
 
@@ -221,7 +228,8 @@ impl Problem<'_> {
                     } else {
                         (db, gpb, gqb)
                     };
-                    let (excess, slope) = self.joint_residual(d);
+                    let closing = self.closing.get(ci).copied().unwrap_or(false);
+                    let (excess, slope) = self.joint_residual(d, closing);
                     row(
                         Some(ci),
                         point_tile,
@@ -306,6 +314,11 @@ impl Problem<'_> {
                 w * lever * turn,
             );
         }
+    }
+
+    /// The sum of squared residuals at `frames`, wherever their origins lie.
+    pub fn objective(&self, frames: &[Frame]) -> f64 {
+        self.value(frames, &beyond_edge(self.surface, frames))
     }
 
     /// The sum of squared residuals at `frames`, whose origins lie `beyond` the surface's
@@ -504,7 +517,7 @@ impl Problem<'_> {
 
     /// `frame` after the step `(u, v, phi)`, put back on the surface (see [`place`]), and
     /// how far beyond the surface's edge its origin now lies.
-    fn moved(&self, frame: &Frame, step: &Vector3<f64>) -> (Frame, Vector3<f64>) {
+    pub(super) fn moved(&self, frame: &Frame, step: &Vector3<f64>) -> (Frame, Vector3<f64>) {
         let origin = frame.origin.coords + frame.x * step.x + frame.y * step.y;
         let (s, c) = step.z.sin_cos();
         let x = frame.x * c + frame.y * s;
@@ -690,44 +703,53 @@ mod tests {
                 ..*f
             })
             .collect();
-        let problem = Problem {
-            sizes: &sizes,
-            contacts: &found,
-            bands: &bands,
-            anchors: &anchors,
-            joint: 0.1,
-            weights: Weights {
-                overlap_slope: 4.0,
-                narrow_slope: 2.0,
-                bond: 1.0,
-                anchor: 0.1,
-                edge: 4.0,
-                // Small enough that some of the jittered joints lie beyond them.
-                wide: 0.02,
-                tear: 0.03,
-            },
-            beyond_start: &[],
-            surface: &surface,
-        };
-        let beyond = vec![Vector3::zeros(); frames.len()];
-        let eq = problem.normal_equations(&frames, &beyond);
-        let h = 1e-7;
-        for t in 0..frames.len() {
-            for k in 0..3 {
-                let mut step = Vector3::zeros();
-                step[k] = h;
-                let mut plus = frames.clone();
-                plus[t] = problem.moved(&frames[t], &step).0;
-                let mut minus = frames.clone();
-                minus[t] = problem.moved(&frames[t], &(-step)).0;
-                let numeric =
-                    (problem.value(&plus, &beyond) - problem.value(&minus, &beyond)) / (4.0 * h);
-                assert!(
-                    (numeric - eq.g[t][k]).abs() < 1e-5 * (1.0 + numeric.abs()),
-                    "tile {t} axis {k}: {numeric} vs {}",
-                    eq.g[t][k]
-                );
+        // Every joint capped, then every other one closed (kept quadratic however wide).
+        let every_other: Vec<bool> = (0..found.len()).map(|c| c % 2 == 0).collect();
+        let mut values = Vec::new();
+        for closing in [&[][..], &every_other[..]] {
+            let problem = Problem {
+                sizes: &sizes,
+                contacts: &found,
+                bands: &bands,
+                anchors: &anchors,
+                joint: 0.1,
+                weights: Weights {
+                    overlap_slope: 4.0,
+                    narrow_slope: 2.0,
+                    bond: 1.0,
+                    anchor: 0.1,
+                    edge: 4.0,
+                    // Small enough that some of the jittered joints lie beyond them.
+                    wide: 0.02,
+                    tear: 0.03,
+                },
+                beyond_start: &[],
+                surface: &surface,
+                closing,
+            };
+            let beyond = vec![Vector3::zeros(); frames.len()];
+            let eq = problem.normal_equations(&frames, &beyond);
+            values.push(eq.value);
+            let h = 1e-7;
+            for t in 0..frames.len() {
+                for k in 0..3 {
+                    let mut step = Vector3::zeros();
+                    step[k] = h;
+                    let mut plus = frames.clone();
+                    plus[t] = problem.moved(&frames[t], &step).0;
+                    let mut minus = frames.clone();
+                    minus[t] = problem.moved(&frames[t], &(-step)).0;
+                    let numeric = (problem.value(&plus, &beyond) - problem.value(&minus, &beyond))
+                        / (4.0 * h);
+                    assert!(
+                        (numeric - eq.g[t][k]).abs() < 1e-5 * (1.0 + numeric.abs()),
+                        "tile {t} axis {k}: {numeric} vs {}",
+                        eq.g[t][k]
+                    );
+                }
             }
         }
+        // Joints wider than `wide` cost more closed than capped.
+        assert!(values[1] > values[0], "{values:?}");
     }
 }
