@@ -16,8 +16,8 @@ use nalgebra::Vector3;
 
 use super::closers;
 use super::rooms::{Placement, ROUND_STEPS, SPREAD, Setting};
-use super::solve::{BondBand, Problem};
-use super::{bond_band, tear_gap};
+use super::solve::Problem;
+use super::tear_gap;
 
 /// What [`close`] did.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,9 +37,8 @@ pub(crate) struct Closed {
 /// Places the tiles of `placement` again with the head joints torn wider than
 /// [`tear_gap`] but too narrow for a room's half tile (its length and two joints, less
 /// [`SPREAD`]) pulled shut, once, within `budget` tile steps of `work` (updated); the new
-/// placement is kept when it leaves fewer joints the tiles cannot keep and a p95 deviation
-/// no higher ([`closers::p95_deviation_after_cuts`]). Tiles in `skip` (closers, to be cut)
-/// close nothing.
+/// placement is kept when its joints fit better ([`closers::fits_better`]). Tiles in `skip`
+/// (closers, to be cut) close nothing.
 ///
 /// The placement starts from the frames put back on the surface as a step puts them
 /// ([`Problem::moved`]): near a fold or a corner of the surface's edge that can move a tile
@@ -86,11 +85,7 @@ pub(crate) fn close(
     if !closing.contains(&true) {
         return closed;
     }
-    let bands: Vec<Option<BondBand>> = placement
-        .contacts
-        .iter()
-        .map(|c| bond_band(c, &placement.tiles, &placement.anchors, spec, options))
-        .collect();
+    let bands = placement.bands(spec, options);
     let problem = Problem {
         sizes: &placement.sizes,
         contacts: &placement.contacts,
@@ -112,22 +107,14 @@ pub(crate) fn close(
     closed.stopped = progress.stopped;
     *work += placement.tiles.len() * progress.iterations;
     let after = closers::gaps(&placement.tiles, &frames, &placement.contacts);
-    let misfits = |gaps: &[f64]| {
-        gaps.iter()
-            .filter(|&&g| closers::misfit(g, options.overlap_tolerance, tear_gap(spec)))
-            .count()
-    };
-    let deviation = |gaps: &[f64]| {
-        closers::p95_deviation_after_cuts(gaps, spec.joint, options.overlap_tolerance)
-    };
+    let tear = tear_gap(spec);
     if !progress.stopped
-        && misfits(&after) < misfits(&gaps)
-        && deviation(&after) <= deviation(&gaps)
+        && closers::fits_better(&gaps, &after, spec.joint, options.overlap_tolerance, tear)
     {
         closed.tears = closing
             .iter()
             .zip(&after)
-            .filter(|&(&c, &g)| c && g <= tear_gap(spec))
+            .filter(|&(&c, &g)| c && g <= tear)
             .count();
         closed.end = Some(
             Problem {

@@ -37,6 +37,23 @@ pub(crate) fn misfit(gap: f64, tolerance: f64, tear: f64) -> bool {
     gap < -tolerance || gap > tear
 }
 
+/// Whether the joints `after` a placement done again (per contact, [`gaps`]) fit better
+/// than those `before` it, so that it is kept: fewer [`misfit`] joints (overlaps deeper than
+/// `tolerance`, gaps wider than `tear`) and a p95 deviation from `joint`, as the cuts to fit
+/// will leave them ([`p95_deviation_after_cuts`]), no higher. The rule of the rooms' rounds
+/// and of closing tears ([`super::rooms`], [`super::close`]).
+pub(crate) fn fits_better(
+    before: &[f64],
+    after: &[f64],
+    joint: f64,
+    tolerance: f64,
+    tear: f64,
+) -> bool {
+    let misfits = |gaps: &[f64]| gaps.iter().filter(|&&g| misfit(g, tolerance, tear)).count();
+    let deviation = |gaps: &[f64]| p95_deviation_after_cuts(gaps, joint, tolerance);
+    misfits(after) < misfits(before) && deviation(after) <= deviation(before)
+}
+
 /// Per tile, whether `gaps` (per contact, [`gaps`]) leave it with a [`misfit`] joint.
 pub(crate) fn failing(
     tiles: usize,

@@ -84,6 +84,15 @@ impl Placement {
         self.sizes.truncate(n);
     }
 
+    /// Per joint, the band of centre offsets its bond allows ([`bond_band`], around the
+    /// anchors).
+    pub(crate) fn bands(&self, spec: &TileSpec, options: &FitOptions) -> Vec<Option<BondBand>> {
+        self.contacts
+            .iter()
+            .map(|c| bond_band(c, &self.tiles, &self.anchors, spec, options))
+            .collect()
+    }
+
     /// Keeps the tiles whose flag in `keep` is set, renumbering the joints (those of a tile
     /// taken out go with it).
     fn retain(&mut self, keep: &[bool]) {
@@ -170,11 +179,6 @@ pub(crate) fn lay(
         stopped: false,
         end: None,
     };
-    let misfits = |gaps: &[f64]| {
-        gaps.iter()
-            .filter(|&&g| closers::misfit(g, options.overlap_tolerance, tear_gap(spec)))
-            .count()
-    };
     let strays = |g: f64| {
         g < -options.overlap_tolerance
             || (g - spec.joint).abs() > MAX_P95_DEVIATION_SHARE * spec.joint
@@ -210,11 +214,7 @@ pub(crate) fn lay(
             p.tiles.push(r.piece.clone());
             frames.push(r.piece.frame);
         }
-        let bands: Vec<Option<BondBand>> = p
-            .contacts
-            .iter()
-            .map(|c| bond_band(c, &p.tiles, &p.anchors, spec, options))
-            .collect();
+        let bands = p.bands(spec, options);
         let problem = Problem {
             sizes: &p.sizes,
             contacts: &p.contacts,
@@ -236,13 +236,15 @@ pub(crate) fn lay(
                 keep[c.tiles[1]] = false;
             }
         }
-        let deviation = |gaps: &[f64]| {
-            closers::p95_deviation_after_cuts(gaps, spec.joint, options.overlap_tolerance)
-        };
         if progress.stopped
             || !keep[n..].contains(&true)
-            || misfits(&after) >= misfits(&gaps)
-            || deviation(&after) > deviation(&gaps)
+            || !closers::fits_better(
+                &gaps,
+                &after,
+                spec.joint,
+                options.overlap_tolerance,
+                tear_gap(spec),
+            )
         {
             // Cut short (time limit, cancel: the placement before it, whole), done again for
             // nothing, or for joints that fit no better (fewer misfits, and a p95 deviation
