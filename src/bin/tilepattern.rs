@@ -56,7 +56,7 @@ struct Cli {
 enum Command {
     /// Match the faces of a quad mesh into tiles (paper eqs. 1-3) and write the pairs as JSON.
     Match {
-        /// Quad mesh (OBJ, STL, PLY or OFF). Face indices in the output are 0-based, in file order.
+        /// Quad mesh (OBJ, STL, PLY or OFF). Face indices in the output are 0-based, in file order of the faces kept: a face that reading removes (collapsed by welding, or repeating another; the `vertices_welded` warning counts them) shifts those after it, and `--weld off` keeps every face.
         quads: PathBuf,
         #[command(flatten)]
         pattern: PatternArgs,
