@@ -15,7 +15,7 @@
 use nalgebra::Vector3;
 
 use super::closers;
-use super::rooms::{Placement, ROUND_STEPS, SPREAD, Setting};
+use super::rooms::{Placement, ROUND_STEPS, Setting, shortest_room};
 use super::solve::Problem;
 use super::tear_gap;
 
@@ -34,11 +34,10 @@ pub(crate) struct Closed {
     pub end: Option<f64>,
 }
 
-/// Places the tiles of `placement` again with the head joints torn wider than
-/// [`tear_gap`] but too narrow for a room's half tile (its length and two joints, less
-/// [`SPREAD`]) pulled shut, once, within `budget` tile steps of `work` (updated); the new
-/// placement is kept when its joints fit better ([`closers::fits_better`]). Tiles in `skip`
-/// (closers, to be cut) close nothing.
+/// Places the tiles of `placement` again with the head joints torn wider than [`tear_gap`]
+/// but too narrow for a room's half tile ([`shortest_room`]) pulled shut, once, within
+/// `budget` tile steps of `work` (updated); the new placement is kept when its joints fit
+/// better ([`closers::fits_better`]). Tiles in `skip` (closers, to be cut) close nothing.
 ///
 /// The placement starts from the frames put back on the surface as a step puts them
 /// ([`Problem::moved`]): near a fold or a corner of the surface's edge that can move a tile
@@ -51,12 +50,7 @@ pub(crate) fn close(
     (work, budget): (&mut usize, usize),
     keep_going: &mut dyn FnMut(f64) -> bool,
 ) -> Closed {
-    let &Setting {
-        spec,
-        options,
-        weights,
-        surface,
-    } = setting;
+    let &Setting { spec, options, .. } = setting;
     let mut closed = Closed {
         iterations: 0,
         stopped: false,
@@ -68,7 +62,7 @@ pub(crate) fn close(
         return closed;
     }
     let gaps = closers::gaps(&placement.tiles, &placement.frames, &placement.contacts);
-    let shortest_room = spec.length / 2.0 + 2.0 * spec.joint - SPREAD * spec.length / 2.0;
+    let shortest_room = shortest_room(spec);
     let skipped = |t: usize| skip.binary_search(&t).is_ok();
     let closing: Vec<bool> = placement
         .contacts
@@ -86,17 +80,7 @@ pub(crate) fn close(
         return closed;
     }
     let bands = placement.bands(spec, options);
-    let problem = Problem {
-        sizes: &placement.sizes,
-        contacts: &placement.contacts,
-        bands: &bands,
-        anchors: &placement.anchors,
-        beyond_start: &placement.beyond_start,
-        joint: spec.joint,
-        weights,
-        surface,
-        closing: &closing,
-    };
+    let problem = placement.problem(&bands, setting, &closing);
     let mut frames: Vec<_> = placement
         .frames
         .iter()

@@ -29,6 +29,14 @@ use crate::tiles::{Frame, Tile, TileKind, TileSpec, outline};
 /// 30, 17, 30 at two fifths (38, 23, 30 without rooms).
 pub(crate) const SPREAD: f64 = 0.4;
 
+/// The shortest room that takes a standard piece: a half tile and its two joints, less
+/// [`SPREAD`] of the half ([`rooms`]' window). A tear narrower than this and wider than a
+/// joint is one to close ([`super::close`]).
+pub(crate) fn shortest_room(spec: &TileSpec) -> f64 {
+    let half = spec.length / 2.0;
+    half + 2.0 * spec.joint - SPREAD * half
+}
+
 /// Rounds of rooms: after a placement done again around pieces, rooms may open elsewhere
 /// in the courses they pushed.
 const ROUNDS: usize = 3;
@@ -91,6 +99,28 @@ impl Placement {
             .iter()
             .map(|c| bond_band(c, &self.tiles, &self.anchors, spec, options))
             .collect()
+    }
+
+    /// The least-squares placement of these tiles on `setting`'s surface, with the bond
+    /// `bands` of their joints ([`Placement::bands`]) and the joints flagged in `closing`
+    /// closed ([`Problem::closing`]; empty: none).
+    pub(crate) fn problem<'a>(
+        &'a self,
+        bands: &'a [Option<BondBand>],
+        setting: &Setting<'a>,
+        closing: &'a [bool],
+    ) -> Problem<'a> {
+        Problem {
+            sizes: &self.sizes,
+            contacts: &self.contacts,
+            bands,
+            anchors: &self.anchors,
+            beyond_start: &self.beyond_start,
+            joint: setting.spec.joint,
+            weights: setting.weights,
+            surface: setting.surface,
+            closing,
+        }
     }
 
     /// Keeps the tiles whose flag in `keep` is set, renumbering the joints (those of a tile
@@ -171,8 +201,8 @@ pub(crate) fn lay(
     let &Setting {
         spec,
         options,
-        weights,
         surface,
+        ..
     } = setting;
     let mut laid = Laid {
         iterations: 0,
@@ -215,18 +245,9 @@ pub(crate) fn lay(
             frames.push(r.piece.frame);
         }
         let bands = p.bands(spec, options);
-        let problem = Problem {
-            sizes: &p.sizes,
-            contacts: &p.contacts,
-            bands: &bands,
-            anchors: &p.anchors,
-            beyond_start: &p.beyond_start,
-            joint: spec.joint,
-            weights,
-            surface,
-            closing: &[],
-        };
-        let progress = problem.solve(&mut frames, steps, keep_going);
+        let progress = p
+            .problem(&bands, setting, &[])
+            .solve(&mut frames, steps, keep_going);
         laid.iterations += progress.iterations;
         *work += p.tiles.len() * progress.iterations;
         let after = closers::gaps(&p.tiles, &frames, &p.contacts);

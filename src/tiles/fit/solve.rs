@@ -206,6 +206,7 @@ impl Problem<'_> {
     ) {
         for (ci, c) in self.contacts.iter().enumerate() {
             let [a, b] = c.tiles;
+            let closing = self.closing.get(ci).copied().unwrap_or(false);
             let (fa, fb) = (&frames[a], &frames[b]);
             let (ma, ca, ta, la) = side_line(fa, &self.sizes[a], c.sides[0]);
             let (mb, cb, tb, lb) = side_line(fb, &self.sizes[b], c.sides[1]);
@@ -228,7 +229,6 @@ impl Problem<'_> {
                     } else {
                         (db, gpb, gqb)
                     };
-                    let closing = self.closing.get(ci).copied().unwrap_or(false);
                     let (excess, slope) = self.joint_residual(d, closing);
                     row(
                         Some(ci),
