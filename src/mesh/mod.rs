@@ -10,6 +10,7 @@ mod error;
 mod face_set;
 pub mod generate;
 pub mod io;
+mod numbering;
 pub mod obj;
 pub mod orient;
 pub mod simplify;
@@ -19,6 +20,7 @@ pub mod zip;
 
 pub use error::MeshError;
 pub(crate) use face_set::{Corners, FaceSet};
+pub use numbering::{FileNumbering, NotInMesh};
 pub use topology::{Edge, Topology};
 
 use nalgebra::{Point3, Vector3};

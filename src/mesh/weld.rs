@@ -8,7 +8,7 @@ use foldhash::fast::FixedState;
 use nalgebra::Point3;
 use serde::Serialize;
 
-use super::{Corners, FaceSet};
+use super::{Corners, FaceSet, FileNumbering};
 use crate::geom::HashGrid;
 
 /// Default weld tolerance as a fraction of the mesh's bounding-box diagonal: far below any
@@ -59,6 +59,21 @@ pub fn weld(
     faces: Vec<Vec<usize>>,
     tolerance: f64,
 ) -> (Vec<Point3<f64>>, Vec<Vec<usize>>, WeldSummary) {
+    let (positions, faces, summary, _) = weld_traced(positions, faces, tolerance);
+    (positions, faces, summary)
+}
+
+/// [`weld`], with where each face and vertex of the result comes from.
+pub fn weld_traced(
+    positions: Vec<Point3<f64>>,
+    faces: Vec<Vec<usize>>,
+    tolerance: f64,
+) -> (
+    Vec<Point3<f64>>,
+    Vec<Vec<usize>>,
+    WeldSummary,
+    FileNumbering,
+) {
     let tolerance = if tolerance.is_finite() {
         tolerance.max(0.0)
     } else {
@@ -71,7 +86,8 @@ pub fn weld(
         zipped_vertices: 0,
     };
     if !super::readable(&positions, &faces) {
-        return (positions, faces, untouched);
+        let same = FileNumbering::identity(faces.len(), positions.len());
+        return (positions, faces, untouched, same);
     }
     let first = representatives(&positions, tolerance);
     let merged = first.iter().enumerate().filter(|&(i, &r)| i != r).count();
@@ -86,8 +102,10 @@ pub fn weld(
     }
     let mut seen = FaceSet::with_capacity(faces.len());
     let mut out = Vec::with_capacity(faces.len());
+    let mut source = Vec::with_capacity(faces.len());
+    let file_faces = faces.len();
     let mut dropped = 0;
-    for face in faces {
+    for (i, face) in faces.into_iter().enumerate() {
         let given: Vec<usize> = face.iter().map(|&v| number[first[v]]).collect();
         let mut f = given.clone();
         // Corners joined along the face's edges collapse into one.
@@ -110,7 +128,9 @@ pub fn weld(
             own.len() < face.len()
         };
         out.push(if repeats_in_file { given } else { f });
+        source.push(i);
     }
+    let vertex_of_file = first.iter().map(|&r| number[r]).collect();
     (
         kept,
         out,
@@ -120,6 +140,7 @@ pub fn weld(
             dropped_faces: dropped,
             zipped_vertices: 0,
         },
+        FileNumbering::new(file_faces, source, vertex_of_file),
     )
 }
 

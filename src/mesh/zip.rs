@@ -11,6 +11,7 @@ use std::collections::HashMap;
 use foldhash::fast::FixedState;
 use nalgebra::{Point3, Vector3};
 
+use super::FileNumbering;
 use crate::geom::{HashGrid, closest};
 
 /// How far (as a share of the edge's length) a boundary vertex may lie off a boundary edge to
@@ -49,10 +50,23 @@ struct Side {
 /// so face numbers do not move unless a joined pair collapses a sliver (then it is left
 /// out). Faces of more than three corners are left as they are: a crack along them is not
 /// closed.
-pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<usize>>, usize) {
+pub fn zip(positions: &[Point3<f64>], faces: Vec<Vec<usize>>) -> (Vec<Vec<usize>>, usize) {
+    let (faces, count, _) = zip_traced(positions, faces);
+    (faces, count)
+}
+
+/// [`zip`], with where each face of the result comes from (vertices keep their numbers: a
+/// joined one is left unused).
+pub fn zip_traced(
+    positions: &[Point3<f64>],
+    mut faces: Vec<Vec<usize>>,
+) -> (Vec<Vec<usize>>, usize, FileNumbering) {
+    let file_faces = faces.len();
+    let same = |faces: usize| FileNumbering::identity(faces, positions.len());
     // Meshes validation will refuse are left to it.
     if !super::readable(positions, &faces) {
-        return (faces, 0);
+        let n = faces.len();
+        return (faces, 0, same(n));
     }
     // Fixed-seed hashers: only lookups, and the sorted keys, shape the result.
     let mut uses: HashMap<(usize, usize), usize, FixedState> =
@@ -88,7 +102,8 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
         }
     }
     if sides.is_empty() {
-        return (faces, 0);
+        let n = faces.len();
+        return (faces, 0, same(n));
     }
     // Boundary vertices in a grid of points, and the sides at each.
     let mut at_vertex: HashMap<usize, Vec<usize>, FixedState> = HashMap::default();
@@ -156,6 +171,7 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
     let mut inserted: Vec<usize> = Vec::new();
     // Split, face by face (a face's edges in order), each edge in the part that holds it.
     let mut appended = Vec::new();
+    let mut source: Vec<usize> = (0..file_faces).collect();
     let mut i = 0;
     while i < inserts.len() {
         let f = inserts[i].0.0;
@@ -190,7 +206,10 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
         }
         let mut parts = parts.into_iter();
         faces[f] = parts.next().expect("a split leaves a part");
-        appended.extend(parts);
+        for part in parts {
+            appended.push(part);
+            source.push(f);
+        }
     }
     faces.extend(appended);
     // Joined vertices become the lowest of their group (a vertex no face uses is left).
@@ -216,16 +235,24 @@ pub fn zip(positions: &[Point3<f64>], mut faces: Vec<Vec<usize>>) -> (Vec<Vec<us
             }
         }
         // A sliver between two joined vertices collapses.
-        faces.retain(|face| {
+        let whole = |face: &Vec<usize>| {
             let mut corners = face.clone();
             corners.sort_unstable();
             corners.dedup();
             corners.len() == face.len()
-        });
+        };
+        source = source
+            .into_iter()
+            .zip(&faces)
+            .filter(|(_, face)| whole(face))
+            .map(|(s, _)| s)
+            .collect();
+        faces.retain(whole);
     }
     inserted.sort_unstable();
     inserted.dedup();
-    (faces, inserted.len())
+    let numbering = FileNumbering::new(file_faces, source, (0..positions.len()).collect());
+    (faces, inserted.len(), numbering)
 }
 
 #[cfg(test)]

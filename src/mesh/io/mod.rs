@@ -18,7 +18,7 @@ use serde::Serialize;
 
 use super::weld::{self, DEFAULT_RELATIVE_TOLERANCE, WeldSummary};
 use super::zip;
-use super::{MeshError, PolyMesh, obj, orient};
+use super::{FileNumbering, MeshError, PolyMesh, obj, orient};
 
 /// Positions and faces as a file gives them, before welding and validation.
 pub type Raw = (Vec<Point3<f64>>, Vec<Vec<usize>>);
@@ -83,6 +83,9 @@ pub struct Loaded {
     /// Faces turned over to agree with their neighbours (each piece keeps the side most of
     /// its faces face; see [`orient::orient`]).
     pub turned_faces: usize,
+    /// The file's numbers of the mesh's faces and vertices (welding removes faces and joins
+    /// vertices, zipping splits triangles): face numbers users give or read are the file's.
+    pub numbering: FileNumbering,
 }
 
 /// Reads, welds and validates a mesh file of any supported format.
@@ -133,29 +136,33 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
         Format::PlyAscii | Format::PlyBinary => ply::parse(bytes, format)?,
     };
     single_precision_far_out(&positions, &faces, format)?;
-    let (positions, faces) = if matches!(format, Format::StlAscii | Format::StlBinary) {
+    let as_read = FileNumbering::identity(faces.len(), positions.len());
+    let (positions, faces, numbering) = if matches!(format, Format::StlAscii | Format::StlBinary) {
         // STL has no shared vertices: identical corners are one vertex, always and silently.
-        let (positions, faces, _) = weld::weld(positions, faces, 0.0);
-        (positions, faces)
+        let (positions, faces, _, joined) = weld::weld_traced(positions, faces, 0.0);
+        (positions, faces, joined)
     } else {
-        (positions, faces)
+        (positions, faces, as_read)
     };
-    let (positions, faces, summary) = match weld {
+    let (positions, faces, summary, numbering) = match weld {
         Weld::Relative(fraction) if fraction.is_finite() && fraction > 0.0 => {
             let tolerance = fraction * diagonal(&positions, &faces);
-            let (positions, faces, mut summary) = weld::weld(positions, faces, tolerance);
+            let (positions, faces, mut summary, welded) =
+                weld::weld_traced(positions, faces, tolerance);
+            let numbering = numbering.then(&welded);
             // Cracks between patches meshed apart, once coincident vertices are one; in
             // triangle meshes only (STL, soups, triangulated exports): a quad mesh is a
             // remesher's or the user's own, given to be tiled as it is.
-            let (faces, zipped) = if faces.iter().all(|f| f.len() == 3) {
-                zip::zip(&positions, faces)
+            let (faces, zipped, numbering) = if faces.iter().all(|f| f.len() == 3) {
+                let (faces, zipped, split) = zip::zip_traced(&positions, faces);
+                (faces, zipped, numbering.then(&split))
             } else {
-                (faces, 0)
+                (faces, 0, numbering)
             };
             summary.zipped_vertices = zipped;
-            (positions, faces, summary)
+            (positions, faces, summary, numbering)
         }
-        _ => (positions, faces, WeldSummary::OFF),
+        _ => (positions, faces, WeldSummary::OFF, numbering),
     };
     let mut faces = faces;
     let turned_faces = orient::orient(&mut faces)?;
@@ -165,6 +172,7 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
         format,
         weld: summary,
         turned_faces,
+        numbering,
     })
 }
 
