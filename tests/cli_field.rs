@@ -188,3 +188,70 @@ fn as_many_vertices_as_faces_reads_per_vertex_with_a_warning() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("as many vertices as faces (96)"), "{err}");
 }
+
+#[test]
+fn a_field_counted_against_the_files_vertices_or_faces_is_read_after_welding() {
+    // The plate as a triangle soup (every triangle with its own three vertices, as STL and
+    // face-by-face exports give): welding joins them, and the designer's vectors, written
+    // one per vertex or face of the file, still count.
+    let dir = scratch("cli-field-soup");
+    let n = 12;
+    let plate = common::plate_obj(n);
+    let points: Vec<&str> = plate.lines().filter(|l| l.starts_with("v ")).collect();
+    let mut soup = String::new();
+    let mut triangles = 0;
+    for face in plate.lines().filter(|l| l.starts_with("f ")) {
+        for id in face.split_whitespace().skip(1) {
+            soup += points[id.parse::<usize>().unwrap() - 1];
+            soup.push('\n');
+        }
+        soup += &format!(
+            "f {} {} {}\n",
+            3 * triangles + 1,
+            3 * triangles + 2,
+            3 * triangles + 3
+        );
+        triangles += 1;
+    }
+    let surface = dir.join("soup.obj");
+    std::fs::write(&surface, soup).unwrap();
+    let a = 30f64.to_radians();
+    let d = Vector3::new(a.cos(), a.sin(), 0.0);
+    let row = format!("{},{},0\n", d.x, d.y);
+    let remesh = |rows: String, name: &str| {
+        let field = dir.join(format!("{name}.csv"));
+        std::fs::write(&field, rows).unwrap();
+        let quads = dir.join(format!("{name}.obj"));
+        let out = tilepattern(&[
+            "remesh",
+            s(&surface),
+            "--edge",
+            "0.145",
+            "-o",
+            s(&quads),
+            "--field",
+            s(&field),
+        ]);
+        (out, quads)
+    };
+    for (name, count) in [("per-vertex", 3 * triangles), ("per-face", triangles)] {
+        let (out, quads) = remesh(row.repeat(count), name);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {err}");
+        let share = aligned(&obj::read(&quads).unwrap(), d);
+        assert!(share > 0.85, "{name}: {share:.3}");
+    }
+    // A bad vector is named by its number in the file.
+    let rows = row.repeat(triangles - 1) + "0,0,0\n";
+    let (out, _) = remesh(rows, "bad");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains(&format!("face {}", triangles - 1)), "{err}");
+    let (out, _) = remesh(
+        "0,0,0\n".to_owned() + &row.repeat(3 * triangles - 1),
+        "bad-vertex",
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("vertex 0"), "{err}");
+}

@@ -1269,3 +1269,107 @@ fn a_full_cone_whose_rings_narrow_is_tiled_on_the_smooth_field() {
     );
     never_silent(&out, &report);
 }
+
+#[test]
+fn face_numbers_on_the_command_line_are_the_files_where_welding_removed_a_face() {
+    // A 6 x 6 grid of quads whose file repeats face 3 right after it: welding removes the
+    // repeat (file face 4), and every face number given or written must still be the file's.
+    let grid = generate::grid(6, 6);
+    let mut text = String::new();
+    for p in grid.positions() {
+        let q = p * 0.145;
+        let _ = writeln!(text, "v {} {} {}", q.x, q.y, q.z);
+    }
+    let line = |f: &Vec<usize>| {
+        let ids: Vec<String> = f.iter().map(|v| (v + 1).to_string()).collect();
+        format!("f {}\n", ids.join(" "))
+    };
+    let mut file_faces: Vec<Vec<usize>> = Vec::new();
+    for (i, f) in grid.faces().iter().enumerate() {
+        text.push_str(&line(f));
+        file_faces.push(f.clone());
+        if i == 3 {
+            text.push_str(&line(f));
+            file_faces.push(f.clone());
+        }
+    }
+    let dir = scratch("file-numbers");
+    let quads = dir.join("grid.obj");
+    std::fs::write(&quads, &text).unwrap();
+    let pairs = dir.join("pairs.json");
+    // File face 20 is mesh face 19 once the repeat is gone.
+    let out = tilepattern(&["match", s(&quads), "--exclude", "20", "--json", s(&pairs)]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let found = json(&pairs);
+    assert_eq!(found["faces"], 37);
+    assert_eq!(found["excluded"], serde_json::json!([20]));
+    let shares_edge = |a: usize, b: usize| {
+        file_faces[a]
+            .iter()
+            .filter(|v| file_faces[b].contains(v))
+            .count()
+            == 2
+    };
+    let mut seen = [0; 37];
+    for p in found["pairs"].as_array().unwrap() {
+        let (a, b) = (
+            p[0].as_u64().unwrap() as usize,
+            p[1].as_u64().unwrap() as usize,
+        );
+        assert!(
+            shares_edge(a, b),
+            "pair [{a}, {b}] shares no edge in the file"
+        );
+        seen[a] += 1;
+        seen[b] += 1;
+    }
+    for f in found["unpaired"].as_array().unwrap() {
+        seen[f.as_u64().unwrap() as usize] += 1;
+    }
+    seen[20] += 1;
+    // Every face once, but the removed repeat, which is in no tile.
+    let once: Vec<usize> = (0..37).filter(|&f| f != 4).collect();
+    assert_eq!((0..37).filter(|&f| seen[f] == 1).collect::<Vec<_>>(), once);
+    assert_eq!(seen[4], 0);
+    // Naming the removed face is an error that says so.
+    let out = tilepattern(&["match", s(&quads), "--exclude", "4"]);
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains("face 4 of the file was removed"),
+        "{}",
+        stderr(&out)
+    );
+    // `tiles` reads the file's numbers back and writes them in sequence.json.
+    let fab = dir.join("fab");
+    let out = tilepattern(&[
+        "tiles",
+        s(&quads),
+        "--pairs",
+        s(&pairs),
+        "--tile",
+        "280x140x15",
+        "--units",
+        "m",
+        "--output",
+        s(&dir.join("tiles.obj")),
+        "--fabrication",
+        s(&fab),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let steps = json(&fab.join("sequence.json"));
+    let mut faces: Vec<u64> = steps["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|t| {
+            t["faces"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|f| f.as_u64().unwrap())
+        })
+        .collect();
+    faces.sort_unstable();
+    let expected: Vec<u64> = (0..37).filter(|&f| f != 4 && f != 20).collect();
+    assert_eq!(faces, expected);
+}

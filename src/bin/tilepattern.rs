@@ -14,6 +14,8 @@ use tilepattern::mesh::io::{Loaded, Weld};
 
 #[path = "tilepattern/field_file.rs"]
 mod field_file;
+#[path = "tilepattern/file_order.rs"]
+mod file_order;
 #[path = "tilepattern/guide_file.rs"]
 mod guide_file;
 #[path = "tilepattern/progress_line.rs"]
@@ -56,7 +58,7 @@ struct Cli {
 enum Command {
     /// Match the faces of a quad mesh into tiles (paper eqs. 1-3) and write the pairs as JSON.
     Match {
-        /// Quad mesh (OBJ, STL, PLY or OFF). Face indices in the output are 0-based, in file order of the faces kept: a face that reading removes (collapsed by welding, or repeating another; the `vertices_welded` warning counts them) shifts those after it, and `--weld off` keeps every face.
+        /// Quad mesh (OBJ, STL, PLY or OFF). Face indices given (--force, --exclude, --zones) and written are 0-based in the file's order: a face that reading removes (collapsed by welding, or repeating another; the `vertices_welded` warning counts them) is in no pair and shifts no other, and `--weld off` keeps every face.
         quads: PathBuf,
         #[command(flatten)]
         pattern: PatternArgs,
@@ -222,11 +224,13 @@ struct FieldArgs {
 
 impl FieldArgs {
     /// The remesh options for quads of edge `target_edge` on `surface` (the field file's
-    /// vectors are counted against its vertices and faces), split at its creases or not.
+    /// vectors are counted against its vertices and faces, or its file's as `numbering`
+    /// has them), split at its creases or not.
     fn options(
         &self,
         target_edge: f64,
         surface: &PolyMesh,
+        numbering: &mesh::FileNumbering,
         creases: bool,
     ) -> Result<RemeshOptions> {
         let direction = match (self.direction, self.angle) {
@@ -238,7 +242,7 @@ impl FieldArgs {
         let user_field = self
             .field
             .as_deref()
-            .map(|path| field_file::read(path, surface, self.field_weight))
+            .map(|path| field_file::read(path, surface, numbering, self.field_weight))
             .transpose()?;
         let guides = self
             .guides
@@ -430,6 +434,7 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let loaded = read_mesh(&quads)?;
             print_warnings(&reading_warnings(&loaded));
+            let numbering = loaded.numbering;
             let mesh = loaded.mesh;
             // Faces that are not quads are left out of the pattern (its `non_quad`); said, so
             // that a triangle mesh given by mistake does not end in "0 tiles" and nothing else.
@@ -449,10 +454,24 @@ fn run(cli: Cli) -> Result<()> {
                     quads.display()
                 );
             }
+            // Face numbers given and written are the file's (welding may remove faces).
             let zones = zones
-                .map(|path| zones_file::read(&path, mesh.face_count(), "quad mesh"))
+                .map(|path| {
+                    zones_file::read(&path, numbering.file_faces(), "quad mesh")
+                        .map(|z| numbering.faces_from_file(&z))
+                })
                 .transpose()?;
-            let options = pattern.options(false, up, zones.as_deref())?;
+            let mut options = pattern.options(false, up, zones.as_deref())?;
+            options.excluded_faces =
+                file_order::mesh_faces(&numbering, &options.excluded_faces, "--exclude")?;
+            options.forced_pairs = options
+                .forced_pairs
+                .iter()
+                .map(|&[a, b]| {
+                    file_order::mesh_faces(&numbering, &[a, b], &format!("--force {a},{b}"))
+                        .map(|m| [m[0], m[1]])
+                })
+                .collect::<Result<_>>()?;
             let mut line = ProgressLine::on_stderr(log);
             let found = pattern::solve_with(
                 &mesh,
@@ -467,7 +486,7 @@ fn run(cli: Cli) -> Result<()> {
             write_json(
                 json.as_deref(),
                 &MatchFile {
-                    pattern: &found,
+                    pattern: &file_order::pattern_in_file(&found, &numbering),
                     zones: zones.map(|z| zones_file::counts(&pattern.zone_bonds(&z))),
                 },
             )
@@ -489,6 +508,7 @@ fn run(cli: Cli) -> Result<()> {
                 .chain(surface.as_ref())
                 .flat_map(reading_warnings)
                 .collect();
+            let numbering = loaded.numbering;
             let mesh = loaded.mesh;
             let surface = surface.map(|s| s.mesh);
             let text = std::fs::read_to_string(&pairs)
@@ -499,6 +519,8 @@ fn run(cli: Cli) -> Result<()> {
                     pairs.display()
                 )
             })?;
+            let found = file_order::pattern_from_file(found, &numbering)
+                .with_context(|| format!("{}", pairs.display()))?;
             let (spec, units) = tile.spec(surface.as_ref().unwrap_or(&mesh))?;
             eprintln!("{}", units.why);
             let finish = pipeline::with_bond(
@@ -515,7 +537,7 @@ fn run(cli: Cli) -> Result<()> {
                 write_text(&svg_path, &svg::pattern_svg(&mesh, &tiling.tiles))?;
             }
             if let Some(dir) = fabrication {
-                write_fabrication(&dir, &mesh, &tiling, units)?;
+                write_fabrication(&dir, &mesh, &tiling, units, &numbering)?;
             }
             eprintln!("{}", tiling_summary(&tiling, units));
             print_warnings(&tiling.report.warnings);
@@ -541,13 +563,13 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let loaded = read_mesh(&input)?;
             print_warnings(&reading_warnings(&loaded));
-            let surface = loaded.mesh;
+            let surface = &loaded.mesh;
             let options = {
-                let mut o = field.options(edge, &surface, creases)?;
+                let mut o = field.options(edge, surface, &loaded.numbering, creases)?;
                 o.time_limit = RemeshOptions::time_limit_from_secs(time_limit)?;
                 o
             };
-            let remeshed = tilepattern::remesh::remesh(&surface, &options)?;
+            let remeshed = tilepattern::remesh::remesh(surface, &options)?;
             mesh::obj::write(&remeshed.quads, &output)?;
             eprintln!("{}", remesh_summary(&remeshed.metrics));
             print_warnings(
@@ -572,8 +594,12 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let loaded = read_mesh(&input)?;
             let surface = &loaded.mesh;
+            // Zones per face of the file (welding may remove or zipping split faces).
             let zones = zones
-                .map(|path| zones_file::read(&path, surface.face_count(), "input surface"))
+                .map(|path| {
+                    zones_file::read(&path, loaded.numbering.file_faces(), "input surface")
+                        .map(|z| loaded.numbering.faces_from_file(&z))
+                })
                 .transpose()?;
             let (spec, units) = tile.spec(surface)?;
             eprintln!("{}", units.why);
@@ -582,7 +608,7 @@ fn run(cli: Cli) -> Result<()> {
             let options = pattern.options(true, tile.up, zones.as_deref())?;
             let edge = spec.quad_edge(options.courses != Courses::Free);
             let remesh = {
-                let mut o = field.options(edge, surface, creases)?;
+                let mut o = field.options(edge, surface, &loaded.numbering, creases)?;
                 o.time_limit = RemeshOptions::time_limit_from_secs(remesh_time_limit)?;
                 o
             };
@@ -738,11 +764,24 @@ fn write_outputs(
             zones: zones.map(zones_file::counts),
         },
     )?;
-    write_fabrication(out, quads, tiling, units)
+    write_fabrication(
+        out,
+        quads,
+        tiling,
+        units,
+        &mesh::FileNumbering::identity(quads.face_count(), quads.positions().len()),
+    )
 }
 
-/// Writes cutlist.csv, cutlist.json, sequence.json and gaps.svg into `dir`.
-fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, units: Units) -> Result<()> {
+/// Writes cutlist.csv, cutlist.json, sequence.json and gaps.svg into `dir`; the quads' face
+/// numbers as `numbering` has them in their file.
+fn write_fabrication(
+    dir: &Path,
+    quads: &PolyMesh,
+    tiling: &Tiling,
+    units: Units,
+    numbering: &mesh::FileNumbering,
+) -> Result<()> {
     let millimetre = units.per_mm();
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     write_text(
@@ -757,7 +796,7 @@ fn write_fabrication(dir: &Path, quads: &PolyMesh, tiling: &Tiling, units: Units
         .map(|t| SequenceStep {
             step: t.step,
             label: &t.label,
-            faces: &t.faces,
+            faces: t.faces.iter().map(|&f| numbering.file_face(f)).collect(),
             origin: t.frame.origin.into(),
         })
         .collect();
@@ -830,7 +869,7 @@ struct SequenceFile<'a> {
 struct SequenceStep<'a> {
     step: usize,
     label: &'a str,
-    faces: &'a [usize],
+    faces: Vec<usize>,
     origin: [f64; 3],
 }
 
@@ -1270,7 +1309,7 @@ fn weld_warning(loaded: &Loaded) -> Option<Warning> {
     let w = loaded.weld;
     w.changed().then(|| {
         let renumbered = if w.dropped_faces > 0 {
-            " (faces after them are renumbered)"
+            " (face numbers given and written stay the file's; a removed face is in no tile)"
         } else {
             ""
         };

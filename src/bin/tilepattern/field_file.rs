@@ -10,18 +10,42 @@
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
-use tilepattern::mesh::PolyMesh;
-use tilepattern::remesh::UserField;
+use tilepattern::mesh::{FileNumbering, PolyMesh};
+use tilepattern::remesh::{FieldSite, RemeshError, UserField};
 
-/// Reads `path` and fits its vectors to `mesh` with the share `weight`.
-pub fn read(path: &Path, mesh: &PolyMesh, weight: f64) -> Result<UserField> {
+/// Reads `path` and fits its vectors to `mesh` with the share `weight`. The vectors may be
+/// counted against the file `mesh` was read from (`numbering`: welding joins vertices and
+/// removes faces) or against `mesh` itself; bad vectors are named by the file's numbers.
+pub fn read(
+    path: &Path,
+    mesh: &PolyMesh,
+    numbering: &FileNumbering,
+    weight: f64,
+) -> Result<UserField> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read the field file {}", path.display()))?;
     let vectors = parse(&text).with_context(|| format!("field file {}", path.display()))?;
+    let (vertices, faces) = (mesh.positions().len(), mesh.face_count());
+    let n = vectors.len();
+    let vectors = if n == vertices || n == faces {
+        vectors
+    } else if n == numbering.file_vertices() {
+        numbering
+            .vertices_from_file(&vectors, vertices)
+            .into_iter()
+            // A vertex no file vertex became (none today) pulls nothing.
+            .map(|v| v.unwrap_or([f64::NAN; 3]))
+            .collect()
+    } else if n == numbering.file_faces() {
+        numbering.faces_from_file(&vectors)
+    } else {
+        vectors
+    };
     let field = UserField::for_mesh(mesh, vectors, weight)
         .with_context(|| format!("field file {}", path.display()))?;
     field
         .check(mesh)
+        .map_err(|e| in_file_numbers(e, n, mesh, numbering))
         .with_context(|| format!("field file {}", path.display()))?;
     if mesh.positions().len() == mesh.face_count() {
         eprintln!(
@@ -31,6 +55,39 @@ pub fn read(path: &Path, mesh: &PolyMesh, weight: f64) -> Result<UserField> {
         );
     }
     Ok(field)
+}
+
+/// `error` with a bad vector named by its number in the file of `given` vectors, when those
+/// were counted against the file rather than `mesh`.
+fn in_file_numbers(
+    error: RemeshError,
+    given: usize,
+    mesh: &PolyMesh,
+    numbering: &FileNumbering,
+) -> RemeshError {
+    match error {
+        RemeshError::BadFieldVector {
+            index,
+            site,
+            vector,
+        } => {
+            let index = match site {
+                FieldSite::Faces if given != mesh.face_count() => numbering.file_face(index),
+                FieldSite::Vertices if given != mesh.positions().len() => {
+                    let files: Vec<usize> = (0..numbering.file_vertices()).collect();
+                    numbering.vertices_from_file(&files, mesh.positions().len())[index]
+                        .unwrap_or(index)
+                }
+                _ => index,
+            };
+            RemeshError::BadFieldVector {
+                index,
+                site,
+                vector,
+            }
+        }
+        other => other,
+    }
 }
 
 /// The vectors of a field file's text.
