@@ -435,6 +435,7 @@ fn run(cli: Cli) -> Result<()> {
             let loaded = read_mesh(&quads)?;
             print_warnings(&reading_warnings(&loaded));
             let numbering = loaded.numbering;
+            let shrunk = loaded.weld.shrunk_faces;
             let mesh = loaded.mesh;
             // Faces that are not quads are left out of the pattern (its `non_quad`); said, so
             // that a triangle mesh given by mistake does not end in "0 tiles" and nothing else.
@@ -449,8 +450,17 @@ fn run(cli: Cli) -> Result<()> {
                         mesh.face_count()
                     )
                 };
+                // Quads with a collapsed edge (QuadriFlow leaves some) are triangles once
+                // welded: said, since the file does give them four corners.
+                let welded = if shrunk > 0 {
+                    format!(
+                        " ({shrunk} of the file's faces lost a corner to welding, two neighbouring corners lying at one place: give --weld off to match them with all the corners the file gives)"
+                    )
+                } else {
+                    String::new()
+                };
                 eprintln!(
-                    "warning: {which}: `match` pairs quads into tiles and leaves the others out (non_quad in its JSON); make quads of half a tile first (`tilepattern remesh {} --edge T --out quads.obj`, T = (length + joint) / 2), or tile the surface with `tilepattern run`",
+                    "warning: {which}{welded}: `match` pairs quads into tiles and leaves the others out (non_quad in its JSON); make quads of half a tile first (`tilepattern remesh {} --edge T --out quads.obj`, T = (length + joint) / 2), or tile the surface with `tilepattern run`",
                     quads.display()
                 );
             }
@@ -1330,6 +1340,12 @@ fn weld_warning(loaded: &Loaded) -> Option<Warning> {
         } else {
             format!("the {} file was read", loaded.format.name())
         };
+        if w.shrunk_faces > 0 {
+            message.push_str(&format!(
+                "; {} faces lost a corner (two neighbouring corners at one place were joined: a quad with a collapsed edge is a triangle)",
+                w.shrunk_faces
+            ));
+        }
         if w.zipped_vertices > 0 {
             message.push_str(&format!(
                 "; {} vertices lying on the edge of another patch (a crack where patches meshed apart meet with their vertices at different places) were inserted into it, splitting its triangles, or joined to its end where they nearly met it, so that the patches share the seam",

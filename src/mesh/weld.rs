@@ -29,6 +29,9 @@ pub struct WeldSummary {
     /// Vertices inserted into a boundary edge they lay on, closing a crack between patches
     /// meshed apart ([`super::zip`]).
     pub zipped_vertices: usize,
+    /// Faces kept with fewer corners than the file gives them: two neighbouring corners at
+    /// one place joined (a quad of QuadriFlow's with a collapsed edge becomes a triangle).
+    pub shrunk_faces: usize,
 }
 
 impl WeldSummary {
@@ -38,6 +41,7 @@ impl WeldSummary {
         merged_vertices: 0,
         dropped_faces: 0,
         zipped_vertices: 0,
+        shrunk_faces: 0,
     };
 
     /// True when welding changed the mesh.
@@ -84,6 +88,7 @@ pub fn weld_traced(
         merged_vertices: 0,
         dropped_faces: 0,
         zipped_vertices: 0,
+        shrunk_faces: 0,
     };
     if !super::readable(&positions, &faces) {
         let same = FileNumbering::identity(faces.len(), positions.len());
@@ -105,6 +110,7 @@ pub fn weld_traced(
     let mut source = Vec::with_capacity(faces.len());
     let file_faces = faces.len();
     let mut dropped = 0;
+    let mut shrunk = 0;
     for (i, face) in faces.into_iter().enumerate() {
         let given: Vec<usize> = face.iter().map(|&v| number[first[v]]).collect();
         let mut f = given.clone();
@@ -127,6 +133,9 @@ pub fn weld_traced(
             own.dedup();
             own.len() < face.len()
         };
+        if !repeats_in_file && f.len() < given.len() {
+            shrunk += 1;
+        }
         out.push(if repeats_in_file { given } else { f });
         source.push(i);
     }
@@ -139,6 +148,7 @@ pub fn weld_traced(
             merged_vertices: merged,
             dropped_faces: dropped,
             zipped_vertices: 0,
+            shrunk_faces: shrunk,
         },
         FileNumbering::new(file_faces, source, vertex_of_file),
     )
@@ -186,6 +196,29 @@ mod tests {
 
     fn p(x: f64, y: f64) -> Point3<f64> {
         Point3::new(x, y, 0.0)
+    }
+
+    #[test]
+    fn a_quad_with_a_collapsed_edge_is_a_triangle_counted_as_shrunk() {
+        // A quad whose corners 2 and 3 lie at one place (QuadriFlow leaves such quads), a
+        // second face removed as collapsed, and a plain quad after them.
+        let positions = vec![
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(1.0, 1.0),
+            p(1.0, 1.0),
+            p(2.0, 0.0),
+            p(2.0, 1.0),
+        ];
+        let faces = vec![vec![0, 1, 2, 3], vec![2, 3, 1], vec![1, 4, 5, 2]];
+        let (_, welded, summary, numbering) = weld_traced(positions, faces, 1e-9);
+        assert_eq!(welded, vec![vec![0, 1, 2], vec![1, 3, 4, 2]]);
+        assert_eq!((summary.shrunk_faces, summary.dropped_faces), (1, 1));
+        assert_eq!(numbering.file_face(1), 2);
+        assert_eq!(
+            numbering.vertices_from_file(&[0, 1, 2, 3, 4, 5], 5)[2],
+            Some(2)
+        );
     }
 
     #[test]
