@@ -1373,3 +1373,14 @@ fn face_numbers_on_the_command_line_are_the_files_where_welding_removed_a_face()
     let expected: Vec<u64> = (0..37).filter(|&f| f != 4 && f != 20).collect();
     assert_eq!(faces, expected);
 }
+
+#[test]
+fn errors_found_after_welding_name_faces_as_the_file_numbers_them() {
+    // A 2 x 1 grid whose second face is given twice (welding removes the repeat, file face 2)
+    // and a fin on the edge the two squares share (file face 3, a third face on that edge).
+    let text = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 1 0.5 1\n\
+                f 1 2 5 4\nf 2 3 6 5\nf 2 3 6 5\nf 2 5 7\n";
+    let error = io::parse(text.as_bytes(), Some("obj"), Weld::default()).unwrap_err();
+    let message = error.to_string();
+    assert!(message.contains("faces [0, 1, 3]"), "{message}");
+}

@@ -1267,7 +1267,7 @@ fn read_mesh(path: &Path, weld: Weld) -> Result<Loaded> {
         // Errors naming a face or vertex: say how they are counted, as OBJ counts from 1.
         let numbering = match error {
             MeshError::ObjSyntax { .. } | MeshError::Format { .. } | MeshError::Io { .. } | MeshError::TooLarge { .. } | MeshError::Empty { .. } => "",
-            _ => " (faces and vertices counted from 0 in file order, after welding: face 0 is the first face of the file, vertex 0 the first vertex)",
+            _ => " (faces and vertices counted from 0 in file order: face 0 is the first face of the file, vertex 0 the first vertex)",
         };
         anyhow::Error::new(error).context(format!("cannot use {} as a mesh{numbering}", path.display()))
     })

@@ -161,3 +161,66 @@ pub enum MeshError {
         message: String,
     },
 }
+
+impl MeshError {
+    /// The error with its faces and vertices numbered as in the file `numbering` traces
+    /// (errors found after welding, when reading removed faces or joined vertices).
+    pub fn in_file_numbers(self, numbering: &super::FileNumbering) -> Self {
+        let f = |face: usize| numbering.file_face(face);
+        let v = |vertex: usize| numbering.file_vertex(vertex);
+        match self {
+            MeshError::NonFiniteCoordinate { vertex } => {
+                MeshError::NonFiniteCoordinate { vertex: v(vertex) }
+            }
+            MeshError::CoordinateTooLarge {
+                vertex,
+                value,
+                limit,
+            } => MeshError::CoordinateTooLarge {
+                vertex: v(vertex),
+                value,
+                limit,
+            },
+            MeshError::TooFewVertices { face, count } => MeshError::TooFewVertices {
+                face: f(face),
+                count,
+            },
+            MeshError::RepeatedIndex { face, vertex } => MeshError::RepeatedIndex {
+                face: f(face),
+                vertex: v(vertex),
+            },
+            MeshError::NonManifoldEdge {
+                a,
+                b,
+                face_count,
+                faces,
+            } => MeshError::NonManifoldEdge {
+                a: v(a),
+                b: v(b),
+                face_count,
+                faces: faces.into_iter().map(f).collect(),
+            },
+            MeshError::DegenerateFace { face, a, b } => MeshError::DegenerateFace {
+                face: f(face),
+                a: v(a),
+                b: v(b),
+            },
+            MeshError::DuplicateFace { face, first } => MeshError::DuplicateFace {
+                face: f(face),
+                first: f(first),
+            },
+            MeshError::InconsistentOrientation { a, b, faces } => {
+                MeshError::InconsistentOrientation {
+                    a: v(a),
+                    b: v(b),
+                    faces: faces.map(f),
+                }
+            }
+            MeshError::NonOrientable { faces } => MeshError::NonOrientable {
+                faces: faces.map(f),
+            },
+            // An index out of range is left as it was: welding leaves such meshes as read.
+            other => other,
+        }
+    }
+}

@@ -52,6 +52,8 @@ pub struct FileNumbering {
     face_of_file: Vec<Option<usize>>,
     /// Per vertex of the file, the mesh's vertex it became.
     vertex_of_file: Vec<usize>,
+    /// Per vertex of the mesh, the first file vertex that became it (itself if none did).
+    vertex_source: Vec<usize>,
 }
 
 impl FileNumbering {
@@ -71,11 +73,17 @@ impl FileNumbering {
         for (face, &f) in face_source.iter().enumerate() {
             face_of_file[f].get_or_insert(face);
         }
+        let vertices = vertex_of_file.iter().map(|&v| v + 1).max().unwrap_or(0);
+        let mut vertex_source: Vec<usize> = (0..vertices).collect();
+        for (file, &v) in vertex_of_file.iter().enumerate().rev() {
+            vertex_source[v] = file;
+        }
         Self {
             file_faces,
             face_source,
             face_of_file,
             vertex_of_file,
+            vertex_source,
         }
     }
 
@@ -122,6 +130,12 @@ impl FileNumbering {
     /// If `face` is no face of the mesh.
     pub fn file_face(&self, face: usize) -> usize {
         self.face_source[face]
+    }
+
+    /// The file's number of the mesh's vertex `vertex` (the first file vertex joined into
+    /// it; a vertex beyond those the file gives keeps its number).
+    pub fn file_vertex(&self, vertex: usize) -> usize {
+        self.vertex_source.get(vertex).copied().unwrap_or(vertex)
     }
 
     /// The mesh's face that is the file's face `face` (the first of its parts where zipping
@@ -211,6 +225,10 @@ mod tests {
         assert_eq!(
             n.vertices_from_file(&[10, 11, 12, 13], 3),
             [Some(10), Some(11), Some(12)]
+        );
+        assert_eq!(
+            (0..3).map(|v| n.file_vertex(v)).collect::<Vec<_>>(),
+            [0, 1, 2]
         );
     }
 

@@ -165,8 +165,10 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
         _ => (positions, faces, WeldSummary::OFF, numbering),
     };
     let mut faces = faces;
-    let turned_faces = orient::orient(&mut faces)?;
-    let mesh = PolyMesh::new(positions, faces)?;
+    // Faces and vertices an error names are counted as in the file.
+    let in_file = |e: MeshError| e.in_file_numbers(&numbering);
+    let turned_faces = orient::orient(&mut faces).map_err(in_file)?;
+    let mesh = PolyMesh::new(positions, faces).map_err(in_file)?;
     Ok(Loaded {
         mesh,
         format,
