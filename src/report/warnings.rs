@@ -356,7 +356,7 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, spec: &TileSpec) ->
                 layers.at.y,
                 layers.at.z
             ),
-            None => "if they should be one surface, weld them (the command line welds coincident vertices unless --weld off; raise the tolerance with --weld); otherwise tile each piece on its own".to_string(),
+            None => "if they should be one surface, weld them (a mesh of a polysurface or of joined meshes keeps each face's own vertices along the seams: in Rhino Weld it, or Join and Weld; the command line welds coincident vertices unless --weld off, raise the tolerance with --weld); otherwise tile each piece on its own".to_string(),
         };
         out.push(Warning::new(
             WarningCode::SeveralPieces,
