@@ -1331,6 +1331,15 @@ fn face_numbers_on_the_command_line_are_the_files_where_welding_removed_a_face()
     let once: Vec<usize> = (0..37).filter(|&f| f != 4).collect();
     assert_eq!((0..37).filter(|&f| seen[f] == 1).collect::<Vec<_>>(), once);
     assert_eq!(seen[4], 0);
+    // The pattern stage's errors name the file's faces (file faces 5 and 7 are mesh faces 4
+    // and 6).
+    let out = tilepattern(&["match", s(&quads), "--force", "5,7"]);
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains("forced pair [5, 7]"),
+        "{}",
+        stderr(&out)
+    );
     // Naming the removed face is an error that says so.
     let out = tilepattern(&["match", s(&quads), "--exclude", "4"]);
     assert!(!out.status.success());
@@ -1356,6 +1365,26 @@ fn face_numbers_on_the_command_line_are_the_files_where_welding_removed_a_face()
         s(&fab),
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
+    // A pair edited by hand is named by the file's numbers too.
+    let mut edited = found.clone();
+    edited["pairs"] = serde_json::json!([[5, 7]]);
+    edited["unpaired"] = serde_json::json!([]);
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, edited.to_string()).unwrap();
+    let out = tilepattern(&[
+        "tiles",
+        s(&quads),
+        "--pairs",
+        s(&bad),
+        "--tile",
+        "280x140x15",
+        "--units",
+        "m",
+        "--output",
+        s(&dir.join("bad.obj")),
+    ]);
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("pair [5, 7]"), "{}", stderr(&out));
     let steps = json(&fab.join("sequence.json"));
     let mut faces: Vec<u64> = steps["steps"]
         .as_array()

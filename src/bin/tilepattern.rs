@@ -477,10 +477,7 @@ fn run(cli: Cli) -> Result<()> {
             options.forced_pairs = options
                 .forced_pairs
                 .iter()
-                .map(|&[a, b]| {
-                    file_order::mesh_faces(&numbering, &[a, b], &format!("--force {a},{b}"))
-                        .map(|m| [m[0], m[1]])
-                })
+                .map(|&[a, b]| file_order::mesh_pair(&numbering, [a, b], "--force"))
                 .collect::<Result<_>>()?;
             let mut line = ProgressLine::on_stderr(log);
             let found = pattern::solve_with(
@@ -491,7 +488,7 @@ fn run(cli: Cli) -> Result<()> {
                 }),
             );
             line.finish();
-            let found = found?;
+            let found = found.map_err(|e| e.in_file_numbers(&numbering))?;
             eprintln!("{}", pattern_summary(&found));
             write_json(
                 json.as_deref(),
@@ -539,15 +536,24 @@ fn run(cli: Cli) -> Result<()> {
             );
             let mut tiling =
                 pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &finish)
-                    .map_err(|e| units.explain(e))?;
+                    .map_err(|e| units.explain(e.in_file_numbers(&numbering)))?;
             tiling.report.warnings.append(&mut welds);
+            // The tiles left out, by the quads' numbers in their file.
+            let slivers = tiling
+                .report
+                .cutting
+                .iter_mut()
+                .flat_map(|c| &mut c.slivers);
+            for f in slivers.flat_map(|dropped| &mut dropped.faces) {
+                *f = numbering.file_face(*f);
+            }
             let units = units.unit;
             write_text(&output, &tiles::to_obj(&tiling.tiles))?;
             if let Some(svg_path) = svg {
                 write_text(&svg_path, &svg::pattern_svg(&mesh, &tiling.tiles))?;
             }
             if let Some(dir) = fabrication {
-                write_fabrication(&dir, &mesh, &tiling, units, &numbering)?;
+                write_fabrication(&dir, &mesh, &tiling, units, Some(&numbering))?;
             }
             eprintln!("{}", tiling_summary(&tiling, units));
             print_warnings(&tiling.report.warnings);
@@ -774,23 +780,17 @@ fn write_outputs(
             zones: zones.map(zones_file::counts),
         },
     )?;
-    write_fabrication(
-        out,
-        quads,
-        tiling,
-        units,
-        &mesh::FileNumbering::identity(quads.face_count(), quads.positions().len()),
-    )
+    write_fabrication(out, quads, tiling, units, None)
 }
 
 /// Writes cutlist.csv, cutlist.json, sequence.json and gaps.svg into `dir`; the quads' face
-/// numbers as `numbering` has them in their file.
+/// numbers as `numbering` has them in their file, if they were read from one.
 fn write_fabrication(
     dir: &Path,
     quads: &PolyMesh,
     tiling: &Tiling,
     units: Units,
-    numbering: &mesh::FileNumbering,
+    numbering: Option<&mesh::FileNumbering>,
 ) -> Result<()> {
     let millimetre = units.per_mm();
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
@@ -806,7 +806,11 @@ fn write_fabrication(
         .map(|t| SequenceStep {
             step: t.step,
             label: &t.label,
-            faces: t.faces.iter().map(|&f| numbering.file_face(f)).collect(),
+            faces: t
+                .faces
+                .iter()
+                .map(|&f| numbering.map_or(f, |n| n.file_face(f)))
+                .collect(),
             origin: t.frame.origin.into(),
         })
         .collect();

@@ -166,7 +166,7 @@ impl MeshError {
     /// The error with its faces and vertices numbered as in the file `numbering` traces
     /// (errors found after welding, when reading removed faces or joined vertices).
     pub fn in_file_numbers(self, numbering: &super::FileNumbering) -> Self {
-        let f = |face: usize| numbering.file_face(face);
+        let f = |face: usize| numbering.file_face_or_same(face);
         let v = |vertex: usize| numbering.file_vertex(vertex);
         match self {
             MeshError::NonFiniteCoordinate { vertex } => {

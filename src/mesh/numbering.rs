@@ -118,12 +118,6 @@ impl FileNumbering {
         self.vertex_of_file.len()
     }
 
-    /// True when the mesh has the file's faces, one for one in the same order.
-    pub fn faces_as_in_file(&self) -> bool {
-        self.face_source.len() == self.file_faces
-            && self.face_source.iter().enumerate().all(|(i, &f)| i == f)
-    }
-
     /// The file's number of the mesh's face `face`.
     ///
     /// # Panics
@@ -136,6 +130,12 @@ impl FileNumbering {
     /// it; a vertex beyond those the file gives keeps its number).
     pub fn file_vertex(&self, vertex: usize) -> usize {
         self.vertex_source.get(vertex).copied().unwrap_or(vertex)
+    }
+
+    /// [`Self::file_face`] for a number that may name no face of the mesh (as errors about
+    /// a caller's input may): kept as it is then.
+    pub fn file_face_or_same(&self, face: usize) -> usize {
+        self.face_source.get(face).copied().unwrap_or(face)
     }
 
     /// The mesh's face that is the file's face `face` (the first of its parts where zipping
@@ -198,7 +198,6 @@ mod tests {
     #[test]
     fn faces_after_a_removed_one_keep_their_file_numbers() {
         let n = removed_two();
-        assert!(!n.faces_as_in_file());
         assert_eq!(
             (0..4).map(|f| n.file_face(f)).collect::<Vec<_>>(),
             [0, 1, 3, 4]

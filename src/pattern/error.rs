@@ -124,3 +124,30 @@ pub enum PatternError {
     #[error("the MIP solver failed: {0}")]
     Solver(String),
 }
+
+impl PatternError {
+    /// The error with the faces it names numbered as in the file `numbering` traces (the
+    /// caller's own numbers, where reading removed faces).
+    pub fn in_file_numbers(self, numbering: &crate::mesh::FileNumbering) -> Self {
+        let f = |face: usize| numbering.file_face_or_same(face);
+        match self {
+            PatternError::ForcedNotAdjacent { a, b } => {
+                PatternError::ForcedNotAdjacent { a: f(a), b: f(b) }
+            }
+            PatternError::ForcedAcrossCourses { a, b } => {
+                PatternError::ForcedAcrossCourses { a: f(a), b: f(b) }
+            }
+            PatternError::ForcedTwice { face } => PatternError::ForcedTwice { face: f(face) },
+            PatternError::ForcedExcluded { face } => PatternError::ForcedExcluded { face: f(face) },
+            PatternError::ForcedNonQuad { face, corners } => PatternError::ForcedNonQuad {
+                face: f(face),
+                corners,
+            },
+            PatternError::InvalidZone { face, reason } => PatternError::InvalidZone {
+                face: f(face),
+                reason,
+            },
+            other => other,
+        }
+    }
+}

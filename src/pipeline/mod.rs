@@ -69,6 +69,18 @@ pub enum Error {
     },
 }
 
+impl Error {
+    /// The error with the faces of the quad mesh it names numbered as in the file
+    /// `numbering` traces (see [`PatternError::in_file_numbers`]).
+    pub fn in_file_numbers(self, numbering: &crate::mesh::FileNumbering) -> Self {
+        match self {
+            Error::Pattern(e) => Error::Pattern(e.in_file_numbers(numbering)),
+            Error::Tiles(e) => Error::Tiles(e.in_file_numbers(numbering)),
+            other => other,
+        }
+    }
+}
+
 /// Grid cells (of a tile's size) that cutting tiles to a boundary may take: every face and
 /// every boundary edge is entered in each cell its bounding box meets, so a tile much smaller
 /// than the faces (a unit mistake) would need memory by the gigabyte and minutes of hashing.

@@ -587,6 +587,23 @@ pub enum TileError {
     },
 }
 
+impl TileError {
+    /// The error with the faces it names numbered as in the file `numbering` traces (the
+    /// caller's own numbers, where reading removed faces).
+    pub fn in_file_numbers(self, numbering: &crate::mesh::FileNumbering) -> Self {
+        let f = |face: usize| numbering.file_face_or_same(face);
+        match self {
+            TileError::NotAdjacent { a, b } => TileError::NotAdjacent { a: f(a), b: f(b) },
+            TileError::FaceUsedTwice { face } => TileError::FaceUsedTwice { face: f(face) },
+            TileError::NotQuad { face, corners } => TileError::NotQuad {
+                face: f(face),
+                corners,
+            },
+            other => other,
+        }
+    }
+}
+
 /// Builds the tiles of `pattern` on `mesh`: one full tile per pair (in pair order), then one
 /// half tile per unpaired quad (in face order).
 ///

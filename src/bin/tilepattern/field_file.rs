@@ -33,7 +33,7 @@ pub fn read(
         numbering
             .vertices_from_file(&vectors, vertices)
             .into_iter()
-            // A vertex no file vertex became (none today) pulls nothing.
+            // Every vertex of the mesh is some file vertex's (a NaN would be refused).
             .map(|v| v.unwrap_or([f64::NAN; 3]))
             .collect()
     } else if n == numbering.file_faces() {
@@ -72,11 +72,11 @@ fn in_file_numbers(
             vector,
         } => {
             let index = match site {
-                FieldSite::Faces if given != mesh.face_count() => numbering.file_face(index),
+                FieldSite::Faces if given != mesh.face_count() => {
+                    numbering.file_face_or_same(index)
+                }
                 FieldSite::Vertices if given != mesh.positions().len() => {
-                    let files: Vec<usize> = (0..numbering.file_vertices()).collect();
-                    numbering.vertices_from_file(&files, mesh.positions().len())[index]
-                        .unwrap_or(index)
+                    numbering.file_vertex(index)
                 }
                 _ => index,
             };

@@ -15,6 +15,12 @@ pub fn mesh_faces(numbering: &FileNumbering, faces: &[usize], what: &str) -> Res
         .collect()
 }
 
+/// The mesh's faces of the pair of file faces `[a, b]`, given by `what` (e.g. "--force").
+pub fn mesh_pair(numbering: &FileNumbering, [a, b]: [usize; 2], what: &str) -> Result<[usize; 2]> {
+    let both = mesh_faces(numbering, &[a, b], &format!("{what} {a},{b}"))?;
+    Ok([both[0], both[1]])
+}
+
 /// `pattern` (of the mesh) with its faces numbered as in the file; `faces` is then the
 /// file's count.
 pub fn pattern_in_file(pattern: &Pattern, numbering: &FileNumbering) -> Pattern {
@@ -28,30 +34,48 @@ pub fn pattern_in_file(pattern: &Pattern, numbering: &FileNumbering) -> Pattern 
             .map(|p| p.each_ref().map(file))
             .collect(),
         unpaired: pattern.unpaired.iter().map(file).collect(),
-        excluded: pattern.excluded.iter().map(file).collect(),
-        non_quad: pattern.non_quad.iter().map(file).collect(),
+        excluded: in_file(&pattern.excluded, numbering),
+        non_quad: in_file(&pattern.non_quad, numbering),
         ..pattern.clone()
     }
+}
+
+/// `faces` of the mesh as the file's faces, sorted, each once (the parts of a triangle that
+/// zipping split are one face of the file).
+fn in_file(faces: &[usize], numbering: &FileNumbering) -> Vec<usize> {
+    let mut file: Vec<usize> = faces.iter().map(|&f| numbering.file_face(f)).collect();
+    file.sort_unstable();
+    file.dedup();
+    file
 }
 
 /// A pattern read from `match`'s JSON (faces numbered as in the file) with the faces of the
 /// mesh read from that file.
 ///
+/// A pattern counting the welded mesh's faces (as `match` wrote them before its numbers
+/// were the file's) is read as it is, with a warning, and so is one of another face count,
+/// for the pipeline to refuse once it has checked the options.
+///
 /// # Errors
-/// When it was made for a file of another face count, or names a face reading removed.
+/// When it names a face the file does not have, or one reading removed.
 pub fn pattern_from_file(pattern: Pattern, numbering: &FileNumbering) -> Result<Pattern> {
-    if pattern.faces != numbering.file_faces() {
-        // The pipeline names the mismatch against the mesh.
+    let (file, mesh) = (numbering.file_faces(), numbering.mesh_faces());
+    if pattern.faces != file {
+        if pattern.faces == mesh {
+            // Written by `match` before its numbers were the file's (2026-12-07).
+            eprintln!(
+                "warning: the pattern counts {mesh} faces, as many as the mesh has once read, not the {file} of its file: its face numbers are read as counted after welding, as `match` wrote them before its numbers were the file's; run `match` again to have them in the file's numbers"
+            );
+            return Ok(pattern);
+        }
+        // Another mesh's pattern: the pipeline names the mismatch after checking the options.
         return Ok(pattern);
     }
     let mesh = |list: &[usize], what: &str| mesh_faces(numbering, list, what);
     let pairs = pattern
         .pairs
         .iter()
-        .map(|&[a, b]| {
-            let both = mesh(&[a, b], &format!("pair [{a}, {b}]"))?;
-            Ok([both[0], both[1]])
-        })
+        .map(|&p| mesh_pair(numbering, p, "pair"))
         .collect::<Result<Vec<_>>>()?;
     Ok(Pattern {
         faces: numbering.mesh_faces(),
