@@ -253,8 +253,8 @@ fn detect(bytes: &[u8], extension: Option<&str>) -> Result<Format, MeshError> {
         Some("obj") => return Ok(Format::Obj),
         Some("off") => return Ok(Format::Off),
         Some("ply") => return Ok(Format::PlyAscii),
-        Some("stl") => {
-            return Ok(if binary || head != "solid" {
+        Some("stl") if binary || head.eq_ignore_ascii_case("solid") || !looks_obj(bytes) => {
+            return Ok(if binary || !head.eq_ignore_ascii_case("solid") {
                 Format::StlBinary
             } else {
                 Format::StlAscii
@@ -263,14 +263,10 @@ fn detect(bytes: &[u8], extension: Option<&str>) -> Result<Format, MeshError> {
         _ => {}
     }
     if !binary {
-        if head == "solid" {
+        if head.eq_ignore_ascii_case("solid") {
             return Ok(Format::StlAscii);
         }
-        let text = String::from_utf8_lossy(bytes);
-        if text
-            .lines()
-            .any(|l| matches!(l.split_whitespace().next(), Some("v" | "f")))
-        {
+        if looks_obj(bytes) {
             return Ok(Format::Obj);
         }
     }
@@ -284,6 +280,14 @@ fn detect(bytes: &[u8], extension: Option<&str>) -> Result<Format, MeshError> {
 }
 
 /// The first whitespace-separated word of the text at the start of `bytes`.
+/// True when some line of `bytes` starts with an OBJ vertex or face (`v`, `f`): OBJ text,
+/// whatever the file is named.
+fn looks_obj(bytes: &[u8]) -> bool {
+    String::from_utf8_lossy(bytes)
+        .lines()
+        .any(|l| matches!(l.split_whitespace().next(), Some("v" | "f")))
+}
+
 fn first_word(bytes: &[u8]) -> String {
     let head = &bytes[..bytes.len().min(256)];
     String::from_utf8_lossy(head)

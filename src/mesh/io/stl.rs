@@ -43,9 +43,14 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
         };
         // The size first: a corrupt count is no reason to call the shell too large.
         if !is_binary(bytes) {
+            let expected = HEADER as u64 + TRIANGLE as u64 * count as u64;
+            let why = if (bytes.len() as u64) < expected {
+                "the file is cut short or not an STL"
+            } else {
+                "the header's count is wrong or data was appended; export the STL again"
+            };
             return Err(error(format!(
-                "the header announces {count} triangles ({} bytes), but the file has {} bytes: the file is cut short or not an STL",
-                HEADER as u64 + TRIANGLE as u64 * count as u64,
+                "the header announces {count} triangles ({expected} bytes), but the file has {} bytes: {why}",
                 bytes.len()
             )));
         }
@@ -89,35 +94,39 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
     Ok((positions, faces))
 }
 
-/// An ASCII STL as `stl_io` reads it: "solid " and a name (some exporters write "solid"
-/// alone), and every facet normal zero, since the corners alone give the triangle and
-/// exporters write "nan" for a degenerate facet's normal, which failed the whole file.
+/// An ASCII STL as `stl_io` reads it: one solid (exporters write one per object, and the
+/// reader stopped at the first `endsolid`, leaving the rest of the file out without a word),
+/// opened by "solid " and a name (some exporters write "solid" alone), keywords in lower case
+/// (some write them in upper case), and every facet normal zero, since the corners alone give
+/// the triangle and exporters write "nan" for a degenerate facet's normal, which failed the
+/// whole file.
 fn ascii_for_the_reader(text: &[u8]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(text.len() + 8);
-    if let Some(rest) = text.strip_prefix(b"solid")
-        && !rest.starts_with(b" ")
-    {
-        out.extend_from_slice(b"solid ");
-        out.extend_from_slice(rest);
-    } else {
-        out.extend_from_slice(text);
-    }
-    if !out.windows(3).any(|w| w.eq_ignore_ascii_case(b"nan")) {
-        return out;
-    }
-    let mut fixed = Vec::with_capacity(out.len());
-    for line in out.split_inclusive(|&b| b == b'\n') {
+    let text = text.to_ascii_lowercase();
+    let mut out = Vec::with_capacity(text.len() + 16);
+    out.extend_from_slice(b"solid merged\n");
+    // Within a solid (from its `solid` line to its `endsolid`, or the end of the file):
+    // text after the last solid, as some exporters leave, is no facet.
+    let mut within = false;
+    for line in text.split_inclusive(|&b| b == b'\n') {
         let words: Vec<&[u8]> = line
             .split(u8::is_ascii_whitespace)
             .filter(|w| !w.is_empty())
             .collect();
-        if words.len() == 5 && words[0] == b"facet" && words[1] == b"normal" {
-            fixed.extend_from_slice(b"facet normal 0 0 0\n");
-        } else {
-            fixed.extend_from_slice(line);
+        match words.first().copied() {
+            Some(b"solid") => within = true,
+            Some(b"endsolid") => within = false,
+            _ if !within => {}
+            Some(b"facet") if words.len() == 5 && words[1] == b"normal" => {
+                out.extend_from_slice(b"facet normal 0 0 0\n");
+            }
+            _ => out.extend_from_slice(line),
         }
     }
-    fixed
+    if out.last() != Some(&b'\n') {
+        out.push(b'\n');
+    }
+    out.extend_from_slice(b"endsolid merged\n");
+    out
 }
 
 #[cfg(test)]
@@ -177,6 +186,24 @@ pub(crate) mod tests {
         // A degenerate facet's normal written as "nan" (before: the whole file refused).
         let nan = text.replace("facet normal 0 0 1", "facet normal nan nan nan");
         let (positions, faces) = parse(nan.as_bytes(), Format::StlAscii).unwrap();
+        assert_eq!((positions.len(), faces.len()), (3, 1));
+    }
+
+    #[test]
+    fn every_solid_of_an_ascii_stl_is_read_whatever_the_case_and_the_trailing_text() {
+        let text = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n";
+        // Two solids (before: the second left out without a word), then text after them.
+        let two = format!("{text}{}end of export\n", text.replace(" 0 0\n", " 0 5\n"));
+        let (positions, faces) = parse(two.as_bytes(), Format::StlAscii).unwrap();
+        assert_eq!((positions.len(), faces.len()), (6, 2));
+        assert!(positions.iter().any(|p| p.z == 5.0));
+        // Keywords in upper case, as some exporters write them, detected and read as ASCII.
+        let upper = text.to_ascii_uppercase();
+        assert_eq!(
+            super::super::detect(upper.as_bytes(), Some("stl")).unwrap(),
+            Format::StlAscii
+        );
+        let (positions, faces) = parse(upper.as_bytes(), Format::StlAscii).unwrap();
         assert_eq!((positions.len(), faces.len()), (3, 1));
     }
 }
