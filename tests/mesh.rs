@@ -48,6 +48,18 @@ fn obj_reader_understands_common_face_forms() {
 }
 
 #[test]
+fn obj_reader_joins_continued_lines_and_reads_old_face_names() {
+    // A face continued over two lines with a backslash, and one given as `fo`; a bad number
+    // after a continuation is named by the line the statement starts on.
+    let text =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 \\\n  3 4\nfo 2 5 6 3\n";
+    let mesh = obj::parse(text).unwrap();
+    assert_eq!(mesh.faces(), &[vec![0, 1, 2, 3], vec![1, 4, 5, 2]]);
+    let bad = obj::parse("v 0 0 0\nv 1 \\\n zero 0\n").unwrap_err();
+    assert!(matches!(bad, MeshError::ObjSyntax { line: 2, .. }), "{bad}");
+}
+
+#[test]
 fn obj_reader_names_the_bad_line() {
     let bad_number = obj::parse("v 0 0 0\nv 1 zero 0\n").unwrap_err();
     assert_eq!(

@@ -460,7 +460,7 @@ fn run(cli: Cli) -> Result<()> {
                     String::new()
                 };
                 eprintln!(
-                    "warning: {which}{welded}: `match` pairs quads into tiles and leaves the others out (non_quad in its JSON); make quads of half a tile first (`tilepattern remesh {} --edge T --out quads.obj`, T = (length + joint) / 2), or tile the surface with `tilepattern run`",
+                    "warning: {which}{welded}: `match` pairs quads into tiles and leaves the others out (non_quad in its JSON); make quads of half a tile first (`tilepattern remesh {} --edge T -o quads.obj`, T = (length + joint) / 2), or tile the surface with `tilepattern run`",
                     quads.display()
                 );
             }

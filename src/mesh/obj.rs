@@ -35,12 +35,37 @@ pub fn parse(text: &str) -> Result<PolyMesh, MeshError> {
 ///
 /// # Errors
 /// As [`parse`], but no validation error.
+/// The lines of an OBJ text with a line ending in a backslash joined to the next (the
+/// format's line continuation), each with the number of its first line (from 1).
+fn logical_lines(text: &str) -> impl Iterator<Item = (usize, std::borrow::Cow<'_, str>)> {
+    let mut lines = text.lines().enumerate();
+    std::iter::from_fn(move || {
+        let (number, raw) = lines.next()?;
+        let Some(head) = raw.trim_end().strip_suffix('\\') else {
+            return Some((number + 1, raw.into()));
+        };
+        let mut joined = format!("{head} ");
+        for (_, next) in lines.by_ref() {
+            match next.trim_end().strip_suffix('\\') {
+                Some(more) => {
+                    joined.push_str(more);
+                    joined.push(' ');
+                }
+                None => {
+                    joined.push_str(next);
+                    break;
+                }
+            }
+        }
+        Some((number + 1, joined.into()))
+    })
+}
+
 pub(crate) fn parse_raw(text: &str) -> Result<super::io::Raw, MeshError> {
     let mut positions = Vec::new();
     let mut faces: Vec<Vec<usize>> = Vec::new();
     let mut index_count = 0usize;
-    for (number, raw) in text.lines().enumerate() {
-        let line = number + 1;
+    for (line, raw) in logical_lines(text) {
         let syntax = |message: String| MeshError::ObjSyntax { line, message };
         let content = raw.split('#').next().unwrap_or("");
         let mut words = content.split_whitespace();
@@ -64,7 +89,8 @@ pub(crate) fn parse_raw(text: &str) -> Result<super::io::Raw, MeshError> {
                     });
                 }
             }
-            Some("f") => {
+            // `fo` is the old name of a face.
+            Some("f" | "fo") => {
                 let mut face = Vec::new();
                 for word in words {
                     let first = word.split('/').next().unwrap_or("");
