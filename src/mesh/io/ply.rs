@@ -6,7 +6,9 @@ use std::io::Cursor;
 
 use nalgebra::Point3;
 use ply_rs_bw::parser::Parser;
-use ply_rs_bw::ply::{DefaultElement, ElementDef, Encoding, Property, PropertyType, ScalarType};
+use ply_rs_bw::ply::{
+    DefaultElement, ElementDef, Encoding, Header, Payload, Property, PropertyType, ScalarType,
+};
 
 use super::{Format, Raw};
 use crate::mesh::MeshError;
@@ -73,6 +75,40 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
     let ply = parser
         .read_ply(&mut Cursor::new(bytes))
         .map_err(|e| error(e.to_string()))?;
+    // Data after the last element the header announces: a header whose counts are short,
+    // which left the rest of the shell out without a word.
+    let body = bytes
+        .windows(10)
+        .position(|w| w == b"end_header")
+        .map(|at| {
+            let line = bytes[at..]
+                .iter()
+                .position(|&b| b == b'\n')
+                .map_or(0, |n| n + 1);
+            &bytes[at + line..]
+        })
+        .unwrap_or_default();
+    let beyond = if header.encoding == Encoding::Ascii {
+        // One record a line.
+        let records: usize = header.elements.values().map(|e| e.count).sum();
+        let lines = body
+            .split(|&b| b == b'\n')
+            .filter(|l| !l.trim_ascii().is_empty());
+        let extra = lines.count().saturating_sub(records);
+        (extra > 0).then(|| format!("{extra} lines"))
+    } else {
+        let rest = body
+            .get(binary_bytes(&header, &ply.payload)..)
+            .unwrap_or_default();
+        (!rest.trim_ascii().is_empty()).then(|| format!("{} bytes", rest.len()))
+    };
+    if let Some(beyond) = beyond {
+        return Err(error(format!(
+            "{beyond} follow the {} vertices and {} faces the header announces: its counts are short of what the file holds, so part of the shell would be left out; export the PLY again",
+            count("vertex"),
+            count("face")
+        )));
+    }
     let empty = Vec::new();
     let vertices = ply.payload.get("vertex").unwrap_or(&empty);
     let mut positions = Vec::with_capacity(vertices.len());
@@ -99,15 +135,40 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
     Ok((positions, faces))
 }
 
-/// The fewest bytes one `element` takes: its scalars' sizes and its lists' counts in binary,
-/// a digit and a separator per property in ASCII.
-fn least_bytes(element: &ElementDef, ascii: bool) -> u128 {
-    let size = |t: &ScalarType| match t {
+/// Bytes the elements read take in binary: each record's scalars, and each list's count and
+/// items, in the types the header gives.
+fn binary_bytes(header: &Header, payload: &Payload<DefaultElement>) -> usize {
+    let mut bytes = 0;
+    for (name, def) in &header.elements {
+        for record in payload.get(name).into_iter().flatten() {
+            for (key, property) in &def.properties {
+                bytes += match &property.data_type {
+                    PropertyType::Scalar(t) => scalar_size(t),
+                    PropertyType::List(count, item) => {
+                        let items = record.get(key).and_then(list).map_or(0, |l| l.len());
+                        scalar_size(count) + items * scalar_size(item)
+                    }
+                };
+            }
+        }
+    }
+    bytes
+}
+
+/// Bytes of one binary scalar of type `t`.
+fn scalar_size(t: &ScalarType) -> usize {
+    match t {
         ScalarType::Char | ScalarType::UChar => 1,
         ScalarType::Short | ScalarType::UShort => 2,
         ScalarType::Int | ScalarType::UInt | ScalarType::Float => 4,
         ScalarType::Double => 8,
-    };
+    }
+}
+
+/// The fewest bytes one `element` takes: its scalars' sizes and its lists' counts in binary,
+/// a digit and a separator per property in ASCII.
+fn least_bytes(element: &ElementDef, ascii: bool) -> u128 {
+    let size = |t: &ScalarType| scalar_size(t) as u128;
     element
         .properties
         .values()
@@ -187,6 +248,18 @@ mod tests {
             corrupt.contains("4000000000 vertices") && corrupt.contains("cut short or corrupt"),
             "{corrupt}"
         );
+        // More data than the header announces: refused, ASCII and binary (the rest of the
+        // shell was left out without a word).
+        let mut longer = bytes.clone();
+        longer.extend_from_slice(&bytes[bytes.len() - 17..]);
+        let long = parse(&longer, Format::PlyBinary).unwrap_err().to_string();
+        assert!(long.contains("17 bytes follow"), "{long}");
+        let long = parse(format!("{SQUARE}4 0 1 2 3\n").as_bytes(), Format::PlyAscii)
+            .unwrap_err()
+            .to_string();
+        assert!(long.contains("1 lines follow"), "{long}");
+        // Trailing white space is no data.
+        assert!(parse(format!("{SQUARE}\n\n").as_bytes(), Format::PlyAscii).is_ok());
     }
 
     /// `bytes` with its header's vertex count replaced by `count`.
