@@ -677,7 +677,7 @@ typedef struct TpTileOptions {
   double fit_time_limit_seconds;
   /**
    * Overlaps the fit stage leaves; deeper ones are cut. Negative (default): a twentieth of
-   * the joint. Since ABI 3.
+   * the joint, at least a three-hundredth of the tile's width. Since ABI 3.
    */
   double fit_overlap_tolerance;
   /**

@@ -72,7 +72,8 @@ namespace TilePattern
 
         /// <summary>What a host should say about a tiling's joints: the fit's result (a remark;
         /// a warning when its time limit cut it short), and overlaps between tiles (a warning
-        /// when one is deeper than the fit leaves by default, a twentieth of the joint, or any
+        /// when one is deeper than the fit leaves (by default a twentieth of the joint, at least
+        /// a three-hundredth of the tile's width), or any
         /// overlap without the fit; else a remark). Lengths in model units.</summary>
         public static UserMessage[] ForJoints(Report report)
         {

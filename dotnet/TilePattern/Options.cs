@@ -483,7 +483,7 @@ namespace TilePattern
         public double FitTimeLimitSeconds { get; set; }
 
         /// <summary>Overlaps the fit may leave; deeper ones are cut. Negative (default): a
-        /// twentieth of the joint.</summary>
+        /// twentieth of the joint, at least a three-hundredth of the tile's width.</summary>
         public double OverlapTolerance { get; set; }
 
         /// <summary>How far the fit may move a running bond's half offset or an aligned joint.

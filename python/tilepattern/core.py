@@ -965,7 +965,7 @@ def tiles(
         far is kept and ``report["fit"]["status"]`` is ``"time_limit"``. The same limit
         holds again for filling the fit's tears with pieces (those laid so far are kept).
     overlap_tolerance : float, optional
-        Overlaps the fit may leave; deeper ones are cut (default a twentieth of the joint).
+        Overlaps the fit may leave; deeper ones are cut (default a twentieth of the joint, at least a three-hundredth of the tile's width).
     bond_tolerance : float, optional
         How far the fit may move a running bond's half offset or an aligned joint
         (default a tenth of the tile length).

@@ -390,7 +390,7 @@ struct TileArgs {
     #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
     fit_time_limit: f64,
     /// Overlaps the fit leaves (millimetres); deeper ones are cut (default: a twentieth of
-    /// the joint).
+    /// the joint, at least a three-hundredth of the tile's width).
     #[arg(long, value_parser = parse_mm, allow_negative_numbers = true)]
     overlap_tolerance: Option<f64>,
     /// How far (millimetres) the fit may move a running bond's half offset or an aligned

@@ -65,7 +65,7 @@ pub struct TpTileOptions {
     /// that the same input gives the same tiles on any machine. Since ABI 3.
     pub fit_time_limit_seconds: f64,
     /// Overlaps the fit stage leaves; deeper ones are cut. Negative (default): a twentieth of
-    /// the joint. Since ABI 3.
+    /// the joint, at least a three-hundredth of the tile's width. Since ABI 3.
     pub fit_overlap_tolerance: f64,
     /// How far the fit may move a running bond's half offset or an aligned joint. Negative
     /// (default): a tenth of the tile length. Since ABI 3.
