@@ -166,6 +166,10 @@ enum Command {
         /// Keep the paper's placement (section 3.5): no fit stage.
         #[arg(long)]
         no_fit: bool,
+        /// Wall-clock limit of the remesh stage in seconds (as `run`'s; a span of 50 m or
+        /// more needs more than the default).
+        #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
+        remesh_time_limit: f64,
         #[command(flatten)]
         tries: TriesArg,
     },
@@ -608,6 +612,7 @@ fn run(cli: Cli) -> Result<()> {
             tries,
             out,
         } => {
+            output_folder(&out)?;
             let loaded = read_mesh(&input)?;
             let surface = &loaded.mesh;
             // Zones per face of the file (welding may remove or zipping split faces).
@@ -674,8 +679,17 @@ fn run(cli: Cli) -> Result<()> {
             span,
             pattern,
             no_fit,
+            remesh_time_limit,
             tries,
-        } => demo(&out, span, &pattern, no_fit, tries.tries(), log),
+        } => demo(
+            &out,
+            span,
+            &pattern,
+            no_fit,
+            remesh_time_limit,
+            tries.tries(),
+            log,
+        ),
     }
 }
 
@@ -684,12 +698,14 @@ fn demo(
     span: f64,
     args: &PatternArgs,
     no_fit: bool,
+    remesh_time_limit: f64,
     tries: Tries,
     log: bool,
 ) -> Result<()> {
     if !(span.is_finite() && (0.5..=100.0).contains(&span)) {
         bail!("--span {span} m: give a shell size between 0.5 and 100 metres");
     }
+    output_folder(out)?;
     let spec = TileSpec {
         length: 0.280,
         width: 0.140,
@@ -705,6 +721,7 @@ fn demo(
     let remesh = {
         let mut o = RemeshOptions::default();
         o.target_edge = spec.quad_edge(options.courses != Courses::Free);
+        o.time_limit = RemeshOptions::time_limit_from_secs(remesh_time_limit)?;
         o
     };
     let finish = {
@@ -751,6 +768,20 @@ fn demo(
     Ok(())
 }
 
+/// Makes the output folder `out` (and its parents), or says why it cannot be one: called
+/// before the work as well as before writing, so that a path that cannot be written fails at
+/// once and not after minutes of remeshing.
+fn output_folder(out: &Path) -> Result<()> {
+    if out.exists() && !out.is_dir() {
+        bail!(
+            "--out {} is a file, not a folder: give a folder for the output files",
+            out.display()
+        );
+    }
+    std::fs::create_dir_all(out)
+        .with_context(|| format!("cannot create the folder {}", out.display()))
+}
+
 /// Writes quads.obj, tiles.obj, pattern.svg, report.json and the fabrication output into
 /// `out`, and zones.txt when the quads have zones.
 fn write_outputs(
@@ -761,7 +792,7 @@ fn write_outputs(
     remesh: Option<&Metrics>,
     zones: Option<&[BondArg]>,
 ) -> Result<()> {
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    output_folder(out)?;
     mesh::obj::write(quads, &out.join("quads.obj"))?;
     if let Some(zones) = zones {
         write_text(&out.join("zones.txt"), &zones_file::to_text(zones))?;

@@ -397,7 +397,7 @@ pub enum RemeshError {
     Cancelled,
     /// The time limit passed before any quad mesh existed.
     #[error(
-        "the remesh time limit passed after {seconds:.2} s, before a quad mesh was ready; allow more time"
+        "the remesh time limit passed after {seconds:.2} s, before a quad mesh was ready; allow more time (the command line: --remesh-time-limit of run and demo, --time-limit of remesh)"
     )]
     TimeLimit {
         /// Seconds spent.
