@@ -1413,3 +1413,77 @@ fn errors_found_after_welding_name_faces_as_the_file_numbers_them() {
     let message = error.to_string();
     assert!(message.contains("faces [0, 1, 3]"), "{message}");
 }
+
+#[test]
+fn run_leaves_out_the_input_faces_excluded_and_neither_fills_nor_counts_them() {
+    // The paper's 4 m shell with a 1 m square in its middle excluded (an opening, or an area
+    // laid by hand), given as faces of the INPUT, as --zones is: before, `run` read them as
+    // quads it had not yet made, and the fit's tear fill then laid pieces in the opening.
+    let surface = shell(4.0, 1.0);
+    let inside = |x: f64, y: f64| x.abs() < 0.5 && y.abs() < 0.5;
+    let excluded: Vec<String> = (0..surface.face_count())
+        .filter(|&f| {
+            let c = surface.face_centroid(f);
+            inside(c.x, c.y)
+        })
+        .map(|f| f.to_string())
+        .collect();
+    assert!(excluded.len() > 50);
+    let list = excluded.join(",");
+    let text = obj::to_string(&surface);
+    let (out, report, dir) = run(
+        "exclude-input",
+        "shell.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--tries", "1", "--exclude", &list],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    assert!(report["excluded_faces"].as_u64().unwrap() > 20, "{report}");
+    let coverage = report["cutting"]["coverage"].as_f64().unwrap();
+    assert!(coverage > 0.95, "coverage {coverage}");
+    assert!(!codes(&report).contains(&"low_coverage".to_owned()));
+    // No tile or piece inside the opening (a tile's width from its edge).
+    let tiles = std::fs::read_to_string(dir.join("out").join("tiles.obj")).unwrap();
+    let mut centre = Vec::new();
+    let mut inside_count = 0;
+    let mut flush = |centre: &mut Vec<[f64; 3]>| {
+        if !centre.is_empty() {
+            let n = centre.len() as f64;
+            let (x, y) = (
+                centre.iter().map(|p| p[0]).sum::<f64>() / n,
+                centre.iter().map(|p| p[1]).sum::<f64>() / n,
+            );
+            if x.abs() < 0.36 && y.abs() < 0.36 {
+                inside_count += 1;
+            }
+            centre.clear();
+        }
+    };
+    for line in tiles.lines() {
+        if line.starts_with("o ") {
+            flush(&mut centre);
+        } else if let Some(rest) = line.strip_prefix("v ") {
+            let p: Vec<f64> = rest
+                .split_whitespace()
+                .map(|v| v.parse().unwrap())
+                .collect();
+            centre.push([p[0], p[1], p[2]]);
+        }
+    }
+    flush(&mut centre);
+    assert_eq!(inside_count, 0, "tiles laid in the opening");
+    // A forced pair names quads, which run makes itself: refused, saying what to do.
+    let (out, _, _) = run(
+        "force-in-run",
+        "shell.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--tries", "1", "--force", "1,2"],
+    );
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains("run makes its quads itself"),
+        "{}",
+        stderr(&out)
+    );
+}

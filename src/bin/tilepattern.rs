@@ -315,10 +315,13 @@ struct PatternArgs {
     /// mip = the paper's whole program on CBC.
     #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     method: MethodArg,
-    /// A pair of faces that must form a tile, as A,B (repeatable).
+    /// A pair of faces that must form a tile, as A,B (repeatable; quads of `match`, which
+    /// `run` makes itself and so refuses).
     #[arg(long = "force", value_parser = parse_pair)]
     forced: Vec<[usize; 2]>,
-    /// Faces to leave out (openings, areas laid by hand), comma separated.
+    /// Faces to leave out (openings, areas laid by hand), comma separated: quads of `match`,
+    /// faces of the input surface in `run` (each quad whose closest input face is one is left
+    /// out).
     #[arg(long, value_delimiter = ',')]
     exclude: Vec<usize>,
     /// Which way tiles may lie: level = all along level courses (default of run and demo:
@@ -625,8 +628,16 @@ fn run(cli: Cli) -> Result<()> {
             let (spec, units) = tile.spec(surface)?;
             eprintln!("{}", units.why);
             let finish = tile.finish(&spec, units.unit, creases);
-            // Zones per input face: the pipeline carries them over to the quads.
-            let options = pattern.options(true, tile.up, zones.as_deref())?;
+            // Zones and excluded faces per input face: the pipeline carries them over to the
+            // quads. Forced pairs would name quads, which do not exist yet.
+            let mut options = pattern.options(true, tile.up, zones.as_deref())?;
+            if let Some([a, b]) = options.forced_pairs.first() {
+                bail!(
+                    "--force {a},{b}: a forced pair names two quads, and run makes its quads itself; make them with `tilepattern remesh`, then give the pair to `tilepattern match` on them and lay the tiles with `tilepattern tiles`"
+                );
+            }
+            options.excluded_faces =
+                file_order::mesh_faces(&loaded.numbering, &options.excluded_faces, "--exclude")?;
             let edge = spec.quad_edge(options.courses != Courses::Free);
             let remesh = {
                 let mut o = field.options(edge, surface, &loaded.numbering, creases)?;

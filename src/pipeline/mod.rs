@@ -130,14 +130,16 @@ impl Tiling {
 /// remesh stage as fractions `0..0.5` and the pattern stage as `0.5..1`, and can cancel
 /// either.
 ///
-/// Zones (`options.zones`) are given per face of `surface`, since the quads do not exist
-/// yet: each quad takes the zone of the surface face closest to its centroid
-/// ([`zones_on_quads`]).
+/// Zones (`options.zones`) and excluded faces (`options.excluded_faces`: openings, areas
+/// laid by hand) are given per face of `surface`, since the quads do not exist yet: each
+/// quad takes the zone of the surface face closest to its centroid ([`zones_on_quads`]), and
+/// is left out when that face is; forced pairs would name quads, and are the caller's to
+/// refuse (the C ABI and the command line do).
 ///
 /// # Errors
 /// The first stage error; a bad tile or finishing option, pattern options that are bad
 /// whatever the mesh ([`PatternOptions::check`]) and zones not one per face of `surface`
-/// ([`PatternError::ZoneCount`]) fail before the remesh.
+/// ([`PatternError::ZoneCount`]) or excluded faces beyond them fail before the remesh.
 pub fn tile_surface(
     surface: &PolyMesh,
     remesh: &RemeshOptions,
@@ -152,6 +154,17 @@ pub fn tile_surface(
     if let Some(zones) = &options.zones {
         pattern::check_zone_count(zones.len(), surface.face_count())?;
     }
+    if let Some(&face) = options
+        .excluded_faces
+        .iter()
+        .find(|&&f| f >= surface.face_count())
+    {
+        return Err(PatternError::FaceOutOfRange {
+            face,
+            face_count: surface.face_count(),
+        }
+        .into());
+    }
     // Before the long stages: a tile far too small for the surface fails at once.
     check_tile_scale(None, Some(surface), spec)?;
     // Progress: the remesh stage reports the first half, the pattern stage the second.
@@ -163,17 +176,30 @@ pub fn tile_surface(
             &mut Control::with_progress(&mut first_half),
         )?
     };
-    // The surface's zones carried over to the quads.
+    // The surface's zones and excluded faces carried over to the quads.
     let zoned;
-    let options = match &options.zones {
-        Some(zones) => {
-            zoned = PatternOptions {
-                zones: Some(zones_on_quads(surface, zones, &remeshed.quads)?),
-                ..options.clone()
-            };
-            &zoned
-        }
-        None => options,
+    let options = if options.zones.is_some() || !options.excluded_faces.is_empty() {
+        let zones = options
+            .zones
+            .as_ref()
+            .map(|zones| zones_on_quads(surface, zones, &remeshed.quads))
+            .transpose()?;
+        let excluded_faces = if options.excluded_faces.is_empty() {
+            Vec::new()
+        } else {
+            let mut out = vec![false; surface.face_count()];
+            options.excluded_faces.iter().for_each(|&f| out[f] = true);
+            let on_quads = zones_on_quads(surface, &out, &remeshed.quads)?;
+            (0..on_quads.len()).filter(|&q| on_quads[q]).collect()
+        };
+        zoned = PatternOptions {
+            zones,
+            excluded_faces,
+            ..options.clone()
+        };
+        &zoned
+    } else {
+        options
     };
     let pattern = {
         // The pattern stage's figures (best, bound) go on to the caller's control.
@@ -328,11 +354,22 @@ pub fn tiles_for_pattern_with(
     let mut fill_started: Option<Instant> = None;
     let fill_limit = finish.fit.map_or(f64::INFINITY, |f| f.time_limit);
     let mut fill_timed_out = false;
-    let (tiles, finished) = tiles::finish_with(quads, surface, boxes, spec, finish, &mut || {
-        let started = *fill_started.get_or_insert_with(Instant::now);
-        fill_timed_out = started.elapsed().as_secs_f64() > fill_limit;
-        !fill_timed_out && control.keep_going(1.0)
-    });
+    // The caller's excluded quads: openings, areas laid by hand, neither filled nor counted
+    // as uncovered.
+    let excluded = tiles::ExcludedArea::new(quads, &pattern.excluded);
+    let (tiles, finished) = tiles::finish_with(
+        quads,
+        surface,
+        boxes,
+        spec,
+        finish,
+        excluded.as_ref(),
+        &mut || {
+            let started = *fill_started.get_or_insert_with(Instant::now);
+            fill_timed_out = started.elapsed().as_secs_f64() > fill_limit;
+            !fill_timed_out && control.keep_going(1.0)
+        },
+    );
     let joints = report::gaps::joints(quads, &tiles, spec.joint);
     let mut report = Report::measured(quads, &pattern, &tiles, &joints, spec, mm);
     if let Some((before, mut summary, seconds)) = fitted {
@@ -347,7 +384,12 @@ pub fn tiles_for_pattern_with(
         report.fit = Some(summary);
         report.seconds.fit = seconds;
     }
-    report.add_finish(&tiles, &finished, surface.unwrap_or(quads));
+    report.add_finish(
+        &tiles,
+        &finished,
+        surface.unwrap_or(quads),
+        excluded.as_ref(),
+    );
     report.warnings = report::warnings::check(
         quads,
         surface.unwrap_or(quads),

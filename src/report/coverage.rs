@@ -13,11 +13,17 @@
 
 use crate::geom::{HashGrid, sample};
 use crate::mesh::PolyMesh;
-use crate::tiles::Tile;
 use crate::tiles::outline::covers;
+use crate::tiles::{ExcludedArea, Tile};
 
-/// Share of `surface`'s area covered by `tiles` with their joints, in `[0, 1]`.
-pub fn covered_share(surface: &PolyMesh, tiles: &[Tile], joint: f64) -> f64 {
+/// Share of `surface`'s area covered by `tiles` with their joints, in `[0, 1]`, the area
+/// over the `excluded` quads (openings, areas laid by hand) left out of both.
+pub fn covered_share(
+    surface: &PolyMesh,
+    tiles: &[Tile],
+    joint: f64,
+    excluded: Option<&ExcludedArea>,
+) -> f64 {
     let Some(reach) = tiles
         .iter()
         .map(|t| t.size[0].hypot(t.size[1]) / 2.0 + joint)
@@ -47,6 +53,9 @@ pub fn covered_share(surface: &PolyMesh, tiles: &[Tile], joint: f64) -> f64 {
         let mut last = 0;
         let mut found = Vec::new();
         sample::face(p, face, spacing, |q, area| {
+            if excluded.is_some_and(|e| e.contains(&q)) {
+                return;
+            }
             let hit = near
                 .get(last)
                 .is_some_and(|&t| covers(&tiles[t], &q, joint / 2.0))
@@ -101,7 +110,7 @@ mod tests {
         // 0.15 x 1.4 of the square, about 0.107 of it. Neither triangle's centroid lies under
         // a tile, so sampling centroids only read 0.
         let tiles: Vec<Tile> = (0..5).map(|i| tile(0.14 + 0.29 * i as f64, 0.07)).collect();
-        let share = covered_share(&square(1.4), &tiles, 0.01);
+        let share = covered_share(&square(1.4), &tiles, 0.01, None);
         assert!((share - 0.15 * 1.4 / 1.96).abs() < 0.02, "{share}");
     }
 }

@@ -15,7 +15,7 @@ use serde::Serialize;
 use crate::mesh::PolyMesh;
 use crate::pattern::{Pattern, PatternSummary, SolveStatus};
 use crate::tiles::{
-    DropReason, DroppedTile, Finished, FitSummary, Sequence, Tile, TileKind, TileSpec,
+    DropReason, DroppedTile, ExcludedArea, Finished, FitSummary, Sequence, Tile, TileKind, TileSpec,
 };
 
 /// Wall-clock seconds per stage.
@@ -252,8 +252,14 @@ impl Report {
     }
 
     /// Adds what [`crate::tiles::finish`] found on `surface`, the surface the tiles were cut
-    /// to.
-    pub fn add_finish(&mut self, tiles: &[Tile], finished: &Finished, surface: &PolyMesh) {
+    /// to; the coverage leaves the `excluded` quads' area out.
+    pub fn add_finish(
+        &mut self,
+        tiles: &[Tile],
+        finished: &Finished,
+        surface: &PolyMesh,
+        excluded: Option<&ExcludedArea>,
+    ) {
         let joint = self.tile.joint;
         let tile_area: f64 = tiles
             .iter()
@@ -286,7 +292,7 @@ impl Report {
                 .count(),
             surface_area: surface.area(),
             tile_area,
-            coverage: coverage::covered_share(surface, tiles, joint),
+            coverage: coverage::covered_share(surface, tiles, joint, excluded),
             lifted_tiles: finished
                 .lifts
                 .iter()

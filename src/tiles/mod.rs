@@ -17,6 +17,7 @@
 
 pub mod clip;
 pub mod cutlist;
+mod excluded;
 mod fill;
 pub mod fit;
 mod frame;
@@ -27,6 +28,7 @@ mod tears;
 
 pub use clip::{Cut, SurfaceBoundary};
 pub use cutlist::CutGroup;
+pub use excluded::ExcludedArea;
 pub use fit::{FitOptions, FitStatus, FitSummary};
 pub use frame::Frame;
 pub use sequence::{SLOPE_DEGREES, Sequence, SequenceOptions, Support};
@@ -283,20 +285,22 @@ pub fn finish(
     spec: &TileSpec,
     options: &FinishOptions,
 ) -> (Vec<Tile>, Finished) {
-    finish_with(quads, surface, tiles, spec, options, &mut || true)
+    finish_with(quads, surface, tiles, spec, options, None, &mut || true)
 }
 
 /// [`finish`], asking `keep_going` now and then while it fills the fit's tears, the one step
 /// whose work grows with the surface's area in tiles rather than with the tiles laid (a
 /// surface far larger than its pattern's tiles asks for a piece per tile of its area);
 /// `false` stops that fill with the pieces laid so far ([`Finished::tear_fill_stopped`]),
-/// and the rest (cut list, laying order) is done as usual.
+/// and the rest (cut list, laying order) is done as usual. The fit's tears are not filled
+/// over the `excluded` quads (the pattern's, see [`ExcludedArea`]).
 pub fn finish_with(
     quads: &PolyMesh,
     surface: Option<&PolyMesh>,
     tiles: Vec<Tile>,
     spec: &TileSpec,
     options: &FinishOptions,
+    excluded: Option<&ExcludedArea>,
     keep_going: &mut dyn FnMut() -> bool,
 ) -> (Vec<Tile>, Finished) {
     let reference = surface.unwrap_or(quads);
@@ -466,6 +470,7 @@ pub fn finish_with(
             joint: spec.joint,
             min_width: options.min_kept_width,
             tolerance: options.tolerance,
+            excluded,
         }
         .fill(&mut kept, keep_going)
     } else {

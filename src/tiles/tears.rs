@@ -18,6 +18,7 @@
 use nalgebra::{Point3, Vector3};
 
 use super::clip::{Clipped, SurfaceBoundary};
+use super::excluded::ExcludedArea;
 use super::outline::{self, covers};
 use super::{Frame, Tile, TileKind};
 use crate::geom::{HashGrid, sample};
@@ -53,6 +54,8 @@ pub(crate) struct Tears<'a> {
     pub min_width: f64,
     /// How far the boundary may enter a piece before it is cut ([`SurfaceBoundary::clip`]).
     pub tolerance: f64,
+    /// The caller's excluded quads (openings, areas laid by hand): not filled.
+    pub excluded: Option<&'a ExcludedArea>,
 }
 
 /// Uncovered samples tried between two calls of the fill's `keep_going`.
@@ -133,7 +136,7 @@ impl Tears<'_> {
             let mut open = Vec::new();
             let sheet = self.boundary.face_sheet(f);
             sample::face(self.surface.positions(), &faces[f], spacing, |q, area| {
-                if !covered(tiles, &placed, &q) {
+                if !covered(tiles, &placed, &q) && !self.excluded.is_some_and(|e| e.contains(&q)) {
                     open.push((q, normals[f], area, sheet));
                 }
             });
@@ -488,6 +491,7 @@ mod tests {
             joint: 0.01,
             min_width: 0.028,
             tolerance: 0.001,
+            excluded: None,
         }
         .fill(tiles, &mut || true)
     }
