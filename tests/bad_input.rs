@@ -1788,6 +1788,38 @@ fn the_command_line_reports_bad_input() {
             1,
             &["tiny", "same units"],
         ),
+        // A joint as wide as the tile, a tile thicker than long: refused before the units
+        // are guessed (a joint of 1000 was refused as a mesh of no plausible size).
+        (
+            args(&[
+                "tiles",
+                &quads,
+                "--pairs",
+                &pairs,
+                "-o",
+                &tiles,
+                "--tile",
+                "280x140x15",
+                "--joint",
+                "1000",
+            ]),
+            1,
+            &["joint 1000 is not smaller than the tile's width 140"],
+        ),
+        (
+            args(&[
+                "tiles",
+                &quads,
+                "--pairs",
+                &pairs,
+                "-o",
+                &tiles,
+                "--tile",
+                "280x140x1e9",
+            ]),
+            1,
+            &["thickness 1000000000 is not smaller than the tile's length 280"],
+        ),
         // Remesh options.
         (
             args(&["remesh", &quads, "--edge", "0", "-o", &out("q.obj")]),

@@ -1068,6 +1068,22 @@ impl TileArgs {
     /// # Errors
     /// `--units auto` when no reading, or more than one, makes the mesh a plausible shell.
     fn spec(&self, mesh: &PolyMesh) -> Result<(TileSpec, ChosenUnits)> {
+        // The tile on its own first, in the millimetres it was given in: a joint of 1000 was
+        // refused as a mesh of no plausible size in any unit.
+        let [length, width, thickness] = self.tile;
+        if length < 10.0 {
+            bail!(
+                "--tile {length}x{width}x{thickness}: a tile {length} mm long is tiny; --tile is in millimetres whatever the mesh's units (e.g. 280x140x15): are the tile and the mesh in the same units?"
+            );
+        }
+        TileSpec {
+            length,
+            width,
+            thickness,
+            joint: self.joint,
+        }
+        .validate()
+        .map_err(|e| anyhow::anyhow!("{e} (--tile and --joint in millimetres)"))?;
         let units = match self.units {
             Units::Auto => auto_units(mesh, self.tile, self.joint)?,
             chosen => ChosenUnits {

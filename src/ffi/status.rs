@@ -98,9 +98,9 @@ impl From<PatternError> for Failure {
 impl From<TileError> for Failure {
     fn from(e: TileError) -> Self {
         let status = match e {
-            TileError::InvalidSpec { .. } | TileError::TileLargerThanMesh { .. } => {
-                TpStatus::TP_INVALID_ARGUMENT
-            }
+            TileError::InvalidSpec { .. }
+            | TileError::OutOfProportion { .. }
+            | TileError::TileLargerThanMesh { .. } => TpStatus::TP_INVALID_ARGUMENT,
             TileError::FaceOutOfRange { .. }
             | TileError::NotAdjacent { .. }
             | TileError::FaceUsedTwice { .. }

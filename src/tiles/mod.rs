@@ -77,10 +77,12 @@ impl TileSpec {
         }
     }
 
-    /// Checks that every dimension is a finite positive number (the joint may be zero).
+    /// Checks that every dimension is a finite positive number (the joint may be zero), the
+    /// joint narrower than the tile and the tile thinner than it is long.
     ///
     /// # Errors
-    /// [`TileError::InvalidSpec`] naming the first bad dimension.
+    /// [`TileError::InvalidSpec`] naming the first bad dimension, or
+    /// [`TileError::OutOfProportion`].
     pub fn validate(&self) -> Result<(), TileError> {
         let dims = [
             ("length", self.length),
@@ -97,6 +99,19 @@ impl TileSpec {
                 name: "joint",
                 value: self.joint,
             });
+        }
+        for (name, value, than, limit) in [
+            ("joint", self.joint, "width", self.width),
+            ("thickness", self.thickness, "length", self.length),
+        ] {
+            if value >= limit {
+                return Err(TileError::OutOfProportion {
+                    name,
+                    value,
+                    than,
+                    limit,
+                });
+            }
         }
         Ok(())
     }
@@ -549,6 +564,21 @@ pub enum TileError {
         name: &'static str,
         /// Its value.
         value: f64,
+    },
+    /// A dimension out of proportion with the tile: a joint as wide as the tile, a tile
+    /// thicker than it is long (usually a unit slip in one number).
+    #[error(
+        "tile option {name} {value} is not smaller than the tile's {than} {limit}: a {name} is a fraction of the tile (e.g. a 10 mm joint and a 15 mm thickness on a 280 x 140 mm tile); give every tile dimension in the same unit"
+    )]
+    OutOfProportion {
+        /// Which dimension.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// The dimension it must be smaller than.
+        than: &'static str,
+        /// That dimension's value.
+        limit: f64,
     },
     /// The tile is longer than the whole mesh.
     #[error(
