@@ -165,24 +165,17 @@ impl FileNumbering {
             .collect()
     }
 
-    /// Per vertex of a mesh of `vertices` vertices, the value `per_file_vertex` gives the
-    /// first file vertex that became it (`None` for a vertex no file vertex became).
+    /// Per vertex of the mesh, the value `per_file_vertex` gives the first file vertex that
+    /// became it ([`Self::file_vertex`]).
     ///
     /// # Panics
     /// If `per_file_vertex` does not have one value per vertex of the file.
-    pub fn vertices_from_file<T: Clone>(
-        &self,
-        per_file_vertex: &[T],
-        vertices: usize,
-    ) -> Vec<Option<T>> {
+    pub fn vertices_from_file<T: Clone>(&self, per_file_vertex: &[T]) -> Vec<T> {
         assert_eq!(per_file_vertex.len(), self.vertex_of_file.len());
-        let mut out = vec![None; vertices];
-        for (file, &v) in self.vertex_of_file.iter().enumerate() {
-            if v < vertices && out[v].is_none() {
-                out[v] = Some(per_file_vertex[file].clone());
-            }
-        }
-        out
+        self.vertex_source
+            .iter()
+            .map(|&file| per_file_vertex[file].clone())
+            .collect()
     }
 }
 
@@ -221,10 +214,7 @@ mod tests {
     #[test]
     fn a_joined_vertex_takes_the_first_file_vertex_value() {
         let n = removed_two();
-        assert_eq!(
-            n.vertices_from_file(&[10, 11, 12, 13], 3),
-            [Some(10), Some(11), Some(12)]
-        );
+        assert_eq!(n.vertices_from_file(&[10, 11, 12, 13]), [10, 11, 12]);
         assert_eq!(
             (0..3).map(|v| n.file_vertex(v)).collect::<Vec<_>>(),
             [0, 1, 2]
@@ -249,9 +239,6 @@ mod tests {
         assert_eq!(both.file_face(0), 1);
         assert_eq!(both.file_face(2), 4);
         assert_eq!(both.mesh_face(0), Err(NotInMesh::Removed { face: 0 }));
-        assert_eq!(
-            both.vertices_from_file(&[1, 2, 3, 4], 2),
-            [Some(1), Some(2)]
-        );
+        assert_eq!(both.vertices_from_file(&[1, 2, 3, 4]), [1, 2]);
     }
 }

@@ -25,27 +25,26 @@ pub fn read(
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read the field file {}", path.display()))?;
     let vectors = parse(&text).with_context(|| format!("field file {}", path.display()))?;
-    let (vertices, faces) = (mesh.positions().len(), mesh.face_count());
     let n = vectors.len();
-    let vectors = if n == vertices || n == faces {
-        vectors
-    } else if n == numbering.file_vertices() {
-        numbering
-            .vertices_from_file(&vectors, vertices)
-            .into_iter()
-            // Every vertex of the mesh is some file vertex's (a NaN would be refused).
-            .map(|v| v.unwrap_or([f64::NAN; 3]))
-            .collect()
-    } else if n == numbering.file_faces() {
-        numbering.faces_from_file(&vectors)
-    } else {
-        vectors
+    // Counted against the mesh, or else against its file (then translated).
+    let in_file = !(n == mesh.positions().len() || n == mesh.face_count())
+        && (n == numbering.file_vertices() || n == numbering.file_faces());
+    let vectors = match in_file {
+        true if n == numbering.file_vertices() => numbering.vertices_from_file(&vectors),
+        true => numbering.faces_from_file(&vectors),
+        false => vectors,
     };
     let field = UserField::for_mesh(mesh, vectors, weight)
         .with_context(|| format!("field file {}", path.display()))?;
     field
         .check(mesh)
-        .map_err(|e| in_file_numbers(e, n, mesh, numbering))
+        .map_err(|e| {
+            if in_file {
+                in_file_numbers(e, numbering)
+            } else {
+                e
+            }
+        })
         .with_context(|| format!("field file {}", path.display()))?;
     if mesh.positions().len() == mesh.face_count() {
         eprintln!(
@@ -57,35 +56,22 @@ pub fn read(
     Ok(field)
 }
 
-/// `error` with a bad vector named by its number in the file of `given` vectors, when those
-/// were counted against the file rather than `mesh`.
-fn in_file_numbers(
-    error: RemeshError,
-    given: usize,
-    mesh: &PolyMesh,
-    numbering: &FileNumbering,
-) -> RemeshError {
+/// `error` with a bad vector named by its number in the file (for vectors counted against
+/// the file).
+fn in_file_numbers(error: RemeshError, numbering: &FileNumbering) -> RemeshError {
     match error {
         RemeshError::BadFieldVector {
             index,
             site,
             vector,
-        } => {
-            let index = match site {
-                FieldSite::Faces if given != mesh.face_count() => {
-                    numbering.file_face_or_same(index)
-                }
-                FieldSite::Vertices if given != mesh.positions().len() => {
-                    numbering.file_vertex(index)
-                }
-                _ => index,
-            };
-            RemeshError::BadFieldVector {
-                index,
-                site,
-                vector,
-            }
-        }
+        } => RemeshError::BadFieldVector {
+            index: match site {
+                FieldSite::Faces => numbering.file_face_or_same(index),
+                FieldSite::Vertices => numbering.file_vertex(index),
+            },
+            site,
+            vector,
+        },
         other => other,
     }
 }

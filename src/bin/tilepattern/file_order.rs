@@ -61,14 +61,13 @@ fn in_file(faces: &[usize], numbering: &FileNumbering) -> Vec<usize> {
 pub fn pattern_from_file(pattern: Pattern, numbering: &FileNumbering) -> Result<Pattern> {
     let (file, mesh) = (numbering.file_faces(), numbering.mesh_faces());
     if pattern.faces != file {
+        // Written by `match` before its numbers were the file's (2026-12-07); any other
+        // count is another mesh's pattern, which the pipeline names after the options.
         if pattern.faces == mesh {
-            // Written by `match` before its numbers were the file's (2026-12-07).
             eprintln!(
                 "warning: the pattern counts {mesh} faces, as many as the mesh has once read, not the {file} of its file: its face numbers are read as counted after welding, as `match` wrote them before its numbers were the file's; run `match` again to have them in the file's numbers"
             );
-            return Ok(pattern);
         }
-        // Another mesh's pattern: the pipeline names the mismatch after checking the options.
         return Ok(pattern);
     }
     let mesh = |list: &[usize], what: &str| mesh_faces(numbering, list, what);

@@ -245,6 +245,7 @@ fn detect(bytes: &[u8], extension: Option<&str>) -> Result<Format, MeshError> {
         return Ok(Format::StlBinary);
     }
     let head = first_word(bytes);
+    let solid = head.eq_ignore_ascii_case("solid");
     if off::is_header(&head) {
         return Ok(Format::Off);
     }
@@ -253,8 +254,8 @@ fn detect(bytes: &[u8], extension: Option<&str>) -> Result<Format, MeshError> {
         Some("obj") => return Ok(Format::Obj),
         Some("off") => return Ok(Format::Off),
         Some("ply") => return Ok(Format::PlyAscii),
-        Some("stl") if binary || head.eq_ignore_ascii_case("solid") || !looks_obj(bytes) => {
-            return Ok(if binary || !head.eq_ignore_ascii_case("solid") {
+        Some("stl") if binary || solid || !looks_obj(bytes) => {
+            return Ok(if binary || !solid {
                 Format::StlBinary
             } else {
                 Format::StlAscii
@@ -263,7 +264,7 @@ fn detect(bytes: &[u8], extension: Option<&str>) -> Result<Format, MeshError> {
         _ => {}
     }
     if !binary {
-        if head.eq_ignore_ascii_case("solid") {
+        if solid {
             return Ok(Format::StlAscii);
         }
         if looks_obj(bytes) {
@@ -279,7 +280,6 @@ fn detect(bytes: &[u8], extension: Option<&str>) -> Result<Format, MeshError> {
     })
 }
 
-/// The first whitespace-separated word of the text at the start of `bytes`.
 /// True when some line of `bytes` starts with an OBJ vertex or face (`v`, `f`): OBJ text,
 /// whatever the file is named.
 fn looks_obj(bytes: &[u8]) -> bool {
@@ -288,6 +288,7 @@ fn looks_obj(bytes: &[u8]) -> bool {
         .any(|l| matches!(l.split_whitespace().next(), Some("v" | "f")))
 }
 
+/// The first whitespace-separated word of the text at the start of `bytes`.
 fn first_word(bytes: &[u8]) -> String {
     let head = &bytes[..bytes.len().min(256)];
     String::from_utf8_lossy(head)

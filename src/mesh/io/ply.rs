@@ -46,21 +46,30 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
         message,
     };
     let count = |name: &str| header.elements.get(name).map_or(0, |e| e.count);
-    // The counts must fit the file: a corrupt header is no shell too large.
+    // The data after the header's last line.
     let body = bytes
         .windows(10)
         .position(|w| w == b"end_header")
-        .map_or(0, |at| bytes.len() - at);
+        .map(|at| {
+            let line = bytes[at..]
+                .iter()
+                .position(|&b| b == b'\n')
+                .map_or(0, |n| n + 1);
+            &bytes[at + line..]
+        })
+        .unwrap_or_default();
+    // The counts must fit the file: a corrupt header is no shell too large.
     let least: u128 = header
         .elements
         .values()
         .map(|e| e.count as u128 * least_bytes(e, header.encoding == Encoding::Ascii))
         .sum();
-    if least > body as u128 {
+    if least > body.len() as u128 {
         return Err(error(format!(
-            "the header announces {} vertices and {} faces, at least {least} bytes, but {body} bytes follow it: the file is cut short or corrupt",
+            "the header announces {} vertices and {} faces, at least {least} bytes, but {} bytes follow it: the file is cut short or corrupt",
             count("vertex"),
-            count("face")
+            count("face"),
+            body.len()
         )));
     }
     crate::mesh::check_size(count("vertex"), count("face"), 0)?;
@@ -77,17 +86,6 @@ pub(super) fn parse(bytes: &[u8], format: Format) -> Result<Raw, MeshError> {
         .map_err(|e| error(e.to_string()))?;
     // Data after the last element the header announces: a header whose counts are short,
     // which left the rest of the shell out without a word.
-    let body = bytes
-        .windows(10)
-        .position(|w| w == b"end_header")
-        .map(|at| {
-            let line = bytes[at..]
-                .iter()
-                .position(|&b| b == b'\n')
-                .map_or(0, |n| n + 1);
-            &bytes[at + line..]
-        })
-        .unwrap_or_default();
     let beyond = if header.encoding == Encoding::Ascii {
         // One record a line.
         let records: usize = header.elements.values().map(|e| e.count).sum();
