@@ -109,6 +109,20 @@ namespace TilePattern.Gh
             return false;
         }
 
+        /// <summary>The Zones input as bonds, one per face (-1, the Bond input, is null); null
+        /// with an error naming the first item that is no bond code. Empty: no zones, an
+        /// empty array.</summary>
+        protected Bond?[] ZoneBonds(IList<int> zones)
+        {
+            for (int k = 0; k < zones.Count; k++)
+                if (zones[k] < -1 || zones[k] > 4)
+                {
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Zones item " + k + " is " + zones[k] + ": give -1 (the Bond input), 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), one per face.");
+                    return null;
+                }
+            return zones.Select(z => z < 0 ? (Bond?)null : (Bond)z).ToArray();
+        }
+
         /// <summary>The courses to lay: free, with a remark, when level ones were asked for but
         /// the bond or a zone (codes as the Bond input) is herringbone or basket weave, which lay
         /// tiles both ways (as the command line's run chooses).</summary>

@@ -82,16 +82,13 @@ namespace TilePattern.Gh
             }
             if (!CheckBond(bond) || !CheckCourses(courses))
                 return;
-            for (int k = 0; k < zones.Count; k++)
-                if (zones[k] < -1 || zones[k] > 4)
-                {
-                    AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Zones item " + k + " is " + zones[k] + ": give -1 (the Bond input), 0 (stack), 1 (staggered), 2 (running bond), 3 (herringbone) or 4 (basket weave), one per face.");
-                    return;
-                }
+            Bond?[] zoneBonds = ZoneBonds(zones);
+            if (zoneBonds == null)
+                return;
             courses = CoursesFor(bond, zones, courses);
             var options = new PatternOptions { Bond = (Bond)bond, Weight = weight, TimeLimitSeconds = timeLimit, Gap = gap, Courses = (Courses)courses };
             if (zones.Count > 0)
-                options.Zones = zones.Select(z => z < 0 ? (Bond?)null : (Bond)z).ToArray();
+                options.Zones = zoneBonds;
             for (int k = 0; k < forced.Count; k += 2)
                 options.ForcedPairs.Add(new FacePair(forced[k], forced[k + 1]));
             foreach (int face in excluded)

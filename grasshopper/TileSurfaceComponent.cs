@@ -3,6 +3,7 @@
 // and half the strength, the smooth field's quads laid out for level courses), keeping the tiles
 // that fit best (TilePatternEngine.Run).
 using System;
+using System.Collections.Generic;
 using Grasshopper.Kernel;
 using Grasshopper.Kernel.Parameters;
 using Rhino.Geometry;
@@ -50,8 +51,12 @@ namespace TilePattern.Gh
             pManager.AddIntegerParameter("Tries", "Tr", "How many quad meshes to lay tiles on, keeping the tiles that fit best: 0 = automatic (all on a surface of at most 10,000 quads, else 1; default), or 1 to 5 (renormalisation 0.5, then a smooth field that follows neither the curvature nor anything else, made only without a direction, angle, designer's field or guides, then 1, then 0.25, then the smooth field's quads laid out for level courses, half a tile and a joint along them, made only in level courses). 1 gives what Quad Remesh, Tile Pattern and Tile Boxes give one by one", GH_ParamAccess.item, 0);
             pManager.AddNumberParameter("Time limit", "TL", "Seconds of the pattern stage (default 10; a later try has at most 10); when a try's pattern stage or fit reaches its time limit no further try is made, except after the first try's pattern stage with a limit over 10", GH_ParamAccess.item, 10.0);
             pManager.AddBooleanParameter("Creases", "Cr", "Split the mesh where its faces turn sharply (a groin vault's groins, a fold): each part gets quads of its own and the tiles are cut to the creases, half a joint short on each side (default true)", GH_ParamAccess.item, true);
+            pManager.AddIntegerParameter("Excluded", "X", "Optional: faces of Mesh to leave out (openings, areas laid by hand): each quad whose closest face of Mesh is one gets no tile and no filler, and its area is left out of the coverage", GH_ParamAccess.list);
+            pManager.AddIntegerParameter("Zones", "Z", "Optional: a bond per face of Mesh (not of the quads), in face order (0 to 4 as Bond, -1 = the Bond input); each quad takes the zone of the face of Mesh closest to it. Empty: every face in Bond. A herringbone or basket-weave zone lays in free courses", GH_ParamAccess.list);
             for (int i = 1; i <= 4; i++)
                 pManager[i].Optional = true;
+            pManager[11].Optional = true;
+            pManager[12].Optional = true;
             NameBonds((Param_Integer)pManager[5]);
             NameCourses((Param_Integer)pManager[6]);
             var tries = (Param_Integer)pManager[8];
@@ -89,7 +94,14 @@ namespace TilePattern.Gh
             DA.GetData(8, ref tries);
             DA.GetData(9, ref timeLimit);
             DA.GetData(10, ref creases);
+            var excluded = new List<int>();
+            var zones = new List<int>();
+            DA.GetDataList(11, excluded);
+            DA.GetDataList(12, zones);
             if (!CheckBond(bond) || !CheckCourses(courses))
+                return;
+            Bond?[] zoneBonds = ZoneBonds(zones);
+            if (zoneBonds == null)
                 return;
             if (tries < 0 || tries > RunOptions.MaxTries)
             {
@@ -97,11 +109,15 @@ namespace TilePattern.Gh
                 return;
             }
             // The quads are then those of free courses too, as the command line's run makes them.
-            courses = CoursesFor(bond, new int[0], courses);
+            courses = CoursesFor(bond, zones, courses);
             // The quads as Quad Remesh makes them for these courses; UnitsPerMm from the
             // document's units, for the report's shares of joints within 2 and 5 mm.
             var remesh = new RemeshOptions { TargetEdge = TileOptions.QuadEdgeOf(length, width, joint, (Courses)courses), Creases = creases };
             var pattern = new PatternOptions { Bond = (Bond)bond, TimeLimitSeconds = timeLimit, Courses = (Courses)courses };
+            if (zones.Count > 0)
+                pattern.Zones = zoneBonds;
+            foreach (int face in excluded)
+                pattern.ExcludedFaces.Add(face);
             var tile = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm, Creases = creases };
             var run = new RunOptions { Tries = tries };
             double tolerance = Tolerance();
@@ -111,7 +127,7 @@ namespace TilePattern.Gh
                 return;
             WarnTurned(turned, "surface");
             var key = new InputKey().Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(bond).Add(courses).Add(fit).Add(tries)
-                .Add(timeLimit).Add(creases).Add(tolerance).Add(tile.UnitsPerMm);
+                .Add(timeLimit).Add(creases).Add(tolerance).Add(tile.UnitsPerMm).Add(excluded).Add(zones);
             TileSurfaceResult result = Solve(DA, key, (token, progress) =>
             {
                 // The whole run reports its progress (each try an equal share) and stops when

@@ -922,9 +922,11 @@ TpStatus tp_run_options_init(struct TpRunOptions *options, size_t size);
  * not wanted) the quad mesh and the pattern they were made from, read with the `tp_mesh_*`
  * and `tp_pattern_*` functions. Nothing is written to them on failure.
  *
- * The pattern options' `zones` are given per face of `surface` (each quad takes the zone
- * of the surface face closest to it); forced pairs and excluded faces name quads, which do
- * not exist before the call, so they are refused here (use the stages one by one).
+ * The pattern options' `zones` and `excluded_faces` are given per face of `surface`: each
+ * quad takes the zone of the surface face closest to it, and is left out (neither tiled,
+ * nor filled, nor counted in the coverage) when that face is excluded. Forced pairs name
+ * quads, which do not exist before the call, so they are refused here (use the stages one
+ * by one).
  * `progress` (may be NULL) is called with `TP_STAGE_RUN` and the share of the whole run done, each
  * try an equal share; a non-zero return cancels the run, in whichever try and stage, and the call
  * returns `TP_CANCELLED` without tiles. Each stage keeps its own time limit, except that a later

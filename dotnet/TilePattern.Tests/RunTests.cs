@@ -288,16 +288,51 @@ namespace TilePattern.Tests
             forced.ForcedPairs.Add(new FacePair(0, 1));
             var e = Assert.Throws<ArgumentException>(() => TilePatternEngine.Run(Dome, Remesh(), forced, null, new RunOptions { Tries = 1 }));
             Assert.AreEqual("pattern", e.ParamName);
-            StringAssert.Contains("ForcedPairs and ExcludedFaces must be empty for Run (ForcedPairs lists 1, ExcludedFaces 0)", e.Message);
+            StringAssert.Contains("ForcedPairs must be empty for Run (it lists 1)", e.Message);
             StringAssert.Contains("call Remesh, Match and Tiles one by one", e.Message);
 
-            var excluded = Level();
-            excluded.ExcludedFaces.Add(3);
-            excluded.ExcludedFaces.Add(4);
-            e = Assert.Throws<ArgumentException>(() => TilePatternEngine.Run(Dome, Remesh(), excluded, null, new RunOptions { Tries = 1 }));
-            StringAssert.Contains("(ForcedPairs lists 0, ExcludedFaces 2)", e.Message);
-
             Assert.Throws<ArgumentNullException>(() => TilePatternEngine.Run(null));
+        }
+
+        [Test]
+        public void ExcludedFacesAreFacesOfTheSurfaceAndAreNotTiled()
+        {
+            StagesOneByOne();
+            // The quarter of the dome where x and y > 0, by its faces' centroids.
+            var excluded = Level();
+            double[] v = Dome.Vertices;
+            int[] idx = Dome.FaceIndices, sizes = Dome.FaceSizes;
+            for (int f = 0, at = 0; f < sizes.Length; at += sizes[f], f++)
+            {
+                double x = 0.0, y = 0.0;
+                for (int k = 0; k < sizes[f]; k++)
+                {
+                    x += v[3 * idx[at + k]] / sizes[f];
+                    y += v[3 * idx[at + k] + 1] / sizes[f];
+                }
+                if (x > 0.0 && y > 0.0)
+                    excluded.ExcludedFaces.Add(f);
+            }
+            using (RunResult run = TilePatternEngine.Run(Dome, Remesh(), excluded, null, new RunOptions { Tries = 1 }))
+            {
+                Tile[] tiles = run.Tiling.Tiles;
+                int all = stageTiling.Tiles.Length;
+                Assert.That(tiles.Length, Is.InRange(all / 2, all * 85 / 100), "about a quarter fewer tiles");
+                foreach (Tile t in tiles)
+                {
+                    double x = 0.0, y = 0.0;
+                    for (int c = 0; c < 8; c++)
+                    {
+                        x += t.Corners[3 * c] / 8.0;
+                        y += t.Corners[3 * c + 1] / 8.0;
+                    }
+                    Assert.IsFalse(x > 0.3 && y > 0.3, "tile " + t.Index + " lies inside the faces left out");
+                }
+            }
+            var beyond = Level();
+            beyond.ExcludedFaces.Add(Dome.FaceCount);
+            var e = Assert.Throws<InvalidArgumentException>(() => TilePatternEngine.Run(Dome, Remesh(), beyond, null, new RunOptions { Tries = 1 }));
+            StringAssert.Contains("face " + Dome.FaceCount, e.Message);
         }
 
         [Test]

@@ -250,7 +250,9 @@ namespace TilePattern
         /// their courses the same way. The pattern
         /// options' <see cref="PatternOptions.Zones"/> give a bond per face of
         /// <paramref name="surface"/> (each quad takes the zone of the surface face closest to
-        /// it); <see cref="PatternOptions.ForcedPairs"/> and <see cref="PatternOptions.ExcludedFaces"/>
+        /// it), and so do its <see cref="PatternOptions.ExcludedFaces"/> (openings, areas laid
+        /// by hand: each quad whose closest surface face is one is neither tiled nor filled,
+        /// and its area is left out of the coverage). <see cref="PatternOptions.ForcedPairs"/>
         /// must be empty (<see cref="ArgumentException"/>), since the quads they would name do
         /// not exist yet: call <see cref="Remesh"/>, <see cref="Match"/> and
         /// <see cref="Tiles(Pattern, TileOptions, PolyMesh)"/> one by one for them.</para>
@@ -283,11 +285,10 @@ namespace TilePattern
             IProgress<double> progress, CancellationToken cancellationToken)
         {
             int forcedCount = pattern.ForcedPairs == null ? 0 : pattern.ForcedPairs.Count;
-            int excludedCount = pattern.ExcludedFaces == null ? 0 : pattern.ExcludedFaces.Count;
-            if (forcedCount > 0 || excludedCount > 0)
-                throw new ArgumentException("PatternOptions.ForcedPairs and ExcludedFaces must be empty for Run (ForcedPairs lists " + forcedCount
-                    + ", ExcludedFaces " + excludedCount + "): Run makes the quads itself, so no quad can be named before it;"
-                    + " call Remesh, Match and Tiles one by one to force pairs or exclude faces", "pattern");
+            if (forcedCount > 0)
+                throw new ArgumentException("PatternOptions.ForcedPairs must be empty for Run (it lists " + forcedCount
+                    + "): Run makes the quads itself, so no quad can be named before it;"
+                    + " call Remesh, Match and Tiles one by one to force pairs (ExcludedFaces, as Zones, name faces of the surface and are taken)", "pattern");
             TpRemeshOptions remeshNative = remesh.ToNative();
             double[] field = remesh.FlatField();
             double[] guidePoints;

@@ -215,14 +215,28 @@ def test_the_library_refuses_bad_tries_and_named_quads_too(dome):
             surface.run(remesh, pattern, tiles, run)
 
 
-def test_forced_pairs_and_excluded_faces_are_refused(dome):
+def test_forced_pairs_are_refused(dome):
     V, F = dome
-    with pytest.raises(tp.InvalidArgumentError, match="forced_pairs names 1 quad.*remesh\\(\\), match\\(\\) and tiles\\(\\)"):
+    with pytest.raises(tp.InvalidArgumentError, match="forced_pairs names 1 pair of quads.*remesh\\(\\), match\\(\\) and tiles\\(\\)"):
         tp.run(V, F, tries=1, forced_pairs=[[0, 1]], **LEVEL)
-    with pytest.raises(tp.InvalidArgumentError, match="excluded_faces names 2 quads"):
-        tp.run(V, F, tries=1, excluded_faces=[3, 4], **LEVEL)
     # Empty is no pair: accepted.
     assert len(tp.run(V, F, tries=1, forced_pairs=[], excluded_faces=[], **LEVEL).tiles) > 100
+
+
+def test_excluded_faces_are_faces_of_the_surface_and_are_neither_tiled_nor_counted(dome):
+    V, F = dome
+    whole = tp.run(V, F, tries=1, **LEVEL)
+    centroids = np.asarray(V)[np.asarray(F)].mean(axis=1)
+    quarter = np.flatnonzero((centroids[:, 0] > 0) & (centroids[:, 1] > 0))
+    kept = tp.run(V, F, tries=1, excluded_faces=quarter, **LEVEL)
+    centres = kept.tiles.corners.mean(axis=1)
+    # No tile well inside the quarter left out (a tile is 0.29 long), about a quarter fewer.
+    assert not ((centres[:, 0] > 0.3) & (centres[:, 1] > 0.3)).any()
+    assert 0.5 * len(whole.tiles) < len(kept.tiles) < 0.85 * len(whole.tiles)
+    # The area left out is not counted as uncovered.
+    assert kept.tiles.report["cutting"]["coverage"] > 0.9
+    with pytest.raises(tp.InvalidArgumentError, match="face 1104"):
+        tp.run(V, F, tries=1, excluded_faces=[len(F)], **LEVEL)
 
 
 def test_zones_are_per_surface_face(dome):

@@ -1161,14 +1161,15 @@ def _tries(tries) -> int:
 
 
 def _no_quads_named(options):
-    """Refuses pattern options naming quads, which :func:`run` makes itself."""
-    for name, count in (("forced_pairs", options.forced_pair_count), ("excluded_faces", options.excluded_face_count)):
-        if count:
-            raise InvalidArgumentError(
-                nat.TP_INVALID_ARGUMENT,
-                "%s names %d quad%s, but run() makes the quads itself, so none can be named before it: leave %s "
-                "None, or call remesh(), match() and tiles() one by one" % (name, count, "" if count == 1 else "s", name),
-            )
+    """Refuses forced pairs, which name quads, which :func:`run` makes itself."""
+    count = options.forced_pair_count
+    if count:
+        raise InvalidArgumentError(
+            nat.TP_INVALID_ARGUMENT,
+            "forced_pairs names %d pair%s of quads, but run() makes the quads itself, so none can be named before it: "
+            "leave forced_pairs None, or call remesh(), match() and tiles() one by one (excluded_faces, as zones, "
+            "name faces of the surface and are taken)" % (count, "" if count == 1 else "s"),
+        )
 
 
 def run(
@@ -1282,9 +1283,14 @@ def run(
         :func:`match`; each quad takes the zone of the surface face closest to its
         centroid. A wrong count raises :class:`~tilepattern.InvalidArgumentError` before
         any work.
-    forced_pairs, excluded_faces : optional
+    excluded_faces : array_like (E,) of int, optional
+        Faces of the surface (``faces``, not of the quads) to leave out: openings, areas
+        laid by hand. Each quad whose closest surface face is one is neither tiled nor
+        filled, and its area is left out of the coverage. An index beyond ``faces`` raises
+        :class:`~tilepattern.InvalidArgumentError` before any work.
+    forced_pairs : optional
         Refused unless None or empty (:class:`~tilepattern.InvalidArgumentError` naming
-        them): they name quads, which do not exist before the call. Call :func:`remesh`,
+        it): pairs name quads, which do not exist before the call. Call :func:`remesh`,
         :func:`match` and :func:`tiles` one by one to use them.
     direction, angle, shapeup, field, field_weight, guides, guide_weight, renormalisation
         As for :func:`remesh` (``field`` one vector per vertex or face of the surface).

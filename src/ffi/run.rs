@@ -59,9 +59,11 @@ pub unsafe extern "C" fn tp_run_options_init(options: *mut TpRunOptions, size: u
 /// not wanted) the quad mesh and the pattern they were made from, read with the `tp_mesh_*`
 /// and `tp_pattern_*` functions. Nothing is written to them on failure.
 ///
-/// The pattern options' `zones` are given per face of `surface` (each quad takes the zone
-/// of the surface face closest to it); forced pairs and excluded faces name quads, which do
-/// not exist before the call, so they are refused here (use the stages one by one).
+/// The pattern options' `zones` and `excluded_faces` are given per face of `surface`: each
+/// quad takes the zone of the surface face closest to it, and is left out (neither tiled,
+/// nor filled, nor counted in the coverage) when that face is excluded. Forced pairs name
+/// quads, which do not exist before the call, so they are refused here (use the stages one
+/// by one).
 /// `progress` (may be NULL) is called with `TP_STAGE_RUN` and the share of the whole run done, each
 /// try an equal share; a non-zero return cancels the run, in whichever try and stage, and the call
 /// returns `TP_CANCELLED` without tiles. Each stage keeps its own time limit, except that a later
@@ -112,18 +114,14 @@ pub unsafe extern "C" fn tp_run(
                 ));
             }
         };
-        for (name, count) in [
-            ("forced_pair_count", raw_pattern.forced_pair_count),
-            ("excluded_face_count", raw_pattern.excluded_face_count),
-        ] {
-            if count != 0 {
-                return Err(Failure::new(
-                    TpStatus::TP_INVALID_ARGUMENT,
-                    format!(
-                        "pattern->{name} is {count}: tp_run makes the quads itself, so no quad can be named before it; leave it 0, or run tp_remesh, tp_pattern_solve and tp_tiles_build_on_surface one by one"
-                    ),
-                ));
-            }
+        let count = raw_pattern.forced_pair_count;
+        if count != 0 {
+            return Err(Failure::new(
+                TpStatus::TP_INVALID_ARGUMENT,
+                format!(
+                    "pattern->forced_pair_count is {count}: tp_run makes the quads itself, so no quad can be named before it; leave it 0, or run tp_remesh, tp_pattern_solve and tp_tiles_build_on_surface one by one (excluded faces, as zones, name faces of the surface and are taken)"
+                ),
+            ));
         }
         // SAFETY: the arrays hold their stated counts by the caller's promise.
         let remesh = unsafe { remesh_options(surface, &raw_remesh) }?;

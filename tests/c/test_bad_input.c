@@ -540,13 +540,13 @@ int main(void) {
     row("run: 99 tries", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
         "run->tries is 99");
     run.tries = 1;
-    uint32_t excluded[1] = {0};
-    rpo.excluded_faces = excluded;
-    rpo.excluded_face_count = 1;
-    row("run: excluded faces", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
-        "excluded_face_count is 1");
-    rpo.excluded_faces = NULL;
-    rpo.excluded_face_count = 0;
+    uint32_t pair[2] = {0, 1};
+    rpo.forced_pairs = pair;
+    rpo.forced_pair_count = 1;
+    row("run: forced pairs", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
+        "forced_pair_count is 1");
+    rpo.forced_pairs = NULL;
+    rpo.forced_pair_count = 0;
     rro.target_edge = NAN;
     row("run: NaN target edge", tp_run(quads, &rro, &rpo, &rto, &run, NULL, NULL, &rq, NULL, &rt), TP_INVALID_ARGUMENT,
         "target edge");

@@ -1411,6 +1411,43 @@ static void test_run(void) {
   CHECK(none == NULL && last_error_contains("forced_pair_count"));
   po.forced_pairs = NULL;
   po.forced_pair_count = 0;
+  uint32_t beyond[1] = {1u << 20};
+  po.excluded_faces = beyond;
+  po.excluded_face_count = 1;
+  CHECK(tp_run(dome, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, &none) == TP_INVALID_ARGUMENT);
+  CHECK(none == NULL && last_error_contains("1048576"));
+
+  /* Excluded faces name faces of the surface: a quarter of the dome (its sectors 0-11, x
+     and y > 0) left out is neither tiled nor filled. */
+  uint32_t quarter[12 * 23];
+  size_t nq = 0;
+  for (uint32_t j = 0; j < 12; j++) {
+    quarter[nq++] = j;
+    for (uint32_t i = 1; i < 12; i++) {
+      quarter[nq++] = 48 + 2 * ((i - 1) * 48 + j);
+      quarter[nq++] = 48 + 2 * ((i - 1) * 48 + j) + 1;
+    }
+  }
+  po.excluded_faces = quarter;
+  po.excluded_face_count = nq;
+  TpTiles *three_quarters = NULL;
+  CHECK(tp_run(dome, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, &three_quarters) == TP_OK);
+  size_t n3 = 0, inside = 0;
+  CHECK(tp_tiles_count(three_quarters, &n3) == TP_OK);
+  CHECK(n3 > n0 / 2 && n3 < n0 * 85 / 100);
+  double *c3 = (double *)malloc(24 * n3 * sizeof(double));
+  CHECK(tp_tiles_copy_corners(three_quarters, c3, 24 * n3) == TP_OK);
+  for (size_t t = 0; t < n3; t++) {
+    double x = 0.0, y = 0.0;
+    for (int c = 0; c < 8; c++) x += c3[24 * t + 3 * c] / 8.0, y += c3[24 * t + 3 * c + 1] / 8.0;
+    if (x > 0.3 && y > 0.3) inside++;
+  }
+  CHECK(inside == 0);
+  printf("run: a quarter of the dome's faces excluded: %zu tiles of %zu, none inside it\n", n3, n0);
+  free(c3);
+  tp_tiles_free(three_quarters);
+  po.excluded_faces = NULL;
+  po.excluded_face_count = 0;
   CHECK(tp_run(dome, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, NULL) == TP_NULL_POINTER);
   CHECK(tp_run(NULL, &ro, &po, &to, &run, NULL, NULL, NULL, NULL, &none) == TP_NULL_POINTER);
   CHECK(tp_run(dome, &ro, &po, &to, NULL, NULL, NULL, NULL, NULL, &none) == TP_NULL_POINTER);
