@@ -1415,6 +1415,54 @@ fn errors_found_after_welding_name_faces_as_the_file_numbers_them() {
 }
 
 #[test]
+fn warnings_name_faces_as_the_file_numbers_them_where_welding_removed_a_face() {
+    // The 4 m shell whose first face the file gives twice (welding removes the repeat, file
+    // face 1), and apart from it a curved octagon 1.2 m across, the file's last face: the
+    // warning about it named it one lower, as the welded mesh counts.
+    let surface = shell(4.0, 1.0);
+    let mut text = obj::to_string(&surface);
+    let first = text
+        .lines()
+        .find(|l| l.starts_with("f "))
+        .unwrap()
+        .to_owned();
+    let at = text.find("\nf ").unwrap() + 1;
+    text.insert_str(at, &format!("{first}\n"));
+    let n = surface.positions().len();
+    let mut octagon = String::from("f");
+    for k in 0..8 {
+        let a = std::f64::consts::TAU * k as f64 / 8.0;
+        let z = if k % 2 == 0 { 0.1 } else { -0.1 };
+        writeln!(text, "v {} {} {z}", 6.0 + 0.6 * a.cos(), 0.6 * a.sin()).unwrap();
+        write!(octagon, " {}", n + k + 1).unwrap();
+    }
+    text.push_str(&octagon);
+    text.push('\n');
+    let last = surface.face_count() + 1;
+    let (out, report, _) = run(
+        "warning-numbers",
+        "shell.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--tries", "1"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    let curved = report["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|w| w["code"] == "curved_polygons")
+        .unwrap_or_else(|| panic!("no curved_polygons warning: {report}"));
+    assert_eq!(curved["face"].as_u64(), Some(last as u64), "{curved}");
+    let message = curved["message"].as_str().unwrap();
+    assert!(
+        message.contains(&format!("(face {last}, counted from 0")),
+        "{message}"
+    );
+    assert!(stderr(&out).contains(&format!("(face {last}, counted from 0")));
+}
+
+#[test]
 fn run_leaves_out_the_input_faces_excluded_and_neither_fills_nor_counts_them() {
     // The paper's 4 m shell with a 1 m square in its middle excluded (an opening, or an area
     // laid by hand), given as faces of the INPUT, as --zones is: before, `run` read them as

@@ -524,7 +524,7 @@ fn run(cli: Cli) -> Result<()> {
                 .collect();
             let numbering = loaded.numbering;
             let mesh = loaded.mesh;
-            let surface = surface.map(|s| s.mesh);
+            let (surface, surface_numbering) = surface.map(|s| (s.mesh, s.numbering)).unzip();
             let text = std::fs::read_to_string(&pairs)
                 .with_context(|| format!("cannot read {}", pairs.display()))?;
             let found: Pattern = serde_json::from_str(&text).with_context(|| {
@@ -544,6 +544,9 @@ fn run(cli: Cli) -> Result<()> {
             let mut tiling =
                 pipeline::tiles_for_pattern(&mesh, surface.as_ref(), found, &spec, &finish)
                     .map_err(|e| units.explain(e.in_file_numbers(&numbering)))?;
+            // Warnings name faces of the surface the tiles were cut to, in its file's numbers.
+            let checked = surface_numbering.as_ref().unwrap_or(&numbering);
+            in_file_numbers(&mut tiling.report.warnings, checked);
             tiling.report.warnings.append(&mut welds);
             // The tiles left out, by the quads' numbers in their file.
             let slivers = tiling
@@ -664,6 +667,7 @@ fn run(cli: Cli) -> Result<()> {
             );
             line.finish();
             let (remeshed, mut tiling) = found.map_err(|e| units.explain(e))?;
+            in_file_numbers(&mut tiling.report.warnings, &loaded.numbering);
             tiling.report.warnings.extend(reading_warnings(&loaded));
             let units = units.unit;
             // The quads' zones, as the pipeline gave them to the pattern stage.
@@ -1421,6 +1425,14 @@ fn weld_warning(loaded: &Loaded) -> Option<Warning> {
         });
         Warning::new(WarningCode::VerticesWelded, message)
     })
+}
+
+/// `warnings` naming faces of a mesh read from a file, with those faces as `numbering` says
+/// the file numbers them.
+fn in_file_numbers(warnings: &mut [Warning], numbering: &mesh::FileNumbering) {
+    for w in warnings {
+        *w = w.clone().renumbered(|f| numbering.file_face_or_same(f));
+    }
 }
 
 /// Prints warnings to stderr, one a line with its code.

@@ -77,6 +77,10 @@ pub struct Warning {
     pub code: WarningCode,
     /// What was found and what to do.
     pub message: String,
+    /// The face of the surface the message names ([`face_label`]), counted from 0: in the
+    /// mesh given, or in its file where the command line read one (welding renumbers faces).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub face: Option<usize>,
 }
 
 impl Warning {
@@ -85,8 +89,51 @@ impl Warning {
         Self {
             code,
             message: message.into(),
+            face: None,
         }
     }
+
+    /// A warning whose message names `face` as [`face_label`] writes it.
+    fn at_face(code: WarningCode, face: usize, message: String) -> Self {
+        debug_assert!(message.contains(&face_label(face)));
+        Self {
+            face: Some(face),
+            ..Self::new(code, message)
+        }
+    }
+
+    /// The warning with the face it names renumbered by `number` (e.g. the mesh's faces as
+    /// their file counts them, [`crate::mesh::FileNumbering::file_face`]), in the message
+    /// too.
+    pub fn renumbered(self, number: impl Fn(usize) -> usize) -> Self {
+        let Some(face) = self.face else {
+            return self;
+        };
+        let renamed = number(face);
+        let (old, new) = (face_label(face), face_label(renamed));
+        // The label followed by no further digit: "face 1" is not the start of "face 12".
+        let at = self.message.match_indices(&old).find(|&(i, _)| {
+            !self.message[i + old.len()..].starts_with(|c: char| c.is_ascii_digit())
+        });
+        let message = match at {
+            Some((i, _)) => format!(
+                "{}{new}{}",
+                &self.message[..i],
+                &self.message[i + old.len()..]
+            ),
+            None => self.message,
+        };
+        Self {
+            message,
+            face: Some(renamed),
+            ..self
+        }
+    }
+}
+
+/// How a warning's message names a face: "face 12".
+fn face_label(face: usize) -> String {
+    format!("face {face}")
 }
 
 /// Angle (radians) between the normals of two faces sharing an edge beyond which the
@@ -589,12 +636,14 @@ fn curved_polygons(surface: &PolyMesh, spec: &TileSpec) -> Option<Warning> {
     }
     let (off, face, across) = worst?;
     let corners = surface.faces()[face].len();
-    Some(Warning::new(
+    Some(Warning::at_face(
         WarningCode::CurvedPolygons,
+        face,
         format!(
-            "{count} {} of more than four corners {} larger than a tile and not flat (face {face}, counted from 0: {corners} corners, {across:.3} across, standing up to {off:.3} off its plane): the surface inside such a face is read as a fan of triangles from its first corner, which is not the shell you drew and folds where the face is large; give the surface as triangles or quads (mesh it in the modeller, e.g. Rhino's Mesh with a small maximum edge, or triangulate those faces)",
+            "{count} {} of more than four corners {} larger than a tile and not flat ({}, counted from 0: {corners} corners, {across:.3} across, standing up to {off:.3} off its plane): the surface inside such a face is read as a fan of triangles from its first corner, which is not the shell you drew and folds where the face is large; give the surface as triangles or quads (mesh it in the modeller, e.g. Rhino's Mesh with a small maximum edge, or triangulate those faces)",
             if count == 1 { "face" } else { "faces" },
-            if count == 1 { "is" } else { "are" }
+            if count == 1 { "is" } else { "are" },
+            face_label(face)
         ),
     ))
 }
@@ -687,12 +736,14 @@ fn folds(surface: &PolyMesh, topology: &Topology) -> Option<Warning> {
     let (turn, face) = sharpest?;
     let at = surface.face_centroid(face);
     let edges = if count == 1 { "edge" } else { "edges" };
-    Some(Warning::new(
+    Some(Warning::at_face(
         WarningCode::FoldedSurface,
+        face,
         format!(
-            "the surface folds back on itself at {count} {edges} (neighbouring faces turned by more than {:.0} degrees; the sharpest, {:.0} degrees, at face {face} near ({:.3}, {:.3}, {:.3})): quads and tiles there fold over each other and are cut or left out; smooth or rebuild the mesh there",
+            "the surface folds back on itself at {count} {edges} (neighbouring faces turned by more than {:.0} degrees; the sharpest, {:.0} degrees, at {} near ({:.3}, {:.3}, {:.3})): quads and tiles there fold over each other and are cut or left out; smooth or rebuild the mesh there",
             FOLD_ANGLE.to_degrees(),
             turn.clamp(-1.0, 1.0).acos().to_degrees(),
+            face_label(face),
             at.x,
             at.y,
             at.z
@@ -1049,6 +1100,26 @@ mod tests {
         assert!(curved_polygons(&polygon(0.1, 0.05), &BRICK).is_none());
         // Quads are never named: a fan of a quad is one of its two triangulations.
         assert!(curved_polygons(&generate::corner_supported_shell(2.0, 0.5), &BRICK).is_none());
+        // Renumbered (as the command line does to its file's numbers), in the message too.
+        assert_eq!(w.face, Some(0));
+        let w = w.renumbered(|f| f + 12);
+        assert_eq!(w.face, Some(12));
+        assert!(w.message.contains("(face 12, counted from 0: 40 corners"));
+    }
+
+    #[test]
+    fn renumbering_a_warning_replaces_the_face_it_names_and_no_other_number() {
+        let w = Warning::at_face(
+            WarningCode::FoldedSurface,
+            1,
+            "face 17 and face 1 near face 10, face 1".into(),
+        );
+        let w = w.renumbered(|f| 100 * f);
+        assert_eq!(w.message, "face 17 and face 100 near face 10, face 1");
+        assert_eq!(w.face, Some(100));
+        // A warning naming no face is left as it is.
+        let plain = Warning::new(WarningCode::FoldedSurface, "face 3");
+        assert_eq!(plain.clone().renumbered(|f| f + 1), plain);
     }
 
     #[test]
