@@ -8,6 +8,7 @@ using System.Threading;
 using System.Windows.Forms;
 using Grasshopper.Kernel;
 using Grasshopper.Kernel.Parameters;
+using Rhino.Geometry;
 
 namespace TilePattern.Gh
 {
@@ -38,6 +39,16 @@ namespace TilePattern.Gh
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Warning,
                     "[normals_unified] " + turnedFaces + " faces of the " + input + " mesh did not face the same side as their neighbours and were turned over (on a copy); " +
                     "tiles are laid on the side the normals point to, so unify the normals in Rhino (UnifyMeshNormals, then Flip if needed) to choose it yourself.");
+        }
+
+        /// <summary>A remark when <see cref="RhinoConvert.ToPolyMesh(Mesh, out int, out int[])"/>
+        /// joined vertices at one place (<paramref name="vertexSource"/> not null).</summary>
+        protected void RemarkJoined(int[] vertexSource, int givenVertices, string input)
+        {
+            if (vertexSource != null)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Remark,
+                    "[vertices_welded] The " + input + " mesh's faces did not share their vertices along their seams (a polysurface meshed face by face): " +
+                    (givenVertices - vertexSource.Length) + " vertices at the same places as others were joined (on a copy), so that it is one surface, not pieces remeshed and cut apart; its faces keep their numbers.");
         }
 
         /// <summary>Runs a step on the UI thread, turning a failure into a runtime message.</summary>

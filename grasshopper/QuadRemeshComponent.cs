@@ -116,6 +116,13 @@ namespace TilePattern.Gh
             }
             else if (smooth)
                 options.Direction = FieldDirection.Smooth;
+            PolyMesh surface = null;
+            int turned = 0;
+            int[] joined = null;
+            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned, out joined)))
+                return;
+            WarnTurned(turned, "surface");
+            RemarkJoined(joined, mesh.Vertices.Count, "surface");
             if (field.Count > 0)
             {
                 if (field.Count != mesh.Vertices.Count && field.Count != mesh.Faces.Count)
@@ -136,6 +143,10 @@ namespace TilePattern.Gh
                     }
                     vectors[i] = new[] { v.X, v.Y, v.Z };
                 }
+                // One per vertex of the Rhino mesh: each joined vertex takes its first vertex's
+                // (faces keep their numbers, so a field per face stays as it is).
+                if (joined != null && field.Count == mesh.Vertices.Count)
+                    vectors = Array.ConvertAll(joined, v => vectors[v]);
                 options.Field = vectors;
                 options.FieldWeight = fieldWeight;
             }
@@ -161,11 +172,6 @@ namespace TilePattern.Gh
                 options.Guides = guides.ToArray();
                 options.GuideWeight = guideWeight;
             }
-            PolyMesh surface = null;
-            int turned = 0;
-            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned)))
-                return;
-            WarnTurned(turned, "surface");
             var key = new InputKey().Add(surface).Add(options.TargetEdge).Add(shapeUp).Add((int)options.Direction)
                 .Add(options.AngleDegrees).Add(hasDirection ? direction.X : 0).Add(hasDirection ? direction.Y : 0).Add(hasDirection ? direction.Z : 0);
             // The field in the key too, so a changed field solves again.

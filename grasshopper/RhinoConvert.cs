@@ -9,12 +9,46 @@ namespace TilePattern.Gh
 {
     internal static class RhinoConvert
     {
-        /// <summary>A Rhino mesh as a PolyMesh: vertices in order, each face as a triangle or a
-        /// quad (n-gons are taken as their triangles/quads; the library accepts both). Faces
-        /// wound against their neighbours are turned on a copy (Rhino's UnifyNormals, as the
-        /// command line turns a file's); <paramref name="turnedFaces"/> says how many, and the
-        /// caller's mesh is never changed.</summary>
-        public static PolyMesh ToPolyMesh(Mesh mesh, out int turnedFaces)
+        /// <summary>A Rhino mesh as a PolyMesh: each face as a triangle or a quad, in order
+        /// (n-gons are taken as their triangles/quads; the library accepts both). Faces wound
+        /// against their neighbours are turned on a copy (Rhino's UnifyNormals, as the command
+        /// line turns a file's); <paramref name="turnedFaces"/> says how many, and the caller's
+        /// mesh is never changed. Vertices at one place are joined into one, as Rhino's mesh
+        /// topology joins them (a polysurface meshed face by face keeps each face's own
+        /// vertices along the seams, which the library would take as separate pieces, remeshed
+        /// and cut apart): <paramref name="vertexSource"/> then gives each joined vertex's
+        /// first vertex in the Rhino mesh (for inputs given per vertex), and is null when
+        /// nothing was joined. Faces keep their numbers either way.</summary>
+        public static PolyMesh ToPolyMesh(Mesh mesh, out int turnedFaces, out int[] vertexSource)
+        {
+            PolyMesh asGiven = ToPolyMesh(mesh, out turnedFaces);
+            vertexSource = null;
+            var places = mesh.TopologyVertices;
+            if (places.Count >= mesh.Vertices.Count)
+                return asGiven;
+            var group = new int[mesh.Vertices.Count];
+            for (int v = 0; v < group.Length; v++)
+                group[v] = places.TopologyVertexIndex(v);
+            int[] first;
+            PolyMesh joined = asGiven.JoinVertices(group, out first);
+            if (joined == null)
+                return asGiven;
+            try
+            {
+                // Joined, a mesh may no longer be one the library takes (three faces on an
+                // edge, two faces on the same corners): then it is given as it was, and the
+                // library's warnings about pieces say what to do.
+                TilePatternEngine.Validate(joined);
+            }
+            catch (TilePatternException)
+            {
+                return asGiven;
+            }
+            vertexSource = first;
+            return joined;
+        }
+
+        static PolyMesh ToPolyMesh(Mesh mesh, out int turnedFaces)
         {
             if (mesh == null)
                 throw new ArgumentNullException("mesh");

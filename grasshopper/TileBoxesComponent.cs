@@ -73,14 +73,19 @@ namespace TilePattern.Gh
 
             PolyMesh quads = null, surface = null;
             int turnedQuads = 0, turnedSurface = 0;
+            int[] joinedQuads = null, joinedSurface = null;
             if (!Run(() =>
             {
-                quads = hasQuads ? RhinoConvert.ToPolyMesh(quadsMesh, out turnedQuads) : null;
-                surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh, out turnedSurface) : null;
+                quads = hasQuads ? RhinoConvert.ToPolyMesh(quadsMesh, out turnedQuads, out joinedQuads) : null;
+                surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh, out turnedSurface, out joinedSurface) : null;
             }))
                 return;
             WarnTurned(turnedQuads, "quad");
             WarnTurned(turnedSurface, "surface");
+            if (hasQuads)
+                RemarkJoined(joinedQuads, quadsMesh.Vertices.Count, "quad");
+            if (hasSurface)
+                RemarkJoined(joinedSurface, surfaceMesh.Vertices.Count, "surface");
             // UnitsPerMm from the document's units: the report's shares of joints within 2 and 5 mm.
             var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm, Creases = creases };
             // The pattern by identity and by content (identity hashes alone may collide).

@@ -127,6 +127,65 @@ namespace TilePattern
             return c;
         }
 
+        /// <summary>This mesh with the vertices of each group joined into one: vertex i becomes
+        /// vertex <paramref name="group"/>[i] (groups numbered from 0, none empty), placed where
+        /// the group's first (lowest) vertex is, which <paramref name="firstVertex"/> gives per
+        /// joined vertex. Faces keep their numbers and order, so anything given per face still
+        /// holds; a corner the join repeats next to itself (a quad with a collapsed edge) is
+        /// left out. Returns null (and a null <paramref name="firstVertex"/>) when a face would
+        /// keep fewer than three different corners: such a mesh is better given as it is.
+        /// For a mesh whose faces do not share their vertices along seams (a polysurface meshed
+        /// face by face, an STL), which the library takes as separate pieces: group its
+        /// vertices by place (in Rhino, the mesh's topology vertices), as the command line
+        /// welds a file.</summary>
+        public PolyMesh JoinVertices(int[] group, out int[] firstVertex)
+        {
+            if (group == null)
+                throw new ArgumentNullException("group");
+            if (group.Length != VertexCount)
+                throw new ArgumentException("group has " + group.Length + " items for a mesh of " + VertexCount + " vertices: give one per vertex", "group");
+            int count = 0;
+            foreach (int g in group)
+            {
+                if (g < 0)
+                    throw new ArgumentOutOfRangeException("group", g, "groups are numbered from 0");
+                count = Math.Max(count, g + 1);
+            }
+            var first = new int[count];
+            for (int g = 0; g < count; g++)
+                first[g] = -1;
+            for (int i = 0; i < group.Length; i++)
+                if (first[group[i]] < 0)
+                    first[group[i]] = i;
+            int empty = Array.IndexOf(first, -1);
+            if (empty >= 0)
+                throw new ArgumentException("group " + empty + " has no vertex: number the groups 0 to " + (count - 1) + " without a gap", "group");
+            var xyz = new double[3 * count];
+            for (int g = 0; g < count; g++)
+                Array.Copy(vertices, 3 * first[g], xyz, 3 * g, 3);
+            var faces = new int[FaceCount][];
+            for (int f = 0; f < faces.Length; f++)
+            {
+                var corners = new List<int>(faceSizes[f]);
+                for (int k = 0; k < faceSizes[f]; k++)
+                {
+                    int v = group[faceIndices[faceStarts[f] + k]];
+                    if (corners.Count == 0 || corners[corners.Count - 1] != v)
+                        corners.Add(v);
+                }
+                while (corners.Count > 1 && corners[0] == corners[corners.Count - 1])
+                    corners.RemoveAt(corners.Count - 1);
+                if (new HashSet<int>(corners).Count < 3 || new HashSet<int>(corners).Count != corners.Count)
+                {
+                    firstVertex = null;
+                    return null;
+                }
+                faces[f] = corners.ToArray();
+            }
+            firstVertex = first;
+            return FromFaces(xyz, faces);
+        }
+
         /// <summary>Builds and validates the native mesh (tp_mesh_new).</summary>
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal MeshHandle CreateHandle()

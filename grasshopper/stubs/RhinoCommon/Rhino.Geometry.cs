@@ -24,6 +24,7 @@ namespace Rhino.Geometry
         public Rhino.Geometry.Collections.MeshVertexList Vertices { get { throw null; } }
         public Rhino.Geometry.Collections.MeshFaceList Faces { get { throw null; } }
         public Rhino.Geometry.Collections.MeshVertexNormalList Normals { get { throw null; } }
+        public Rhino.Geometry.Collections.MeshTopologyVertexList TopologyVertices { get { throw null; } }
         public bool Compact() { throw null; }
         public Mesh DuplicateMesh() { throw null; }
         public int UnifyNormals() { throw null; }
@@ -121,6 +122,13 @@ namespace Rhino.Geometry.Collections
         public int Count { get { throw null; } }
         public Point3d Point3dAt(int index) { throw null; }
         public int Add(double x, double y, double z) { throw null; }
+    }
+
+    public class MeshTopologyVertexList
+    {
+        internal MeshTopologyVertexList() { }
+        public int Count { get { throw null; } }
+        public int TopologyVertexIndex(int vertexIndex) { throw null; }
     }
 
     public class MeshFaceList
