@@ -1397,6 +1397,10 @@ fn the_command_line_reports_bad_input() {
         "v 0 0 0\nv 1 0 0\nv 0.5 1 0\nv 0.5 -1 0\nv 0.5 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n",
     );
     let empty = write("empty.obj", "");
+    let line = write(
+        "line.obj",
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nv 4 0 0\nf 1 2 3\nf 2 3 4\nf 3 4 5\n",
+    );
     let junk = write("junk.obj", "v 0 0\nf 1 2 3\n");
     let binary = write("binary.obj", "\u{0}\u{1}\u{2}v\u{0}");
     let quads = write(
@@ -1929,6 +1933,12 @@ fn the_command_line_reports_bad_input() {
             ]),
             1,
             &["target edge 150", "too large"],
+        ),
+        // Corners all on a line: no area in any unit (before: the units message).
+        (
+            args(&["run", &line, "--tile", "280x140x15", "--out", &out("line")]),
+            1,
+            &["no area", "on a line", "export the surface again"],
         ),
         (args(&["frobnicate"]), 2, &["unrecognized subcommand"]),
         // Graceful rows: accepted, with the documented result.

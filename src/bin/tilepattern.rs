@@ -1141,6 +1141,10 @@ impl ChosenUnits {
     }
 }
 
+/// Area, as a share of the squared diagonal, below which a mesh has no area to speak of (a
+/// shell's is a tenth or more; 1e-12 is rounding).
+const NO_AREA: f64 = 1e-12;
+
 /// Plausible shells: bounding-box diagonal in metres, and tiles on them.
 const PLAUSIBLE_DIAGONAL_M: [f64; 2] = [0.5, 100.0];
 const PLAUSIBLE_TILES: [f64; 2] = [20.0, 2e6];
@@ -1157,6 +1161,12 @@ const USUAL_DIAGONAL_M: [f64; 2] = [2.0, 25.0];
 fn auto_units(mesh: &PolyMesh, tile_mm: [f64; 3], joint_mm: f64) -> Result<ChosenUnits> {
     let diagonal = used_diagonal(mesh);
     let area = mesh.area();
+    // No unit gives a surface of no area one: say what is wrong instead of naming units.
+    if area.is_nan() || area <= NO_AREA * diagonal * diagonal {
+        bail!(
+            "the surface has no area ({area:e} square units, {diagonal:.4} units across): the corners of every face lie on a line or coincide, so there is no shell to tile in any unit; export the surface again (in Rhino: a mesh of the surface or polysurface, not of its edges)"
+        );
+    }
     // Area of one tile with its joint, in square metres.
     let tile_m2 = (tile_mm[0] + joint_mm) * (tile_mm[1] + joint_mm) * 1e-6;
     let readings: Vec<(Units, f64, f64)> = [Units::M, Units::Cm, Units::Mm]

@@ -774,13 +774,31 @@ pub fn tile_shape(spec: &TileSpec) -> Option<Warning> {
         WarningCode::TileShape,
         format!(
             "tile {} x {} with joint {} does not fit the half-tile model (length = 2 x width + joint = {}, off by more than {:.0} %): {hint}",
-            spec.length,
-            spec.width,
-            spec.joint,
-            fits,
+            size(spec.length),
+            size(spec.width),
+            size(spec.joint),
+            size(fits),
             100.0 * TILE_SHAPE_TOLERANCE
         ),
     ))
+}
+
+/// A size as a person writes it: six digits at most, those before the point included, and no
+/// trailing zeros (0.29, not 0.29000000000000004 as 2 x 0.14 + 0.01 sums).
+fn size(value: f64) -> String {
+    // Digits before the point (none below 1), the rest of the six after it.
+    let whole = if value.abs() >= 1.0 {
+        value.abs().log10().floor() as usize + 1
+    } else {
+        0
+    };
+    let text = format!("{value:.*}", 6usize.saturating_sub(whole));
+    let text = if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    };
+    if text == "-0" { "0".into() } else { text }
 }
 
 /// The surface's turning over one tile length, from the angles between neighbouring quads.
@@ -854,6 +872,7 @@ mod tests {
             ..TILE
         };
         let w = tile_shape(&swapped).unwrap();
+        assert!(w.message.starts_with("tile 0.95 x 1.9 with joint 0.1 does not fit the half-tile model (length = 2 x width + joint = 3.9,"), "{}", w.message);
         assert!(w.message.contains("swapped"), "{}", w.message);
         let long = TileSpec {
             length: 3.0,
@@ -861,6 +880,16 @@ mod tests {
             ..TILE
         };
         assert_eq!(tile_shape(&long).unwrap().code, WarningCode::TileShape);
+        assert_eq!(
+            [
+                size(2.0 * 0.14 + 0.01),
+                size(280.0),
+                size(1234.5678),
+                size(0.000_123_456_7),
+                size(-0.0)
+            ],
+            ["0.29", "280", "1234.57", "0.000123", "0"]
+        );
     }
 
     /// Half a cylinder of `radius` in quads of about unit size.
