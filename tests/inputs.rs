@@ -1415,6 +1415,46 @@ fn errors_found_after_welding_name_faces_as_the_file_numbers_them() {
 }
 
 #[test]
+fn debris_around_a_shell_is_tiled_past_with_a_warning_not_refused_as_a_soup() {
+    // The 4 m shell and 3000 stray triangles of 1 cm above it, as a scan or an export leaves
+    // (before: refused as an unwelded triangle soup, 3001 pieces of a face or so).
+    let surface = shell(4.0, 1.0);
+    let mut text = obj::to_string(&surface);
+    let n = surface.positions().len();
+    for k in 0..3000 {
+        let (x, y) = ((k % 60) as f64 * 0.06 - 1.8, (k / 60) as f64 * 0.07 - 1.8);
+        writeln!(
+            text,
+            "v {x} {y} 3\nv {} {y} 3\nv {x} {} 3",
+            x + 0.01,
+            y + 0.01
+        )
+        .unwrap();
+        let v = n + 3 * k + 1;
+        writeln!(text, "f {v} {} {}", v + 1, v + 2).unwrap();
+    }
+    let (out, report, _) = run(
+        "debris",
+        "shell.obj",
+        text.as_bytes(),
+        &["--tile", "280x140x15", "--tries", "1"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    let coverage = report["cutting"]["coverage"].as_f64().unwrap();
+    assert!(coverage > 0.95, "coverage {coverage}");
+    let pieces = report["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|w| w["code"] == "several_pieces")
+        .unwrap_or_else(|| panic!("no several_pieces warning: {report}"));
+    let message = pieces["message"].as_str().unwrap();
+    assert!(message.contains("3001 separate pieces"), "{message}");
+    assert!(message.contains("stray faces"), "{message}");
+}
+
+#[test]
 fn warnings_name_faces_as_the_file_numbers_them_where_welding_removed_a_face() {
     // The 4 m shell whose first face the file gives twice (welding removes the repeat, file
     // face 1), and apart from it a curved octagon 1.2 m across, the file's last face: the

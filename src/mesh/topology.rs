@@ -173,6 +173,17 @@ impl Topology {
         (piece, count)
     }
 
+    /// The area of each of [`Self::face_pieces`]' pieces, with the pieces: `mesh` is the mesh
+    /// this topology was built from.
+    pub fn piece_areas(&self, mesh: &PolyMesh) -> (Vec<usize>, Vec<f64>) {
+        let (piece, pieces) = self.face_pieces();
+        let mut areas = vec![0.0; pieces];
+        for (f, &p) in piece.iter().enumerate() {
+            areas[p] += mesh.face_area_vector(f).norm();
+        }
+        (piece, areas)
+    }
+
     /// All edges.
     pub fn edges(&self) -> &[Edge] {
         &self.edges

@@ -108,16 +108,22 @@ pub enum BoundaryAlignment {
 }
 
 /// Refuses a surface that falls apart into pieces of a face or two, more than [`CRUMBS`] of
-/// them and more than a quarter of its faces: an unwelded triangle soup (read with `--weld
-/// off`, or given as arrays), on which no quad can be laid, whose extraction found none and
-/// blamed the target edge. A few small pieces (two quads touching at a corner) are left to
-/// the checks that name them.
+/// them and more than a quarter of its faces, none of them holding half its area: an
+/// unwelded triangle soup (read with `--weld off`, or given as arrays), on which no quad can
+/// be laid, whose extraction found none and blamed the target edge. A few small pieces (two
+/// quads touching at a corner) are left to the checks that name them, and so is debris
+/// around a shell that holds most of the area (thousands of stray triangles a scan or an
+/// export leaves: the shell is remeshed, the debris gets no quad, and the several-pieces
+/// warning says so).
 fn refuse_crumbs(input: &PolyMesh) -> Result<(), RemeshError> {
     let Ok(topology) = crate::mesh::Topology::new(input) else {
         return Ok(());
     };
-    let (_, pieces) = topology.face_pieces();
-    if pieces > CRUMBS && 4 * pieces > input.face_count() {
+    let (_, areas) = topology.piece_areas(input);
+    let pieces = areas.len();
+    let largest = areas.iter().copied().fold(0.0, f64::max);
+    let whole = areas.iter().sum::<f64>();
+    if pieces > CRUMBS && 4 * pieces > input.face_count() && (largest.is_nan() || largest < 0.5 * whole) {
         return Err(RemeshError::UnsupportedInput(format!(
             "the surface falls apart into {pieces} pieces of {} faces, sharing no edge: a triangle soup whose coincident corners were not joined; weld them (the command line welds unless --weld off; Rhino: Weld or JoinMesh) and remesh again",
             input.face_count()

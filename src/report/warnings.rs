@@ -388,13 +388,29 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, spec: &TileSpec) ->
             "the surface is closed (it has no boundary edge): a vault needs an edge to stand on, and quads on sharp edges leave the surface; remove the faces where the shell stands or meets the ground, and tile the shell only",
         ));
     }
-    let (piece, pieces) = topology.face_pieces();
+    let (piece, areas) = topology.piece_areas(surface);
+    let pieces = areas.len();
     if pieces > 1 {
         let mut sizes = vec![0usize; pieces];
         piece.iter().for_each(|&p| sizes[p] += 1);
         let largest = sizes.iter().copied().max().unwrap_or(0);
         let width = spec.width;
+        let whole: f64 = areas.iter().sum();
+        let main = areas.iter().copied().fold(0.0, f64::max);
+        let debris = whole - main;
         let advice = match stacked(surface, &piece, width) {
+            // Stray faces around one surface: debris of an export or a scan.
+            None if pieces > 2 && debris < DEBRIS_SHARE * whole => {
+                let share = 100.0 * debris / whole;
+                let share = if share < 0.01 {
+                    "under 0.01".to_owned()
+                } else {
+                    format!("{share:.2}")
+                };
+                format!(
+                    "all but the largest are small, together {share} % of the area: stray faces an export or a scan left around the surface, most too small for a tile; delete them unless they belong to the shell (Rhino: SplitDisjointMesh, then delete the small pieces)"
+                )
+            }
             Some(layers) => format!(
                 "{:.0} % of its area lies within a tile's width ({width}) of another piece across the surface (on average {:.3} apart, e.g. near ({:.3}, {:.3}, {:.3})): the pieces are layers on top of each other, such as a thick shell's two faces or a surface exported twice, and the tiles fall on both; keep only the layer the tiles are laid on",
                 100.0 * layers.share,
@@ -705,6 +721,10 @@ fn stacked(surface: &PolyMesh, piece: &[usize], reach: f64) -> Option<Layers> {
         at: at.expect("some face is over another"),
     })
 }
+
+/// Share of the area that all pieces but the largest may hold together for the
+/// several-pieces warning to call them debris around one surface rather than parts to weld.
+const DEBRIS_SHARE: f64 = 0.02;
 
 /// Share of a surface's area over or under another of its pieces from which [`stacked`]
 /// calls the pieces layers.
