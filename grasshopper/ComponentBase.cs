@@ -41,10 +41,15 @@ namespace TilePattern.Gh
                     "tiles are laid on the side the normals point to, so unify the normals in Rhino (UnifyMeshNormals, then Flip if needed) to choose it yourself.");
         }
 
-        /// <summary>A remark when <see cref="RhinoConvert.ToPolyMesh(Mesh, out int, out int[])"/>
-        /// joined vertices at one place (<paramref name="vertexSource"/> not null).</summary>
-        protected void RemarkJoined(int[] vertexSource, int givenVertices, string input)
+        /// <summary>A remark when <see cref="RhinoConvert.ToPolyMesh(Mesh, out int, out int[], out string)"/>
+        /// joined vertices at one place (<paramref name="vertexSource"/> not null), a warning
+        /// when it left them apart (<paramref name="notJoined"/>, why).</summary>
+        protected void RemarkJoined(int[] vertexSource, string notJoined, int givenVertices, string input)
         {
+            if (notJoined != null)
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning,
+                    "[vertices_welded] The " + input + " mesh has vertices at the same places that its faces do not share, left apart: " + notJoined +
+                    ". Its pieces are remeshed and cut apart; weld the mesh in Rhino (Weld, or JoinMesh then Weld) after cleaning it.");
             if (vertexSource != null)
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Remark,
                     "[vertices_welded] The " + input + " mesh's faces did not share their vertices along their seams (a polysurface meshed face by face): " +

@@ -119,10 +119,11 @@ namespace TilePattern.Gh
             PolyMesh surface = null;
             int turned = 0;
             int[] joined = null;
-            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned, out joined)))
+            string apart = null;
+            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned, out joined, out apart)))
                 return;
             WarnTurned(turned, "surface");
-            RemarkJoined(joined, mesh.Vertices.Count, "surface");
+            RemarkJoined(joined, apart, mesh.Vertices.Count, "surface");
             if (field.Count > 0)
             {
                 if (field.Count != mesh.Vertices.Count && field.Count != mesh.Faces.Count)
@@ -147,6 +148,14 @@ namespace TilePattern.Gh
                 // (faces keep their numbers, so a field per face stays as it is).
                 if (joined != null && field.Count == mesh.Vertices.Count)
                     vectors = Array.ConvertAll(joined, v => vectors[v]);
+                else if (joined != null && joined.Length == mesh.Faces.Count)
+                {
+                    // The library tells a field per vertex from one per face by its count, and
+                    // the joined mesh has as many vertices as faces.
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "Field has one vector per face, but once its vertices at one place are joined the mesh has as many vertices as faces ("
+                        + mesh.Faces.Count + "), so a field per face cannot be told from one per vertex: give one vector per vertex of the mesh.");
+                    return;
+                }
                 options.Field = vectors;
                 options.FieldWeight = fieldWeight;
             }

@@ -18,11 +18,13 @@ namespace TilePattern.Gh
         /// vertices along the seams, which the library would take as separate pieces, remeshed
         /// and cut apart): <paramref name="vertexSource"/> then gives each joined vertex's
         /// first vertex in the Rhino mesh (for inputs given per vertex), and is null when
-        /// nothing was joined. Faces keep their numbers either way.</summary>
-        public static PolyMesh ToPolyMesh(Mesh mesh, out int turnedFaces, out int[] vertexSource)
+        /// nothing was joined; <paramref name="notJoined"/> says why vertices at one place were
+        /// left apart (null when none were). Faces keep their numbers either way.</summary>
+        public static PolyMesh ToPolyMesh(Mesh mesh, out int turnedFaces, out int[] vertexSource, out string notJoined)
         {
             PolyMesh asGiven = ToPolyMesh(mesh, out turnedFaces);
             vertexSource = null;
+            notJoined = null;
             var places = mesh.TopologyVertices;
             if (places.Count >= mesh.Vertices.Count)
                 return asGiven;
@@ -32,16 +34,19 @@ namespace TilePattern.Gh
             int[] first;
             PolyMesh joined = asGiven.JoinVertices(group, out first);
             if (joined == null)
+            {
+                notJoined = "joined, a face would collapse or pinch (corners at one place: Rhino's CullDegenerateMeshFaces removes such faces)";
                 return asGiven;
+            }
             try
             {
                 // Joined, a mesh may no longer be one the library takes (three faces on an
-                // edge, two faces on the same corners): then it is given as it was, and the
-                // library's warnings about pieces say what to do.
+                // edge, two faces on the same corners): then it is given as it was.
                 TilePatternEngine.Validate(joined);
             }
-            catch (TilePatternException)
+            catch (TilePatternException e)
             {
+                notJoined = "joined, the library would refuse the mesh: " + e.Message;
                 return asGiven;
             }
             vertexSource = first;

@@ -74,18 +74,19 @@ namespace TilePattern.Gh
             PolyMesh quads = null, surface = null;
             int turnedQuads = 0, turnedSurface = 0;
             int[] joinedQuads = null, joinedSurface = null;
+            string apartQuads = null, apartSurface = null;
             if (!Run(() =>
             {
-                quads = hasQuads ? RhinoConvert.ToPolyMesh(quadsMesh, out turnedQuads, out joinedQuads) : null;
-                surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh, out turnedSurface, out joinedSurface) : null;
+                quads = hasQuads ? RhinoConvert.ToPolyMesh(quadsMesh, out turnedQuads, out joinedQuads, out apartQuads) : null;
+                surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh, out turnedSurface, out joinedSurface, out apartSurface) : null;
             }))
                 return;
             WarnTurned(turnedQuads, "quad");
             WarnTurned(turnedSurface, "surface");
             if (hasQuads)
-                RemarkJoined(joinedQuads, quadsMesh.Vertices.Count, "quad");
+                RemarkJoined(joinedQuads, apartQuads, quadsMesh.Vertices.Count, "quad");
             if (hasSurface)
-                RemarkJoined(joinedSurface, surfaceMesh.Vertices.Count, "surface");
+                RemarkJoined(joinedSurface, apartSurface, surfaceMesh.Vertices.Count, "surface");
             // UnitsPerMm from the document's units: the report's shares of joints within 2 and 5 mm.
             var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm, Creases = creases };
             // The pattern by identity and by content (identity hashes alone may collide).

@@ -96,10 +96,11 @@ namespace TilePattern.Gh
             PolyMesh quads = null;
             int turned = 0;
             int[] joined = null;
-            if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh, out turned, out joined)))
+            string apart = null;
+            if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh, out turned, out joined, out apart)))
                 return;
             WarnTurned(turned, "quad");
-            RemarkJoined(joined, mesh.Vertices.Count, "quad");
+            RemarkJoined(joined, apart, mesh.Vertices.Count, "quad");
             var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded).Add(courses).Add(gap).Add(zones);
             // Not disposed here: the pattern travels downstream; its SafeHandles free the native
             // memory (announced to the GC) once Grasshopper lets go of it.

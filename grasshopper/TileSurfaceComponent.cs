@@ -124,10 +124,11 @@ namespace TilePattern.Gh
             PolyMesh surface = null;
             int turned = 0;
             int[] joined = null;
-            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned, out joined)))
+            string apart = null;
+            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned, out joined, out apart)))
                 return;
             WarnTurned(turned, "surface");
-            RemarkJoined(joined, mesh.Vertices.Count, "surface");
+            RemarkJoined(joined, apart, mesh.Vertices.Count, "surface");
             var key = new InputKey().Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(bond).Add(courses).Add(fit).Add(tries)
                 .Add(timeLimit).Add(creases).Add(tolerance).Add(tile.UnitsPerMm).Add(excluded).Add(zones);
             TileSurfaceResult result = Solve(DA, key, (token, progress) =>

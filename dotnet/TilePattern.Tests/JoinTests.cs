@@ -104,8 +104,9 @@ namespace TilePattern.Tests
             Assert.IsNull(first);
             // One group per vertex, numbered without a gap.
             Assert.Throws<ArgumentException>(() => two.JoinVertices(new[] { 0, 1 }, out first));
-            Assert.Throws<ArgumentException>(() => two.JoinVertices(new[] { 0, 1, 2, 3, 4, 6 }, out first));
+            Assert.Throws<ArgumentException>(() => two.JoinVertices(new[] { 0, 1, 2, 3, 5, 5 }, out first));
             Assert.Throws<ArgumentOutOfRangeException>(() => two.JoinVertices(new[] { 0, 1, 2, 3, 4, -1 }, out first));
+            Assert.Throws<ArgumentOutOfRangeException>(() => two.JoinVertices(new[] { 0, 1, 2, 3, 4, int.MaxValue }, out first));
         }
     }
 }

@@ -133,7 +133,8 @@ namespace TilePattern
         /// joined vertex. Faces keep their numbers and order, so anything given per face still
         /// holds; a corner the join repeats next to itself (a quad with a collapsed edge) is
         /// left out. Returns null (and a null <paramref name="firstVertex"/>) when a face would
-        /// keep fewer than three different corners: such a mesh is better given as it is.
+        /// keep fewer than three different corners, or a corner twice apart (pinched): such a
+        /// mesh is better given as it is.
         /// For a mesh whose faces do not share their vertices along seams (a polysurface meshed
         /// face by face, an STL), which the library takes as separate pieces: group its
         /// vertices by place (in Rhino, the mesh's topology vertices), as the command line
@@ -147,8 +148,8 @@ namespace TilePattern
             int count = 0;
             foreach (int g in group)
             {
-                if (g < 0)
-                    throw new ArgumentOutOfRangeException("group", g, "groups are numbered from 0");
+                if (g < 0 || g >= VertexCount)
+                    throw new ArgumentOutOfRangeException("group", g, "groups are numbered from 0, fewer than the " + VertexCount + " vertices");
                 count = Math.Max(count, g + 1);
             }
             var first = new int[count];

@@ -165,3 +165,23 @@ def test_run_takes_zones_by_surface_face_key():
         tpc.run(surface, zones={keys[-1]: "herringbone"}, **options)
     with pytest.raises(tp.InvalidArgumentError, match="zones: the mesh has no face %d" % removed):
         tpc.run(surface, zones={removed: "stack"}, **options)
+
+
+def test_run_takes_excluded_faces_by_surface_face_key():
+    surface = sample("hypar.obj")
+    tile = tile_for(surface, scale=0.5)
+    surface.quads_to_triangles()
+    removed = next(iter(surface.faces()))  # keys then run from 65, not 0
+    surface.delete_face(removed)
+    surface.remove_unused_vertices()
+    keys = list(surface.faces())
+    options = dict(courses="level", tries=1, time_limit=10, **tile)
+    # Half the surface by key = the same faces by position; the last key is beyond the
+    # positions, so it is translated, not read as a position.
+    half = keys[len(keys) // 2:]
+    by_key = tpc.run(surface, excluded_faces=half, **options)
+    by_position = tp.run(*tpc.mesh_vertices_faces(surface)[:2], excluded_faces=range(len(keys) // 2, len(keys)), **options)
+    whole = tpc.run(surface, **options)
+    assert len(by_key.boxes) == len(by_position.tiles) < len(whole.boxes)
+    with pytest.raises(tp.InvalidArgumentError, match="excluded_faces: the mesh has no face %d" % removed):
+        tpc.run(surface, excluded_faces=[removed], **options)

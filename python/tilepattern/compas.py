@@ -370,7 +370,7 @@ class RunResult:
         self.close()
 
 
-def run(mesh, zones=None, **options):
+def run(mesh, zones=None, excluded_faces=None, **options):
     """Tile a COMPAS surface in one call, keeping the best of a few quad meshes.
 
     :func:`tilepattern.run` on a COMPAS mesh: remesh, match and tiles (fitted, cut to the
@@ -384,6 +384,9 @@ def run(mesh, zones=None, **options):
         A bond per face of ``mesh`` (the surface): a dict ``{face key: bond}`` (faces it does
         not name take ``bond``) or one bond per face in ``mesh.faces()`` order, bonds as
         :func:`match` takes them; each quad takes the zone of the surface face closest to it.
+    excluded_faces : list of int, optional
+        Face keys of ``mesh`` (the surface) to leave out: each quad whose closest surface
+        face is one gets no tile, and its area is left out of the coverage.
     **options
         ``tries``, ``progress``, ``target_edge`` (default ``quad_edge`` of the tile and
         courses), ``remesh_time_limit``, ``time_limit`` (the pattern stage's), ``bond``,
@@ -409,7 +412,13 @@ def run(mesh, zones=None, **options):
     (True, 5, 'F')
     """
     vertices, faces, keys = mesh_vertices_faces(mesh)
-    result = core.run(vertices, faces, zones=_zones(zones, keys), **options)
+    result = core.run(
+        vertices,
+        faces,
+        zones=_zones(zones, keys),
+        excluded_faces=_positions(excluded_faces, keys, "excluded_faces"),
+        **options,
+    )
     return RunResult(_quad_mesh(result.vertices, result.faces), result.pattern, boxes(result.tiles))
 
 

@@ -1160,7 +1160,7 @@ def _tries(tries) -> int:
     return int(tries)
 
 
-def _no_quads_named(options):
+def _no_forced_pairs(options):
     """Refuses forced pairs, which name quads, which :func:`run` makes itself."""
     count = options.forced_pair_count
     if count:
@@ -1358,7 +1358,7 @@ def run(
     pattern_options, keep_pattern = _pattern_options(
         bond, weight, time_limit, method, formulation, forced_pairs, excluded_faces, courses, up, gap, zones
     )
-    _no_quads_named(pattern_options)
+    _no_forced_pairs(pattern_options)
     tile_options = _tile_options(
         length, width, thickness, joint, cut_tolerance, min_kept_width, up, support_band, fit, fit_time_limit,
         overlap_tolerance, bond_tolerance, units_per_mm, creases,

@@ -123,7 +123,10 @@ fn refuse_crumbs(input: &PolyMesh) -> Result<(), RemeshError> {
     let pieces = areas.len();
     let largest = areas.iter().copied().fold(0.0, f64::max);
     let whole = areas.iter().sum::<f64>();
-    if pieces > CRUMBS && 4 * pieces > input.face_count() && (largest.is_nan() || largest < 0.5 * whole) {
+    if pieces > CRUMBS
+        && 4 * pieces > input.face_count()
+        && (largest.is_nan() || largest < 0.5 * whole)
+    {
         return Err(RemeshError::UnsupportedInput(format!(
             "the surface falls apart into {pieces} pieces of {} faces, sharing no edge: a triangle soup whose coincident corners were not joined; weld them (the command line welds unless --weld off; Rhino: Weld or JoinMesh) and remesh again",
             input.face_count()

@@ -111,9 +111,11 @@ impl Warning {
         };
         let renamed = number(face);
         let (old, new) = (face_label(face), face_label(renamed));
-        // The label followed by no further digit: "face 1" is not the start of "face 12".
+        // The label as a word of its own: "face 1" is neither the start of "face 12" nor the
+        // end of "surface 1".
         let at = self.message.match_indices(&old).find(|&(i, _)| {
             !self.message[i + old.len()..].starts_with(|c: char| c.is_ascii_digit())
+                && !self.message[..i].ends_with(|c: char| c.is_alphanumeric())
         });
         let message = match at {
             Some((i, _)) => format!(
@@ -1161,10 +1163,13 @@ mod tests {
         let w = Warning::at_face(
             WarningCode::FoldedSurface,
             1,
-            "face 17 and face 1 near face 10, face 1".into(),
+            "surface 1, face 17 and face 1 near face 10, face 1".into(),
         );
         let w = w.renumbered(|f| 100 * f);
-        assert_eq!(w.message, "face 17 and face 100 near face 10, face 1");
+        assert_eq!(
+            w.message,
+            "surface 1, face 17 and face 100 near face 10, face 1"
+        );
         assert_eq!(w.face, Some(100));
         // A warning naming no face is left as it is.
         let plain = Warning::new(WarningCode::FoldedSurface, "face 3");
