@@ -41,19 +41,32 @@ namespace TilePattern.Gh
                     "tiles are laid on the side the normals point to, so unify the normals in Rhino (UnifyMeshNormals, then Flip if needed) to choose it yourself.");
         }
 
-        /// <summary>A remark when <see cref="RhinoConvert.ToPolyMesh(Mesh, out int, out int[], out string)"/>
-        /// joined vertices at one place (<paramref name="vertexSource"/> not null), a warning
-        /// when it left them apart (<paramref name="notJoined"/>, why).</summary>
-        protected void RemarkJoined(int[] vertexSource, string notJoined, int givenVertices, string input)
+        /// <summary>A Rhino mesh as a PolyMesh (<see cref="RhinoConvert.ToPolyMesh(Mesh, out int, out int[], out string)"/>),
+        /// with the messages of what was done to it: faces turned, vertices at one place
+        /// joined (a remark) or left apart (a warning, why). <paramref name="vertexSource"/>
+        /// is each joined vertex's first vertex of <paramref name="mesh"/>, null when none
+        /// was joined. False, with an error, when the conversion failed.</summary>
+        protected bool ReadMesh(Mesh mesh, string input, out PolyMesh polyMesh, out int[] vertexSource)
         {
-            if (notJoined != null)
+            PolyMesh converted = null;
+            int turned = 0;
+            int[] joined = null;
+            string apart = null;
+            bool read = Run(() => converted = RhinoConvert.ToPolyMesh(mesh, out turned, out joined, out apart));
+            polyMesh = converted;
+            vertexSource = joined;
+            if (!read)
+                return false;
+            WarnTurned(turned, input);
+            if (apart != null)
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Warning,
-                    "[vertices_welded] The " + input + " mesh has vertices at the same places that its faces do not share, left apart: " + notJoined +
+                    "[vertices_welded] The " + input + " mesh has vertices at the same places that its faces do not share, left apart: " + apart +
                     ". Its pieces are remeshed and cut apart; weld the mesh in Rhino (Weld, or JoinMesh then Weld) after cleaning it.");
-            if (vertexSource != null)
+            if (joined != null)
                 AddRuntimeMessage(GH_RuntimeMessageLevel.Remark,
                     "[vertices_welded] The " + input + " mesh's faces did not share their vertices along their seams (a polysurface meshed face by face): " +
-                    (givenVertices - vertexSource.Length) + " vertices at the same places as others were joined (on a copy), so that it is one surface, not pieces remeshed and cut apart; its faces keep their numbers.");
+                    (mesh.Vertices.Count - joined.Length) + " vertices at the same places as others were joined (on a copy), so that it is one surface, not pieces remeshed and cut apart; its faces keep their numbers.");
+            return true;
         }
 
         /// <summary>Runs a step on the UI thread, turning a failure into a runtime message.</summary>

@@ -116,14 +116,10 @@ namespace TilePattern.Gh
             }
             else if (smooth)
                 options.Direction = FieldDirection.Smooth;
-            PolyMesh surface = null;
-            int turned = 0;
-            int[] joined = null;
-            string apart = null;
-            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned, out joined, out apart)))
+            PolyMesh surface;
+            int[] joined;
+            if (!ReadMesh(mesh, "surface", out surface, out joined))
                 return;
-            WarnTurned(turned, "surface");
-            RemarkJoined(joined, apart, mesh.Vertices.Count, "surface");
             if (field.Count > 0)
             {
                 if (field.Count != mesh.Vertices.Count && field.Count != mesh.Faces.Count)

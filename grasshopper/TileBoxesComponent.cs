@@ -72,21 +72,11 @@ namespace TilePattern.Gh
             double tolerance = Tolerance();
 
             PolyMesh quads = null, surface = null;
-            int turnedQuads = 0, turnedSurface = 0;
-            int[] joinedQuads = null, joinedSurface = null;
-            string apartQuads = null, apartSurface = null;
-            if (!Run(() =>
-            {
-                quads = hasQuads ? RhinoConvert.ToPolyMesh(quadsMesh, out turnedQuads, out joinedQuads, out apartQuads) : null;
-                surface = hasSurface ? RhinoConvert.ToPolyMesh(surfaceMesh, out turnedSurface, out joinedSurface, out apartSurface) : null;
-            }))
+            int[] joined;
+            if (hasQuads && !ReadMesh(quadsMesh, "quad", out quads, out joined))
                 return;
-            WarnTurned(turnedQuads, "quad");
-            WarnTurned(turnedSurface, "surface");
-            if (hasQuads)
-                RemarkJoined(joinedQuads, apartQuads, quadsMesh.Vertices.Count, "quad");
-            if (hasSurface)
-                RemarkJoined(joinedSurface, apartSurface, surfaceMesh.Vertices.Count, "surface");
+            if (hasSurface && !ReadMesh(surfaceMesh, "surface", out surface, out joined))
+                return;
             // UnitsPerMm from the document's units: the report's shares of joints within 2 and 5 mm.
             var options = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm, Creases = creases };
             // The pattern by identity and by content (identity hashes alone may collide).

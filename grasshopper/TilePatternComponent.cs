@@ -93,14 +93,10 @@ namespace TilePattern.Gh
                 options.ForcedPairs.Add(new FacePair(forced[k], forced[k + 1]));
             foreach (int face in excluded)
                 options.ExcludedFaces.Add(face);
-            PolyMesh quads = null;
-            int turned = 0;
-            int[] joined = null;
-            string apart = null;
-            if (!Run(() => quads = RhinoConvert.ToPolyMesh(mesh, out turned, out joined, out apart)))
+            PolyMesh quads;
+            int[] joined;
+            if (!ReadMesh(mesh, "quad", out quads, out joined))
                 return;
-            WarnTurned(turned, "quad");
-            RemarkJoined(joined, apart, mesh.Vertices.Count, "quad");
             var key = new InputKey().Add(quads).Add(bond).Add(weight).Add(timeLimit).Add(forced).Add(excluded).Add(courses).Add(gap).Add(zones);
             // Not disposed here: the pattern travels downstream; its SafeHandles free the native
             // memory (announced to the GC) once Grasshopper lets go of it.

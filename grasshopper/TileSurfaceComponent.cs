@@ -121,14 +121,10 @@ namespace TilePattern.Gh
             var tile = new TileOptions { Length = length, Width = width, Thickness = thickness, Joint = joint, Fit = fit, UnitsPerMm = defaults.UnitsPerMm, Creases = creases };
             var run = new RunOptions { Tries = tries };
             double tolerance = Tolerance();
-            PolyMesh surface = null;
-            int turned = 0;
-            int[] joined = null;
-            string apart = null;
-            if (!Run(() => surface = RhinoConvert.ToPolyMesh(mesh, out turned, out joined, out apart)))
+            PolyMesh surface;
+            int[] joined;
+            if (!ReadMesh(mesh, "surface", out surface, out joined))
                 return;
-            WarnTurned(turned, "surface");
-            RemarkJoined(joined, apart, mesh.Vertices.Count, "surface");
             var key = new InputKey().Add(surface).Add(length).Add(width).Add(thickness).Add(joint).Add(bond).Add(courses).Add(fit).Add(tries)
                 .Add(timeLimit).Add(creases).Add(tolerance).Add(tile.UnitsPerMm).Add(excluded).Add(zones);
             TileSurfaceResult result = Solve(DA, key, (token, progress) =>

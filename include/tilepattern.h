@@ -32,8 +32,11 @@
  * default 0.5); callers built against ABI 4 to 7 keep working unchanged (and get 0.5).
  * 9: `tp_run` (the whole pipeline, with tries), `TpRunOptions` and `TP_STAGE_RUN` added;
  * nothing existing changed, callers built against ABI 4 to 8 keep working unchanged.
+ * 10: `tp_mesh_new_welded` (a mesh welded, zipped and oriented as the command line reads a
+ * file) and `tp_mesh_copy_sources` added, and `tp_run` takes excluded faces (per face of the
+ * surface) where it refused them; callers built against ABI 4 to 9 keep working unchanged.
  */
-#define TP_ABI_VERSION 9
+#define TP_ABI_VERSION 10
 
 /**
  * Stage numbers passed to a progress callback.
@@ -751,6 +754,46 @@ TpStatus tp_mesh_new(const double *vertices,
                      const uint32_t *face_sizes,
                      size_t face_count,
                      struct TpMesh **out);
+
+/**
+ * [`tp_mesh_new`] for meshes as hosts and files give them, as the command line reads a
+ * file: vertices closer than `relative_tolerance` times the diagonal of the used vertices'
+ * bounding box are joined and the faces this collapses or repeats removed (a triangle soup,
+ * an STL, a polysurface meshed face by face, whose faces keep their own vertices along the
+ * seams), the cracks of a triangle mesh zipped where patches meshed apart meet (their
+ * triangles split), and faces turned to agree with their neighbours; then the mesh is
+ * validated as [`tp_mesh_new`] does, errors naming faces and vertices as given.
+ * `relative_tolerance` 0 joins nothing but still turns faces; the command line's default
+ * is 1e-6. [`tp_mesh_copy_sources`] gives where each face and vertex of the result came
+ * from, to carry data given per face or vertex (zones, excluded faces, a field) over.
+ *
+ * # Safety
+ * As [`tp_mesh_new`].
+ */
+TpStatus tp_mesh_new_welded(const double *vertices,
+                            size_t vertex_count,
+                            const uint32_t *face_indices,
+                            size_t index_count,
+                            const uint32_t *face_sizes,
+                            size_t face_count,
+                            double relative_tolerance,
+                            struct TpMesh **out);
+
+/**
+ * Where each vertex and face of `mesh` came from: `vertex_source` (capacity: the vertex
+ * count) gets each vertex's first given vertex, `face_source` (capacity: the face count)
+ * each face's given face (a triangle zipping split keeps its face's number); either may be
+ * NULL when not wanted. A mesh from [`tp_mesh_new_welded`] counts the arrays it was made
+ * from; any other mesh its own vertices and faces (0, 1, 2, ...).
+ *
+ * # Safety
+ * `mesh` must be a live mesh; non-NULL buffers must hold their stated capacities.
+ */
+TpStatus tp_mesh_copy_sources(const struct TpMesh *mesh,
+                              uint32_t *vertex_source,
+                              size_t vertex_capacity,
+                              uint32_t *face_source,
+                              size_t face_capacity);
 
 /**
  * Releases a mesh. NULL is accepted.

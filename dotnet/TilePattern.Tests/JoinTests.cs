@@ -88,6 +88,30 @@ namespace TilePattern.Tests
         }
 
         [Test]
+        public void TheLibrarysWeldJoinsWhatJoinVerticesJoinsAndTellsWhereFacesCameFrom()
+        {
+            PolyMesh dome = TestMeshes.RoundDome();
+            int[] group;
+            PolyMesh soup = Apart(dome, f => f, out group);
+            WeldedMesh welded = soup.Welded();
+            Assert.AreEqual(dome.VertexCount, welded.Mesh.VertexCount);
+            CollectionAssert.AreEqual(Enumerable.Range(0, dome.FaceCount).ToArray(), welded.FaceSource);
+            int[] first;
+            PolyMesh joined = soup.JoinVertices(group, out first);
+            CollectionAssert.AreEqual(joined.Vertices, welded.Mesh.Vertices);
+            CollectionAssert.AreEqual(first, welded.VertexSource);
+            // Tiled as the dome; the soup itself is refused, saying to weld.
+            var pattern = new PatternOptions { Courses = Courses.Level };
+            var remesh = RemeshOptions.ForTile(new TileOptions(), Courses.Level);
+            var e = Assert.Throws<InvalidMeshException>(() => TilePatternEngine.Run(soup, remesh, pattern, null, new RunOptions { Tries = 1 }));
+            StringAssert.Contains("weld", e.Message);
+            using (RunResult run = TilePatternEngine.Run(welded.Mesh, remesh, pattern, null, new RunOptions { Tries = 1 }))
+                Assert.Greater(run.Tiling.FullCount, 100);
+            Assert.Throws<InvalidArgumentException>(() => soup.Welded(double.NaN));
+            Assert.AreEqual(soup.VertexCount, soup.Welded(0.0).Mesh.VertexCount);
+        }
+
+        [Test]
         public void ACollapsedEdgeLeavesATriangleAndACollapsedFaceLeavesTheMeshAsItIs()
         {
             // Two quads side by side; joining vertices 2 and 5 (the second quad's right edge)

@@ -158,7 +158,7 @@ namespace TilePattern
         internal const string Library = "tilepattern";
 
         // The header's #defines.
-        internal const int TP_ABI_VERSION = 9;
+        internal const int TP_ABI_VERSION = 10;
         internal const uint TP_STAGE_REMESH = 1;
         internal const uint TP_STAGE_PATTERN = 2;
         internal const uint TP_STAGE_TILES = 3;
@@ -211,6 +211,18 @@ namespace TilePattern
             uint[] face_indices, UIntPtr index_count,
             uint[] face_sizes, UIntPtr face_count,
             out MeshHandle mesh);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_mesh_new_welded(
+            double[] vertices, UIntPtr vertex_count,
+            uint[] face_indices, UIntPtr index_count,
+            uint[] face_sizes, UIntPtr face_count,
+            double relative_tolerance,
+            out MeshHandle mesh);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        internal static extern int tp_mesh_copy_sources(MeshHandle mesh, [Out] uint[] vertex_source, UIntPtr vertex_capacity,
+            [Out] uint[] face_source, UIntPtr face_capacity);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         internal static extern void tp_mesh_free(IntPtr mesh);

@@ -6,6 +6,32 @@ using System.Runtime.CompilerServices;
 
 namespace TilePattern
 {
+    /// <summary>A mesh welded by <see cref="PolyMesh.Welded"/>, with where its vertices and
+    /// faces came from in the mesh given.</summary>
+    public sealed class WeldedMesh
+    {
+        internal WeldedMesh(PolyMesh mesh, int[] vertexSource, int[] faceSource)
+        {
+            Mesh = mesh;
+            this.vertexSource = vertexSource;
+            this.faceSource = faceSource;
+        }
+
+        readonly int[] vertexSource, faceSource;
+
+        /// <summary>The welded, validated mesh.</summary>
+        public PolyMesh Mesh { get; private set; }
+
+        /// <summary>Each vertex's first given vertex (a copy): a field given per vertex is
+        /// carried over as <c>field[VertexSource[v]]</c>.</summary>
+        public int[] VertexSource { get { return (int[])vertexSource.Clone(); } }
+
+        /// <summary>Each face's given face (a copy; triangles split where cracks were zipped
+        /// keep their face's): zones or excluded faces given per face are carried over
+        /// through it; a given face in no entry was removed.</summary>
+        public int[] FaceSource { get { return (int[])faceSource.Clone(); } }
+    }
+
     /// <summary>An immutable polygon mesh: vertices as xyz triples, faces as a flat list of
     /// vertex indices plus one size per face (face i uses the next FaceSizes[i] indices).
     /// Validation (NaN, indices out of range, non-manifold edges, empty mesh) happens in the
@@ -187,16 +213,66 @@ namespace TilePattern
             return FromFaces(xyz, faces);
         }
 
+        /// <summary>This mesh as the command line reads a file (tp_mesh_new_welded): vertices
+        /// closer than <paramref name="relativeTolerance"/> times its size (the bounding-box
+        /// diagonal of the vertices faces use) joined, the faces this collapses or repeats
+        /// removed, the cracks of a triangle mesh zipped where patches meshed apart meet (their
+        /// triangles split) and faces turned to agree with their neighbours, validated. For a
+        /// triangle soup (an STL) or patches joined without welding, which the stages take as
+        /// pieces. 0 joins nothing (faces are still turned); the command line's default is
+        /// 1e-6. Unlike <see cref="JoinVertices"/>, faces may be removed or split:
+        /// <see cref="WeldedMesh.FaceSource"/> carries data given per face over.
+        /// Throws <see cref="InvalidArgumentException"/> for a tolerance outside 0 to below 1,
+        /// <see cref="InvalidMeshException"/> for a mesh still not valid (faces and vertices
+        /// named as given).</summary>
+        public WeldedMesh Welded(double relativeTolerance = 1e-6)
+        {
+            // The library loaded first, then the P/Invoke in a method of its own (see
+            // NativeLibraryLoader).
+            Native.EnsureReady();
+            return WeldedCore(relativeTolerance);
+        }
+
+        [MethodImpl(MethodImplOptions.NoInlining)]
+        WeldedMesh WeldedCore(double relativeTolerance)
+        {
+            uint[] indices, sizes;
+            NativeArrays(out indices, out sizes);
+            MeshHandle handle;
+            int status = NativeMethods.tp_mesh_new_welded(
+                vertices, Native.Size(VertexCount), indices, Native.Size(indices.Length), sizes, Native.Size(sizes.Length), relativeTolerance, out handle);
+            if (status != 0)
+            {
+                handle.Dispose();
+                Native.Check(status);
+            }
+            using (handle)
+            {
+                PolyMesh mesh = FromHandle(handle);
+                var vertexSource = new uint[mesh.VertexCount];
+                var faceSource = new uint[mesh.FaceCount];
+                Native.Check(NativeMethods.tp_mesh_copy_sources(handle, vertexSource, Native.Size(vertexSource.Length), faceSource, Native.Size(faceSource.Length)));
+                return new WeldedMesh(mesh, ToInt(vertexSource), ToInt(faceSource));
+            }
+        }
+
+        /// <summary>The face arrays as tp_mesh_new takes them.</summary>
+        void NativeArrays(out uint[] indices, out uint[] sizes)
+        {
+            indices = new uint[faceIndices.Length];
+            for (int k = 0; k < indices.Length; k++)
+                indices[k] = (uint)faceIndices[k];
+            sizes = new uint[faceSizes.Length];
+            for (int f = 0; f < sizes.Length; f++)
+                sizes[f] = (uint)faceSizes[f];
+        }
+
         /// <summary>Builds and validates the native mesh (tp_mesh_new).</summary>
         [MethodImpl(MethodImplOptions.NoInlining)]
         internal MeshHandle CreateHandle()
         {
-            var indices = new uint[faceIndices.Length];
-            for (int k = 0; k < indices.Length; k++)
-                indices[k] = (uint)faceIndices[k];
-            var sizes = new uint[faceSizes.Length];
-            for (int f = 0; f < sizes.Length; f++)
-                sizes[f] = (uint)faceSizes[f];
+            uint[] indices, sizes;
+            NativeArrays(out indices, out sizes);
             MeshHandle handle;
             int status = NativeMethods.tp_mesh_new(
                 vertices, Native.Size(VertexCount), indices, Native.Size(indices.Length), sizes, Native.Size(sizes.Length), out handle);

@@ -157,7 +157,7 @@ def test_the_loaded_library_has_the_struct_sizes_of_the_mirrors():
     assert nat.run_options().tries == 0 and nat.run_options().struct_size == ctypes.sizeof(nat.TpRunOptions) == 8
     # Returned by value in registers (8 bytes): bound unpadded, and it reads back right.
     assert nat.lib().tp_run_options_default().tries == 0
-    assert tp.abi_version() == tp.ABI_VERSION == 9
+    assert tp.abi_version() == tp.ABI_VERSION == 10
     assert re.match(r"\d+\.\d+", tp.version())
 
 

@@ -11,7 +11,8 @@ arrays and small result objects::
     placed = tp.tiles(QV, QF, pattern, surface=(V, F))      # pairs -> boxes (Tiles)
     placed.report["full_tiles"], placed.corners.shape      # (N, 8, 3)
 
-    QV, QF, pattern, placed = tp.run(V, F, courses="level")   # all three on up to 3 quad meshes, best tiles kept
+    QV, QF, pattern, placed = tp.run(V, F, courses="level")   # all three on up to 5 quad meshes, best tiles kept
+    V, F, _, _ = tp.weld(V, F)                              # a soup (numpy-stl) or patches joined, as the CLI reads files
 
 :mod:`tilepattern.compas` works on COMPAS meshes and returns COMPAS boxes;
 :func:`tilepattern.rhino.export_3dm` writes tiles to a Rhino file. Failures raise
@@ -39,7 +40,7 @@ from ._native import (
     library_path,
     version,
 )
-from .core import Pattern, RunResult, TilePatternWarning, Tiles, match, quad_edge, remesh, run, tiles
+from .core import Pattern, RunResult, TilePatternWarning, Tiles, Welded, match, quad_edge, remesh, run, tiles, weld
 
 __version__ = "0.1.0"
 
@@ -49,6 +50,8 @@ __all__ = [
     "tiles",
     "run",
     "quad_edge",
+    "weld",
+    "Welded",
     "Pattern",
     "Tiles",
     "RunResult",

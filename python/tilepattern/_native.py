@@ -49,7 +49,7 @@ import numpy as np
 # ---------------------------------------------------------------------------------------
 
 #: ``TP_ABI_VERSION`` of the header this module mirrors.
-ABI_VERSION = 9
+ABI_VERSION = 10
 
 TP_STAGE_REMESH = 1
 TP_STAGE_PATTERN = 2
@@ -504,6 +504,8 @@ PROTOTYPES = {
     "tp_version": (c_char_p, []),
     "tp_abi_version": (c_uint32, []),
     "tp_mesh_new": (TpStatus, [_f64p, c_size_t, _u32p, c_size_t, _u32p, c_size_t, POINTER(TpMeshP)]),
+    "tp_mesh_new_welded": (TpStatus, [_f64p, c_size_t, _u32p, c_size_t, _u32p, c_size_t, c_double, POINTER(TpMeshP)]),
+    "tp_mesh_copy_sources": (TpStatus, [TpMeshP, _u32p, c_size_t, _u32p, c_size_t]),
     "tp_mesh_free": (None, [TpMeshP]),
     "tp_mesh_counts": (TpStatus, [TpMeshP, _sizep, _sizep, _sizep]),
     "tp_mesh_copy_vertices": (TpStatus, [TpMeshP, _f64p, c_size_t]),
@@ -938,16 +940,38 @@ class MeshHandle(Handle):
         sizes : ndarray (F,) uint32, C-contiguous
             Each face's number of vertices.
         """
+        return cls._made(lib().tp_mesh_new, vertices, indices, sizes)
+
+    @classmethod
+    def new_welded(cls, vertices, indices, sizes, relative_tolerance):
+        """``tp_mesh_new_welded`` on prepared arrays (as :meth:`new`): vertices within
+        ``relative_tolerance`` of the mesh's size joined, cracks zipped, faces turned."""
+        return cls._made(lib().tp_mesh_new_welded, vertices, indices, sizes, c_double(relative_tolerance))
+
+    @classmethod
+    def _made(cls, make, vertices, indices, sizes, *options):
+        """A mesh from ``make`` (``tp_mesh_new`` or ``tp_mesh_new_welded``) on the arrays,
+        with ``options`` between them and the out pointer."""
         out = TpMeshP()
         check(
-            lib().tp_mesh_new(
+            make(
                 as_pointer(vertices, c_double), len(vertices),
                 as_pointer(indices, c_uint32), len(indices),
                 as_pointer(sizes, c_uint32), len(sizes),
+                *options,
                 ctypes.byref(out),
             )
         )
         return cls(out)
+
+    def sources(self):
+        """``(vertex_source (V,) int64, face_source (F,) int64)``: each vertex's first given
+        vertex and each face's given face (``tp_mesh_copy_sources``)."""
+        nv, nf, _ = self.counts()
+        vertex_source = np.empty(nv, dtype=np.uint32)
+        face_source = np.empty(nf, dtype=np.uint32)
+        check(lib().tp_mesh_copy_sources(self.pointer, as_pointer(vertex_source, c_uint32), nv, as_pointer(face_source, c_uint32), nf))
+        return vertex_source.astype(np.int64), face_source.astype(np.int64)
 
     def counts(self):
         """``(vertex_count, face_count, index_count)``."""

@@ -16,7 +16,7 @@ import itertools
 import json
 import warnings
 from dataclasses import dataclass, field
-from typing import Callable, List, Optional, Sequence, Tuple, Union
+from typing import Callable, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -172,6 +172,73 @@ def mesh_handle(vertices, faces):
     v = _vertex_array(vertices)
     indices, sizes = face_arrays(faces)
     return nat.MeshHandle.new(v, indices, sizes)
+
+
+class Welded(NamedTuple):
+    """A mesh as :func:`weld` makes it, with where its vertices and faces came from.
+
+    Attributes
+    ----------
+    vertices : ndarray (V, 3) float64
+    faces : ndarray (F, k) int64 or list of list of int
+    vertex_source : ndarray (V,) int64
+        Each vertex's first given vertex: ``field[vertex_source]`` carries a field given per
+        vertex over.
+    face_source : ndarray (F,) int64
+        Each face's given face (triangles split where cracks were zipped keep their face's):
+        ``zones[face_source]`` carries data given per face over; a given face in no entry
+        was removed (collapsed, or a repeat).
+    """
+
+    vertices: np.ndarray
+    faces: Union[np.ndarray, List[List[int]]]
+    vertex_source: np.ndarray
+    face_source: np.ndarray
+
+
+def weld(vertices, faces, tolerance: float = 1e-6) -> Welded:
+    """A mesh as the command line reads a file: vertices closer than ``tolerance`` times the
+    mesh's size (its used vertices' bounding-box diagonal) joined, the faces this collapses
+    or repeats removed, the cracks of a triangle mesh zipped where patches meshed apart meet,
+    and faces turned to agree with their neighbours (``tp_mesh_new_welded``).
+
+    For a triangle soup (an STL read with numpy-stl, every triangle with its own corners), a
+    polysurface meshed face by face, or patches joined without welding, which the stages take
+    as pieces (a soup is refused by :func:`remesh` and :func:`run`).
+
+    Parameters
+    ----------
+    vertices : array_like (V, 3)
+    faces : list of list of int or array_like (F, k)
+    tolerance : float
+        Share of the mesh's size within which vertices are joined: 0 joins none (faces are
+        still turned), the command line's default 1e-6.
+
+    Returns
+    -------
+    Welded
+        ``vertices``, ``faces``, ``vertex_source`` and ``face_source``.
+
+    Raises
+    ------
+    InvalidArgumentError
+        A tolerance that is not a number from 0 up to below 1.
+    InvalidMeshError
+        A mesh that is still not valid once welded (faces and vertices named as given).
+
+    Examples
+    --------
+    >>> soup = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 0, 0], [1, 1, 0], [0, 1, 0]]
+    >>> welded = weld(soup, [[0, 1, 2], [3, 4, 5]])
+    >>> len(welded.vertices), welded.faces.tolist(), welded.vertex_source.tolist()
+    (4, [[0, 1, 2], [0, 2, 3]], [0, 1, 2, 5])
+    """
+    v = _vertex_array(vertices)
+    indices, sizes = face_arrays(faces)
+    with nat.MeshHandle.new_welded(v, indices, sizes, float(tolerance)) as handle:
+        out_vertices, out_faces = mesh_arrays(handle)
+        vertex_source, face_source = handle.sources()
+    return Welded(out_vertices, out_faces, vertex_source, face_source)
 
 
 def _faces_out(indices, sizes):

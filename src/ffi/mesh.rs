@@ -4,11 +4,22 @@ use nalgebra::Point3;
 
 use super::status::{Failure, TpStatus, TpStatus::*, guard};
 use super::{borrow, hand_over, input, output, release, write_out};
-use crate::mesh::PolyMesh;
+use crate::mesh::io::{Raw, Weld, prepare};
+use crate::mesh::{FileNumbering, PolyMesh};
 
 /// A validated polygon mesh (opaque).
 pub struct TpMesh {
     pub(super) mesh: PolyMesh,
+    /// Where each face and vertex came from in the caller's arrays, for a mesh made by
+    /// [`tp_mesh_new_welded`] (`None`: they are the caller's own).
+    pub(super) given: Option<FileNumbering>,
+}
+
+impl TpMesh {
+    /// A mesh handed out as it is, numbered as made.
+    pub(super) fn made(mesh: PolyMesh) -> Self {
+        Self { mesh, given: None }
+    }
 }
 
 /// Builds and validates a mesh from `vertex_count` xyz triples at `vertices` and
@@ -41,10 +52,169 @@ pub unsafe extern "C" fn tp_mesh_new(
     face_count: usize,
     out: *mut *mut TpMesh,
 ) -> TpStatus {
+    let arrays = Arrays {
+        vertices,
+        vertex_count,
+        face_indices,
+        index_count,
+        face_sizes,
+        face_count,
+    };
+    // SAFETY: forwarded, the caller's promise.
+    unsafe {
+        new_mesh(arrays, out, |(positions, faces)| {
+            Ok(TpMesh::made(PolyMesh::new(positions, faces)?))
+        })
+    }
+}
+
+/// [`tp_mesh_new`] for meshes as hosts and files give them, as the command line reads a
+/// file: vertices closer than `relative_tolerance` times the diagonal of the used vertices'
+/// bounding box are joined and the faces this collapses or repeats removed (a triangle soup,
+/// an STL, a polysurface meshed face by face, whose faces keep their own vertices along the
+/// seams), the cracks of a triangle mesh zipped where patches meshed apart meet (their
+/// triangles split), and faces turned to agree with their neighbours; then the mesh is
+/// validated as [`tp_mesh_new`] does, errors naming faces and vertices as given.
+/// `relative_tolerance` 0 joins nothing but still turns faces; the command line's default
+/// is 1e-6. [`tp_mesh_copy_sources`] gives where each face and vertex of the result came
+/// from, to carry data given per face or vertex (zones, excluded faces, a field) over.
+///
+/// # Safety
+/// As [`tp_mesh_new`].
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tp_mesh_new_welded(
+    vertices: *const f64,
+    vertex_count: usize,
+    face_indices: *const u32,
+    index_count: usize,
+    face_sizes: *const u32,
+    face_count: usize,
+    relative_tolerance: f64,
+    out: *mut *mut TpMesh,
+) -> TpStatus {
+    if !(relative_tolerance.is_finite() && (0.0..1.0).contains(&relative_tolerance)) {
+        return guard(|| {
+            Err(Failure::new(
+                TP_INVALID_ARGUMENT,
+                format!(
+                    "relative_tolerance is {relative_tolerance}: give a share of the mesh's size from 0 (join nothing) up to below 1 (1e-6 as the command line)"
+                ),
+            ))
+        });
+    }
+    let arrays = Arrays {
+        vertices,
+        vertex_count,
+        face_indices,
+        index_count,
+        face_sizes,
+        face_count,
+    };
+    let weld = if relative_tolerance > 0.0 {
+        Weld::Relative(relative_tolerance)
+    } else {
+        Weld::Off
+    };
+    // SAFETY: forwarded, the caller's promise.
+    unsafe {
+        new_mesh(arrays, out, |(positions, faces)| {
+            let given = FileNumbering::identity(faces.len(), positions.len());
+            let prepared = prepare(positions, faces, weld, given)?;
+            Ok(TpMesh {
+                mesh: prepared.mesh,
+                given: Some(prepared.numbering),
+            })
+        })
+    }
+}
+
+/// Where each vertex and face of `mesh` came from: `vertex_source` (capacity: the vertex
+/// count) gets each vertex's first given vertex, `face_source` (capacity: the face count)
+/// each face's given face (a triangle zipping split keeps its face's number); either may be
+/// NULL when not wanted. A mesh from [`tp_mesh_new_welded`] counts the arrays it was made
+/// from; any other mesh its own vertices and faces (0, 1, 2, ...).
+///
+/// # Safety
+/// `mesh` must be a live mesh; non-NULL buffers must hold their stated capacities.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tp_mesh_copy_sources(
+    mesh: *const TpMesh,
+    vertex_source: *mut u32,
+    vertex_capacity: usize,
+    face_source: *mut u32,
+    face_capacity: usize,
+) -> TpStatus {
+    guard(|| {
+        // SAFETY: live handle by the caller's promise.
+        let handle = unsafe { borrow(mesh, "mesh") }?;
+        let (vertices, faces) = (handle.mesh.positions().len(), handle.mesh.face_count());
+        let given = handle.given.as_ref();
+        let as_u32 = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
+        if !vertex_source.is_null() {
+            let list: Vec<u32> = (0..vertices)
+                .map(|v| as_u32(given.map_or(v, |n| n.file_vertex(v))))
+                .collect();
+            // SAFETY: capacity as promised.
+            unsafe { output(&list, vertex_source, vertex_capacity, "vertex_source") }?;
+        }
+        if !face_source.is_null() {
+            let list: Vec<u32> = (0..faces)
+                .map(|f| as_u32(given.map_or(f, |n| n.file_face(f))))
+                .collect();
+            // SAFETY: capacity as promised.
+            unsafe { output(&list, face_source, face_capacity, "face_source") }?;
+        }
+        Ok(())
+    })
+}
+
+/// A caller's mesh arrays, as [`tp_mesh_new`] takes them.
+#[derive(Clone, Copy)]
+struct Arrays {
+    vertices: *const f64,
+    vertex_count: usize,
+    face_indices: *const u32,
+    index_count: usize,
+    face_sizes: *const u32,
+    face_count: usize,
+}
+
+/// Reads `arrays`, makes a mesh of them with `make` and hands it over in `*out`, behind the
+/// panic boundary.
+///
+/// # Safety
+/// The arrays must hold their stated numbers of items; `out` must be writable.
+unsafe fn new_mesh(
+    arrays: Arrays,
+    out: *mut *mut TpMesh,
+    make: impl FnOnce(Raw) -> Result<TpMesh, Failure>,
+) -> TpStatus {
     guard(|| {
         if out.is_null() {
             return Err(Failure::null("out"));
         }
+        // SAFETY: forwarded, the caller's promise.
+        let mesh = make(unsafe { arrays.read() }?)?;
+        // SAFETY: checked non-null above.
+        unsafe { hand_over(out, mesh, "out") }
+    })
+}
+
+impl Arrays {
+    /// Positions and faces, counts over the limits refused before anything is read.
+    ///
+    /// # Safety
+    /// The arrays must hold their stated numbers of items.
+    unsafe fn read(self) -> Result<Raw, Failure> {
+        let Arrays {
+            vertices,
+            vertex_count,
+            face_indices,
+            index_count,
+            face_sizes,
+            face_count,
+        } = self;
         // Refuse absurd counts before reading or allocating anything for them.
         crate::mesh::check_size(vertex_count, face_count, index_count)?;
         let coordinates_len = vertex_count.checked_mul(3).ok_or_else(|| {
@@ -84,10 +254,8 @@ pub unsafe extern "C" fn tp_mesh_new(
             );
             next += size;
         }
-        let mesh = PolyMesh::new(positions, faces)?;
-        // SAFETY: checked non-null above.
-        unsafe { hand_over(out, TpMesh { mesh }, "out") }
-    })
+        Ok((positions, faces))
+    }
 }
 
 /// Releases a mesh. NULL is accepted.

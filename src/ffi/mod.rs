@@ -53,7 +53,10 @@ use status::{Failure, TpStatus::*};
 /// default 0.5); callers built against ABI 4 to 7 keep working unchanged (and get 0.5).
 /// 9: `tp_run` (the whole pipeline, with tries), `TpRunOptions` and `TP_STAGE_RUN` added;
 /// nothing existing changed, callers built against ABI 4 to 8 keep working unchanged.
-pub const TP_ABI_VERSION: u32 = 9;
+/// 10: `tp_mesh_new_welded` (a mesh welded, zipped and oriented as the command line reads a
+/// file) and `tp_mesh_copy_sources` added, and `tp_run` takes excluded faces (per face of the
+/// surface) where it refused them; callers built against ABI 4 to 9 keep working unchanged.
+pub const TP_ABI_VERSION: u32 = 10;
 
 /// Stage numbers passed to a progress callback.
 pub const TP_STAGE_REMESH: u32 = 1;

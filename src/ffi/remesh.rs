@@ -150,15 +150,7 @@ pub unsafe extern "C" fn tp_remesh(
         let remeshed =
             remesh::remesh_with(surface, &options, &mut Control::with_progress(&mut report))?;
         // SAFETY: checked non-null above.
-        unsafe {
-            hand_over(
-                out,
-                TpMesh {
-                    mesh: remeshed.quads,
-                },
-                "out",
-            )
-        }
+        unsafe { hand_over(out, TpMesh::made(remeshed.quads), "out") }
     })
 }
 

@@ -157,13 +157,7 @@ pub unsafe extern "C" fn tp_run(
         // the caller's promise.
         unsafe {
             if !out_quads.is_null() {
-                hand_over(
-                    out_quads,
-                    TpMesh {
-                        mesh: remeshed.quads,
-                    },
-                    "out_quads",
-                )?;
+                hand_over(out_quads, TpMesh::made(remeshed.quads), "out_quads")?;
             }
             if !out_pattern.is_null() {
                 let pattern = TpPattern {

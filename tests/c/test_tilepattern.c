@@ -159,6 +159,61 @@ static void test_mesh(void) {
   tp_mesh_free(NULL);
 }
 
+/* A mesh as hosts give it (ABI 10): the 3 x 2 grid as a soup of quads, each with its own four
+   corners and the third turned over, welded as the command line reads a file. */
+static void test_mesh_welded(void) {
+  double *v;
+  uint32_t *idx, *sz;
+  size_t nv, nf, counts[3];
+  grid(3, 2, &v, &nv, &idx, &sz, &nf);
+  double soup[6 * 4 * 3];
+  uint32_t own[24];
+  for (size_t f = 0; f < nf; f++)
+    for (size_t k = 0; k < 4; k++) {
+      size_t corner = f == 2 ? 3 - k : k; /* face 2 wound the other way */
+      memcpy(soup + 3 * (4 * f + k), v + 3 * idx[4 * f + corner], 3 * sizeof(double));
+      own[4 * f + k] = (uint32_t)(4 * f + k);
+    }
+  TpMesh *apart = NULL, *welded = NULL;
+  /* As given: six pieces, and face 2 against its neighbours is only seen once joined. */
+  CHECK(tp_mesh_new(soup, 24, own, 24, sz, nf, &apart) == TP_OK);
+  CHECK(tp_mesh_new_welded(soup, 24, own, 24, sz, nf, 1e-6, &welded) == TP_OK);
+  CHECK(tp_mesh_counts(welded, &counts[0], &counts[1], &counts[2]) == TP_OK);
+  CHECK(counts[0] == 12 && counts[1] == 6 && counts[2] == 24);
+  uint32_t vs[24], fs[6], faces[24], sizes[6];
+  CHECK(tp_mesh_copy_sources(welded, vs, 12, fs, 6) == TP_OK);
+  CHECK(tp_mesh_copy_faces(welded, faces, 24, sizes, 6) == TP_OK);
+  double xyz[36];
+  CHECK(tp_mesh_copy_vertices(welded, xyz, 36) == TP_OK);
+  for (size_t f = 0; f < 6; f++) CHECK(fs[f] == f);
+  /* Each vertex is where its first given vertex is, and that is one of its face's corners. */
+  for (size_t i = 0; i < 12; i++) CHECK(vs[i] < 24 && memcmp(xyz + 3 * i, soup + 3 * vs[i], 3 * sizeof(double)) == 0);
+  /* Face 2 turned to agree with the others: every face wound counter-clockwise seen from +z,
+     as the grid's are. */
+  for (size_t f = 0; f < 6; f++) {
+    const double *a = xyz + 3 * faces[4 * f], *b = xyz + 3 * faces[4 * f + 1], *c = xyz + 3 * faces[4 * f + 2];
+    CHECK((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0.0);
+  }
+  CHECK(tp_mesh_copy_sources(welded, vs, 11, NULL, 0) == TP_BUFFER_TOO_SMALL);
+  /* A mesh of tp_mesh_new is its own source. */
+  CHECK(tp_mesh_copy_sources(apart, vs, 24, NULL, 0) == TP_OK && vs[23] == 23);
+  /* 0 joins nothing; a bad tolerance is refused by name. */
+  TpMesh *none = NULL;
+  CHECK(tp_mesh_new_welded(soup, 24, own, 24, sz, nf, 0.0, &none) == TP_OK);
+  CHECK(tp_mesh_counts(none, &counts[0], NULL, NULL) == TP_OK && counts[0] == 24);
+  tp_mesh_free(none);
+  none = NULL;
+  CHECK(tp_mesh_new_welded(soup, 24, own, 24, sz, nf, NAN, &none) == TP_INVALID_ARGUMENT && none == NULL);
+  CHECK(last_error_contains("relative_tolerance"));
+  CHECK(tp_mesh_new_welded(soup, 24, own, 24, sz, nf, 1e-6, NULL) == TP_NULL_POINTER);
+  printf("mesh welded: 24 vertices of a soup of 6 quads -> 12, face 2 turned\n");
+  tp_mesh_free(apart);
+  tp_mesh_free(welded);
+  free(v);
+  free(idx);
+  free(sz);
+}
+
 static void test_pattern_and_tiles(void) {
   TpMesh *mesh = grid_mesh(10, 10);
   CHECK(mesh != NULL);
@@ -1465,6 +1520,7 @@ static void test_run(void) {
 
 int main(void) {
   test_version();
+  test_mesh_welded();
   test_mesh();
   test_pattern_and_tiles();
   test_remesh();

@@ -5,7 +5,8 @@
 //! (see [`super::orient`]) and the mesh validated by [`PolyMesh::new`].
 //!
 //! Every front end that reads files goes through [`read`]: today that is the command line
-//! only (the C ABI, C#, Python and Grasshopper take meshes as arrays from their host).
+//! only (the C ABI, C#, Python and Grasshopper take meshes as arrays from their host, and
+//! [`prepare`] welds those where asked: `tp_mesh_new_welded`).
 
 mod off;
 mod ply;
@@ -144,6 +145,47 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
     } else {
         (positions, faces, as_read)
     };
+    let prepared = prepare(positions, faces, weld, numbering)?;
+    Ok(Loaded {
+        mesh: prepared.mesh,
+        format,
+        weld: prepared.weld,
+        turned_faces: prepared.turned_faces,
+        numbering: prepared.numbering,
+    })
+}
+
+/// A mesh made from positions and faces as a file or a caller gives them: welded, zipped,
+/// turned to agree and validated ([`prepare`]).
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    /// The validated mesh.
+    pub mesh: PolyMesh,
+    /// What welding and zipping did.
+    pub weld: WeldSummary,
+    /// Faces turned over to agree with their neighbours.
+    pub turned_faces: usize,
+    /// The given numbers of the mesh's faces and vertices.
+    pub numbering: FileNumbering,
+}
+
+/// What every front end does to a mesh it is given before the stages take it: vertices
+/// closer than `weld`'s share of the diagonal of the used vertices joined and the faces
+/// this collapses or repeats removed ([`weld::weld_traced`]), the cracks of a triangle mesh
+/// zipped ([`zip::zip_traced`]), faces turned to agree with their neighbours
+/// ([`orient::orient`]), and the result validated by [`PolyMesh::new`]. `numbering` gives
+/// the given numbers of `faces` and `positions` (identity for a caller's arrays), and the
+/// result's is composed with it.
+///
+/// # Errors
+/// [`MeshError::NonOrientable`] for a one-sided surface, then any validation error of
+/// [`PolyMesh::new`], faces and vertices named in the given numbers.
+pub fn prepare(
+    positions: Vec<Point3<f64>>,
+    faces: Vec<Vec<usize>>,
+    weld: Weld,
+    numbering: FileNumbering,
+) -> Result<Prepared, MeshError> {
     let (positions, faces, summary, numbering) = match weld {
         Weld::Relative(fraction) if fraction.is_finite() && fraction > 0.0 => {
             let tolerance = fraction * diagonal(&positions, &faces);
@@ -165,13 +207,12 @@ pub fn parse(bytes: &[u8], extension: Option<&str>, weld: Weld) -> Result<Loaded
         _ => (positions, faces, WeldSummary::OFF, numbering),
     };
     let mut faces = faces;
-    // Faces and vertices an error names are counted as in the file.
+    // Faces and vertices an error names are counted as given.
     let in_file = |e: MeshError| e.in_file_numbers(&numbering);
     let turned_faces = orient::orient(&mut faces).map_err(in_file)?;
     let mesh = PolyMesh::new(positions, faces).map_err(in_file)?;
-    Ok(Loaded {
+    Ok(Prepared {
         mesh,
-        format,
         weld: summary,
         turned_faces,
         numbering,
