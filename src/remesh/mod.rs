@@ -128,7 +128,7 @@ fn refuse_crumbs(input: &PolyMesh) -> Result<(), RemeshError> {
         && (largest.is_nan() || largest < 0.5 * whole)
     {
         return Err(RemeshError::UnsupportedInput(format!(
-            "the surface falls apart into {pieces} pieces of {} faces, sharing no edge: a triangle soup whose coincident corners were not joined; weld them (the command line welds unless --weld off; Rhino: Weld or JoinMesh) and remesh again",
+            "the surface falls apart into {pieces} pieces of {} faces, sharing no edge: a triangle soup whose coincident corners were not joined; weld them (the command line welds unless --weld off; from arrays: tp_mesh_new_welded, Python tp.weld, C# PolyMesh.Welded; Rhino: Weld) and remesh again",
             input.face_count()
         )));
     }
