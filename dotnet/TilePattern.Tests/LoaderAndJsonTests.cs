@@ -97,5 +97,16 @@ namespace TilePattern.Tests
             Assert.AreEqual(0.01, r.TileSeconds);
             Assert.Throws<FormatException>(() => Report.Parse("[1]"));
         }
+
+        [Test]
+        public void AWarningGivesTheFaceItNames()
+        {
+            Report r = Report.Parse("{\"faces\": 4, \"warnings\": ["
+                + "{\"code\": \"folded_surface\", \"message\": \"... at face 12 near ...\", \"face\": 12},"
+                + "{\"code\": \"low_coverage\", \"message\": \"the tiles cover 0.5\"}]}");
+            Assert.AreEqual(TilingWarningCode.FoldedSurface, r.Warnings[0].Code);
+            Assert.AreEqual(12, r.Warnings[0].Face);
+            Assert.AreEqual(-1, r.Warnings[1].Face);
+        }
     }
 }

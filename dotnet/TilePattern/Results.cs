@@ -596,6 +596,9 @@ namespace TilePattern
         public string Name { get; internal set; }
         /// <summary>What was found and what to do.</summary>
         public string Message { get; internal set; }
+        /// <summary>The face of the surface the message names (report.json's <c>face</c>:
+        /// folded_surface, curved_polygons), counted from 0; -1 when it names none.</summary>
+        public int Face { get; internal set; }
 
         public override string ToString()
         {
@@ -835,7 +838,7 @@ namespace TilePattern
                     TilingWarningCode code;
                     string pascal = string.Concat(name.Split('_').Where(p => p.Length > 0).Select(p => char.ToUpperInvariant(p[0]) + p.Substring(1)).ToArray());
                     Enum.TryParse(pascal, out code);
-                    parsed.Add(new TilingWarning { Code = code, Name = name, Message = JsonAccess.Text(w, "message") ?? "" });
+                    parsed.Add(new TilingWarning { Code = code, Name = name, Message = JsonAccess.Text(w, "message") ?? "", Face = JsonAccess.Integer(w, "face") });
                 }
             r.Warnings = parsed.ToArray();
             var tries = root.ContainsKey("tries") ? root["tries"] as List<object> : null;
