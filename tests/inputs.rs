@@ -1452,6 +1452,36 @@ fn debris_around_a_shell_is_tiled_past_with_a_warning_not_refused_as_a_soup() {
     let message = pieces["message"].as_str().unwrap();
     assert!(message.contains("3001 separate pieces"), "{message}");
     assert!(message.contains("stray faces"), "{message}");
+
+    // Three faces of the shell on copies of their corners (patches not welded, read with
+    // --weld off): as small, but along seams of the shell, so they are to be welded, not
+    // deleted.
+    let mut positions = surface.positions().to_vec();
+    let mut faces = surface.faces().to_vec();
+    for face in faces.iter_mut().take(3) {
+        for v in face.iter_mut() {
+            positions.push(positions[*v]);
+            *v = positions.len() - 1;
+        }
+    }
+    let patches = PolyMesh::new(positions, faces).unwrap();
+    let (out, report, _) = run(
+        "patches",
+        "shell.obj",
+        obj::to_string(&patches).as_bytes(),
+        &["--tile", "280x140x15", "--tries", "1", "--weld", "off"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = report.unwrap();
+    let pieces = report["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|w| w["code"] == "several_pieces")
+        .unwrap_or_else(|| panic!("no several_pieces warning: {report}"));
+    let message = pieces["message"].as_str().unwrap();
+    assert!(message.contains("weld them"), "{message}");
+    assert!(!message.contains("stray faces"), "{message}");
 }
 
 #[test]

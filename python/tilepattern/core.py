@@ -217,7 +217,8 @@ def weld(vertices, faces, tolerance: float = 1e-6) -> Welded:
     Returns
     -------
     Welded
-        ``vertices``, ``faces``, ``vertex_source`` and ``face_source``.
+        ``vertices``, ``faces``, ``vertex_source`` and ``face_source`` (how many vertices were
+        joined and faces removed follows from them; the library reports no other summary).
 
     Raises
     ------

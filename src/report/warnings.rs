@@ -395,14 +395,21 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, spec: &TileSpec) ->
     if pieces > 1 {
         let mut sizes = vec![0usize; pieces];
         piece.iter().for_each(|&p| sizes[p] += 1);
-        let largest = sizes.iter().copied().max().unwrap_or(0);
+        // The piece of the most area, and its faces.
+        let main = (0..pieces)
+            .max_by(|&a, &b| areas[a].total_cmp(&areas[b]).then(b.cmp(&a)))
+            .unwrap_or(0);
+        let largest = sizes[main];
         let width = spec.width;
         let whole: f64 = areas.iter().sum();
-        let main = areas.iter().copied().fold(0.0, f64::max);
-        let debris = whole - main;
+        let debris = whole - areas[main];
         let advice = match stacked(surface, &piece, width) {
-            // Stray faces around one surface: debris of an export or a scan.
-            None if pieces > 2 && debris < DEBRIS_SHARE * whole => {
+            // Stray faces around one surface: debris of an export or a scan. Pieces that
+            // meet the main one at a vertex are patches to weld, not strays.
+            None if pieces > 2
+                && debris < DEBRIS_SHARE * whole
+                && !meets_main_piece(surface, &piece, main) =>
+            {
                 let share = 100.0 * debris / whole;
                 let share = if share < 0.01 {
                     "under 0.01".to_owned()
@@ -421,7 +428,7 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, spec: &TileSpec) ->
                 layers.at.y,
                 layers.at.z
             ),
-            None => "if they should be one surface, weld them (a mesh of a polysurface or of joined meshes keeps each face's own vertices along the seams: in Rhino Weld it, or Join and Weld; the command line welds coincident vertices unless --weld off, raise the tolerance with --weld); otherwise tile each piece on its own".to_string(),
+            None => "if they should be one surface, weld them (a mesh of a polysurface or of joined meshes keeps each face's own vertices along the seams: in Rhino Weld it, or Join and Weld; the command line welds coincident vertices unless --weld off, raise the tolerance with --weld; from arrays: tp_mesh_new_welded, Python tp.weld, C# PolyMesh.Welded); otherwise tile each piece on its own".to_string(),
         };
         out.push(Warning::new(
             WarningCode::SeveralPieces,
@@ -721,6 +728,37 @@ fn stacked(surface: &PolyMesh, piece: &[usize], reach: f64) -> Option<Layers> {
         share: over / total,
         gap: gaps / over,
         at: at.expect("some face is over another"),
+    })
+}
+
+/// Whether a vertex of a piece other than `main` lies on a vertex of piece `main` (within
+/// the command line's weld tolerance of the mesh's size): unwelded patches of one surface
+/// meet so along their seams, stray faces do not.
+fn meets_main_piece(surface: &PolyMesh, piece: &[usize], main: usize) -> bool {
+    let (lo, hi) = surface.bounding_box();
+    let reach = crate::mesh::weld::DEFAULT_RELATIVE_TOLERANCE * (hi - lo).norm();
+    let mut of_main = vec![false; surface.positions().len()];
+    let mut of_others = vec![false; surface.positions().len()];
+    for (f, face) in surface.faces().iter().enumerate() {
+        let on = if piece[f] == main {
+            &mut of_main
+        } else {
+            &mut of_others
+        };
+        face.iter().for_each(|&v| on[v] = true);
+    }
+    let positions = surface.positions();
+    let main_points: Vec<usize> = (0..positions.len()).filter(|&v| of_main[v]).collect();
+    let grid = crate::geom::HashGrid::of_points(
+        reach.max(f64::MIN_POSITIVE) * 4.0,
+        main_points.iter().map(|&v| [positions[v]]),
+    );
+    (0..positions.len()).filter(|&v| of_others[v]).any(|v| {
+        of_main[v]
+            || grid
+                .near(&positions[v], reach)
+                .into_iter()
+                .any(|k| (positions[main_points[k]] - positions[v]).norm() <= reach)
     })
 }
 

@@ -186,7 +186,7 @@ static void test_mesh_welded(void) {
   double xyz[36];
   CHECK(tp_mesh_copy_vertices(welded, xyz, 36) == TP_OK);
   for (size_t f = 0; f < 6; f++) CHECK(fs[f] == f);
-  /* Each vertex is where its first given vertex is, and that is one of its face's corners. */
+  /* Each vertex is where its first given vertex is. */
   for (size_t i = 0; i < 12; i++) CHECK(vs[i] < 24 && memcmp(xyz + 3 * i, soup + 3 * vs[i], 3 * sizeof(double)) == 0);
   /* Face 2 turned to agree with the others: every face wound counter-clockwise seen from +z,
      as the grid's are. */
