@@ -547,6 +547,16 @@ fn run(
     (out, report, dir)
 }
 
+/// The warning of `code` in `report` (panics, naming the report, when there is none).
+fn warning<'a>(report: &'a serde_json::Value, code: &str) -> &'a serde_json::Value {
+    report["warnings"]
+        .as_array()
+        .expect("report.json has a warnings list")
+        .iter()
+        .find(|w| w["code"] == code)
+        .unwrap_or_else(|| panic!("no {code} warning: {report}"))
+}
+
 fn codes(report: &serde_json::Value) -> Vec<String> {
     report["warnings"]
         .as_array()
@@ -1443,12 +1453,7 @@ fn debris_around_a_shell_is_tiled_past_with_a_warning_not_refused_as_a_soup() {
     let report = report.unwrap();
     let coverage = report["cutting"]["coverage"].as_f64().unwrap();
     assert!(coverage > 0.95, "coverage {coverage}");
-    let pieces = report["warnings"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|w| w["code"] == "several_pieces")
-        .unwrap_or_else(|| panic!("no several_pieces warning: {report}"));
+    let pieces = warning(&report, "several_pieces");
     let message = pieces["message"].as_str().unwrap();
     assert!(message.contains("3001 separate pieces"), "{message}");
     assert!(message.contains("stray faces"), "{message}");
@@ -1473,12 +1478,7 @@ fn debris_around_a_shell_is_tiled_past_with_a_warning_not_refused_as_a_soup() {
     );
     assert!(out.status.success(), "{}", stderr(&out));
     let report = report.unwrap();
-    let pieces = report["warnings"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|w| w["code"] == "several_pieces")
-        .unwrap_or_else(|| panic!("no several_pieces warning: {report}"));
+    let pieces = warning(&report, "several_pieces");
     let message = pieces["message"].as_str().unwrap();
     assert!(message.contains("weld them"), "{message}");
     assert!(!message.contains("stray faces"), "{message}");
@@ -1517,12 +1517,7 @@ fn warnings_name_faces_as_the_file_numbers_them_where_welding_removed_a_face() {
     );
     assert!(out.status.success(), "{}", stderr(&out));
     let report = report.unwrap();
-    let curved = report["warnings"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|w| w["code"] == "curved_polygons")
-        .unwrap_or_else(|| panic!("no curved_polygons warning: {report}"));
+    let curved = warning(&report, "curved_polygons");
     assert_eq!(curved["face"].as_u64(), Some(last as u64), "{curved}");
     let message = curved["message"].as_str().unwrap();
     assert!(
