@@ -21,7 +21,7 @@ pub mod zip;
 pub use error::MeshError;
 pub(crate) use face_set::{Corners, FaceSet};
 pub use numbering::{FileNumbering, NotInMesh};
-pub use topology::{Edge, Topology};
+pub use topology::{Edge, PieceAreas, Topology};
 
 use nalgebra::{Point3, Vector3};
 

@@ -7,6 +7,29 @@ use foldhash::fast::FixedState;
 
 use super::{MeshError, PolyMesh};
 
+/// The pieces of a mesh ([`Topology::face_pieces`]) and their areas.
+#[derive(Debug, Clone)]
+pub struct PieceAreas {
+    /// Each face's piece.
+    pub piece: Vec<usize>,
+    /// Each piece's area.
+    pub areas: Vec<f64>,
+}
+
+impl PieceAreas {
+    /// The piece of the most area (the first of equals).
+    pub fn main(&self) -> usize {
+        (0..self.areas.len())
+            .max_by(|&a, &b| self.areas[a].total_cmp(&self.areas[b]).then(b.cmp(&a)))
+            .unwrap_or(0)
+    }
+
+    /// The share of the whole area [`Self::main`] holds (NaN for a mesh of no area).
+    pub fn main_share(&self) -> f64 {
+        self.areas.get(self.main()).copied().unwrap_or(0.0) / self.areas.iter().sum::<f64>()
+    }
+}
+
 /// An undirected mesh edge with its (at most two) faces.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Edge {
@@ -173,15 +196,15 @@ impl Topology {
         (piece, count)
     }
 
-    /// The area of each of [`Self::face_pieces`]' pieces, with the pieces: `mesh` is the mesh
-    /// this topology was built from.
-    pub fn piece_areas(&self, mesh: &PolyMesh) -> (Vec<usize>, Vec<f64>) {
+    /// [`Self::face_pieces`] with each piece's area: `mesh` is the mesh this topology was
+    /// built from.
+    pub fn piece_areas(&self, mesh: &PolyMesh) -> PieceAreas {
         let (piece, pieces) = self.face_pieces();
         let mut areas = vec![0.0; pieces];
         for (f, &p) in piece.iter().enumerate() {
             areas[p] += mesh.face_area_vector(f).norm();
         }
-        (piece, areas)
+        PieceAreas { piece, areas }
     }
 
     /// All edges.

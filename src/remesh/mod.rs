@@ -119,16 +119,11 @@ fn refuse_crumbs(input: &PolyMesh) -> Result<(), RemeshError> {
     let Ok(topology) = crate::mesh::Topology::new(input) else {
         return Ok(());
     };
-    let (_, areas) = topology.piece_areas(input);
-    let pieces = areas.len();
-    let largest = areas.iter().copied().fold(0.0, f64::max);
-    let whole = areas.iter().sum::<f64>();
-    if pieces > CRUMBS
-        && 4 * pieces > input.face_count()
-        && (largest.is_nan() || largest < 0.5 * whole)
-    {
+    let pieces = topology.piece_areas(input);
+    let count = pieces.areas.len();
+    if count > CRUMBS && 4 * count > input.face_count() && pieces.main_share() < 0.5 {
         return Err(RemeshError::UnsupportedInput(format!(
-            "the surface falls apart into {pieces} pieces of {} faces, sharing no edge: a triangle soup whose coincident corners were not joined; weld them (the command line welds unless --weld off; from arrays: tp_mesh_new_welded, Python tp.weld, C# PolyMesh.Welded; Rhino: Weld) and remesh again",
+            "the surface falls apart into {count} pieces of {} faces, sharing no edge: a triangle soup whose coincident corners were not joined; weld them (the command line welds unless --weld off; from arrays: tp_mesh_new_welded, Python tp.weld, C# PolyMesh.Welded; Rhino: Weld) and remesh again",
             input.face_count()
         )));
     }

@@ -390,27 +390,24 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, spec: &TileSpec) ->
             "the surface is closed (it has no boundary edge): a vault needs an edge to stand on, and quads on sharp edges leave the surface; remove the faces where the shell stands or meets the ground, and tile the shell only",
         ));
     }
-    let (piece, areas) = topology.piece_areas(surface);
-    let pieces = areas.len();
+    let areas = topology.piece_areas(surface);
+    let (piece, pieces) = (&areas.piece, areas.areas.len());
     if pieces > 1 {
         let mut sizes = vec![0usize; pieces];
         piece.iter().for_each(|&p| sizes[p] += 1);
         // The piece of the most area, and its faces.
-        let main = (0..pieces)
-            .max_by(|&a, &b| areas[a].total_cmp(&areas[b]).then(b.cmp(&a)))
-            .unwrap_or(0);
+        let main = areas.main();
         let largest = sizes[main];
         let width = spec.width;
-        let whole: f64 = areas.iter().sum();
-        let debris = whole - areas[main];
-        let advice = match stacked(surface, &piece, width) {
+        let debris = 1.0 - areas.main_share();
+        let advice = match stacked(surface, piece, width) {
             // Stray faces around one surface: debris of an export or a scan. Pieces that
             // meet the main one at a vertex are patches to weld, not strays.
             None if pieces > 2
-                && debris < DEBRIS_SHARE * whole
-                && !meets_main_piece(surface, &piece, main) =>
+                && debris < DEBRIS_SHARE
+                && !meets_main_piece(surface, piece, main) =>
             {
-                let share = 100.0 * debris / whole;
+                let share = 100.0 * debris;
                 let share = if share < 0.01 {
                     "under 0.01".to_owned()
                 } else {
@@ -441,7 +438,7 @@ pub fn surface_checks(surface: &PolyMesh, up: &Vector3<f64>, spec: &TileSpec) ->
     out.extend(small_openings(
         surface,
         &topology,
-        (&piece, pieces),
+        (piece, pieces),
         spec.length,
     ));
     out.extend(folds(surface, &topology));
