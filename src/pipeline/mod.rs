@@ -179,19 +179,20 @@ pub fn tile_surface(
     // The surface's zones and excluded faces carried over to the quads.
     let zoned;
     let options = if options.zones.is_some() || !options.excluded_faces.is_empty() {
+        // One closest-face search serves both (the zone count was checked above).
+        let nearest = nearest_surface_faces(surface, &remeshed.quads);
         let zones = options
             .zones
             .as_ref()
-            .map(|zones| zones_on_quads(surface, zones, &remeshed.quads))
-            .transpose()?;
-        let excluded_faces = if options.excluded_faces.is_empty() {
-            Vec::new()
-        } else {
-            let mut out = vec![false; surface.face_count()];
-            options.excluded_faces.iter().for_each(|&f| out[f] = true);
-            let on_quads = zones_on_quads(surface, &out, &remeshed.quads)?;
-            (0..on_quads.len()).filter(|&q| on_quads[q]).collect()
-        };
+            .map(|zones| nearest.iter().map(|&f| zones[f]).collect());
+        let mut left_out = vec![false; surface.face_count()];
+        options
+            .excluded_faces
+            .iter()
+            .for_each(|&f| left_out[f] = true);
+        let excluded_faces = (0..nearest.len())
+            .filter(|&q| left_out[nearest[q]])
+            .collect();
         zoned = PatternOptions {
             zones,
             excluded_faces,
@@ -241,16 +242,25 @@ pub fn zones_on_quads<T: Copy>(
     quads: &PolyMesh,
 ) -> Result<Vec<T>, Error> {
     pattern::check_zone_count(zones.len(), surface.face_count())?;
+    Ok(nearest_surface_faces(surface, quads)
+        .into_iter()
+        .map(|f| zones[f])
+        .collect())
+}
+
+/// For each quad of `quads`, the face of `surface` closest to its centroid (ties go to the
+/// lower face): how data given per surface face reaches the quads.
+fn nearest_surface_faces(surface: &PolyMesh, quads: &PolyMesh) -> Vec<usize> {
     let index = SurfaceIndex::from_polymesh(surface);
     let face_of = SurfaceIndex::polymesh_faces(surface);
-    Ok((0..quads.face_count())
+    (0..quads.face_count())
         .map(|q| {
             let on = index
                 .closest(&quads.face_centroid(q).coords)
                 .expect("a PolyMesh has faces");
-            zones[face_of[on.triangle]]
+            face_of[on.triangle]
         })
-        .collect())
+        .collect()
 }
 
 /// Matches `quads` into tiles and builds the boxes, cut to the boundary of `surface` (the
