@@ -1,7 +1,7 @@
 // The three stages in one, as the command line's run: a surface mesh to fitted tiles cut to its
-// boundary, on up to five quad meshes (the field's renormalisation strength, a smooth field, twice
-// and half the strength, the smooth field's quads laid out for level courses), keeping the tiles
-// that fit best (TilePatternEngine.Run).
+// boundary, on up to six quad meshes (the field's renormalisation strength, a smooth field, twice
+// and half the strength, the smooth field's quads laid out for level courses, the smooth field free
+// of the boundary), keeping the tiles that fit best (TilePatternEngine.Run).
 using System;
 using System.Collections.Generic;
 using Grasshopper.Kernel;
@@ -27,7 +27,7 @@ namespace TilePattern.Gh
     {
         public TileSurfaceComponent()
             : base("Tile Surface", "TSurface",
-                "Tiles a surface mesh in one step, as the command line's run: quad remeshing, the pattern and the tiles with the fit of the joints, cut to the surface's boundary, on up to five quad meshes of the surface (Tries), keeping the tiles that fit best (joints not flagged wide first, then the fewest cuts and the closest joints); the same outputs as Tile Boxes, and the kept quad mesh and pattern. A remark says which try was kept. Solves in the background; right-click to cancel.",
+                "Tiles a surface mesh in one step, as the command line's run: quad remeshing, the pattern and the tiles with the fit of the joints, cut to the surface's boundary, on up to six quad meshes of the surface (Tries), keeping the tiles that fit best (joints not flagged wide first, then cuts within 1 % of the tiles, then the fewest cuts and the closest joints); the same outputs as Tile Boxes, and the kept quad mesh and pattern. A remark says which try was kept. Solves in the background; right-click to cancel.",
                 "3 Tiles")
         {
         }
@@ -48,7 +48,7 @@ namespace TilePattern.Gh
             pManager.AddIntegerParameter("Bond", "B", "0 = stack (maximum matching), 1 = staggered, 2 = running bond, 3 = herringbone, 4 = basket weave (3 and 4 lay tiles both ways: always in free courses)", GH_ParamAccess.item, (int)Bond.Staggered);
             pManager.AddIntegerParameter("Courses", "C", "1 = level: every tile along level courses (horizontal in the world's z) on quads of max((length + joint) / 2, width + joint), which the fit closes far better (default); 0 = free: tiles either way across quads of (length + joint) / 2 (the paper's model)", GH_ParamAccess.item, (int)Courses.Level);
             pManager.AddBooleanParameter("Fit", "F", "Move the tiles on the surface so that every joint comes close to the mortar joint, keeping the bond, and cut what cannot fit (default true); false keeps the paper's placement", GH_ParamAccess.item, true);
-            pManager.AddIntegerParameter("Tries", "Tr", "How many quad meshes to lay tiles on, keeping the tiles that fit best: 0 = automatic (all on a surface of at most 10,000 quads, else 1; default), or 1 to 5 (renormalisation 0.5, then a smooth field that follows neither the curvature nor anything else, made only without a direction, angle, designer's field or guides, then 1, then 0.25, then the smooth field's quads laid out for level courses, half a tile and a joint along them, made only in level courses). 1 gives what Quad Remesh, Tile Pattern and Tile Boxes give one by one", GH_ParamAccess.item, 0);
+            pManager.AddIntegerParameter("Tries", "Tr", "How many quad meshes to lay tiles on, keeping the tiles that fit best: 0 = automatic (all on a surface of at most 10,000 quads, else 1; default), or 1 to 6 (renormalisation 0.5, then a smooth field that follows neither the curvature nor anything else, made only without a direction, angle, designer's field or guides, then 1, then 0.25, then the smooth field's quads laid out for level courses, half a tile and a joint along them, made only in level courses, then the smooth field free of the boundary, its rows cut to curved edges instead of following them, made only where the first try follows an edge with corners). 1 gives what Quad Remesh, Tile Pattern and Tile Boxes give one by one", GH_ParamAccess.item, 0);
             pManager.AddNumberParameter("Time limit", "TL", "Seconds of the pattern stage (default 10; a later try has at most 10); when a try's pattern stage or fit reaches its time limit no further try is made, except after the first try's pattern stage with a limit over 10", GH_ParamAccess.item, 10.0);
             pManager.AddBooleanParameter("Creases", "Cr", "Split the mesh where its faces turn sharply (a groin vault's groins, a fold): each part gets quads of its own and the tiles are cut to the creases, half a joint short on each side (default true)", GH_ParamAccess.item, true);
             pManager.AddIntegerParameter("Excluded", "X", "Optional: faces of Mesh to leave out (openings, areas laid by hand): each quad whose closest face of Mesh is one gets no tile and no filler, and its area is left out of the coverage", GH_ParamAccess.list);
@@ -66,6 +66,7 @@ namespace TilePattern.Gh
             tries.AddNamedValue("Three tries", 3);
             tries.AddNamedValue("Four tries", 4);
             tries.AddNamedValue("Five tries", 5);
+            tries.AddNamedValue("Six tries", 6);
         }
 
         protected override void RegisterOutputParams(GH_OutputParamManager pManager)

@@ -546,7 +546,7 @@ fn remesh_and_run_go_from_triangles_to_tiles() {
 }
 
 #[test]
-fn run_tries_five_quad_meshes_and_says_which_tiles_it_kept() {
+fn run_tries_six_quad_meshes_and_says_which_tiles_it_kept() {
     let dir = scratch("run-tries");
     let surface = dir.join("saddle.obj");
     std::fs::write(&surface, saddle_obj()).unwrap();
@@ -564,24 +564,44 @@ fn run_tries_five_quad_meshes_and_says_which_tiles_it_kept() {
     );
     let report = json(&auto.join("report.json"));
     let tries = report["tries"].as_array().expect("tries listed");
-    assert_eq!(tries.len(), 5, "{report}");
+    assert_eq!(tries.len(), 6, "{report}");
     // The curvature field, the smooth field, then the curvature field at two more strengths,
-    // then the smooth field's quads laid out for the level courses (written for it alone).
+    // then the smooth field's quads laid out for the level courses (written for it alone),
+    // then the smooth field free of the saddle's square boundary, which the first follows.
     let fields: Vec<&str> = tries.iter().map(|t| t["field"].as_str().unwrap()).collect();
     assert_eq!(
         fields,
-        ["curvature", "smooth", "curvature", "curvature", "smooth"]
+        [
+            "curvature",
+            "smooth",
+            "curvature",
+            "curvature",
+            "smooth",
+            "smooth"
+        ]
     );
-    let along: Vec<bool> = tries
-        .iter()
-        .map(|t| t.get("quads_along_courses").is_some_and(|a| a == true))
-        .collect();
-    assert_eq!(along, [false, false, false, false, true]);
-    assert!(String::from_utf8_lossy(&out.stdout).contains("quads along the courses"));
+    let flag = |key: &str| -> Vec<bool> {
+        tries
+            .iter()
+            .map(|t| t.get(key).is_some_and(|a| a == true))
+            .collect()
+    };
+    assert_eq!(
+        flag("quads_along_courses"),
+        [false, false, false, false, true, false]
+    );
+    assert_eq!(
+        flag("boundary_free"),
+        [false, false, false, false, false, true]
+    );
+    assert_eq!(report["remesh"]["aligned_boundary"], true, "{report}");
+    let printed = String::from_utf8_lossy(&out.stdout);
+    assert!(printed.contains("quads along the courses") && printed.contains("boundary free"));
     let chosen = report["chosen_try"].as_u64().unwrap() as usize;
     let rank = |t: &serde_json::Value| {
         (
             t["wide_joints"].as_bool().unwrap(),
+            t["fit_cuts"].as_bool().unwrap(),
             t["score"].as_f64().unwrap(),
         )
     };
@@ -598,6 +618,7 @@ fn run_tries_five_quad_meshes_and_says_which_tiles_it_kept() {
         "cut_share",
         "coverage",
         "wide_joints",
+        "fit_cuts",
         "score",
         "seconds",
     ] {
@@ -614,7 +635,7 @@ fn run_tries_five_quad_meshes_and_says_which_tiles_it_kept() {
     let report = json(&one.join("report.json"));
     assert!(report.get("tries").is_none() && report.get("chosen_try").is_none());
 
-    let bad = run(&["--tries", "6"], &dir.join("bad"));
+    let bad = run(&["--tries", "7"], &dir.join("bad"));
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--tries"));
     // Each try's `key` in the report of a run with `extra` options.
@@ -626,10 +647,10 @@ fn run_tries_five_quad_meshes_and_says_which_tiles_it_kept() {
         tries.iter().map(|t| t[key].clone()).collect()
     };
     // The tries start from --renormalisation: the smooth field at it, then twice and half,
-    // then the smooth field's quads along the courses at it.
+    // then the smooth field's quads along the courses at it, and free of the boundary.
     assert_eq!(
         listed(&["--renormalisation", "0.3"], "renormalisation"),
-        [0.3, 0.3, 0.6, 0.15, 0.3]
+        [0.3, 0.3, 0.6, 0.15, 0.3, 0.3]
     );
     // --smooth asks for the smooth field: every try has it, and no smooth try of its own is
     // added (nor its quads along the courses).

@@ -108,5 +108,24 @@ namespace TilePattern.Tests
             Assert.AreEqual(12, r.Warnings[0].Face);
             Assert.AreEqual(-1, r.Warnings[1].Face);
         }
+
+        [Test]
+        public void EachTryNamesItsQuadMeshAndItsFlags()
+        {
+            Report r = Report.Parse("{\"faces\": 4, \"chosen_try\": 1, \"tries\": ["
+                + "{\"renormalisation\": 0.5, \"field\": \"curvature\", \"quads\": 4, \"p95_deviation\": 0.002, \"cut_share\": 0.02,"
+                + " \"coverage\": 0.99, \"wide_joints\": false, \"fit_cuts\": true, \"score\": 3.4, \"seconds\": 0.1},"
+                + "{\"renormalisation\": 0.5, \"field\": \"smooth\", \"boundary_free\": true, \"quads\": 4, \"p95_deviation\": 0.003,"
+                + " \"cut_share\": 0.0, \"coverage\": 0.99, \"wide_joints\": false, \"fit_cuts\": false, \"score\": 1.6, \"seconds\": 0.1}]}");
+            Assert.AreEqual(2, r.Tries.Length);
+            Assert.IsTrue(r.Tries[0].FitCuts);
+            Assert.IsFalse(r.Tries[0].BoundaryFree);
+            Assert.IsFalse(r.Tries[1].FitCuts);
+            Assert.IsTrue(r.Tries[1].BoundaryFree);
+            Assert.IsFalse(r.Tries[1].QuadsAlongCourses);
+            string remark = UserMessage.ForTries(r).Text;
+            StringAssert.Contains("try 2 (smooth field, boundary free, renormalisation 0.5) are kept", remark);
+            StringAssert.Contains("2 % of tiles cut (over 1 %)", remark);
+        }
     }
 }

@@ -156,6 +156,8 @@ namespace TilePattern.Tests
                     Assert.AreEqual((double)json["p95_deviation"], t.P95Deviation);
                     Assert.AreEqual((double)json["cut_share"], t.CutShare);
                     Assert.AreEqual((bool)json["wide_joints"], t.WideJoints);
+                    Assert.AreEqual((bool)json["fit_cuts"], t.FitCuts);
+                    Assert.IsFalse(t.BoundaryFree, "the dome's round rim is followed by no try");
                     Assert.IsNull(t.Failed);
                     Assert.Greater(t.Quads, 100);
                     Assert.That(t.Coverage, Is.InRange(0.5, 1.0 + 1e-9));

@@ -143,16 +143,17 @@ namespace TilePattern
             int chosen = report.ChosenTry;
             if (tries.Length == 0 || chosen < 0 || chosen >= tries.Length)
                 return new UserMessage(MessageLevel.Remark, "One quad mesh tried (Tries 1, or 0 on a surface of more than 10,000 quads).");
-            Func<int, string> head = k => string.Format(culture, "try {0} ({1}{2}renormalisation {3:G3})", k + 1,
+            Func<int, string> head = k => string.Format(culture, "try {0} ({1}{2}{3}renormalisation {4:G3})", k + 1,
                 tries[k].Field == null || tries[k].Field == "curvature" ? "" : tries[k].Field + " field, ",
-                tries[k].QuadsAlongCourses ? "quads along the courses, " : "", tries[k].Renormalisation);
+                tries[k].QuadsAlongCourses ? "quads along the courses, " : "",
+                tries[k].BoundaryFree ? "boundary free, " : "", tries[k].Renormalisation);
             Func<int, string> figures = k =>
             {
                 TryReport t = tries[k];
                 if (t.Failed != null)
                     return "failed: " + t.Failed;
-                string text = string.Format(culture, "p95 |gap - joint| {0:G3}{1}, {2:0.#} % of tiles cut, coverage {3:0.###}, score {4:0.##}", t.P95Deviation,
-                    t.WideJoints ? " (wide joints)" : "", 100 * t.CutShare, t.Coverage, t.Score);
+                string text = string.Format(culture, "p95 |gap - joint| {0:G3}{1}, {2:0.#} % of tiles cut{3}, coverage {4:0.###}, score {5:0.##}", t.P95Deviation,
+                    t.WideJoints ? " (wide joints)" : "", 100 * t.CutShare, t.FitCuts ? " (over 1 %)" : "", t.Coverage, t.Score);
                 if (t.LimitReached != null)
                     text += ", its " + t.LimitReached + " stage reached its time limit, so "
                         + (t.EndedTries ? "no further try was made" : "its tiles depend on the machine's speed")

@@ -548,7 +548,7 @@ namespace TilePattern
         /// <see cref="RemeshOptions.Renormalisation"/>, a smooth field at it (following neither the
         /// curvature nor anything else; made only when no direction, angle, designer's field or
         /// guide curves are given), then twice and half the strength.</summary>
-        public const int MaxTries = 5;
+        public const int MaxTries = 6;
 
         /// <summary>The library's defaults: <see cref="Tries"/> 0 (automatic).</summary>
         public RunOptions()
@@ -570,7 +570,9 @@ namespace TilePattern
         /// <see cref="RemeshOptions.TargetEdge"/>, else 1), or 1 to <see cref="MaxTries"/>
         /// (the strength <see cref="RemeshOptions.Renormalisation"/>, the smooth field at it, then
         /// twice and half the strength, then the smooth field's quads laid out for level courses,
-        /// in this order; <see cref="TryReport.Field"/> and <see cref="TryReport.QuadsAlongCourses"/>
+        /// then the smooth field free of the boundary (made only where the first try follows an
+        /// edge with corners), in this order; <see cref="TryReport.Field"/>,
+        /// <see cref="TryReport.QuadsAlongCourses"/> and <see cref="TryReport.BoundaryFree"/>
         /// name each). 1 gives what <see cref="TilePatternEngine.Remesh"/>,
         /// <see cref="TilePatternEngine.Match"/> and <see cref="TilePatternEngine.Tiles(Pattern, TileOptions, PolyMesh)"/>
         /// give one by one. Anything else throws <see cref="ArgumentOutOfRangeException"/>

@@ -640,6 +640,10 @@ namespace TilePattern
         /// along them and a course's pitch across (the fifth automatic try; report.json's
         /// <c>quads_along_courses</c>).</summary>
         public bool QuadsAlongCourses { get; internal set; }
+        /// <summary>Whether its quads follow no boundary loop, not even one with corners, their
+        /// rows cut to curved edges instead (the sixth automatic try; report.json's
+        /// <c>boundary_free</c>).</summary>
+        public bool BoundaryFree { get; internal set; }
         /// <summary>Faces of its quad mesh (0 when it failed).</summary>
         public int Quads { get; internal set; }
         /// <summary>Interior irregular vertices of its quad mesh.</summary>
@@ -653,6 +657,10 @@ namespace TilePattern
         /// <summary>Whether its report warned that the joints stray (wide_joints); tries without
         /// the warning are kept before tries with it.</summary>
         public bool WideJoints { get; internal set; }
+        /// <summary>Whether its report warned that the fit cut more than 1 % of the tiles
+        /// (fit_cuts); among tries whose joints are not flagged, tries without this warning are
+        /// kept first.</summary>
+        public bool FitCuts { get; internal set; }
         /// <summary>percent of tiles cut + p95 per half joint + percent uncovered: lower is
         /// better; NaN when the try failed.</summary>
         public double Score { get; internal set; }
@@ -676,12 +684,14 @@ namespace TilePattern
                 Renormalisation = JsonAccess.Number(t, "renormalisation"),
                 Field = JsonAccess.Text(t, "field") ?? "curvature",
                 QuadsAlongCourses = JsonAccess.Flag(t, "quads_along_courses"),
+                BoundaryFree = JsonAccess.Flag(t, "boundary_free"),
                 Quads = JsonAccess.Integer(t, "quads"),
                 InteriorIrregularVertices = JsonAccess.Integer(t, "interior_irregular_vertices"),
                 P95Deviation = JsonAccess.Number(t, "p95_deviation"),
                 CutShare = JsonAccess.Number(t, "cut_share"),
                 Coverage = JsonAccess.Number(t, "coverage"),
                 WideJoints = JsonAccess.Flag(t, "wide_joints"),
+                FitCuts = JsonAccess.Flag(t, "fit_cuts"),
                 Score = JsonAccess.Number(t, "score"),
                 Seconds = JsonAccess.Number(t, "seconds"),
                 LimitReached = JsonAccess.Text(t, "limit_reached"),

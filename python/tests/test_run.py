@@ -125,9 +125,9 @@ def test_three_tries_are_listed_and_the_best_is_kept(dome, stages):
     assert len(tries) == 3 and chosen in (0, 1, 2)
     assert [t["renormalisation"] for t in tries] == pytest.approx([0.5, 0.5, 1.0])
     assert [t["field"] for t in tries] == ["curvature", "smooth", "curvature"]
-    # The kept try is the best by the run's rank: joints not flagged first, then the score
-    # (the first of equals).
-    ranks = [(t["wide_joints"], t["score"]) for t in tries]
+    # The kept try is the best by the run's rank: joints not flagged first, then cuts not
+    # flagged, then the score (the first of equals).
+    ranks = [(t["wide_joints"], t["fit_cuts"], t["score"]) for t in tries]
     assert all(t["score"] is not None and "limit_reached" not in t for t in tries)
     assert chosen == ranks.index(min(ranks))
     assert tries[chosen]["quads"] == len(result.faces)
@@ -140,13 +140,15 @@ def test_three_tries_are_listed_and_the_best_is_kept(dome, stages):
     # 0 (automatic) makes 5 tries on this surface (268 quads, at most 10,000): the same three,
     # the curvature field at half the strength and, in level courses with quads of a course's
     # pitch (0.15, against 0.145 for half a tile and a joint), the smooth field's quads laid
-    # out for the courses; and keeps the best of the five.
+    # out for the courses; and keeps the best of the five. Its rim is round: no try follows
+    # it, so none is made free of it (the sixth try).
     auto = tp.run(V, F, **LEVEL)
     assert len(auto.tries) == 5 and auto.tries[3]["renormalisation"] == pytest.approx(0.25)
     assert [t.get("quads_along_courses", False) for t in auto.tries] == [False] * 4 + [True]
+    assert not any(t.get("boundary_free", False) for t in auto.tries)
     assert auto.tries[4]["field"] == "smooth"
     assert [t["score"] for t in auto.tries[:3]] == [t["score"] for t in tries]
-    ranks = [(t["wide_joints"], t["score"]) for t in auto.tries]
+    ranks = [(t["wide_joints"], t["fit_cuts"], t["score"]) for t in auto.tries]
     assert auto.chosen_try == ranks.index(min(ranks))
     if auto.chosen_try == chosen:
         assert np.array_equal(auto.tiles.corners, result.tiles.corners)
@@ -192,10 +194,10 @@ def test_a_cancel_in_the_last_try_cancels_the_run(dome):
     assert heard[-1] >= 0.999 and heard[0] < 1.0 / 3
 
 
-@pytest.mark.parametrize("tries", [6, -1, 2.0, "2", True, None])
+@pytest.mark.parametrize("tries", [7, -1, 2.0, "2", True, None])
 def test_bad_tries_are_refused_by_name(dome, tries):
     V, F = dome
-    with pytest.raises(tp.InvalidArgumentError, match=r"^TP_INVALID_ARGUMENT \(2\): tries is .*0 \(automatic\) or 1 to 5"):
+    with pytest.raises(tp.InvalidArgumentError, match=r"^TP_INVALID_ARGUMENT \(2\): tries is .*0 \(automatic\) or 1 to 6"):
         tp.run(V, F, tries=tries, **LEVEL)
 
 
@@ -204,8 +206,8 @@ def test_the_library_refuses_bad_tries_and_named_quads_too(dome):
     V, F = dome
     remesh, pattern, tiles, run = nat.remesh_options(), nat.pattern_options(), nat.tile_options(), nat.run_options()
     with mesh_handle(V, F) as surface:
-        run.tries = 6
-        with pytest.raises(tp.InvalidArgumentError, match="tries is 6"):
+        run.tries = 7
+        with pytest.raises(tp.InvalidArgumentError, match="tries is 7"):
             surface.run(remesh, pattern, tiles, run)
         run.tries = 1
         pair = np.array([0, 1], dtype=np.uint32)

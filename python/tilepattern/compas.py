@@ -374,7 +374,7 @@ def run(mesh, zones=None, excluded_faces=None, **options):
     """Tile a COMPAS surface in one call, keeping the best of a few quad meshes.
 
     :func:`tilepattern.run` on a COMPAS mesh: remesh, match and tiles (fitted, cut to the
-    surface), on up to five quad meshes (``tries``), the tiles that fit best kept.
+    surface), on up to six quad meshes (``tries``), the tiles that fit best kept.
 
     Parameters
     ----------
@@ -409,7 +409,7 @@ def run(mesh, zones=None, excluded_faces=None, **options):
     >>> result = tpc.run(surface, length=0.58, width=0.29, thickness=0.04, joint=0.02, courses="level", time_limit=10)
     >>> quads, pattern, boxes = result
     >>> all(len(quads.face_vertices(f)) == 4 for f in quads.faces()), len(result.tries), boxes[0].name
-    (True, 5, 'F')
+    (True, 6, 'F')
     """
     vertices, faces, keys = mesh_vertices_faces(mesh)
     result = core.run(

@@ -906,10 +906,12 @@ class Tiles:
     @property
     def tries(self) -> List[dict]:
         """The tries of :func:`run` (the report's ``tries``), in order: ``renormalisation``,
-        ``quads``, ``p95_deviation``, ``cut_share``, ``coverage``, ``wide_joints``, ``score``,
-        ``seconds``, ``field`` (``"curvature"``, or ``"smooth"`` for the last automatic
-        try, whose field follows nothing), and ``limit_reached`` or ``failed`` where they
-        apply. Empty for
+        ``quads``, ``p95_deviation``, ``cut_share``, ``coverage``, ``wide_joints``,
+        ``fit_cuts`` (more than 1 % of the tiles cut by the fit), ``score``,
+        ``seconds``, ``field`` (``"curvature"``, or ``"smooth"`` for the tries whose field
+        follows nothing), ``quads_along_courses`` and ``boundary_free`` (the fifth and sixth
+        automatic tries, written only for them), and ``limit_reached`` or ``failed`` where
+        they apply. Empty for
         :func:`tiles` and when one try was asked for (when more were and one reached a time
         limit that ended the tries, it lists those made)."""
         return list(self.report.get("tries", []))
@@ -1218,7 +1220,7 @@ class RunResult:
 
 
 #: Most quad meshes :func:`run` tries (the library's ``pipeline::MAX_TRIES``).
-MAX_TRIES = 5
+MAX_TRIES = 6
 
 
 def _tries(tries) -> int:
@@ -1309,13 +1311,17 @@ def run(
     tries : int, optional
         How many quad meshes to carry through to tiles: 0 (default) for the command line's
         choice, all of them when the surface needs at most 10,000 quads of ``target_edge``
-        (its area over ``target_edge`` squared) and 1 otherwise; or 1 to 5: the
+        (its area over ``target_edge`` squared) and 1 otherwise; or 1 to 6: the
         renormalisation strength given, a smooth field that follows neither the curvature nor
         anything else (made only without a direction, angle, designer's field or guides),
         then twice and half the strength, then the smooth field's quads laid out for level
         courses, half a tile and a joint along them and a course's pitch across (made only
         in level courses with quads of a course's pitch: a course closed on itself, a
-        tower's or a drum's ring, then holds whole tiles at the nominal joint). Anything else raises
+        tower's or a drum's ring, then holds whole tiles at the nominal joint), then the smooth
+        field free of the boundary, its rows cut to curved edges instead of following them
+        (made only where the first try follows an edge with corners: on a developable shell
+        with curved edges, a conical vault, its courses are then straight on the
+        development and fit to a fraction of a millimetre). Anything else raises
         :class:`~tilepattern.InvalidArgumentError` naming ``tries``. Each try has the
         stages' own time limits (a later try's pattern stage at most 10 s, but the smooth
         field's try the caller's where the first try's quads end rows all over the

@@ -270,15 +270,17 @@ impl FieldArgs {
 #[derive(clap::Args)]
 struct TriesArg {
     /// Quad meshes to lay tiles on, keeping the tiles that fit best (fewest cut, joints closest
-    /// to the nominal one, most of the surface covered; report.json lists each try): 1 to 5,
+    /// to the nominal one, most of the surface covered; report.json lists each try): 1 to 6,
     /// the field's cones placed by a renormalisation at --renormalisation's strength (run;
     /// the default for demo), then a smooth field that follows neither the curvature nor
     /// anything else (made only when no --direction, --angle, --field or --guides is given),
     /// then twice and half the strength, then the smooth field's quads laid out for level
-    /// courses, half a tile and a joint along them (made only in level courses). Default: all
-    /// of them on surfaces of at most 10,000 quads, 1 on larger ones. Each try has the
-    /// stages' time limits.
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=5))]
+    /// courses, half a tile and a joint along them (made only in level courses), then the
+    /// smooth field free of the boundary, its rows cut to curved edges instead of following
+    /// them (made only where the first try follows an edge with corners). Default: all of
+    /// them on surfaces of at most 10,000 quads, 1 on larger ones. Each try has the stages'
+    /// time limits.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=6))]
     tries: Option<u64>,
 }
 
@@ -1597,6 +1599,9 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
                 if x.quads_along_courses {
                     field.push_str("quads along the courses, ");
                 }
+                if x.boundary_free {
+                    field.push_str("boundary free, ");
+                }
                 match x.score {
                     None => format!(
                         "\n  try {} ({field}renormalisation {}): failed: {}",
@@ -1605,7 +1610,7 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
                         x.failed.as_deref().unwrap_or("no tiles")
                     ),
                     Some(score) => format!(
-                        "\n  try {} ({field}renormalisation {}): {} quads, {} irregular, p95 {:.1} mm{}, {:.1} % cut, coverage {:.3}, score {:.2}, {:.1} s{}{kept}",
+                        "\n  try {} ({field}renormalisation {}): {} quads, {} irregular, p95 {:.1} mm{}, {:.1} % cut{}, coverage {:.3}, score {:.2}, {:.1} s{}{kept}",
                         k + 1,
                         x.renormalisation,
                         x.quads,
@@ -1613,6 +1618,7 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
                         x.p95_deviation / mm,
                         if x.wide_joints { " (wide_joints)" } else { "" },
                         100.0 * x.cut_share,
+                        if x.fit_cuts { " (fit_cuts)" } else { "" },
                         x.coverage,
                         score,
                         x.seconds,
@@ -1625,7 +1631,7 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
             })
             .collect();
         format!(
-            "\n{} {}, the tiles of try {} kept (joints not flagged wide first, then the lowest score: % cut + p95 per half joint + % uncovered):{}",
+            "\n{} {}, the tiles of try {} kept (joints not flagged wide first, then cuts not flagged, then the lowest score: % cut + p95 per half joint + % uncovered):{}",
             lines.len(),
             if lines.len() == 1 { "try" } else { "tries" },
             chosen + 1,

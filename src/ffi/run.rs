@@ -23,10 +23,12 @@ pub struct TpRunOptions {
     pub struct_size: u32,
     /// How many quad meshes to carry through to tiles: 0 (default) for the command line's
     /// choice (all when the surface needs at most 10,000 quads of `target_edge`, otherwise
-    /// 1), or 1 to 5: the remesh options' `renormalisation`, then a smooth field (only when
+    /// 1), or 1 to 6: the remesh options' `renormalisation`, then a smooth field (only when
     /// the field follows the curvature alone), then twice and half the strength, then the
     /// smooth field's quads laid out for level courses (only in level courses with quads
-    /// raised to a course's pitch). The tiles that fit best are kept (README, *Tries*).
+    /// raised to a course's pitch), then the smooth field free of the boundary (only where
+    /// the first try follows an edge with corners and `boundary` is automatic). The tiles that
+    /// fit best are kept (README, *Tries*).
     pub tries: u32,
 }
 
@@ -52,7 +54,7 @@ pub unsafe extern "C" fn tp_run_options_init(options: *mut TpRunOptions, size: u
 
 /// Tiles a triangle or polygon surface in one call, as the command line's `run`: quadrangulates
 /// it (`remesh`), matches the quads (`pattern`) and places, fits and cuts the tiles (`tiles`),
-/// on up to five quad meshes (`run->tries`), and keeps the tiles that fit best. Their report
+/// on up to six quad meshes (`run->tries`), and keeps the tiles that fit best. Their report
 /// (`tp_tiles_report_json`) lists every try (`tries`) and the one kept (`chosen_try`).
 ///
 /// `*out_tiles` gets the kept tiles; `*out_quads` and `*out_pattern` (each may be NULL when

@@ -47,6 +47,11 @@ pub struct Metrics {
     /// the surface (the rings of a dome of revolution, a bell), where each row end costs
     /// tiles cut. False when measured on a foreign mesh.
     pub coarse_start: bool,
+    /// Some boundary loop was followed: its crosses pinned to the boundary's tangents and a
+    /// lattice line laid on it ([`crate::remesh::BoundaryAlignment`]; `Auto` follows the
+    /// loops with corners). False when no loop was (a dome's round rim under `Auto`, `Never`)
+    /// and when measured on a foreign mesh.
+    pub aligned_boundary: bool,
 }
 
 /// Measures `quads` against `input` at target edge `t`; works on any polygon mesh, e.g.
@@ -200,6 +205,7 @@ pub(crate) fn metrics_with(
         crease_sheets: 0,
         input_vertices_removed: 0,
         coarse_start: false,
+        aligned_boundary: false,
     }
 }
 

@@ -509,6 +509,7 @@ pub fn remesh_with(
         _ => 0.0,
     };
     let aligned = work.aligned_boundary(options.effective_boundary());
+    let aligned_boundary = aligned.iter().any(|&a| a);
     field::snap_boundary(&work, &aligned, &mut work_frames, rotation);
     // Lattice lines can lie on the boundary only when the crosses follow it.
     let pin = (rotation / 90.0 - (rotation / 90.0).round()).abs() < 1e-9;
@@ -548,6 +549,7 @@ pub fn remesh_with(
     found.seconds = seconds;
     found.crease_sheets = sheets.as_ref().map_or(0, |s| s.count);
     found.coarse_start = coarse_start;
+    found.aligned_boundary = aligned_boundary;
     budget.finish();
     Ok(Remeshed {
         quads,

@@ -43,6 +43,11 @@ pub struct TryFigures {
     /// and a course's pitch across (the fifth automatic try; written only for it).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub quads_along_courses: bool,
+    /// Whether its quads follow no boundary loop, not even one with corners (the sixth
+    /// automatic try, written only for it): the smoothest field there is, parallel on a
+    /// developable surface, whose rows meet curved edges at any angle and are cut to them.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub boundary_free: bool,
     /// Faces of its quad mesh.
     pub quads: usize,
     /// Interior irregular vertices of its quad mesh.
@@ -56,6 +61,9 @@ pub struct TryFigures {
     /// Whether its report warns that the joints stray (`wide_joints`); tries without the
     /// warning are kept before tries with it.
     pub wide_joints: bool,
+    /// Whether its report warns that the fit cut more than 1 % of the tiles (`fit_cuts`);
+    /// among tries whose joints are not flagged, tries without this warning are kept first.
+    pub fit_cuts: bool,
     /// `pipeline::score`: lower is better (none when the try failed).
     pub score: Option<f64>,
     /// Seconds of this try, all stages.
