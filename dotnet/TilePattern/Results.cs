@@ -661,8 +661,8 @@ namespace TilePattern
         /// (fit_cuts); among tries whose joints are not flagged, tries without this warning are
         /// kept first.</summary>
         public bool FitCuts { get; internal set; }
-        /// <summary>percent of tiles cut + p95 per half joint + percent uncovered: lower is
-        /// better; NaN when the try failed.</summary>
+        /// <summary>percent of tiles cut + p95 per half joint + percent uncovered + a quarter of the
+        /// percent of pieces cut at the edge: lower is better; NaN when the try failed.</summary>
         public double Score { get; internal set; }
         /// <summary>Seconds of this try, all stages.</summary>
         public double Seconds { get; internal set; }

@@ -234,13 +234,14 @@ namespace TilePattern
 
         /// <summary>The whole pipeline in one call, as the command line's <c>run</c>: remeshes
         /// <paramref name="surface"/> (a triangle or polygon mesh), matches the quads and lays,
-        /// fits and cuts the tiles to the surface's boundary, on up to five quad meshes
+        /// fits and cuts the tiles to the surface's boundary, on up to six quad meshes
         /// (<see cref="RunOptions.Tries"/>: the strength <see cref="RemeshOptions.Renormalisation"/>,
         /// the smooth field at it, twice and half the strength, the smooth field's quads laid
-        /// out for level courses), and keeps the tiles that fit best: first those whose joints
-        /// the report does not flag (<see cref="TilingWarningCode.WideJoints"/>), then the lowest
+        /// out for level courses, the smooth field free of the boundary), and keeps the tiles that fit best: first those whose joints
+        /// the report does not flag (<see cref="TilingWarningCode.WideJoints"/>), then those whose
+        /// cuts it does not flag (<see cref="TilingWarningCode.FitCuts"/>), then the lowest
         /// score (percent of tiles cut + p95 joint deviation per half joint + percent of the
-        /// surface uncovered). The kept tiling's <see cref="Report.Tries"/> lists every try and
+        /// surface uncovered + a quarter of the percent of pieces cut at the edge). The kept tiling's <see cref="Report.Tries"/> lists every try and
         /// <see cref="Report.ChosenTry"/> the one kept (neither when one try was asked for).
         /// <para>Null options are the command line's run's: default tiles, level courses (null
         /// <paramref name="pattern"/>: a <see cref="PatternOptions"/> with

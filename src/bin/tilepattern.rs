@@ -1631,7 +1631,7 @@ fn tiling_summary(t: &Tiling, units: Units) -> String {
             })
             .collect();
         format!(
-            "\n{} {}, the tiles of try {} kept (joints not flagged wide first, then cuts not flagged, then the lowest score: % cut + p95 per half joint + % uncovered):{}",
+            "\n{} {}, the tiles of try {} kept (joints not flagged wide first, then cuts not flagged, then the lowest score: % cut + p95 per half joint + % uncovered + % cut at the edge / 4):{}",
             lines.len(),
             if lines.len() == 1 { "try" } else { "tries" },
             chosen + 1,
