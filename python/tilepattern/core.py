@@ -1290,12 +1290,14 @@ def run(
 
     As the command line's ``tilepattern run``: the surface is quadrangulated (:func:`remesh`),
     the quads matched (:func:`match`) and the tiles placed, fitted and cut to the surface
-    (:func:`tiles`), on up to five quad meshes, the field's cones placed by a
+    (:func:`tiles`), on up to six quad meshes, the field's cones placed by a
     renormalisation at ``renormalisation``, then a smooth field, then at twice and half the
-    strength, then the smooth field's quads laid out for level courses (other strengths and
-    fields give other, equally valid quads, which decide where courses end). The tiles that fit
-    best are kept: joints the report does not flag (``wide_joints``) first, then the fewest
-    tiles cut to fit, joints closest to ``joint`` and most of the surface covered. One try
+    strength, then the smooth field's quads laid out for level courses, then the smooth field
+    free of the boundary (other strengths and fields give other, equally valid quads, which
+    decide where courses end). The tiles that fit best are kept: joints the report does not
+    flag (``wide_joints``) first, then cuts it does not flag (``fit_cuts``), then the fewest
+    tiles cut to fit, joints closest to ``joint``, most of the surface covered and fewest
+    pieces cut at the edge. One try
     gives exactly what :func:`remesh`, :func:`match` and :func:`tiles` give called one by one
     with the same options and ``surface=(vertices, faces)``.
 

@@ -692,65 +692,6 @@ mod tests {
         assert!(!wide_joints(r));
     }
 
-    /// Half a conical frustum (radius 3 m at the springing, 1.5 m at the top, 2 m high):
-    /// developable, so tiles can fit it exactly, in courses straight on its development.
-    fn half_frustum() -> PolyMesh {
-        let (nu, nv) = (120, 60);
-        let mut positions = Vec::new();
-        for j in 0..=nv {
-            for i in 0..=nu {
-                let (a, v) = (
-                    std::f64::consts::PI * i as f64 / nu as f64,
-                    j as f64 / nv as f64,
-                );
-                let r = 3.0 - 1.5 * v;
-                positions.push(nalgebra::Point3::new(r * a.cos(), r * a.sin(), 2.0 * v));
-            }
-        }
-        let mut faces = Vec::new();
-        for j in 0..nv {
-            for i in 0..nu {
-                let a = j * (nu + 1) + i;
-                faces.push(vec![a, a + 1, a + nu + 2]);
-                faces.push(vec![a, a + nu + 2, a + nu + 1]);
-            }
-        }
-        PolyMesh::new(positions, faces).unwrap()
-    }
-
-    #[test]
-    fn on_a_developable_frustum_the_try_free_of_its_curved_edges_fits_to_the_millimetre() {
-        // Its four corners make every other try follow its edges: rows along the arcs at the
-        // springing and the top converge as those arcs do (1.6 mm p95 at best). Free of
-        // them, the smoothest field is parallel on the development, and so are the courses.
-        let (spec, options, remesh) = level_courses();
-        let (quads, tiling) = tile_surface_tries(
-            &half_frustum(),
-            &remesh,
-            &options,
-            &spec,
-            &FinishOptions::for_spec(&spec),
-            Tries::Auto,
-            &mut Control::none(),
-        )
-        .unwrap();
-        let r = &tiling.report;
-        println!("{:?}", r.tries);
-        let free: Vec<bool> = r.tries.iter().map(|x| x.boundary_free).collect();
-        assert_eq!(free, [false, false, false, false, false, true]);
-        assert_eq!(r.chosen_try, Some(5));
-        assert!(!quads.metrics.aligned_boundary);
-        assert!(r.tries[..5].iter().all(|x| x.p95_deviation > 1e-3));
-        assert!(
-            r.joints.p95_deviation <= 0.5e-3,
-            "p95 |gap - joint| {}",
-            r.joints.p95_deviation
-        );
-        assert!(r.joints.max_overlap <= 1e-3, "{:?}", r.joints);
-        assert_eq!(cut_share(r), 0.0);
-        assert_eq!(quads.metrics.interior_irregular_vertices, 0);
-    }
-
     #[test]
     fn an_input_much_finer_than_the_quads_is_tiled_simplified_and_as_well() {
         let (spec, options, remesh) = level_courses();
