@@ -194,7 +194,9 @@ fn course_quads(
 /// The [`VARIANTS`] of the tries [`tile_surface_tries`] makes, at most `count` of them: a
 /// smooth try only where the field would follow the curvature alone (a direction, an angle,
 /// a designer's field or guide curves asked for are kept in every try), the courses' quads
-/// only where there are some (`courses`, [`course_quads`]).
+/// only where there are some (`courses`, [`course_quads`]), the try free of the boundary
+/// only where its alignment is automatic ([`tile_surface_tries`] skips it too where the
+/// first try followed no loop).
 fn variants(remesh: &RemeshOptions, courses: bool, count: usize) -> Vec<Variant> {
     let curvature_alone = remesh.direction == FieldDirection::Curvature && !remesh.designer_pulls();
     let boundary_auto = remesh.effective_boundary() == BoundaryAlignment::Auto;
