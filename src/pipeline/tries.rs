@@ -273,12 +273,9 @@ pub fn score(report: &Report) -> f64 {
 /// (README, *Free of the boundary: a sixth try*).
 const EDGE_CUT_PERCENT: f64 = 4.0;
 
-/// Pieces cut to the surface's edge (tiles cut to the boundary and filler pieces, less
-/// those cut inside the fit's holes, which [`cut_share`] counts) per full and half tile.
+/// Pieces cut to the surface's edge ([`Report::edge_cut_count`]) per full and half tile.
 fn edge_cut_share(report: &Report) -> f64 {
-    let tiles = (report.full_tiles + report.half_tiles).max(1) as f64;
-    let inside = report.cutting.as_ref().map_or(0, |c| c.tear_cuts);
-    report.boundary_tiles.saturating_sub(inside) as f64 / tiles
+    per_tile(report, report.edge_cut_count())
 }
 
 /// [`tile_surface`] on up to [`MAX_TRIES`] quad meshes of `surface` (see the module
@@ -366,8 +363,8 @@ pub fn tile_surface_tries(
                 let r = &tiling.report;
                 let value = score(r);
                 let limit = limit_reached(r);
-                let wide = wide_joints(r);
-                let many_cuts = fit_cuts(r);
+                let wide = r.warns(WarningCode::WideJoints);
+                let many_cuts = r.warns(WarningCode::FitCuts);
                 let ended_tries = limit.is_some_and(|stage| ends_tries(k, stage, options));
                 listed.push(TryFigures {
                     renormalisation: options_k.renormalisation,
@@ -473,8 +470,12 @@ fn coverage(report: &Report) -> f64 {
 
 /// Tiles cut by the fit ([`Report::fit_cut_count`]) per full and half tile.
 fn cut_share(report: &Report) -> f64 {
-    let tiles = (report.full_tiles + report.half_tiles).max(1) as f64;
-    report.fit_cut_count() as f64 / tiles
+    per_tile(report, report.fit_cut_count())
+}
+
+/// `count` per full and half tile of `report` (per one when there are none).
+fn per_tile(report: &Report, count: usize) -> f64 {
+    count as f64 / (report.full_tiles + report.half_tiles).max(1) as f64
 }
 
 /// The pattern stage's time limit of try `k` (from 0) of `variant`. The first try has the
@@ -525,27 +526,9 @@ fn limit_reached(report: &Report) -> Option<&'static str> {
     }
 }
 
-/// Whether the report warns that the joints stray (`wide_joints`: p95 beyond
-/// [`crate::tiles::fit::MAX_P95_DEVIATION_SHARE`] of the joint).
-fn wide_joints(report: &Report) -> bool {
-    report
-        .warnings
-        .iter()
-        .any(|w| w.code == WarningCode::WideJoints)
-}
-
 /// How a try ranks, lower first: its joints flagged wide (`wide_joints`), its cuts flagged
 /// (`fit_cuts`), its [`score`].
 type Rank = (bool, bool, f64);
-
-/// Whether the report warns that the fit cut more than
-/// [`crate::report::warnings::MAX_FIT_CUT_SHARE`] of the tiles (`fit_cuts`).
-fn fit_cuts(report: &Report) -> bool {
-    report
-        .warnings
-        .iter()
-        .any(|w| w.code == WarningCode::FitCuts)
-}
 
 /// Whether `e` is the caller's cancel, which ends every try.
 fn is_cancel(e: &Error) -> bool {
@@ -691,7 +674,7 @@ mod tests {
         assert!(quads.metrics.edges_within_20pct > 0.85);
         assert!(cut_share(r) < 0.02, "{}", cut_share(r));
         assert!(coverage(r) > 0.97, "{}", coverage(r));
-        assert!(!wide_joints(r));
+        assert!(!r.warns(WarningCode::WideJoints));
     }
 
     #[test]
@@ -803,8 +786,8 @@ mod tests {
             "ties go to the earlier try"
         );
         assert_eq!(score(r), ranks[chosen].2);
-        assert_eq!(wide_joints(r), ranks[chosen].0);
-        assert_eq!(fit_cuts(r), ranks[chosen].1);
+        assert_eq!(r.warns(WarningCode::WideJoints), ranks[chosen].0);
+        assert_eq!(r.warns(WarningCode::FitCuts), ranks[chosen].1);
         assert_eq!(quads.quads.face_count(), r.tries[chosen].quads);
         let strengths: Vec<f64> = r.tries.iter().map(|x| x.renormalisation).collect();
         assert_eq!(strengths, [0.5, 0.5, 1.0]);

@@ -200,6 +200,19 @@ impl Report {
         self.joints.fit_cuts + self.cutting.as_ref().map_or(0, |c| c.tear_cuts)
     }
 
+    /// Pieces cut to the surface's edge: the tiles and filler pieces cut (kind boundary,
+    /// [`Self::boundary_tiles`]) less those cut inside the fit's holes, which
+    /// [`Self::fit_cut_count`] counts.
+    pub fn edge_cut_count(&self) -> usize {
+        let inside = self.cutting.as_ref().map_or(0, |c| c.tear_cuts);
+        self.boundary_tiles.saturating_sub(inside)
+    }
+
+    /// Whether the report warns with `code`.
+    pub fn warns(&self, code: WarningCode) -> bool {
+        self.warnings.iter().any(|w| w.code == code)
+    }
+
     /// Summarises a tiling built from `pattern` on `mesh`, in metres (see [`Report::measured`]).
     pub fn new(mesh: &PolyMesh, pattern: &Pattern, tiles: &[Tile], spec: &TileSpec) -> Self {
         Self::measured(
