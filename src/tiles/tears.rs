@@ -151,7 +151,22 @@ impl Tears<'_> {
         // sample is otherwise asked once for every sample within half a width of it).
         let mut done = vec![false; open.len()];
         let mut tried = 0;
-        for i in 0..open.len() {
+        // Holes are filled from their edges in, as a mason fills them: the samples nearest a
+        // tile first (by the distance to the nearest origin within a piece's touch; ties in
+        // face order), so that each piece continues a course from a tile beside it and the
+        // pieces deeper in continue those. With the slide of [`Tears::standard`], measured on
+        // 27 shells (docs/journal.md, *Holes filled from their edges*): pieces cut in the
+        // holes 1136 -> 1009 of about 34,000 tiles, the drum's share cut 21.4 -> 18.0 %.
+        let from_edges = |i: usize| {
+            placed
+                .near(&open[i].0, touching)
+                .into_iter()
+                .map(|t| (tiles[t].frame.origin - open[i].0).norm())
+                .fold(f64::INFINITY, f64::min)
+        };
+        let mut order: Vec<(f64, usize)> = (0..open.len()).map(|i| (from_edges(i), i)).collect();
+        order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        for i in order.into_iter().map(|(_, i)| i) {
             let (q, normal, _, sheet) = open[i];
             if done[i] || covered(tiles, &placed, &q) {
                 done[i] = true;
@@ -231,7 +246,8 @@ impl Tears<'_> {
                 if piece.cut.is_none() || at_edge {
                     return (piece, at_edge);
                 }
-                let near = placed.near(&piece.frame.origin, touching);
+                // A whole tile may slide up to a blank's length from the piece.
+                let near = placed.near(&piece.frame.origin, touching + self.blank[0]);
                 match self.standard(&piece, tiles, &outlines, &near, &q) {
                     Some(whole) => (whole, false),
                     None => (piece, at_edge),
@@ -347,9 +363,13 @@ impl Tears<'_> {
     /// the room inside a hole, where that room holds one with every joint at most
     /// [`JOINT_SPREAD`] of a joint from the nominal one: a mason opens or closes the joints
     /// around a gap a little rather than cut a tile a few millimetres short. The piece is
-    /// centred on the room `cut` keeps (its outline's extent in its own frame) and must lie
-    /// wholly on the surface, clear of its neighbours by the narrowest joint allowed, and
-    /// still cover the sample `q` it is laid for (within a joint).
+    /// centred on the room `cut` keeps (its outline's extent in its own frame); a whole
+    /// tile may also keep the one end of the blank that was cut and slide away from it, into
+    /// the hole beyond the blank's other end, as a mason lays the next tile of a course a
+    /// joint from the last rather than cut it to where a lattice put it. It must lie wholly
+    /// on the surface, clear of its neighbours by the narrowest joint allowed, and still
+    /// cover the sample `q` it is laid for (within a joint). `near` must hold every tile
+    /// that may touch a piece up to a blank's length from `cut`.
     fn standard(
         &self,
         cut: &Tile,
@@ -372,34 +392,50 @@ impl Tears<'_> {
         if !room[1].is_finite() || room[1] < self.blank[1] - 2.0 * spread {
             return None;
         }
-        let centre = cut.frame.origin
-            + cut.frame.x * ((lo[0] + hi[0]) / 2.0)
-            + cut.frame.y * ((lo[1] + hi[1]) / 2.0);
-        let centre = self.boundary.closest(&centre, self.blank[1])?;
-        let frame = Frame::from_normal(centre, cut.frame.z, &cut.frame.x);
+        let across = (lo[1] + hi[1]) / 2.0;
+        // Where a piece of `length` may lie along the room: centred on it, where the room is
+        // about as long (each joint along it takes half of the difference); or, for a whole
+        // tile where the cut took one end of the blank only, with that end kept and the tile
+        // slid away from it into the room the blank did not reach. (A half slid so would
+        // leave a room short of a half behind it: another cut.)
+        let (hx, tolerance) = (self.blank[0] / 2.0, self.tolerance.max(self.joint * 1e-3));
+        let places = |kind: TileKind, length: f64| {
+            let centred =
+                ((room[0] - length).abs() <= 2.0 * spread).then_some((lo[0] + hi[0]) / 2.0);
+            let slides = kind == TileKind::Full;
+            let from_low = (slides && lo[0] > -hx + tolerance && hi[0] >= hx - tolerance)
+                .then_some(lo[0] + length / 2.0);
+            let from_high = (slides && hi[0] < hx - tolerance && lo[0] <= -hx + tolerance)
+                .then_some(hi[0] - length / 2.0);
+            [centred, from_low, from_high].into_iter().flatten()
+        };
         for (kind, length) in [
             (TileKind::Full, self.blank[0]),
             (TileKind::Half, self.blank[0] / 2.0),
         ] {
-            if (room[0] - length).abs() > 2.0 * spread {
-                continue;
-            }
-            let mut piece = Tile::new(
-                kind,
-                Vec::new(),
-                frame,
-                [length, self.blank[1], self.blank[2]],
-            );
-            if !matches!(self.boundary.clip(&piece, self.tolerance), Clipped::Whole) {
-                continue;
-            }
-            if !super::fit::cut_to_room(&mut piece, tiles, outlines, near, self.joint - spread)
-                || piece.cut.is_some()
-            {
-                continue;
-            }
-            if clear_of(&piece, tiles, outlines, near) && covers(&piece, q, self.joint) {
-                return Some(piece);
+            for along in places(kind, length) {
+                let centre = cut.frame.origin + cut.frame.x * along + cut.frame.y * across;
+                let Some(centre) = self.boundary.closest(&centre, self.blank[1]) else {
+                    continue;
+                };
+                let frame = Frame::from_normal(centre, cut.frame.z, &cut.frame.x);
+                let mut piece = Tile::new(
+                    kind,
+                    Vec::new(),
+                    frame,
+                    [length, self.blank[1], self.blank[2]],
+                );
+                if !matches!(self.boundary.clip(&piece, self.tolerance), Clipped::Whole) {
+                    continue;
+                }
+                if !super::fit::cut_to_room(&mut piece, tiles, outlines, near, self.joint - spread)
+                    || piece.cut.is_some()
+                {
+                    continue;
+                }
+                if clear_of(&piece, tiles, outlines, near) && covers(&piece, q, self.joint) {
+                    return Some(piece);
+                }
             }
         }
         None
@@ -482,18 +518,23 @@ mod tests {
         filled(surface, tiles).pieces
     }
 
-    fn filled(surface: &PolyMesh, tiles: &mut Vec<Tile>) -> Filled {
-        let boundary = SurfaceBoundary::new(surface, 0.28);
+    /// The tear fill of 280 x 140 x 15 blanks with 10 mm joints on `surface`, cut to
+    /// `boundary` (its own).
+    fn tears_on<'a>(surface: &'a PolyMesh, boundary: &'a SurfaceBoundary) -> Tears<'a> {
         Tears {
             surface,
-            boundary: &boundary,
+            boundary,
             blank: [0.28, 0.14, 0.015],
             joint: 0.01,
             min_width: 0.028,
             tolerance: 0.001,
             excluded: None,
         }
-        .fill(tiles, &mut || true)
+    }
+
+    fn filled(surface: &PolyMesh, tiles: &mut Vec<Tile>) -> Filled {
+        let boundary = SurfaceBoundary::new(surface, 0.28);
+        tears_on(surface, &boundary).fill(tiles, &mut || true)
     }
 
     #[test]
@@ -673,5 +714,109 @@ mod tests {
         let surface = rectangle(1.16, h);
         let mut tiles = rows(h);
         assert_eq!(fill(&surface, &mut tiles), 0);
+    }
+
+    /// A flat sheet 0.44 m high and `w` long, courses of 280 x 140 tiles at the bottom and the
+    /// top filled to `w` from its left edge, and a middle course, staggered half a tile, with
+    /// a tile at each end and a gap of `g` between them.
+    fn middle_course_with_a_gap(w: f64, g: f64) -> (PolyMesh, Vec<Tile>) {
+        let tile = |x: f64, y: f64| {
+            let frame = Frame::from_normal(Point3::new(x, y, 0.0), Vector3::z(), &Vector3::x());
+            Tile::new(TileKind::Full, vec![], frame, [0.28, 0.14, 0.015])
+        };
+        let count = ((w + 0.01) / 0.29).floor() as usize;
+        let mut tiles: Vec<Tile> = (0..count)
+            .flat_map(|i| {
+                let x = 0.14 + 0.29 * i as f64;
+                [tile(x, 0.07), tile(x, 0.37)]
+            })
+            .collect();
+        tiles.extend([tile(0.285, 0.22), tile(0.425 + g + 0.14, 0.22)]);
+        (rectangle(w, 0.44), tiles)
+    }
+
+    #[test]
+    fn a_long_hole_in_a_staggered_course_takes_standard_pieces_and_one_closer() {
+        // 1.56 m between the course's two tiles, its courses staggered by half a tile: five
+        // standard lengths and their joints take at most 1.46 m, and one piece cut to what is
+        // left closes the course, as a mason lays it; every joint within half a joint of the
+        // nominal one.
+        let (w, g) = (2.35, 1.56);
+        let (surface, mut tiles) = middle_course_with_a_gap(w, g);
+        let before = tiles.len();
+        filled(&surface, &mut tiles);
+        let in_gap = |t: &&Tile| kept_at(t, 0.425 + g / 2.0, 0.22, g / 2.0);
+        let laid: Vec<&Tile> = tiles[before..].iter().filter(in_gap).collect();
+        let cut = laid.iter().filter(|t| t.cut.is_some()).count();
+        let whole = laid.iter().filter(|t| t.cut.is_none()).count();
+        assert_eq!(cut, 1, "{laid:?}");
+        assert!(whole >= 4, "{whole} whole pieces");
+        let length: f64 = laid.iter().map(|t| t.kept_area() / 0.14).sum();
+        assert!(
+            length >= g - 0.02 * (laid.len() as f64 + 1.0) - 1e-6,
+            "{length}"
+        );
+        for piece in &laid {
+            for other in &tiles {
+                let s = outline::separation(piece, other);
+                if !std::ptr::eq(*piece, other) && s.gap < 0.03 {
+                    assert!(s.gap >= 0.005 - 1e-9, "joint {}", s.gap);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_piece_cut_at_one_end_only_is_slid_whole_into_the_room_beyond_the_other() {
+        let surface = rectangle(1.2, 0.44);
+        let boundary = SurfaceBoundary::new(&surface, 0.28);
+        let tears = tears_on(&surface, &boundary);
+        let at =
+            |x: f64| Frame::from_normal(Point3::new(x, 0.22, 0.0), Vector3::z(), &Vector3::x());
+        // A tile on [0, 0.28], and a piece laid on [0.21, 0.49]: cut a joint from the tile,
+        // it keeps 200 mm, no standard length, and the room beyond its right end is free.
+        let tiles = vec![Tile::new(
+            TileKind::Full,
+            vec![],
+            at(0.14),
+            [0.28, 0.14, 0.015],
+        )];
+        let outlines: Vec<_> = tiles.iter().map(outline::world_corners).collect();
+        let q = Point3::new(0.4, 0.22, 0.0);
+        let (cut, at_edge) = tears.piece(at(0.35), &tiles, &outlines, &[0], &q).unwrap();
+        assert!(!at_edge);
+        assert!(
+            (cut.kept_area() - 0.2 * 0.14).abs() < 1e-9,
+            "{}",
+            cut.kept_area()
+        );
+        let whole = tears
+            .standard(&cut, &tiles, &outlines, &[0], &q)
+            .expect("a whole tile slid away from the cut");
+        assert_eq!(
+            (whole.kind, whole.size),
+            (TileKind::Full, [0.28, 0.14, 0.015])
+        );
+        assert!(whole.cut.is_none());
+        let s = outline::separation(&tiles[0], &whole);
+        assert!((s.gap - 0.01).abs() < 1e-6, "joint {}", s.gap);
+        // With a tile 0.20 m on beyond the piece's kept end, the room is cut at both ends and
+        // holds no standard piece: nothing slides.
+        let mut closed = tiles.clone();
+        closed.push(Tile::new(
+            TileKind::Full,
+            vec![],
+            at(0.64),
+            [0.28, 0.14, 0.015],
+        ));
+        let outlines: Vec<_> = closed.iter().map(outline::world_corners).collect();
+        let (cut, _) = tears
+            .piece(at(0.35), &closed, &outlines, &[0, 1], &q)
+            .unwrap();
+        assert!(
+            tears
+                .standard(&cut, &closed, &outlines, &[0, 1], &q)
+                .is_none()
+        );
     }
 }
