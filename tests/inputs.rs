@@ -1586,6 +1586,33 @@ fn run_leaves_out_the_input_faces_excluded_and_neither_fills_nor_counts_them() {
     }
     flush(&mut centre);
     assert_eq!(inside_count, 0, "tiles laid in the opening");
+    // Nor do the tiles around it reach in: the fit keeps them out of the opening as out of
+    // any other, and they are cut to its edge (5 mm for the plan of a 15 mm tile's top on
+    // the slope). Before, the fit slid them half a tile into it. The opening's edge runs
+    // along the mesh's lines nearest the square (0.472 here): in plan, no corner of a face
+    // left in is closer to the middle, in the square's measure, than `edge`.
+    let square = |p: &Point3<f64>| p.x.abs().max(p.y.abs());
+    let edge = (0..surface.face_count())
+        .filter(|&f| {
+            let c = surface.face_centroid(f);
+            !inside(c.x, c.y)
+        })
+        .flat_map(|f| surface.face_points(f).collect::<Vec<_>>())
+        .map(|p| square(&p))
+        .fold(f64::INFINITY, f64::min);
+    assert!(edge > 0.45, "{edge}");
+    let reaching_in = tiles
+        .lines()
+        .filter_map(|line| line.strip_prefix("v "))
+        .filter(|rest| {
+            let p: Vec<f64> = rest
+                .split_whitespace()
+                .map(|v| v.parse().unwrap())
+                .collect();
+            square(&Point3::new(p[0], p[1], p[2])) < edge - 0.005
+        })
+        .count();
+    assert_eq!(reaching_in, 0, "tile corners inside the opening");
     // A forced pair names quads, which run makes itself: refused, saying what to do.
     let (out, _, _) = run(
         "force-in-run",

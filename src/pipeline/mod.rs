@@ -177,6 +177,7 @@ pub fn tile_surface(
         )?
     };
     // The surface's zones and excluded faces carried over to the quads.
+    let left_out: &[usize] = &options.excluded_faces;
     let zoned;
     let options = if options.zones.is_some() || !options.excluded_faces.is_empty() {
         // One closest-face search serves both (the zone count was checked above).
@@ -219,9 +220,12 @@ pub fn tile_surface(
     // The fit stage is fast next to the others: it reports as done, and can still cancel.
     let mut last = |_: f64| control.keep_going(1.0);
     let finish = with_bond(finish, options.bond);
-    let tiling = tiles_for_pattern_with(
+    // The opening is the caller's own faces here, not the quads' approximation of them.
+    let opened = tiles::without_faces(surface, left_out);
+    let tiling = lay_tiles(
         &remeshed.quads,
         Some(surface),
+        opened.as_ref(),
         pattern,
         spec,
         &finish,
@@ -319,6 +323,32 @@ pub fn tiles_for_pattern_with(
     finish: &FinishOptions,
     control: &mut Control<'_>,
 ) -> Result<Tiling, Error> {
+    // The pattern's excluded quads open the surface where they lie (its faces over them).
+    let opened = tiles::ExcludedArea::new(quads, &pattern.excluded)
+        .and_then(|e| e.opened(surface.unwrap_or(quads)));
+    lay_tiles(
+        quads,
+        surface,
+        opened.as_ref(),
+        pattern,
+        spec,
+        finish,
+        control,
+    )
+}
+
+/// [`tiles_for_pattern_with`] on `opened`, the surface (the quads without one) with an
+/// opening where the pattern's excluded faces lie, when they do: the fit keeps the tiles out
+/// of it as out of any opening, and they are cut to its edge.
+fn lay_tiles(
+    quads: &PolyMesh,
+    surface: Option<&PolyMesh>,
+    opened: Option<&PolyMesh>,
+    pattern: Pattern,
+    spec: &TileSpec,
+    finish: &FinishOptions,
+    control: &mut Control<'_>,
+) -> Result<Tiling, Error> {
     let started = Instant::now();
     // The tile first: finishing options default to fractions of it.
     spec.validate()?;
@@ -332,6 +362,10 @@ pub fn tiles_for_pattern_with(
     check_tile_scale(Some(quads), surface, spec)?;
     let boxes = tiles::build(quads, &pattern, spec)?;
     let mm = finish.units_per_mm;
+    // The caller's excluded quads: openings, areas laid by hand, neither filled nor counted
+    // as uncovered; the fit and the cut to the boundary take the surface opened there.
+    let excluded = tiles::ExcludedArea::new(quads, &pattern.excluded);
+    let laid_on = opened.or(surface);
     let (boxes, fitted) = match &finish.fit {
         Some(options) => {
             let before = JointSummary::of(
@@ -345,9 +379,9 @@ pub fn tiles_for_pattern_with(
             // quads are the surface, as the tile boundary takes them.
             let sheets = finish
                 .creases
-                .then(|| crate::mesh::crease::split_at_creases(surface.unwrap_or(quads)))
+                .then(|| crate::mesh::crease::split_at_creases(laid_on.unwrap_or(quads)))
                 .flatten();
-            let on = sheets.as_ref().map(|s| &s.mesh).or(surface);
+            let on = sheets.as_ref().map(|s| &s.mesh).or(laid_on);
             let (moved, summary) = tiles::fit::fit(quads, on, boxes, spec, options, control)?;
             (
                 moved,
@@ -364,12 +398,9 @@ pub fn tiles_for_pattern_with(
     let mut fill_started: Option<Instant> = None;
     let fill_limit = finish.fit.map_or(f64::INFINITY, |f| f.time_limit);
     let mut fill_timed_out = false;
-    // The caller's excluded quads: openings, areas laid by hand, neither filled nor counted
-    // as uncovered.
-    let excluded = tiles::ExcludedArea::new(quads, &pattern.excluded);
     let (tiles, finished) = tiles::finish_with(
         quads,
-        surface,
+        laid_on,
         boxes,
         spec,
         finish,

@@ -3,7 +3,9 @@
 //! report's coverage does not count it as uncovered (`report::coverage`): before, an
 //! opening excluded with `--exclude` was filled with pieces by the tear fill (34 of them in a
 //! 61-face opening) or, without the fit, read as a coverage of 0.900 with a warning that
-//! blamed units and remeshing.
+//! blamed units and remeshing. The fit and the cut to the boundary take the surface with an
+//! opening there ([`ExcludedArea::opened`]): before, the fit slid the tiles around a 1 m
+//! opening into it, covering half of it, and nothing said so.
 
 use nalgebra::Point3;
 
@@ -44,6 +46,40 @@ impl ExcludedArea {
             .closest(&q.coords)
             .is_some_and(|on| self.excluded[self.quad_of[on.triangle]])
     }
+
+    /// `surface` with an opening where the area lies: without the faces whose centroid is
+    /// over an excluded quad (the rule by which the quads took the surface's excluded faces,
+    /// turned round), so that the fit keeps tiles out of it as out of any opening and the
+    /// tiles are cut to its edge. `None` when no face lies there, or every face does.
+    pub fn opened(&self, surface: &PolyMesh) -> Option<PolyMesh> {
+        let over: Vec<usize> = (0..surface.face_count())
+            .filter(|&f| self.contains(&surface.face_centroid(f)))
+            .collect();
+        without_faces(surface, &over)
+    }
+}
+
+/// `surface` without the faces `left_out` (indices beyond it are ignored): an opening where
+/// they lie. `None` when none of its faces is left out, or all are.
+pub fn without_faces(surface: &PolyMesh, left_out: &[usize]) -> Option<PolyMesh> {
+    let mut out = vec![false; surface.face_count()];
+    for &f in left_out {
+        if let Some(o) = out.get_mut(f) {
+            *o = true;
+        }
+    }
+    let faces: Vec<Vec<usize>> = surface
+        .faces()
+        .iter()
+        .zip(&out)
+        .filter(|&(_, &o)| !o)
+        .map(|(face, _)| face.clone())
+        .collect();
+    if faces.len() == surface.face_count() {
+        return None;
+    }
+    // A subset of a valid mesh's faces is valid (empty aside).
+    PolyMesh::new(surface.positions().to_vec(), faces).ok()
 }
 
 #[cfg(test)]
@@ -64,5 +100,44 @@ mod tests {
         assert!(area.contains(&Point3::new(1.5, 1.5, 0.2)));
         assert!(!area.contains(&Point3::new(0.5, 0.5, 0.0)));
         assert!(ExcludedArea::new(&grid, &[]).is_none());
+    }
+
+    #[test]
+    fn a_surface_is_opened_where_it_lies_over_the_excluded_quads() {
+        // Quads of a 4 x 4 grid, the middle one left out; the surface the same grid split
+        // into triangles, twice as fine.
+        let quads = generate::grid(4, 4);
+        let middle = (0..quads.face_count())
+            .find(|&f| {
+                let c = quads.face_centroid(f);
+                (c.x - 1.5).abs() < 0.1 && (c.y - 1.5).abs() < 0.1
+            })
+            .unwrap();
+        let fine = generate::grid(8, 8);
+        let half: Vec<_> = fine.positions().iter().map(|p| p * 0.5).collect();
+        let surface =
+            generate::triangulate_quads(&PolyMesh::new(half, fine.faces().to_vec()).unwrap());
+        let area = ExcludedArea::new(&quads, &[middle]).unwrap();
+        let opened = area.opened(&surface).expect("an opening");
+        // The 2 x 2 fine cells over the middle quad, two triangles each, are gone; every
+        // other face is kept as it was.
+        assert_eq!(opened.face_count(), surface.face_count() - 8);
+        for f in 0..opened.face_count() {
+            let c = opened.face_centroid(f);
+            assert!(
+                !((1.0..2.0).contains(&c.x) && (1.0..2.0).contains(&c.y)),
+                "{c:?}"
+            );
+        }
+        assert_eq!(opened.positions(), surface.positions());
+        // The quads opened by themselves lose the quad; nothing to open, or all: none.
+        assert_eq!(
+            area.opened(&quads).unwrap().face_count(),
+            quads.face_count() - 1
+        );
+        assert!(without_faces(&quads, &[]).is_none());
+        let all: Vec<usize> = (0..quads.face_count()).collect();
+        assert!(without_faces(&quads, &all).is_none());
+        assert_eq!(without_faces(&quads, &[0, 99]).unwrap().face_count(), 15);
     }
 }

@@ -28,7 +28,7 @@ mod tears;
 
 pub use clip::{Cut, SurfaceBoundary};
 pub use cutlist::CutGroup;
-pub use excluded::ExcludedArea;
+pub use excluded::{ExcludedArea, without_faces};
 pub use fit::{FitOptions, FitStatus, FitSummary};
 pub use frame::Frame;
 pub use sequence::{SLOPE_DEGREES, Sequence, SequenceOptions, Support};
