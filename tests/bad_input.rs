@@ -1466,8 +1466,19 @@ fn the_command_line_reports_bad_input() {
         (args(&["match", &range]), 1, &["face 0", "vertex 6"]),
         (args(&["match", &zero_index]), 1, &["line 4", "index 0"]),
         (args(&["match", &before_first]), 1, &["line 4", "-4"]),
+        // A corner given twice in a row is one corner (a triangle written as a quad, as
+        // Rhino stores it); kept as given, it is refused.
         (
             args(&["match", &repeated]),
+            0,
+            &[
+                "lost a corner",
+                "given twice in a row",
+                "none of the 1 faces is a quad",
+            ],
+        ),
+        (
+            args(&["--weld", "off", "match", &repeated]),
             1,
             &["face 0", "vertex 1", "more than once"],
         ),

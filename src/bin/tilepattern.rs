@@ -463,7 +463,7 @@ fn run(cli: Cli) -> Result<()> {
                 // welded: said, since the file does give them four corners.
                 let welded = if shrunk > 0 {
                     format!(
-                        " ({shrunk} of the file's faces lost a corner to welding, two neighbouring corners lying at one place: give --weld off to match them with all the corners the file gives)"
+                        " ({shrunk} of the file's faces lost a corner, two neighbouring corners lying at one place or one corner given twice in a row, as a triangle written as a quad is: give --weld off to match quads with a collapsed edge as the file gives them)"
                     )
                 } else {
                     String::new()
@@ -1420,7 +1420,7 @@ fn weld_warning(loaded: &Loaded) -> Option<Warning> {
         };
         if w.shrunk_faces > 0 {
             message.push_str(&format!(
-                "; {} faces lost a corner (two neighbouring corners at one place were joined: a quad with a collapsed edge is a triangle)",
+                "; {} faces lost a corner (two neighbouring corners at one place were joined, or a corner was given twice in a row: a quad with a collapsed edge, or written `1 2 3 3`, is a triangle)",
                 w.shrunk_faces
             ));
         }

@@ -30,7 +30,8 @@ pub struct WeldSummary {
     /// meshed apart ([`super::zip`]).
     pub zipped_vertices: usize,
     /// Faces kept with fewer corners than the file gives them: two neighbouring corners at
-    /// one place joined (a quad of QuadriFlow's with a collapsed edge becomes a triangle).
+    /// one place joined (a quad of QuadriFlow's with a collapsed edge becomes a triangle), or
+    /// a corner given twice in a row (a triangle written as a quad `1 2 3 3`).
     pub shrunk_faces: usize,
 }
 
@@ -124,19 +125,20 @@ pub fn weld_traced(
             dropped += 1;
             continue;
         }
-        // A face the file itself gives with a corner twice but that keeps three others (a
-        // quad `1 2 2 4`) is left as given, for validation to name: only joining makes
-        // corners one here.
-        let repeats_in_file = f.len() < given.len() && {
-            let mut own = face.clone();
+        // A face the file gives with a corner twice in a row keeps its other corners: `1 2 3
+        // 3` is how a triangle stored in a quad (Rhino's meshes: corner D = C) is written
+        // out, and reads as the triangle. A corner repeated apart from itself (`1 2 1 3`)
+        // leaves no polygon: the face is left as given, for validation to name.
+        let pinched = {
+            let mut own = f.clone();
             own.sort_unstable();
             own.dedup();
-            own.len() < face.len()
+            own.len() < f.len()
         };
-        if !repeats_in_file && f.len() < given.len() {
+        if !pinched && f.len() < given.len() {
             shrunk += 1;
         }
-        out.push(if repeats_in_file { given } else { f });
+        out.push(if pinched { given } else { f });
         source.push(i);
     }
     let vertex_of_file = first.iter().map(|&r| number[r]).collect();
@@ -262,6 +264,20 @@ mod tests {
         assert_eq!(faces, vec![vec![0, 1, 2], vec![0, 2, 3]]);
         assert_eq!((summary.merged_vertices, summary.dropped_faces), (0, 2));
         assert!(summary.changed());
+    }
+
+    #[test]
+    fn a_triangle_written_as_a_quad_reads_as_the_triangle_and_a_pinched_face_is_left() {
+        // `1 2 3 3`, as a quad face of Rhino's holding a triangle is written out; `1 2 1 3`
+        // comes back as given, for validation to refuse.
+        let positions = vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
+        let faces = vec![vec![0, 1, 2, 2], vec![0, 2, 3, 3]];
+        let (kept, faces, summary) = weld(positions.clone(), faces, 1e-6);
+        assert_eq!(kept.len(), 4);
+        assert_eq!(faces, vec![vec![0, 1, 2], vec![0, 2, 3]]);
+        assert_eq!((summary.shrunk_faces, summary.dropped_faces), (2, 0));
+        let (_, faces, _) = weld(positions, vec![vec![0, 1, 0, 2]], 1e-6);
+        assert_eq!(faces, vec![vec![0, 1, 0, 2]]);
     }
 
     #[test]
