@@ -1074,8 +1074,8 @@ fn bad_tile_sizes_are_refused() {
     refused(
         "zero up direction",
         build(&UNIT_TILE, &with(|o| o.sequence.up = Vector3::zeros())),
-        invalid("up"),
-        &["up"],
+        |e| matches!(e, Error::Tiles(TileError::NoUpDirection { up }) if *up == [0.0; 3]),
+        &["up direction [0.0, 0.0, 0.0] is no direction", "0,0,1"],
     );
     refused(
         "NaN up direction",
@@ -1083,8 +1083,8 @@ fn bad_tile_sizes_are_refused() {
             &UNIT_TILE,
             &with(|o| o.sequence.up = Vector3::new(0.0, f64::NAN, 1.0)),
         ),
-        invalid("up"),
-        &["up"],
+        |e| matches!(e, Error::Tiles(TileError::NoUpDirection { .. })),
+        &["up direction"],
     );
 
     // Patterns that do not fit the mesh (read from a file made for another mesh).
@@ -1768,7 +1768,7 @@ fn the_command_line_reports_bad_input() {
                 "0,0,0",
             ]),
             1,
-            &["up"],
+            &["up direction", "is no direction", "0,0,1"],
         ),
         (args(&["match", &quads, "--json", &pairs]), 0, &[]),
         (

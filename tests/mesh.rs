@@ -60,6 +60,30 @@ fn obj_reader_joins_continued_lines_and_reads_old_face_names() {
 }
 
 #[test]
+fn an_obj_of_nurbs_surfaces_is_named_so_and_a_mesh_asked_for() {
+    // A surface Rhino exports to OBJ as NURBS: control points and a `surf`, no faces.
+    let text = "v 0 0 0\nv 5 0 0\nv 0 5 0\nv 5 5 1\ncstype bspline\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\nparm u 0 0 1 1\nparm v 0 0 1 1\nend\n";
+    let error = obj::parse(text).unwrap_err();
+    assert!(
+        matches!(error, MeshError::Format { format: "OBJ", .. }),
+        "{error}"
+    );
+    let message = error.to_string();
+    assert!(
+        message.contains("free-form") && message.contains("as a mesh"),
+        "{message}"
+    );
+    // With faces beside it, the faces are read and the free-form part left.
+    let mixed = format!("{text}f 1 2 4 3\n");
+    assert_eq!(obj::parse(&mixed).unwrap().face_count(), 1);
+    // An empty file is still just empty.
+    assert!(matches!(
+        obj::parse("v 0 0 0\n").unwrap_err(),
+        MeshError::Empty { .. }
+    ));
+}
+
+#[test]
 fn obj_reader_names_the_bad_line() {
     let bad_number = obj::parse("v 0 0 0\nv 1 zero 0\n").unwrap_err();
     assert_eq!(

@@ -99,6 +99,7 @@ impl From<TileError> for Failure {
     fn from(e: TileError) -> Self {
         let status = match e {
             TileError::InvalidSpec { .. }
+            | TileError::NoUpDirection { .. }
             | TileError::OutOfProportion { .. }
             | TileError::TileLargerThanMesh { .. } => TpStatus::TP_INVALID_ARGUMENT,
             TileError::FaceOutOfRange { .. }

@@ -65,6 +65,9 @@ pub(crate) fn parse_raw(text: &str) -> Result<super::io::Raw, MeshError> {
     let mut positions = Vec::new();
     let mut faces: Vec<Vec<usize>> = Vec::new();
     let mut index_count = 0usize;
+    // Free-form geometry (NURBS surfaces and curves, as Rhino exports a surface to OBJ when
+    // not asked for a mesh): not read, but named when it is all the file holds.
+    let mut free_form = 0usize;
     for (line, raw) in logical_lines(text) {
         let syntax = |message: String| MeshError::ObjSyntax { line, message };
         let content = raw.split('#').next().unwrap_or("");
@@ -130,8 +133,17 @@ pub(crate) fn parse_raw(text: &str) -> Result<super::io::Raw, MeshError> {
                     });
                 }
             }
+            Some("surf" | "curv" | "curv2" | "cstype") => free_form += 1,
             _ => {}
         }
+    }
+    if faces.is_empty() && free_form > 0 {
+        return Err(MeshError::Format {
+            format: "OBJ",
+            message: format!(
+                "the file holds free-form geometry ({free_form} surf, curv or cstype statements, NURBS as Rhino writes a surface) and no mesh faces: export the surface as a mesh (Rhino: Mesh the surface, or in the OBJ export options choose Geometry: Mesh)"
+            ),
+        });
     }
     Ok((positions, faces))
 }

@@ -270,7 +270,7 @@ pub enum RemeshError {
     BadTargetEdge(f64),
     /// The target edge is so large that the surface would get almost no quad.
     #[error(
-        "target edge {target} is too large for a surface of area {area:.4} (at most {max:.4} for a few quads)"
+        "target edge {target} is too large for a surface of area {area:.4}: it would get only a few quads (the edge may be at most {max:.4}); the quads are half a tile and a joint long (`run`, the tile stages), so use a smaller tile or edge, or check that the tile and the mesh are in the same units"
     )]
     TargetEdgeTooLarge {
         /// The target edge given.

@@ -228,9 +228,8 @@ impl FinishOptions {
         }
         let up = self.sequence.up;
         if !(up.iter().all(|c| c.is_finite()) && up.norm() > 0.0) {
-            return Err(TileError::InvalidSpec {
-                name: "up",
-                value: up.norm(),
+            return Err(TileError::NoUpDirection {
+                up: [up.x, up.y, up.z],
             });
         }
         Ok(())
@@ -579,6 +578,14 @@ pub enum TileError {
         than: &'static str,
         /// That dimension's value.
         limit: f64,
+    },
+    /// The up direction of the laying order is zero or not finite.
+    #[error(
+        "the up direction {up:?} is no direction (it must be finite and not zero): give the model's up as x,y,z, e.g. 0,0,1 (Rhino's world Z) or 0,1,0 for a Y-up export"
+    )]
+    NoUpDirection {
+        /// The direction given.
+        up: [f64; 3],
     },
     /// The tile is longer than the whole mesh.
     #[error(
