@@ -220,12 +220,17 @@ pub fn tile_surface(
     // The fit stage is fast next to the others: it reports as done, and can still cancel.
     let mut last = |_: f64| control.keep_going(1.0);
     let finish = with_bond(finish, options.bond);
-    // The opening is the caller's own faces here, not the quads' approximation of them.
+    // The excluded area is the caller's own faces here, not the quads' approximation of
+    // them: the opening, the tear fill and the coverage all take it.
+    let excluded = tiles::ExcludedArea::new(surface, left_out);
     let opened = tiles::without_faces(surface, left_out);
     let tiling = lay_tiles(
         &remeshed.quads,
         Some(surface),
-        opened.as_ref(),
+        LeftOut {
+            area: excluded.as_ref(),
+            opened: opened.as_ref(),
+        },
         pattern,
         spec,
         &finish,
@@ -324,12 +329,17 @@ pub fn tiles_for_pattern_with(
     control: &mut Control<'_>,
 ) -> Result<Tiling, Error> {
     // The pattern's excluded quads open the surface where they lie (its faces over them).
-    let opened = tiles::ExcludedArea::new(quads, &pattern.excluded)
+    let excluded = tiles::ExcludedArea::new(quads, &pattern.excluded);
+    let opened = excluded
+        .as_ref()
         .and_then(|e| e.opened(surface.unwrap_or(quads)));
     lay_tiles(
         quads,
         surface,
-        opened.as_ref(),
+        LeftOut {
+            area: excluded.as_ref(),
+            opened: opened.as_ref(),
+        },
         pattern,
         spec,
         finish,
@@ -337,13 +347,21 @@ pub fn tiles_for_pattern_with(
     )
 }
 
-/// [`tiles_for_pattern_with`] on `opened`, the surface (the quads without one) with an
-/// opening where the pattern's excluded faces lie, when they do: the fit keeps the tiles out
-/// of it as out of any opening, and they are cut to its edge.
+/// The area the caller left out of the pattern, when there is one.
+#[derive(Clone, Copy)]
+struct LeftOut<'a> {
+    /// Neither filled nor counted as uncovered.
+    area: Option<&'a tiles::ExcludedArea>,
+    /// The surface (the quads without one) opened there: the fit keeps the tiles out of it
+    /// as out of any opening, and they are cut to its edge.
+    opened: Option<&'a PolyMesh>,
+}
+
+/// [`tiles_for_pattern_with`] with the area the caller left out ([`LeftOut`]).
 fn lay_tiles(
     quads: &PolyMesh,
     surface: Option<&PolyMesh>,
-    opened: Option<&PolyMesh>,
+    left_out: LeftOut<'_>,
     pattern: Pattern,
     spec: &TileSpec,
     finish: &FinishOptions,
@@ -362,10 +380,9 @@ fn lay_tiles(
     check_tile_scale(Some(quads), surface, spec)?;
     let boxes = tiles::build(quads, &pattern, spec)?;
     let mm = finish.units_per_mm;
-    // The caller's excluded quads: openings, areas laid by hand, neither filled nor counted
+    // The caller's excluded area: openings, areas laid by hand, neither filled nor counted
     // as uncovered; the fit and the cut to the boundary take the surface opened there.
-    let excluded = tiles::ExcludedArea::new(quads, &pattern.excluded);
-    let laid_on = opened.or(surface);
+    let (excluded, laid_on) = (left_out.area, left_out.opened.or(surface));
     let (boxes, fitted) = match &finish.fit {
         Some(options) => {
             let before = JointSummary::of(
@@ -398,19 +415,12 @@ fn lay_tiles(
     let mut fill_started: Option<Instant> = None;
     let fill_limit = finish.fit.map_or(f64::INFINITY, |f| f.time_limit);
     let mut fill_timed_out = false;
-    let (tiles, finished) = tiles::finish_with(
-        quads,
-        laid_on,
-        boxes,
-        spec,
-        finish,
-        excluded.as_ref(),
-        &mut || {
+    let (tiles, finished) =
+        tiles::finish_with(quads, laid_on, boxes, spec, finish, excluded, &mut || {
             let started = *fill_started.get_or_insert_with(Instant::now);
             fill_timed_out = started.elapsed().as_secs_f64() > fill_limit;
             !fill_timed_out && control.keep_going(1.0)
-        },
-    );
+        });
     let joints = report::gaps::joints(quads, &tiles, spec.joint);
     let mut report = Report::measured(quads, &pattern, &tiles, &joints, spec, mm);
     if let Some((before, mut summary, seconds)) = fitted {
@@ -425,12 +435,7 @@ fn lay_tiles(
         report.fit = Some(summary);
         report.seconds.fit = seconds;
     }
-    report.add_finish(
-        &tiles,
-        &finished,
-        surface.unwrap_or(quads),
-        excluded.as_ref(),
-    );
+    report.add_finish(&tiles, &finished, surface.unwrap_or(quads), excluded);
     report.warnings = report::warnings::check(
         quads,
         surface.unwrap_or(quads),

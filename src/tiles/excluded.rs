@@ -12,44 +12,44 @@ use nalgebra::Point3;
 use crate::geom::SurfaceIndex;
 use crate::mesh::PolyMesh;
 
-/// The excluded quads of a quad mesh, with the closest-point index that tells whether a point
-/// of the surface lies over one of them.
+/// The excluded faces of a mesh (the quads, or the surface the caller excluded faces of), with
+/// the closest-point index that tells whether a point of the surface lies over one of them.
 pub struct ExcludedArea {
     index: SurfaceIndex,
-    /// Per triangle of the index, its quad.
-    quad_of: Vec<usize>,
+    /// Per triangle of the index, its face.
+    face_of: Vec<usize>,
     excluded: Vec<bool>,
 }
 
 impl ExcludedArea {
-    /// The area of the quads `faces` of `quads`; `None` when there are none.
-    pub fn new(quads: &PolyMesh, faces: &[usize]) -> Option<Self> {
+    /// The area of the faces `faces` of `mesh`; `None` when there are none.
+    pub fn new(mesh: &PolyMesh, faces: &[usize]) -> Option<Self> {
         if faces.is_empty() {
             return None;
         }
-        let mut excluded = vec![false; quads.face_count()];
+        let mut excluded = vec![false; mesh.face_count()];
         for &f in faces {
             if let Some(e) = excluded.get_mut(f) {
                 *e = true;
             }
         }
         Some(Self {
-            index: SurfaceIndex::from_polymesh(quads),
-            quad_of: SurfaceIndex::polymesh_faces(quads),
+            index: SurfaceIndex::from_polymesh(mesh),
+            face_of: SurfaceIndex::polymesh_faces(mesh),
             excluded,
         })
     }
 
-    /// Whether the quad closest to `q` is excluded.
+    /// Whether the face closest to `q` is excluded.
     pub fn contains(&self, q: &Point3<f64>) -> bool {
         self.index
             .closest(&q.coords)
-            .is_some_and(|on| self.excluded[self.quad_of[on.triangle]])
+            .is_some_and(|on| self.excluded[self.face_of[on.triangle]])
     }
 
     /// `surface` with an opening where the area lies: without the faces whose centroid is
-    /// over an excluded quad (the rule by which the quads took the surface's excluded faces,
-    /// turned round), so that the fit keeps tiles out of it as out of any opening and the
+    /// over an excluded face (for the quads' area, the rule by which the quads took the
+    /// surface's excluded faces, turned round), so that the fit keeps tiles out of it as out of any opening and the
     /// tiles are cut to its edge. `None` when no face lies there, or every face does.
     pub fn opened(&self, surface: &PolyMesh) -> Option<PolyMesh> {
         let over: Vec<usize> = (0..surface.face_count())

@@ -205,7 +205,8 @@ impl FinishOptions {
     /// Checks that the tolerances are finite and not negative and `up` is a direction.
     ///
     /// # Errors
-    /// [`TileError::InvalidSpec`] naming the first bad value.
+    /// [`TileError::InvalidSpec`] naming the first bad value, [`TileError::NoUpDirection`]
+    /// for an `up` that is zero or not finite.
     pub fn validate(&self) -> Result<(), TileError> {
         let values = [
             ("tolerance", self.tolerance),
@@ -556,7 +557,7 @@ pub(crate) fn lifts(tiles: &[Tile], boundary: &SurfaceBoundary) -> Vec<f64> {
 pub enum TileError {
     /// A tile dimension or finishing option is out of range.
     #[error(
-        "tile option {name} {value} must be a finite number > 0 (joint, tolerances and time limits >= 0; up a non-zero direction)"
+        "tile option {name} {value} must be a finite number > 0 (joint, tolerances and time limits >= 0)"
     )]
     InvalidSpec {
         /// Which dimension.

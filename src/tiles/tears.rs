@@ -42,7 +42,7 @@ const JOINT_SPREAD: f64 = 0.5;
 
 /// What the tear fill needs to know of the tiles and the surface.
 pub(crate) struct Tears<'a> {
-    /// The input surface, sampled.
+    /// The surface (opened where the caller left an area out), sampled.
     pub surface: &'a PolyMesh,
     /// Its boundary, to cut pieces to and to lay them onto the surface.
     pub boundary: &'a SurfaceBoundary,
@@ -152,9 +152,11 @@ impl Tears<'_> {
         let mut done = vec![false; open.len()];
         let mut tried = 0;
         // Holes are filled from their edges in, as a mason fills them: the samples nearest a
-        // tile first (by the distance to the nearest origin within a piece's touch; ties in
-        // face order), so that each piece continues a course from a tile beside it and the
-        // pieces deeper in continue those. With the slide of [`Tears::standard`], measured on
+        // tile first (by the distance to the nearest origin within a piece's touch, as the
+        // tiles stand before the fill; ties, and samples beyond a piece's touch of every
+        // tile, in face order), so that each piece continues a course from a tile beside it
+        // and the pieces next in continue those. (Kept up to date as pieces are laid, the
+        // order cut more: see the journal.) With the slide of [`Tears::standard`], measured on
         // 27 shells (docs/journal.md, *Holes filled from their edges*): pieces cut in the
         // holes 1136 -> 1009 of about 34,000 tiles, the drum's share cut 21.4 -> 18.0 %.
         let from_edges = |i: usize| {
