@@ -27,16 +27,10 @@ impl ExcludedArea {
         if faces.is_empty() {
             return None;
         }
-        let mut excluded = vec![false; mesh.face_count()];
-        for &f in faces {
-            if let Some(e) = excluded.get_mut(f) {
-                *e = true;
-            }
-        }
         Some(Self {
             index: SurfaceIndex::from_polymesh(mesh),
             face_of: SurfaceIndex::polymesh_faces(mesh),
-            excluded,
+            excluded: mask(mesh.face_count(), faces),
         })
     }
 
@@ -49,29 +43,41 @@ impl ExcludedArea {
 
     /// `surface` with an opening where the area lies: without the faces whose centroid is
     /// over an excluded face (for the quads' area, the rule by which the quads took the
-    /// surface's excluded faces, turned round), so that the fit keeps tiles out of it as out of any opening and the
-    /// tiles are cut to its edge. `None` when no face lies there, or every face does.
+    /// surface's excluded faces, turned round), so that the fit keeps tiles out of it as out
+    /// of any opening and the tiles are cut to its edge. `None` when no face lies there, or
+    /// every face does.
     pub fn opened(&self, surface: &PolyMesh) -> Option<PolyMesh> {
-        let over: Vec<usize> = (0..surface.face_count())
-            .filter(|&f| self.contains(&surface.face_centroid(f)))
+        let over: Vec<bool> = (0..surface.face_count())
+            .map(|f| self.contains(&surface.face_centroid(f)))
             .collect();
-        without_faces(surface, &over)
+        without(surface, &over)
     }
+}
+
+/// Per face of a mesh of `count` faces, whether it is one of `faces` (indices beyond it are
+/// ignored).
+fn mask(count: usize, faces: &[usize]) -> Vec<bool> {
+    let mut mask = vec![false; count];
+    for &f in faces {
+        if let Some(m) = mask.get_mut(f) {
+            *m = true;
+        }
+    }
+    mask
 }
 
 /// `surface` without the faces `left_out` (indices beyond it are ignored): an opening where
 /// they lie. `None` when none of its faces is left out, or all are.
 pub fn without_faces(surface: &PolyMesh, left_out: &[usize]) -> Option<PolyMesh> {
-    let mut out = vec![false; surface.face_count()];
-    for &f in left_out {
-        if let Some(o) = out.get_mut(f) {
-            *o = true;
-        }
-    }
+    without(surface, &mask(surface.face_count(), left_out))
+}
+
+/// `surface` without the faces `out` marks ([`without_faces`]).
+fn without(surface: &PolyMesh, out: &[bool]) -> Option<PolyMesh> {
     let faces: Vec<Vec<usize>> = surface
         .faces()
         .iter()
-        .zip(&out)
+        .zip(out)
         .filter(|&(_, &o)| !o)
         .map(|(face, _)| face.clone())
         .collect();

@@ -155,10 +155,10 @@ impl Tears<'_> {
         // tile first (by the distance to the nearest origin within a piece's touch, as the
         // tiles stand before the fill; ties, and samples beyond a piece's touch of every
         // tile, in face order), so that each piece continues a course from a tile beside it
-        // and the pieces next in continue those. (Kept up to date as pieces are laid, the
-        // order cut more: see the journal.) With the slide of [`Tears::standard`], measured on
-        // 27 shells (docs/journal.md, *Holes filled from their edges*): pieces cut in the
-        // holes 1136 -> 1009 of about 34,000 tiles, the drum's share cut 21.4 -> 18.0 %.
+        // and the pieces next in continue those. With the slide of [`Tears::standard`],
+        // measured on 27 shells (docs/journal.md, *Holes filled from their edges*, which also
+        // has the order kept up to date as pieces are laid, which cut more): pieces cut in
+        // the holes 1136 -> 1025 of about 34,000 tiles, the drum's share cut 21.4 -> 18.0 %.
         let from_edges = |i: usize| {
             placed
                 .near(&open[i].0, touching)
